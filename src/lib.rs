@@ -1,0 +1,50 @@
+#![doc = include_str!(concat!(env!("OUT_DIR"), "/index.md"))]
+#![warn(missing_docs)]
+
+pub mod geometry;
+pub mod plot;
+pub mod real;
+
+/// One question's printed answers, as `hw3 answers` shows them.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Answers {
+    /// The question id (`"q2"`).
+    pub question: &'static str,
+    /// The homework's title for it.
+    pub title: &'static str,
+    /// The answers, as plain text with one claim per line.
+    pub text: String,
+}
+
+/// Every question's answers, in homework order.
+///
+/// # Examples
+/// ```
+/// let all = hw3::all_answers();
+/// assert!(all.iter().all(|a| !a.text.is_empty()));
+/// ```
+#[must_use]
+pub fn all_answers() -> Vec<Answers> {
+    vec![]
+}
+
+/// Every figure of the course notes, in homework order (deterministic bytes).
+///
+/// # Errors
+/// [`plot::PlotError`] if a figure cannot be drawn.
+pub fn all_figures() -> Result<Vec<plot::Figure>, plot::PlotError> {
+    let mut figures: Vec<plot::Figure> = Vec::new();
+    Ok(figures)
+}
+
+#[cfg(test)]
+pub(crate) mod test_support {
+    /// insta settings shared by every snapshot test in the crate: snapshots live in the top-level
+    /// `snapshots/` folder, named by the snapshot name alone.
+    pub fn insta_settings() -> insta::Settings {
+        let mut settings = insta::Settings::clone_current();
+        settings.set_snapshot_path(concat!(env!("CARGO_MANIFEST_DIR"), "/snapshots"));
+        settings.set_prepend_module_to_snapshot(false);
+        settings
+    }
+}

@@ -1,0 +1,122 @@
+//! `hw3`: prints every answer and regenerates every figure; subcommands compute single answers.
+//!
+//! Exit status: 0 on success, 2 on invalid input (one line on stderr, nothing written),
+//! 1 on an internal failure (for example a figure that cannot be written).
+
+use anyhow::Context as _;
+use clap::{Parser, Subcommand};
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+#[derive(Parser)]
+#[command(
+    name = "hw3",
+    version,
+    about = "Ray-tracing homework 3: answers, figures and checks"
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Option<Command>,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Print the answers (all questions, or one).
+    Answers {
+        /// Only this question (q1 … q5).
+        #[arg(long)]
+        question: Option<String>,
+    },
+    /// Regenerate every figure of the course notes.
+    Figures {
+        /// Output folder.
+        #[arg(long, default_value = "docs/figures")]
+        out: PathBuf,
+    },
+}
+
+/// An error the user caused: reported on one line, exit status 2, nothing written.
+#[derive(Debug)]
+struct UsageError(String);
+
+impl std::fmt::Display for UsageError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for UsageError {}
+
+fn main() -> ExitCode {
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => {
+            let code = if e.use_stderr() { 2 } else { 0 };
+            let _ = e.print();
+            return ExitCode::from(code);
+        }
+    };
+    match run(cli) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) if e.downcast_ref::<UsageError>().is_some() => {
+            eprintln!("hw3: {e}");
+            ExitCode::from(2)
+        }
+        Err(e) => {
+            eprintln!("hw3: {e:#}");
+            ExitCode::from(1)
+        }
+    }
+}
+
+fn run(cli: Cli) -> anyhow::Result<()> {
+    match cli.command {
+        None => {
+            print_answers(None)?;
+            write_figures(&PathBuf::from("docs/figures"))
+        }
+        Some(Command::Answers { question }) => print_answers(question.as_deref()),
+        Some(Command::Figures { out }) => write_figures(&out),
+    }
+}
+
+fn print_answers(question: Option<&str>) -> anyhow::Result<()> {
+    let all = hw3::all_answers();
+    if let Some(q) = question {
+        if !all.iter().any(|a| a.question == q) {
+            let known: Vec<_> = all.iter().map(|a| a.question).collect();
+            return Err(UsageError(format!(
+                "unknown question `{q}`; known: {}",
+                known.join(", ")
+            ))
+            .into());
+        }
+    }
+    for answers in all
+        .iter()
+        .filter(|a| question.is_none_or(|q| a.question == q))
+    {
+        println!(
+            "== {} — {} ==\n{}\n",
+            answers.question.to_uppercase(),
+            answers.title,
+            answers.text
+        );
+    }
+    Ok(())
+}
+
+fn write_figures(out: &PathBuf) -> anyhow::Result<()> {
+    let figures = hw3::all_figures().context("drawing figures")?;
+    std::fs::create_dir_all(out).with_context(|| format!("creating {}", out.display()))?;
+    for figure in &figures {
+        let path = out.join(&figure.file_name);
+        let unchanged = std::fs::read(&path).is_ok_and(|old| old == figure.bytes);
+        if !unchanged {
+            std::fs::write(&path, &figure.bytes)
+                .with_context(|| format!("writing {}", path.display()))?;
+        }
+    }
+    eprintln!("{} figures in {}", figures.len(), out.display());
+    Ok(())
+}
