@@ -214,6 +214,24 @@ pub fn hard_cases() -> Vec<HardCase> {
         ),
         aimed("far: r = 1 at distance 1e4", eye, dir, 1.0, 1e4, 0.5, 1.0),
         aimed("far: r = 1 at distance 1e5", eye, dir, 1.0, 1e5, 0.5, 1.0),
+        aimed(
+            "far: r = 1 at distance 1e4, offset 0.9 r",
+            eye,
+            dir,
+            1.0,
+            1e4,
+            0.9,
+            1.0,
+        ),
+        aimed(
+            "far: r = 1 at distance 1e5, offset 0.9 r",
+            eye,
+            dir,
+            1.0,
+            1e5,
+            0.9,
+            1.0,
+        ),
         HardCase {
             beyond_f32: true,
             ..aimed("far: r = 1 at distance 1e7", eye, dir, 1.0, 1e7, 0.5, 1.0)
@@ -604,6 +622,7 @@ mod tests {
     /// f64 must deliver instead.
     #[test]
     fn stable_f32_rescues_every_case_naive_f32_gets_wrong() {
+        let mut rescued = Vec::new();
         for row in score_catalogue() {
             let [naive32, stable32, naive64, stable64] = row.outcomes.map(Outcome::error);
             // f64 bound: with the eye 0.01 above an r = 1e6 sphere, C = |f|² − r² ≈ 2e4 is computed
@@ -613,6 +632,7 @@ mod tests {
             assert!(naive64 <= 1e-8, "{name}: naive f64 {naive64:e}");
             if naive32 > 1e-2 && !row.case.beyond_f32 {
                 assert!(stable32 <= 1e-5, "{name}: stable f32 {stable32:e}");
+                rescued.push(name);
             }
             if !row.case.beyond_f32 {
                 // Every case f32 can hold: no wrong hit/miss, and t within 1e-4 (the worst left is
@@ -620,8 +640,12 @@ mod tests {
                 assert!(stable32 <= 1e-4, "{name}: stable f32 {stable32:e}");
             }
         }
+        // Not vacuous: the far sphere at 1e5, 0.9 r off-centre is missed by the homework in f32.
+        assert!(
+            !rescued.is_empty(),
+            "the catalogue must contain a case the stable form rescues"
+        );
     }
-
     #[test]
     fn far_spheres_get_hit_or_miss_wrong_with_the_homework_formula_in_f32() {
         let near = far_sphere_sweep(1e2, 2000, 2);
@@ -698,7 +722,7 @@ mod tests {
                 .abs()
                 < 1e6
         );
-        for radius in [-1.0, f64::NAN, f64::INFINITY] {
+        for radius in [-1.0, 0.0, f64::NAN, f64::INFINITY] {
             let bad = Sphere {
                 center: DVec3::ZERO,
                 radius,
