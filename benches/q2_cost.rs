@@ -21,14 +21,8 @@ fn convert<T: Real>(pairs: &[(Ray<f64>, Sphere<f64>)]) -> Vec<(Ray<T>, Sphere<T>
         .iter()
         .map(|(r, s)| {
             (
-                Ray {
-                    origin: T::vec_from_f64(r.origin),
-                    dir: T::vec_from_f64(r.dir),
-                },
-                Sphere {
-                    center: T::vec_from_f64(s.center),
-                    radius: T::from_f64(s.radius),
-                },
+                Ray { origin: T::vec_from_f64(r.origin), dir: T::vec_from_f64(r.dir) },
+                Sphere { center: T::vec_from_f64(s.center), radius: T::from_f64(s.radius) },
             )
         })
         .collect()
@@ -45,28 +39,16 @@ fn time_per_call(repeats: u32, mut work: impl FnMut() -> f64) -> f64 {
     best
 }
 
-fn intersect<T: Real>(
-    pairs: &[(Ray<T>, Sphere<T>)],
-    solver: fn(&Ray<T>, &Sphere<T>) -> Option<T>,
-) -> f64 {
-    pairs.iter().fold(0.0, |acc, (ray, sphere)| {
-        acc + solver(black_box(ray), black_box(sphere)).map_or(0.0, Real::to_f64)
-    })
+fn intersect<T: Real>(pairs: &[(Ray<T>, Sphere<T>)], solver: fn(&Ray<T>, &Sphere<T>) -> Option<T>) -> f64 {
+    pairs
+        .iter()
+        .fold(0.0, |acc, (ray, sphere)| acc + solver(black_box(ray), black_box(sphere)).map_or(0.0, Real::to_f64))
 }
 
 fn spawn(pairs: &[(Ray<f32>, Sphere<f32>)], policy: SpawnPolicy) -> f64 {
-    pairs.iter().fold(0.0, |acc, (ray, sphere)| {
-        match first_hit_stable(black_box(ray), sphere) {
-            Some(t) => {
-                acc + f64::from(
-                    reflect_at_hit(ray, sphere, t, black_box(policy))
-                        .ray
-                        .origin
-                        .x,
-                )
-            }
-            None => acc,
-        }
+    pairs.iter().fold(0.0, |acc, (ray, sphere)| match first_hit_stable(black_box(ray), sphere) {
+        Some(t) => acc + f64::from(reflect_at_hit(ray, sphere, t, black_box(policy)).ray.origin.x),
+        None => acc,
     })
 }
 
@@ -81,62 +63,21 @@ fn main() {
     let batch = camera_batch(BATCH, 1);
     let (b32, b64) = (convert::<f32>(&batch), convert::<f64>(&batch));
     // (kind, label, baseline label, measurement)
-    type Job<'a> = (
-        &'static str,
-        &'static str,
-        &'static str,
-        Box<dyn Fn() -> f64 + 'a>,
-    );
+    type Job<'a> = (&'static str, &'static str, &'static str, Box<dyn Fn() -> f64 + 'a>);
     let jobs: Vec<Job<'_>> = vec![
-        (
-            "intersect",
-            "naive f32",
-            "naive f32",
-            Box::new(|| intersect(&b32, first_hit_naive::<f32>)),
-        ),
-        (
-            "intersect",
-            "stable f32",
-            "naive f32",
-            Box::new(|| intersect(&b32, first_hit_stable::<f32>)),
-        ),
-        (
-            "intersect",
-            "naive f64",
-            "naive f32",
-            Box::new(|| intersect(&b64, first_hit_naive::<f64>)),
-        ),
-        (
-            "intersect",
-            "stable f64",
-            "naive f32",
-            Box::new(|| intersect(&b64, first_hit_stable::<f64>)),
-        ),
-        (
-            "spawn",
-            "AtComputedPoint",
-            "AtComputedPoint",
-            Box::new(|| spawn(&b32, SpawnPolicy::AtComputedPoint)),
-        ),
-        (
-            "spawn",
-            "ReprojectAndOffset",
-            "AtComputedPoint",
-            Box::new(|| spawn(&b32, SpawnPolicy::ReprojectAndOffset)),
-        ),
+        ("intersect", "naive f32", "naive f32", Box::new(|| intersect(&b32, first_hit_naive::<f32>))),
+        ("intersect", "stable f32", "naive f32", Box::new(|| intersect(&b32, first_hit_stable::<f32>))),
+        ("intersect", "naive f64", "naive f32", Box::new(|| intersect(&b64, first_hit_naive::<f64>))),
+        ("intersect", "stable f64", "naive f32", Box::new(|| intersect(&b64, first_hit_stable::<f64>))),
+        ("spawn", "AtComputedPoint", "AtComputedPoint", Box::new(|| spawn(&b32, SpawnPolicy::AtComputedPoint))),
+        ("spawn", "ReprojectAndOffset", "AtComputedPoint", Box::new(|| spawn(&b32, SpawnPolicy::ReprojectAndOffset))),
     ];
     let mut samples: Vec<Vec<f64>> = vec![Vec::new(); jobs.len()];
     let mut ratios: Vec<Vec<f64>> = vec![Vec::new(); jobs.len()];
     for _ in 0..rounds {
-        let round: Vec<f64> = jobs
-            .iter()
-            .map(|(_, _, _, work)| time_per_call(repeats, work))
-            .collect();
+        let round: Vec<f64> = jobs.iter().map(|(_, _, _, work)| time_per_call(repeats, work)).collect();
         for (i, (_, _, baseline, _)) in jobs.iter().enumerate() {
-            let base = jobs
-                .iter()
-                .position(|(_, label, _, _)| label == baseline)
-                .expect("baseline is a job");
+            let base = jobs.iter().position(|(_, label, _, _)| label == baseline).expect("baseline is a job");
             samples[i].push(round[i]);
             ratios[i].push(round[i] / round[base]);
         }
@@ -147,11 +88,7 @@ fn main() {
     );
     csv.push_str("kind,variant,median_ns,ratio\n");
     for (i, (kind, label, _, _)) in jobs.iter().enumerate() {
-        let line = format!(
-            "{kind},{label},{:.3},{:.3}\n",
-            median(samples[i].clone()),
-            median(ratios[i].clone())
-        );
+        let line = format!("{kind},{label},{:.3},{:.3}\n", median(samples[i].clone()), median(ratios[i].clone()));
         print!("{line}");
         csv.push_str(&line);
     }

@@ -21,26 +21,15 @@ fn batch<T: Real>() -> Vec<(Ray<T>, Sphere<T>)> {
         .into_iter()
         .map(|(r, s)| {
             (
-                Ray {
-                    origin: T::vec_from_f64(r.origin),
-                    dir: T::vec_from_f64(r.dir),
-                },
-                Sphere {
-                    center: T::vec_from_f64(s.center),
-                    radius: T::from_f64(s.radius),
-                },
+                Ray { origin: T::vec_from_f64(r.origin), dir: T::vec_from_f64(r.dir) },
+                Sphere { center: T::vec_from_f64(s.center), radius: T::from_f64(s.radius) },
             )
         })
         .collect()
 }
 
-fn sum_hits<T: Real>(
-    pairs: &[(Ray<T>, Sphere<T>)],
-    solver: fn(&Ray<T>, &Sphere<T>) -> Option<T>,
-) -> T {
-    pairs.iter().fold(T::ZERO, |acc, (ray, sphere)| {
-        acc + solver(black_box(ray), black_box(sphere)).unwrap_or(T::ZERO)
-    })
+fn sum_hits<T: Real>(pairs: &[(Ray<T>, Sphere<T>)], solver: fn(&Ray<T>, &Sphere<T>) -> Option<T>) -> T {
+    pairs.iter().fold(T::ZERO, |acc, (ray, sphere)| acc + solver(black_box(ray), black_box(sphere)).unwrap_or(T::ZERO))
 }
 
 #[divan::bench(types = [f32, f64], counter = divan::counter::ItemsCount::new(BATCH))]
@@ -59,16 +48,9 @@ fn stable<T: Real>(bencher: divan::Bencher) {
 fn hit_and_reflect_f32(bencher: divan::Bencher, policy: SpawnPolicy) {
     let pairs = batch::<f32>();
     bencher.bench_local(|| {
-        pairs.iter().fold(0.0f32, |acc, (ray, sphere)| {
-            match first_hit_stable(black_box(ray), sphere) {
-                Some(t) => {
-                    acc + reflect_at_hit(ray, sphere, t, black_box(policy))
-                        .ray
-                        .origin
-                        .x
-                }
-                None => acc,
-            }
+        pairs.iter().fold(0.0f32, |acc, (ray, sphere)| match first_hit_stable(black_box(ray), sphere) {
+            Some(t) => acc + reflect_at_hit(ray, sphere, t, black_box(policy)).ray.origin.x,
+            None => acc,
         })
     });
 }

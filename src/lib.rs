@@ -12,6 +12,8 @@ pub mod rng;
 
 pub mod q2_ray_sphere;
 
+pub mod checker;
+
 /// One question's printed answers, as `hw3 answers` shows them.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Answers {

@@ -9,11 +9,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 #[derive(Parser)]
-#[command(
-    name = "hw3",
-    version,
-    about = "Ray-tracing homework 3: answers, figures and checks"
-)]
+#[command(name = "hw3", version, about = "Ray-tracing homework 3: answers, figures and checks")]
 struct Cli {
     #[command(subcommand)]
     command: Option<Command>,
@@ -51,6 +47,32 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// Write a blank answers file: every question of a variant, every key commented out.
+    Template {
+        /// Variant seed (0 = the notes' worked example).
+        #[arg(long, default_value_t = 0)]
+        seed: u64,
+    },
+    /// Grade an answers file (TOML). Exit status 0 = all correct, 1 = some wrong, 2 = unreadable.
+    Check {
+        /// The answers file.
+        file: PathBuf,
+        /// Variant seed (overrides `[meta] seed` in the file).
+        #[arg(long)]
+        seed: Option<u64>,
+        /// Report format.
+        #[arg(long, value_enum, default_value_t = FormatArg::Text)]
+        format: FormatArg,
+    },
+    /// Print a randomised variant of a question with its solution.
+    Variant {
+        /// The question (q2).
+        #[arg(long)]
+        question: String,
+        /// Variant seed (0 = the notes' worked example).
+        #[arg(long, default_value_t = 0)]
+        seed: u64,
+    },
     /// Regenerate every figure of the course notes.
     Figures {
         /// Output folder.
@@ -71,6 +93,13 @@ enum MethodArg {
     Stable,
 }
 
+#[derive(Clone, Copy, clap::ValueEnum)]
+enum FormatArg {
+    Text,
+    Json,
+    Gradescope,
+}
+
 /// An error the user caused: reported on one line, exit status 2, nothing written.
 #[derive(Debug)]
 struct UsageError(String);
@@ -83,6 +112,18 @@ impl std::fmt::Display for UsageError {
 
 impl std::error::Error for UsageError {}
 
+/// `hw3 check` found wrong answers: exit status 1, the report already printed.
+#[derive(Debug)]
+struct SomeWrong;
+
+impl std::fmt::Display for SomeWrong {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("some answers are not correct")
+    }
+}
+
+impl std::error::Error for SomeWrong {}
+
 fn main() -> ExitCode {
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
@@ -94,6 +135,7 @@ fn main() -> ExitCode {
     };
     match run(cli) {
         Ok(()) => ExitCode::SUCCESS,
+        Err(e) if e.downcast_ref::<SomeWrong>().is_some() => ExitCode::from(1),
         Err(e) if e.downcast_ref::<UsageError>().is_some() => {
             eprintln!("hw3: {e}");
             ExitCode::from(2)
@@ -113,19 +155,36 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         }
         Some(Command::Answers { question }) => print_answers(question.as_deref()),
         Some(Command::Figures { out }) => write_figures(&out),
-        Some(Command::Sphere {
-            origin,
-            dir,
-            center,
-            radius,
-            precision,
-            method,
-            json,
-        }) => {
+        Some(Command::Template { seed }) => {
+            print!("{}", hw3::checker::template(seed).map_err(|e| UsageError(e.to_string()))?);
+            Ok(())
+        }
+        Some(Command::Variant { question, seed }) => {
+            let variant = hw3::checker::variant(&question, seed).map_err(|e| UsageError(e.to_string()))?;
+            println!("{}\n\nSolution:", variant.statement);
+            for part in &variant.parts {
+                println!("  {} = {:?}", part.key, part.expected);
+            }
+            Ok(())
+        }
+        Some(Command::Check { file, seed, format }) => {
+            let text = std::fs::read_to_string(&file)
+                .map_err(|e| UsageError(format!("cannot read {}: {e}", file.display())))?;
+            let report = hw3::checker::check(&text, seed)
+                .map_err(|e| UsageError(format!("{}: {e}", file.display()).replace('\n', " ")))?;
+            match format {
+                FormatArg::Text => println!("{}", hw3::checker::report_text(&report)),
+                FormatArg::Json => println!("{}", serde_json::to_string_pretty(&report)?),
+                FormatArg::Gradescope => {
+                    println!("{}", serde_json::to_string_pretty(&hw3::checker::report_gradescope(&report))?)
+                }
+            }
+            if report.all_correct() { Ok(()) } else { Err(SomeWrong.into()) }
+        }
+        Some(Command::Sphere { origin, dir, center, radius, precision, method, json }) => {
             use hw3::q2_ray_sphere::catalogue::{Method, Precision};
             let (ray, sphere) =
-                hw3::q2_ray_sphere::parse_sphere_args(&origin, &dir, &center, radius)
-                    .map_err(UsageError)?;
+                hw3::q2_ray_sphere::parse_sphere_args(&origin, &dir, &center, radius).map_err(UsageError)?;
             let precision = match precision {
                 PrecisionArg::F32 => Precision::F32,
                 PrecisionArg::F64 => Precision::F64,
@@ -134,8 +193,8 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 MethodArg::Naive => Method::Naive,
                 MethodArg::Stable => Method::Stable,
             };
-            let answer = hw3::q2_ray_sphere::solve(&ray, &sphere, method, precision)
-                .map_err(|e| UsageError(e.to_string()))?;
+            let answer =
+                hw3::q2_ray_sphere::solve(&ray, &sphere, method, precision).map_err(|e| UsageError(e.to_string()))?;
             if json {
                 println!("{}", serde_json::to_string(&answer)?);
             } else {
@@ -152,22 +211,10 @@ fn print_answers(question: Option<&str>) -> anyhow::Result<()> {
         && !all.iter().any(|a| a.question == q)
     {
         let known: Vec<_> = all.iter().map(|a| a.question).collect();
-        return Err(UsageError(format!(
-            "unknown question `{q}`; known: {}",
-            known.join(", ")
-        ))
-        .into());
+        return Err(UsageError(format!("unknown question `{q}`; known: {}", known.join(", "))).into());
     }
-    for answers in all
-        .iter()
-        .filter(|a| question.is_none_or(|q| a.question == q))
-    {
-        println!(
-            "== {} — {} ==\n{}\n",
-            answers.question.to_uppercase(),
-            answers.title,
-            answers.text
-        );
+    for answers in all.iter().filter(|a| question.is_none_or(|q| a.question == q)) {
+        println!("== {} — {} ==\n{}\n", answers.question.to_uppercase(), answers.title, answers.text);
     }
     Ok(())
 }
@@ -179,8 +226,7 @@ fn write_figures(out: &PathBuf) -> anyhow::Result<()> {
         let path = out.join(&figure.file_name);
         let unchanged = std::fs::read(&path).is_ok_and(|old| old == figure.bytes);
         if !unchanged {
-            std::fs::write(&path, &figure.bytes)
-                .with_context(|| format!("writing {}", path.display()))?;
+            std::fs::write(&path, &figure.bytes).with_context(|| format!("writing {}", path.display()))?;
         }
     }
     eprintln!("{} figures in {}", figures.len(), out.display());

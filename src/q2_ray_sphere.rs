@@ -30,16 +30,7 @@ pub use figures::figures;
 /// ```
 #[must_use]
 pub fn worked_example() -> (Ray<f64>, Sphere<f64>) {
-    (
-        Ray {
-            origin: DVec3::new(-5.0, 1.0, 0.0),
-            dir: DVec3::X,
-        },
-        Sphere {
-            center: DVec3::ZERO,
-            radius: 2.0,
-        },
-    )
+    (Ray { origin: DVec3::new(-5.0, 1.0, 0.0), dir: DVec3::X }, Sphere { center: DVec3::ZERO, radius: 2.0 })
 }
 
 /// Everything Q2 asks for one ray and sphere: the first hit, point, normal, reflection, and the
@@ -86,23 +77,13 @@ pub fn solve(
     }
 }
 
-fn solve_in<T: Real>(
-    ray: &Ray<f64>,
-    sphere: &Sphere<f64>,
-    method: Method,
-) -> Result<SphereAnswer, InputError> {
+fn solve_in<T: Real>(ray: &Ray<f64>, sphere: &Sphere<f64>, method: Method) -> Result<SphereAnswer, InputError> {
     let ray = Ray::<T>::new(T::vec_from_f64(ray.origin), T::vec_from_f64(ray.dir))?;
     let sphere = Sphere::<T>::new(T::vec_from_f64(sphere.center), T::from_f64(sphere.radius))?;
     let array = |v: T::Vec3| T::vec_to_f64(v).to_array();
     let (t, policy) = match method {
-        Method::Naive => (
-            seed_trace(&ray, &sphere).chosen,
-            SpawnPolicy::AtComputedPoint,
-        ),
-        Method::Stable => (
-            first_hit_stable(&ray, &sphere),
-            SpawnPolicy::ReprojectAndOffset,
-        ),
+        Method::Naive => (seed_trace(&ray, &sphere).chosen, SpawnPolicy::AtComputedPoint),
+        Method::Stable => (first_hit_stable(&ray, &sphere), SpawnPolicy::ReprojectAndOffset),
     };
     let closest_approach_t = closest_approach_t(&ray, sphere.center).to_f64();
     let bounce = t.map(|t| reflect_at_hit(&ray, &sphere, t, policy));
@@ -138,22 +119,10 @@ pub fn worked_trace(ray: &Ray<f64>, sphere: &Sphere<f64>) -> String {
         v(sphere.center),
         g(sphere.radius)
     );
-    let _ = writeln!(
-        out,
-        "-- homework algorithm (f64) --\n{}",
-        seed_trace(ray, sphere)
-    );
+    let _ = writeln!(out, "-- homework algorithm (f64) --\n{}", seed_trace(ray, sphere));
     let stable = first_hit_stable(ray, sphere);
-    let _ = writeln!(
-        out,
-        "-- stable solver --\nfirst hit t = {}",
-        stable.map_or("none".into(), g)
-    );
-    let _ = writeln!(
-        out,
-        "closest approach t = {}",
-        g(closest_approach_t(ray, sphere.center))
-    );
+    let _ = writeln!(out, "-- stable solver --\nfirst hit t = {}", stable.map_or("none".into(), g));
+    let _ = writeln!(out, "closest approach t = {}", g(closest_approach_t(ray, sphere.center)));
     if let Some(t) = stable {
         let hit = surface_hit(ray, sphere, t);
         let bounce = reflect_at_hit(ray, sphere, t, SpawnPolicy::ReprojectAndOffset);
@@ -172,44 +141,13 @@ pub fn worked_trace(ray: &Ray<f64>, sphere: &Sphere<f64>) -> String {
 #[must_use]
 pub fn trace_cases() -> Vec<(&'static str, Ray<f64>, Sphere<f64>)> {
     let (ray, sphere) = worked_example();
-    let unit = Sphere {
-        center: DVec3::ZERO,
-        radius: 1.0,
-    };
+    let unit = Sphere { center: DVec3::ZERO, radius: 1.0 };
     vec![
         ("worked example", ray, sphere),
-        (
-            "eye inside",
-            Ray {
-                origin: DVec3::ZERO,
-                dir: DVec3::new(0.0, 0.0, 2.0),
-            },
-            unit,
-        ),
-        (
-            "tangent",
-            Ray {
-                origin: DVec3::new(-3.0, 1.0, 0.0),
-                dir: DVec3::X,
-            },
-            unit,
-        ),
-        (
-            "sphere behind",
-            Ray {
-                origin: DVec3::new(0.0, 0.0, 5.0),
-                dir: DVec3::Z,
-            },
-            unit,
-        ),
-        (
-            "miss",
-            Ray {
-                origin: DVec3::new(0.0, 2.0, -5.0),
-                dir: DVec3::Z,
-            },
-            unit,
-        ),
+        ("eye inside", Ray { origin: DVec3::ZERO, dir: DVec3::new(0.0, 0.0, 2.0) }, unit),
+        ("tangent", Ray { origin: DVec3::new(-3.0, 1.0, 0.0), dir: DVec3::X }, unit),
+        ("sphere behind", Ray { origin: DVec3::new(0.0, 0.0, 5.0), dir: DVec3::Z }, unit),
+        ("miss", Ray { origin: DVec3::new(0.0, 2.0, -5.0), dir: DVec3::Z }, unit),
     ]
 }
 
@@ -225,31 +163,14 @@ pub fn trace_cases() -> Vec<(&'static str, Ray<f64>, Sphere<f64>)> {
 pub fn answers() -> Answers {
     let (ray, sphere) = worked_example();
     let mut text = String::new();
-    let _ = writeln!(
-        text,
-        "(a) A = d.d, B = 2(e-o).d, C = |e-o|^2 - r^2; first hit = smallest root t > 0."
-    );
-    let _ = writeln!(
-        text,
-        "    The homework's case analysis is right, with two errata:"
-    );
-    let _ = writeln!(
-        text,
-        "    - its 't1 < t2' branch is dead code: t1 takes +sqrt, so t1 >= t2 whenever A > 0;"
-    );
-    let _ = writeln!(
-        text,
-        "    - the tangent case accepts t >= 0 but the two-root case t > 0 (inconsistent at t = 0)."
-    );
-    let _ = writeln!(
-        text,
-        "    Worked example:\n{}",
-        indent(&worked_trace(&ray, &sphere))
-    );
+    let _ = writeln!(text, "(a) A = d.d, B = 2(e-o).d, C = |e-o|^2 - r^2; first hit = smallest root t > 0.");
+    let _ = writeln!(text, "    The homework's case analysis is right, with two errata:");
+    let _ = writeln!(text, "    - its 't1 < t2' branch is dead code: t1 takes +sqrt, so t1 >= t2 whenever A > 0;");
+    let _ =
+        writeln!(text, "    - the tangent case accepts t >= 0 but the two-root case t > 0 (inconsistent at t = 0).");
+    let _ = writeln!(text, "    Worked example:\n{}", indent(&worked_trace(&ray, &sphere)));
     let rows = catalogue::score_catalogue();
-    let far = rows
-        .iter()
-        .find(|r| r.case.name == "far: r = 1 at distance 1e5, offset 0.9 r");
+    let far = rows.iter().find(|r| r.case.name == "far: r = 1 at distance 1e5, offset 0.9 r");
     if let Some(row) = far {
         let _ = writeln!(
             text,
@@ -270,34 +191,22 @@ pub fn answers() -> Answers {
             100.0 * count.self_hits as f64 / count.reflected as f64
         };
         let (near, moved) = (rate(Scenario::Near), rate(Scenario::Translated));
-        let _ = writeln!(
-            text,
-            "    {policy:?}: {near:.2} % near the origin, {moved:.2} % translated by 1e4"
-        );
+        let _ = writeln!(text, "    {policy:?}: {near:.2} % near the origin, {moved:.2} % translated by 1e4");
     }
     let t_alg = closest_approach::closest_approach_algebraic(&ray, sphere.center);
     let t_geo = closest_approach::closest_approach_geometric(&ray, sphere.center);
-    let _ = writeln!(
-        text,
-        "(c) t = -(e-o).d/|d|^2: algebraically -B/2A = {t_alg}, geometrically (o-e).d^/|d| = {t_geo}."
-    );
+    let _ =
+        writeln!(text, "(c) t = -(e-o).d/|d|^2: algebraically -B/2A = {t_alg}, geometrically (o-e).d^/|d| = {t_geo}.");
     let stable = first_hit_stable(&ray, &sphere).map_or("none".to_string(), |t| format!("{t:.6}"));
     let _ = write!(
         text,
         "    The stable solver starts from this t and steps back by the half-chord: first hit = {stable}."
     );
-    Answers {
-        question: "q2",
-        title: "Ray/sphere intersection, reflection, closest approach",
-        text,
-    }
+    Answers { question: "q2", title: "Ray/sphere intersection, reflection, closest approach", text }
 }
 
 fn indent(text: &str) -> String {
-    text.lines()
-        .map(|l| format!("      {l}"))
-        .collect::<Vec<_>>()
-        .join("\n")
+    text.lines().map(|l| format!("      {l}")).collect::<Vec<_>>().join("\n")
 }
 
 /// Parses the CLI's `--origin`, `--dir`, `--center`, `--radius` into validated `f64` inputs.
@@ -335,8 +244,7 @@ mod tests {
             .into_iter()
             .map(|(name, ray, sphere)| format!("## {name}\n{}\n", worked_trace(&ray, &sphere)))
             .collect();
-        crate::test_support::insta_settings()
-            .bind(|| insta::assert_snapshot!("q2_worked_traces", text));
+        crate::test_support::insta_settings().bind(|| insta::assert_snapshot!("q2_worked_traces", text));
     }
 
     #[test]
@@ -357,10 +265,8 @@ mod tests {
     #[test]
     fn all_four_variants_agree_on_easy_rays() {
         let (ray, sphere) = worked_example();
-        let answers: Vec<f64> = catalogue::VARIANTS
-            .iter()
-            .map(|&(m, p)| solve(&ray, &sphere, m, p).unwrap().t.unwrap())
-            .collect();
+        let answers: Vec<f64> =
+            catalogue::VARIANTS.iter().map(|&(m, p)| solve(&ray, &sphere, m, p).unwrap().t.unwrap()).collect();
         for t in &answers {
             approx::assert_relative_eq!(*t, answers[3], max_relative = 1e-6);
         }
@@ -368,14 +274,8 @@ mod tests {
 
     #[test]
     fn zero_radius_is_refused() {
-        let ray = Ray {
-            origin: DVec3::ZERO,
-            dir: DVec3::Z,
-        };
-        let point = Sphere {
-            center: DVec3::new(0.0, 0.0, 5.0),
-            radius: 0.0,
-        };
+        let ray = Ray { origin: DVec3::ZERO, dir: DVec3::Z };
+        let point = Sphere { center: DVec3::new(0.0, 0.0, 5.0), radius: 0.0 };
         assert!(matches!(
             solve(&ray, &point, Method::Stable, Precision::F64),
             Err(InputError::OutOfRange { name: "radius", .. })

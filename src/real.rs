@@ -78,11 +78,7 @@ pub trait Real:
     fn dot(a: Self::Vec3, b: Self::Vec3) -> Self;
     /// Rounds a `DVec3` to this precision.
     fn vec_from_f64(v: DVec3) -> Self::Vec3 {
-        Self::vec3(
-            Self::from_f64(v.x),
-            Self::from_f64(v.y),
-            Self::from_f64(v.z),
-        )
+        Self::vec3(Self::from_f64(v.x), Self::from_f64(v.y), Self::from_f64(v.z))
     }
     /// Widens a vector to `DVec3` (exact).
     fn vec_to_f64(v: Self::Vec3) -> DVec3 {

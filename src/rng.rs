@@ -71,9 +71,6 @@ mod tests {
         let n = 100_000;
         let mean = (0..n).map(|_| uniform(&mut g)).sum::<f64>() / n as f64;
         // Standard error is 1/sqrt(12 n) ≈ 9e-4; 5 standard errors.
-        assert!(
-            (mean - 0.5).abs() < 5.0 * (1.0 / (12.0 * n as f64)).sqrt(),
-            "mean {mean}"
-        );
+        assert!((mean - 0.5).abs() < 5.0 * (1.0 / (12.0 * n as f64)).sqrt(), "mean {mean}");
     }
 }

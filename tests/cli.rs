@@ -4,28 +4,16 @@
 use std::process::{Command, Output};
 
 fn hw3(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_hw3"))
-        .args(args)
-        .output()
-        .expect("the hw3 binary runs")
+    Command::new(env!("CARGO_BIN_EXE_hw3")).args(args).output().expect("the hw3 binary runs")
 }
 
 fn json(output: &Output) -> serde_json::Value {
-    assert!(
-        output.status.success(),
-        "stderr: {}",
-        String::from_utf8_lossy(&output.stderr)
-    );
+    assert!(output.status.success(), "stderr: {}", String::from_utf8_lossy(&output.stderr));
     serde_json::from_slice(&output.stdout).expect("stdout is one JSON value")
 }
 
 fn assert_usage_error(output: &Output) {
-    assert_eq!(
-        output.status.code(),
-        Some(2),
-        "stderr: {}",
-        String::from_utf8_lossy(&output.stderr)
-    );
+    assert_eq!(output.status.code(), Some(2), "stderr: {}", String::from_utf8_lossy(&output.stderr));
     let stderr = String::from_utf8_lossy(&output.stderr);
     assert!(!stderr.contains("panicked"), "{stderr}");
     assert!(output.stdout.is_empty(), "nothing on stdout for bad input");
@@ -33,10 +21,7 @@ fn assert_usage_error(output: &Output) {
 
 #[test]
 fn sphere_json_has_the_contract_fields() {
-    let out = hw3(&[
-        "sphere", "--origin", "-5,1,0", "--dir", "1,0,0", "--center", "0,0,0", "--radius", "2",
-        "--json",
-    ]);
+    let out = hw3(&["sphere", "--origin", "-5,1,0", "--dir", "1,0,0", "--center", "0,0,0", "--radius", "2", "--json"]);
     let value = json(&out);
     assert_eq!(value["hit"], true);
     let t = value["t"].as_f64().unwrap();
@@ -51,10 +36,7 @@ fn sphere_json_has_the_contract_fields() {
 
 #[test]
 fn sphere_json_miss_has_nulls_and_still_a_closest_approach() {
-    let out = hw3(&[
-        "sphere", "--origin", "0,2,-5", "--dir", "0,0,1", "--center", "0,0,0", "--radius", "1",
-        "--json",
-    ]);
+    let out = hw3(&["sphere", "--origin", "0,2,-5", "--dir", "0,0,1", "--center", "0,0,0", "--radius", "1", "--json"]);
     let value = json(&out);
     assert_eq!(value["hit"], false);
     for key in ["t", "point", "normal", "reflected_dir"] {
@@ -90,30 +72,17 @@ fn sphere_naive_f32_misses_a_far_sphere_the_stable_one_hits() {
     let naive = json(&args("naive"));
     let naive_t = naive["t"].as_f64();
     // Either a miss or a hit point off by a large fraction of the radius.
-    assert!(
-        naive_t.is_none_or(|t| (t - (1e4 - 0.19f64.sqrt())).abs() > 0.05),
-        "{naive}"
-    );
+    assert!(naive_t.is_none_or(|t| (t - (1e4 - 0.19f64.sqrt())).abs() > 0.05), "{naive}");
 }
 
 #[test]
 fn sphere_rejects_bad_input_with_exit_2() {
     for args in [
-        &[
-            "sphere", "--origin", "0,0", "--dir", "0,0,1", "--center", "0,0,5", "--radius", "1",
-        ][..],
-        &[
-            "sphere", "--origin", "0,0,0", "--dir", "0,0,0", "--center", "0,0,5", "--radius", "1",
-        ],
-        &[
-            "sphere", "--origin", "nan,0,0", "--dir", "0,0,1", "--center", "0,0,5", "--radius", "1",
-        ],
-        &[
-            "sphere", "--origin", "0,0,0", "--dir", "0,0,1", "--center", "0,0,5", "--radius", "-1",
-        ],
-        &[
-            "sphere", "--origin", "0,0,0", "--dir", "0,0,1", "--center", "0,0,5", "--radius", "inf",
-        ],
+        &["sphere", "--origin", "0,0", "--dir", "0,0,1", "--center", "0,0,5", "--radius", "1"][..],
+        &["sphere", "--origin", "0,0,0", "--dir", "0,0,0", "--center", "0,0,5", "--radius", "1"],
+        &["sphere", "--origin", "nan,0,0", "--dir", "0,0,1", "--center", "0,0,5", "--radius", "1"],
+        &["sphere", "--origin", "0,0,0", "--dir", "0,0,1", "--center", "0,0,5", "--radius", "-1"],
+        &["sphere", "--origin", "0,0,0", "--dir", "0,0,1", "--center", "0,0,5", "--radius", "inf"],
         &[
             "sphere",
             "--origin",
@@ -127,13 +96,8 @@ fn sphere_rejects_bad_input_with_exit_2() {
             "--precision",
             "f32",
         ],
-        &[
-            "sphere", "--origin", "0,0,0", "--dir", "0,0,1", "--center", "0,0,5",
-        ],
-        &[
-            "sphere", "--origin", "0,0,0", "--dir", "0,0,1", "--center", "0,0,5", "--radius", "1",
-            "--method", "magic",
-        ],
+        &["sphere", "--origin", "0,0,0", "--dir", "0,0,1", "--center", "0,0,5"],
+        &["sphere", "--origin", "0,0,0", "--dir", "0,0,1", "--center", "0,0,5", "--radius", "1", "--method", "magic"],
         &["no-such-command"],
         &["answers", "--question", "q9"],
     ] {

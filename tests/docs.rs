@@ -15,10 +15,7 @@ fn committed_figures_are_what_the_code_generates() {
             stale.push(figure.file_name.clone());
         }
     }
-    assert!(
-        stale.is_empty(),
-        "regenerate with `cargo run --release` and commit: {stale:?}"
-    );
+    assert!(stale.is_empty(), "regenerate with `cargo run --release` and commit: {stale:?}");
     let mut names: Vec<_> = figures.iter().map(|f| f.file_name.clone()).collect();
     names.sort();
     names.dedup();
@@ -44,11 +41,7 @@ fn every_figure_a_chapter_embeds_exists() {
                 Some(("include", rest)) => rest.trim().to_string(),
                 _ => continue,
             };
-            assert!(
-                Path::new(DOCS).join(&target).exists(),
-                "{} embeds missing {target}",
-                path.display()
-            );
+            assert!(Path::new(DOCS).join(&target).exists(), "{} embeds missing {target}", path.display());
         }
     }
 }

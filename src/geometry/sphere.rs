@@ -54,9 +54,7 @@ impl<T: Real> Roots<T> {
     /// ```
     #[must_use]
     pub fn first_in(&self, t_min: T, t_max: T) -> Option<T> {
-        [self.near, self.far]
-            .into_iter()
-            .find(|&t| t > t_min && t < t_max)
+        [self.near, self.far].into_iter().find(|&t| t > t_min && t < t_max)
     }
 }
 
@@ -126,10 +124,7 @@ pub fn roots_stable<T: Real>(ray: &Ray<T>, sphere: &Sphere<T>) -> Option<Roots<T
     }
     if h == T::ZERO {
         // Double root (tangent ray): both equal t_ca; also avoids 0/0 when the eye is on the sphere.
-        return Some(Roots {
-            near: t_ca,
-            far: t_ca,
-        });
+        return Some(Roots { near: t_ca, far: t_ca });
     }
     Some(Roots { near, far })
 }
@@ -199,11 +194,7 @@ pub fn surface_hit<T: Real>(ray: &Ray<T>, sphere: &Sphere<T>, t: T) -> SurfaceHi
         T::ONE / T::dot(radial, radial).sqrt()
     };
     let normal = radial * inv_length;
-    SurfaceHit {
-        t,
-        point: sphere.center + normal * sphere.radius,
-        normal,
-    }
+    SurfaceHit { t, point: sphere.center + normal * sphere.radius, normal }
 }
 
 /// Mirror reflection of `d` about the unit normal `n`: `r̂ = d̂ − 2 (n̂·d̂) n̂`, returned unit length.
@@ -251,11 +242,7 @@ pub fn spawn_origin<T: Real>(point: T::Vec3, normal: T::Vec3, new_dir: T::Vec3) 
     let [x, y, z] = T::components(point);
     let scale = x.abs().max(y.abs()).max(z.abs()).max(T::from_f64(0.5));
     let push = T::from_f64(256.0) * T::EPSILON * scale;
-    let push = if T::dot(normal, new_dir) < T::ZERO {
-        -push
-    } else {
-        push
-    };
+    let push = if T::dot(normal, new_dir) < T::ZERO { -push } else { push };
     point + normal * push
 }
 
@@ -283,13 +270,7 @@ mod tests {
         let tangent = ray64([-3.0, 1.0, 0.0], [1.0, 0.0, 0.0]);
         assert_eq!(first_hit_stable(&tangent, &sphere), Some(3.0));
         let on_surface = ray64([0.0, 1.0, 0.0], [1.0, 0.0, 0.0]);
-        assert_eq!(
-            roots_stable(&on_surface, &sphere),
-            Some(Roots {
-                near: 0.0,
-                far: 0.0
-            })
-        );
+        assert_eq!(roots_stable(&on_surface, &sphere), Some(Roots { near: 0.0, far: 0.0 }));
         assert_eq!(first_hit_stable(&on_surface, &sphere), None);
     }
 
@@ -311,10 +292,7 @@ mod tests {
         for t in [t, t + 1e-6, t - 0.3] {
             let hit = surface_hit(&ray, &sphere, t);
             let off = ((hit.point - sphere.center).length() - sphere.radius).abs();
-            assert!(
-                off <= 4.0 * f64::EPSILON * sphere.radius,
-                "t = {t}: off by {off:e}"
-            );
+            assert!(off <= 4.0 * f64::EPSILON * sphere.radius, "t = {t}: off by {off:e}");
             assert!((hit.normal.length() - 1.0).abs() <= 4.0 * f64::EPSILON);
         }
     }

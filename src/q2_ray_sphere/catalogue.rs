@@ -72,11 +72,7 @@ pub fn first_hit(
     ray: &Ray<f64>,
     sphere: &Sphere<f64>,
 ) -> Result<Option<f64>, InputError> {
-    fn run<T: Real>(
-        method: Method,
-        ray: &Ray<f64>,
-        sphere: &Sphere<f64>,
-    ) -> Result<Option<f64>, InputError> {
+    fn run<T: Real>(method: Method, ray: &Ray<f64>, sphere: &Sphere<f64>) -> Result<Option<f64>, InputError> {
         let ray = Ray::<T>::new(T::vec_from_f64(ray.origin), T::vec_from_f64(ray.dir))?;
         let sphere = Sphere::<T>::new(T::vec_from_f64(sphere.center), T::from_f64(sphere.radius))?;
         let t = match method {
@@ -101,40 +97,20 @@ pub fn first_hit(
 /// ```
 #[must_use]
 pub fn reference_first_hit(e: DVec3, d: DVec3, o: DVec3, r: f64) -> Option<f64> {
-    let f = [
-        TwoFloat::new_add(e.x, -o.x),
-        TwoFloat::new_add(e.y, -o.y),
-        TwoFloat::new_add(e.z, -o.z),
-    ];
+    let f = [TwoFloat::new_add(e.x, -o.x), TwoFloat::new_add(e.y, -o.y), TwoFloat::new_add(e.z, -o.z)];
     let d = [d.x, d.y, d.z];
-    let a = d.iter().fold(TwoFloat::from(0.0), |acc, &di| {
-        acc + TwoFloat::new_mul(di, di)
-    });
-    let b_half = -f
-        .iter()
-        .zip(d)
-        .fold(TwoFloat::from(0.0), |acc, (&fi, di)| acc + fi * di);
+    let a = d.iter().fold(TwoFloat::from(0.0), |acc, &di| acc + TwoFloat::new_mul(di, di));
+    let b_half = -f.iter().zip(d).fold(TwoFloat::from(0.0), |acc, (&fi, di)| acc + fi * di);
     let c = f.iter().fold(TwoFloat::from(0.0), |acc, &fi| acc + fi * fi) - TwoFloat::new_mul(r, r);
     let disc = b_half * b_half - a * c;
     if disc < TwoFloat::from(0.0) || a == TwoFloat::from(0.0) {
         return None;
     }
     let root = disc.sqrt();
-    let q = if b_half >= TwoFloat::from(0.0) {
-        b_half + root
-    } else {
-        b_half - root
-    };
-    let (t0, t1) = if q == TwoFloat::from(0.0) {
-        (TwoFloat::from(0.0), TwoFloat::from(0.0))
-    } else {
-        (c / q, q / a)
-    };
+    let q = if b_half >= TwoFloat::from(0.0) { b_half + root } else { b_half - root };
+    let (t0, t1) = if q == TwoFloat::from(0.0) { (TwoFloat::from(0.0), TwoFloat::from(0.0)) } else { (c / q, q / a) };
     let (near, far) = if t0 <= t1 { (t0, t1) } else { (t1, t0) };
-    [near, far]
-        .into_iter()
-        .find(|t| *t > TwoFloat::from(0.0))
-        .map(|t| t.hi() + t.lo())
+    [near, far].into_iter().find(|t| *t > TwoFloat::from(0.0)).map(|t| t.hi() + t.lo())
 }
 
 /// One hard input: a ray and a sphere given as exact `f32` values.
@@ -158,15 +134,7 @@ pub struct HardCase {
 
 /// Builds a case from `f64` values: eye at `eye`, unit direction `dir_hint` scaled by `scale`, and
 /// a sphere of radius `r` centred `distance` along the direction, offset sideways by `lateral·r`.
-fn aimed(
-    name: &'static str,
-    eye: DVec3,
-    dir_hint: DVec3,
-    scale: f64,
-    distance: f64,
-    lateral: f64,
-    r: f64,
-) -> HardCase {
+fn aimed(name: &'static str, eye: DVec3, dir_hint: DVec3, scale: f64, distance: f64, lateral: f64, r: f64) -> HardCase {
     let d = dir_hint.normalize();
     let side = d.cross(DVec3::new(0.0, 0.0, 1.0)).normalize();
     let center = eye + d * distance + side * (lateral * r);
@@ -193,67 +161,16 @@ pub fn hard_cases() -> Vec<HardCase> {
     let dir = DVec3::new(1.0, 2.0, 3.0);
     let oblique = DVec3::new(0.6, -0.7, 0.4);
     let mut cases = vec![
-        aimed(
-            "base: r = 1 at distance 5, offset 0.5 r",
-            eye,
-            dir,
-            1.0,
-            5.0,
-            0.5,
-            1.0,
-        ),
+        aimed("base: r = 1 at distance 5, offset 0.5 r", eye, dir, 1.0, 5.0, 0.5, 1.0),
         aimed("far: r = 1 at distance 1e3", eye, dir, 1.0, 1e3, 0.5, 1.0),
-        aimed(
-            "far: r = 1 at distance 4.1e3",
-            eye,
-            dir,
-            1.0,
-            4.1e3,
-            0.5,
-            1.0,
-        ),
+        aimed("far: r = 1 at distance 4.1e3", eye, dir, 1.0, 4.1e3, 0.5, 1.0),
         aimed("far: r = 1 at distance 1e4", eye, dir, 1.0, 1e4, 0.5, 1.0),
         aimed("far: r = 1 at distance 1e5", eye, dir, 1.0, 1e5, 0.5, 1.0),
-        aimed(
-            "far: r = 1 at distance 1e4, offset 0.9 r",
-            eye,
-            dir,
-            1.0,
-            1e4,
-            0.9,
-            1.0,
-        ),
-        aimed(
-            "far: r = 1 at distance 1e5, offset 0.9 r",
-            eye,
-            dir,
-            1.0,
-            1e5,
-            0.9,
-            1.0,
-        ),
-        HardCase {
-            beyond_f32: true,
-            ..aimed("far: r = 1 at distance 1e7", eye, dir, 1.0, 1e7, 0.5, 1.0)
-        },
-        aimed(
-            "grazing: offset (1 - 1e-3) r",
-            eye,
-            dir,
-            1.0,
-            5.0,
-            1.0 - 1e-3,
-            1.0,
-        ),
-        aimed(
-            "grazing: offset (1 - 1e-6) r",
-            eye,
-            dir,
-            1.0,
-            5.0,
-            1.0 - 1e-6,
-            1.0,
-        ),
+        aimed("far: r = 1 at distance 1e4, offset 0.9 r", eye, dir, 1.0, 1e4, 0.9, 1.0),
+        aimed("far: r = 1 at distance 1e5, offset 0.9 r", eye, dir, 1.0, 1e5, 0.9, 1.0),
+        HardCase { beyond_f32: true, ..aimed("far: r = 1 at distance 1e7", eye, dir, 1.0, 1e7, 0.5, 1.0) },
+        aimed("grazing: offset (1 - 1e-3) r", eye, dir, 1.0, 5.0, 1.0 - 1e-3, 1.0),
+        aimed("grazing: offset (1 - 1e-6) r", eye, dir, 1.0, 5.0, 1.0 - 1e-6, 1.0),
         aimed("short direction: |d| = 1e-3", eye, dir, 1e-3, 5.0, 0.5, 1.0),
         aimed("long direction: |d| = 1e3", eye, dir, 1e3, 5.0, 0.5, 1.0),
     ];
@@ -266,21 +183,9 @@ pub fn hard_cases() -> Vec<HardCase> {
         beyond_f32,
     };
     cases.extend([
-        huge(
-            "huge: r = 1e6, eye 1 above, oblique",
-            DVec3::new(0.25, 1.0, -0.5),
-            true,
-        ),
-        huge(
-            "huge: r = 1e6, eye 0.01 above, oblique",
-            DVec3::new(0.25, 0.01, -0.5),
-            true,
-        ),
-        huge(
-            "huge: r = 1e6, eye 100 above, oblique",
-            DVec3::new(0.25, 100.0, -0.5),
-            false,
-        ),
+        huge("huge: r = 1e6, eye 1 above, oblique", DVec3::new(0.25, 1.0, -0.5), true),
+        huge("huge: r = 1e6, eye 0.01 above, oblique", DVec3::new(0.25, 0.01, -0.5), true),
+        huge("huge: r = 1e6, eye 100 above, oblique", DVec3::new(0.25, 100.0, -0.5), false),
         HardCase {
             name: "ground: r = 1e3, eye 1 above, oblique",
             origin: Vec3::new(0.25, 1.0, -0.5),
@@ -370,10 +275,7 @@ impl Outcome {
 
     fn point_cell(self) -> String {
         match self {
-            Outcome::Hit {
-                point_error_in_radii,
-                ..
-            } => format!("{point_error_in_radii:.1e}"),
+            Outcome::Hit { point_error_in_radii, .. } => format!("{point_error_in_radii:.1e}"),
             _ => "–".into(),
         }
     }
@@ -402,20 +304,13 @@ pub fn score_catalogue() -> Vec<CatalogueRow> {
     hard_cases()
         .into_iter()
         .map(|case| {
-            let (e, d, o, r) = (
-                case.origin.as_dvec3(),
-                case.dir.as_dvec3(),
-                case.center.as_dvec3(),
-                f64::from(case.radius),
-            );
+            let (e, d, o, r) =
+                (case.origin.as_dvec3(), case.dir.as_dvec3(), case.center.as_dvec3(), f64::from(case.radius));
             let reference = reference_first_hit(e, d, o, r);
             let ray = Ray { origin: e, dir: d };
-            let sphere = Sphere {
-                center: o,
-                radius: r,
-            };
-            let outcomes = VARIANTS.map(|(method, precision)| {
-                match (first_hit(method, precision, &ray, &sphere), reference) {
+            let sphere = Sphere { center: o, radius: r };
+            let outcomes =
+                VARIANTS.map(|(method, precision)| match (first_hit(method, precision, &ray, &sphere), reference) {
                     (Err(_), _) => Outcome::Invalid,
                     (Ok(Some(t)), Some(t_ref)) => Outcome::Hit {
                         relative: ((t - t_ref) / t_ref).abs(),
@@ -424,13 +319,8 @@ pub fn score_catalogue() -> Vec<CatalogueRow> {
                     (Ok(None), None) => Outcome::BothMiss,
                     (Ok(None), Some(_)) => Outcome::Missed,
                     (Ok(Some(_)), None) => Outcome::SpuriousHit,
-                }
-            });
-            CatalogueRow {
-                case,
-                reference,
-                outcomes,
-            }
+                });
+            CatalogueRow { case, reference, outcomes }
         })
         .collect()
 }
@@ -450,22 +340,12 @@ pub fn catalogue_table() -> String {
     );
     out.push_str("|---|---|---|---|---|---|---|---|\n");
     for row in score_catalogue() {
-        let reference = row
-            .reference
-            .map_or("miss".to_string(), |t| format!("{t:.6e}"));
+        let reference = row.reference.map_or("miss".to_string(), |t| format!("{t:.6e}"));
         let cells: Vec<String> = row.outcomes.iter().map(|o| o.cell()).collect();
         let mark = if row.case.beyond_f32 { " †" } else { "" };
-        let points = format!(
-            "{} | {}",
-            row.outcomes[0].point_cell(),
-            row.outcomes[1].point_cell()
-        );
+        let points = format!("{} | {}", row.outcomes[0].point_cell(), row.outcomes[1].point_cell());
         let name = row.case.name;
-        let _ = writeln!(
-            out,
-            "| {name}{mark} | {reference} | {} | {points} |",
-            cells.join(" | ")
-        );
+        let _ = writeln!(out, "| {name}{mark} | {reference} | {} | {points} |", cells.join(" | "));
     }
     out
 }
@@ -502,26 +382,16 @@ pub fn far_sphere_sweep(distance: f64, rays: u32, seed: u64) -> SweepRow {
             crate::rng::uniform_in(&mut g, -1.0, 1.0),
             crate::rng::uniform_in(&mut g, -1.0, 1.0),
         );
-        let center = (eye + DVec3::new(0.48, 0.6, 0.64) * distance)
-            .as_vec3()
-            .as_dvec3();
-        let (rho, phi) = (
-            1.2 * crate::rng::uniform(&mut g).sqrt(),
-            crate::rng::uniform_in(&mut g, 0.0, std::f64::consts::TAU),
-        );
+        let center = (eye + DVec3::new(0.48, 0.6, 0.64) * distance).as_vec3().as_dvec3();
+        let (rho, phi) =
+            (1.2 * crate::rng::uniform(&mut g).sqrt(), crate::rng::uniform_in(&mut g, 0.0, std::f64::consts::TAU));
         let target = center
             + DVec3::new(0.8, -0.6, 0.0) * (rho * phi.cos())
             + DVec3::new(0.384, 0.512, -0.768) * (rho * phi.sin());
-        let (e, d) = (
-            eye.as_vec3().as_dvec3(),
-            (target - eye).normalize().as_vec3().as_dvec3(),
-        );
+        let (e, d) = (eye.as_vec3().as_dvec3(), (target - eye).normalize().as_vec3().as_dvec3());
         let reference = reference_first_hit(e, d, center, 1.0);
         let ray = Ray { origin: e, dir: d };
-        let sphere = Sphere {
-            center,
-            radius: 1.0,
-        };
+        let sphere = Sphere { center, radius: 1.0 };
         for (i, &(method, precision)) in VARIANTS.iter().enumerate() {
             let t = first_hit(method, precision, &ray, &sphere).ok().flatten();
             match (t, reference) {
@@ -537,9 +407,7 @@ pub fn far_sphere_sweep(distance: f64, rays: u32, seed: u64) -> SweepRow {
     SweepRow {
         distance,
         wrong_hit_or_miss: wrong.map(|w| f64::from(w) / f64::from(rays)),
-        mean_point_error_in_radii: std::array::from_fn(|i| {
-            point_error[i] / f64::from(both_hit[i].max(1))
-        }),
+        mean_point_error_in_radii: std::array::from_fn(|i| point_error[i] / f64::from(both_hit[i].max(1))),
     }
 }
 
@@ -560,11 +428,7 @@ pub fn far_sphere_table(distances: &[f64], rays: u32) -> String {
         let _ = writeln!(
             out,
             "| {} | {} | {} | {} | {} | {:.1e} | {:.1e} |",
-            if distance.log10().fract() == 0.0 {
-                format!("{distance:.0e}")
-            } else {
-                format!("{distance}")
-            },
+            if distance.log10().fract() == 0.0 { format!("{distance:.0e}") } else { format!("{distance}") },
             pct(row.wrong_hit_or_miss[0]),
             pct(row.wrong_hit_or_miss[1]),
             pct(row.wrong_hit_or_miss[2]),
@@ -599,13 +463,7 @@ pub fn camera_batch(n: usize, seed: u64) -> Vec<(Ray<f64>, Sphere<f64>)> {
             // Offsets within ±1.2 r of the ray: a hit for about π/2.4² ≈ 55 % of rays.
             let offset = DVec3::new(draw(-1.2, 1.2), draw(-1.2, 1.2), 0.0) * radius;
             let center = dir.normalize() * distance + offset;
-            (
-                Ray {
-                    origin: DVec3::ZERO,
-                    dir,
-                },
-                Sphere { center, radius },
-            )
+            (Ray { origin: DVec3::ZERO, dir }, Sphere { center, radius })
         })
         .collect()
 }
@@ -641,10 +499,7 @@ mod tests {
             }
         }
         // Not vacuous: the far sphere at 1e5, 0.9 r off-centre is missed by the homework in f32.
-        assert!(
-            !rescued.is_empty(),
-            "the catalogue must contain a case the stable form rescues"
-        );
+        assert!(!rescued.is_empty(), "the catalogue must contain a case the stable form rescues");
     }
     #[test]
     fn far_spheres_get_hit_or_miss_wrong_with_the_homework_formula_in_f32() {
@@ -663,37 +518,21 @@ mod tests {
     #[test]
     fn reference_agrees_with_textbook_numbers() {
         // Eye at origin, unit sphere at z = 5: t = 4 exactly; inside: far root; behind: none.
-        assert_eq!(
-            reference_first_hit(DVec3::ZERO, DVec3::Z, DVec3::new(0.0, 0.0, 5.0), 1.0),
-            Some(4.0)
-        );
-        assert_eq!(
-            reference_first_hit(DVec3::ZERO, DVec3::Z, DVec3::ZERO, 2.0),
-            Some(2.0)
-        );
-        assert_eq!(
-            reference_first_hit(DVec3::ZERO, DVec3::Z, DVec3::new(0.0, 0.0, -5.0), 1.0),
-            None
-        );
+        assert_eq!(reference_first_hit(DVec3::ZERO, DVec3::Z, DVec3::new(0.0, 0.0, 5.0), 1.0), Some(4.0));
+        assert_eq!(reference_first_hit(DVec3::ZERO, DVec3::Z, DVec3::ZERO, 2.0), Some(2.0));
+        assert_eq!(reference_first_hit(DVec3::ZERO, DVec3::Z, DVec3::new(0.0, 0.0, -5.0), 1.0), None);
         // Tangent at the eye: the double root 0 is not a hit (t > 0 policy).
-        assert_eq!(
-            reference_first_hit(DVec3::Y, DVec3::X, DVec3::ZERO, 1.0),
-            None
-        );
+        assert_eq!(reference_first_hit(DVec3::Y, DVec3::X, DVec3::ZERO, 1.0), None);
     }
 
     #[test]
     fn catalogue_table_snapshot() {
-        crate::test_support::insta_settings()
-            .bind(|| insta::assert_snapshot!("q2_catalogue", catalogue_table()));
+        crate::test_support::insta_settings().bind(|| insta::assert_snapshot!("q2_catalogue", catalogue_table()));
     }
 
     #[test]
     fn degenerate_inputs_are_typed_errors_in_both_precisions() {
-        let sphere = Sphere::<f64> {
-            center: DVec3::new(0.0, 0.0, 5.0),
-            radius: 1.0,
-        };
+        let sphere = Sphere::<f64> { center: DVec3::new(0.0, 0.0, 5.0), radius: 1.0 };
         for (e, d) in [
             (DVec3::ZERO, DVec3::ZERO),
             (DVec3::new(f64::NAN, 0.0, 0.0), DVec3::Z),
@@ -702,39 +541,19 @@ mod tests {
         ] {
             let ray = Ray { origin: e, dir: d };
             for (method, precision) in VARIANTS {
-                assert!(
-                    first_hit(method, precision, &ray, &sphere).is_err(),
-                    "{e:?} {d:?}"
-                );
+                assert!(first_hit(method, precision, &ray, &sphere).is_err(), "{e:?} {d:?}");
             }
         }
         // |d| = 1e-20 is fine in f64 but |d|² underflows in f32: refused there, not silently wrong.
-        let tiny = Ray {
-            origin: DVec3::ZERO,
-            dir: DVec3::new(0.0, 0.0, 1e-20),
-        };
+        let tiny = Ray { origin: DVec3::ZERO, dir: DVec3::new(0.0, 0.0, 1e-20) };
         assert!(first_hit(Method::Stable, Precision::F32, &tiny, &sphere).is_err());
-        assert!(
-            (first_hit(Method::Stable, Precision::F64, &tiny, &sphere)
-                .unwrap()
-                .unwrap()
-                - 4e20)
-                .abs()
-                < 1e6
-        );
+        assert!((first_hit(Method::Stable, Precision::F64, &tiny, &sphere).unwrap().unwrap() - 4e20).abs() < 1e6);
         for radius in [-1.0, 0.0, f64::NAN, f64::INFINITY] {
-            let bad = Sphere {
-                center: DVec3::ZERO,
-                radius,
-            };
-            let ray = Ray {
-                origin: DVec3::ZERO,
-                dir: DVec3::Z,
-            };
+            let bad = Sphere { center: DVec3::ZERO, radius };
+            let ray = Ray { origin: DVec3::ZERO, dir: DVec3::Z };
             assert!(matches!(
                 first_hit(Method::Naive, Precision::F64, &ray, &bad),
-                Err(InputError::OutOfRange { name: "radius", .. }
-                    | InputError::NonFinite { name: "radius", .. })
+                Err(InputError::OutOfRange { name: "radius", .. } | InputError::NonFinite { name: "radius", .. })
             ));
         }
     }

@@ -117,13 +117,7 @@ mod tests {
     #[test]
     fn closest_approach_behind_the_eye_is_negative() {
         let ray = Ray::<f64>::new(DVec3::ZERO, DVec3::X).unwrap();
-        assert_eq!(
-            closest_approach_algebraic(&ray, DVec3::new(-3.0, 1.0, 0.0)),
-            -3.0
-        );
-        assert_eq!(
-            closest_approach_geometric(&ray, DVec3::new(-3.0, 1.0, 0.0)),
-            -3.0
-        );
+        assert_eq!(closest_approach_algebraic(&ray, DVec3::new(-3.0, 1.0, 0.0)), -3.0);
+        assert_eq!(closest_approach_geometric(&ray, DVec3::new(-3.0, 1.0, 0.0)), -3.0);
     }
 }

@@ -21,31 +21,20 @@ pub fn figures() -> Result<Vec<Figure>, PlotError> {
     let mut figures = vec![
         plot::svg_figure("q2_reflection.svg", (560, 360), draw_reflection)?,
         plot::svg_figure("q2_closest_approach.svg", (560, 360), draw_closest_approach)?,
-        Figure {
-            file_name: "q2_catalogue.md".into(),
-            bytes: catalogue::catalogue_table().into_bytes(),
-        },
+        Figure { file_name: "q2_catalogue.md".into(), bytes: catalogue::catalogue_table().into_bytes() },
         Figure {
             file_name: "q2_far_sweep.md".into(),
             bytes: catalogue::far_sphere_table(&catalogue::SWEEP_DISTANCES, 2000).into_bytes(),
         },
     ];
     if let Some(cost) = CostTable::load() {
-        figures.push(Figure {
-            file_name: "q2_cost.md".into(),
-            bytes: cost.markdown().into_bytes(),
-        });
-        figures.push(plot::svg_figure("q2_cost.svg", (560, 380), |root| {
-            cost.draw(root)
-        })?);
+        figures.push(Figure { file_name: "q2_cost.md".into(), bytes: cost.markdown().into_bytes() });
+        figures.push(plot::svg_figure("q2_cost.svg", (560, 380), |root| cost.draw(root))?);
     }
     Ok(figures)
 }
 
-fn cross_section<'a, 'b>(
-    root: &'a DrawingArea<SVGBackend<'b>, Shift>,
-    caption: &str,
-) -> Result<Chart<'a, 'b>, String> {
+fn cross_section<'a, 'b>(root: &'a DrawingArea<SVGBackend<'b>, Shift>, caption: &str) -> Result<Chart<'a, 'b>, String> {
     let area = root.titled(caption, ("sans-serif", 16)).map_err(err)?;
     let (width, height) = area.dim_in_pixel();
     let (margin, x_labels, y_labels) = (6, 20, 26);
@@ -72,114 +61,58 @@ fn cross_section<'a, 'b>(
         let a = f64::from(i) / 180.0 * std::f64::consts::TAU;
         (sphere.radius * a.cos(), sphere.radius * a.sin())
     });
-    chart
-        .draw_series(LineSeries::new(circle, PALETTE[7].stroke_width(2)))
-        .map_err(err)?;
+    chart.draw_series(LineSeries::new(circle, PALETTE[7].stroke_width(2))).map_err(err)?;
     dot(&mut chart, sphere.center, PALETTE[7])?;
     label(&mut chart, (0.1, -0.15), "o", PALETTE[7])?;
     Ok(chart)
 }
 
 fn arrow(chart: &mut Chart<'_, '_>, from: DVec3, to: DVec3, color: RGBColor) -> Result<(), String> {
-    chart
-        .draw_series(LineSeries::new(
-            [(from.x, from.y), (to.x, to.y)],
-            color.stroke_width(2),
-        ))
-        .map_err(err)?;
+    chart.draw_series(LineSeries::new([(from.x, from.y), (to.x, to.y)], color.stroke_width(2))).map_err(err)?;
     let back = (from - to).normalize() * 0.25;
     let side = DVec3::new(-back.y, back.x, 0.0) * 0.4;
     let head = [to, to + back + side, to + back - side].map(|p| (p.x, p.y));
-    chart
-        .draw_series(std::iter::once(Polygon::new(head.to_vec(), color.filled())))
-        .map_err(err)?;
+    chart.draw_series(std::iter::once(Polygon::new(head.to_vec(), color.filled()))).map_err(err)?;
     Ok(())
 }
 
-fn label(
-    chart: &mut Chart<'_, '_>,
-    at: (f64, f64),
-    text: &str,
-    color: RGBColor,
-) -> Result<(), String> {
+fn label(chart: &mut Chart<'_, '_>, at: (f64, f64), text: &str, color: RGBColor) -> Result<(), String> {
     let style = TextStyle::from(("sans-serif", 13)).color(&color);
-    chart
-        .draw_series(std::iter::once(Text::new(text.to_string(), at, style)))
-        .map_err(err)?;
+    chart.draw_series(std::iter::once(Text::new(text.to_string(), at, style))).map_err(err)?;
     Ok(())
 }
 
 fn dot(chart: &mut Chart<'_, '_>, at: DVec3, color: RGBColor) -> Result<(), String> {
-    chart
-        .draw_series(std::iter::once(Circle::new(
-            (at.x, at.y),
-            4,
-            color.filled(),
-        )))
-        .map_err(err)?;
+    chart.draw_series(std::iter::once(Circle::new((at.x, at.y), 4, color.filled()))).map_err(err)?;
     Ok(())
 }
 
 fn draw_reflection(root: &DrawingArea<SVGBackend<'_>, Shift>) -> Result<(), String> {
-    let mut chart = cross_section(
-        root,
-        "Q2a/b: e + d t meets the sphere at t2 and t1; reflection at the first hit",
-    )?;
+    let mut chart = cross_section(root, "Q2a/b: e + d t meets the sphere at t2 and t1; reflection at the first hit")?;
     let (ray, sphere) = worked_example();
     let roots = roots_stable(&ray, &sphere).ok_or("worked example must hit")?;
     let t_hit = first_hit_stable(&ray, &sphere).ok_or("worked example must hit")?;
     let (near, far) = (ray.at(roots.near), ray.at(roots.far));
     chart
-        .draw_series(LineSeries::new(
-            [(ray.origin.x, ray.origin.y), (2.8, ray.origin.y)],
-            PALETTE[0].stroke_width(1),
-        ))
+        .draw_series(LineSeries::new([(ray.origin.x, ray.origin.y), (2.8, ray.origin.y)], PALETTE[0].stroke_width(1)))
         .map_err(err)?;
     arrow(&mut chart, ray.origin, ray.at(1.0), PALETTE[0])?;
     dot(&mut chart, ray.origin, PALETTE[0])?;
-    label(
-        &mut chart,
-        (ray.origin.x, ray.origin.y + 0.45),
-        "e",
-        PALETTE[0],
-    )?;
-    label(
-        &mut chart,
-        (ray.at(0.35).x, ray.origin.y - 0.2),
-        "d",
-        PALETTE[0],
-    )?;
+    label(&mut chart, (ray.origin.x, ray.origin.y + 0.45), "e", PALETTE[0])?;
+    label(&mut chart, (ray.at(0.35).x, ray.origin.y - 0.2), "d", PALETTE[0])?;
     dot(&mut chart, near, PALETTE[1])?;
     dot(&mut chart, far, PALETTE[2])?;
-    label(
-        &mut chart,
-        (near.x + 0.1, near.y - 0.1),
-        &format!("t2 = {:.3} (hit)", roots.near),
-        PALETTE[1],
-    )?;
-    label(
-        &mut chart,
-        (far.x - 0.3, far.y + 0.35),
-        &format!("t1 = {:.3}", roots.far),
-        PALETTE[2],
-    )?;
+    label(&mut chart, (near.x + 0.1, near.y - 0.1), &format!("t2 = {:.3} (hit)", roots.near), PALETTE[1])?;
+    label(&mut chart, (far.x - 0.3, far.y + 0.35), &format!("t1 = {:.3}", roots.far), PALETTE[2])?;
     let hit = ray.at(t_hit);
     let normal = (hit - sphere.center) / sphere.radius;
     arrow(&mut chart, hit, hit + normal * 1.3, PALETTE[3])?;
-    label(
-        &mut chart,
-        ((hit + normal * 1.3).x - 0.4, (hit + normal * 1.3).y + 0.1),
-        "n",
-        PALETTE[3],
-    )?;
+    label(&mut chart, ((hit + normal * 1.3).x - 0.4, (hit + normal * 1.3).y + 0.1), "n", PALETTE[3])?;
     let reflected = crate::geometry::sphere::reflect::<f64>(ray.dir, normal);
     arrow(&mut chart, hit, hit + reflected * 1.8, PALETTE[4])?;
     label(
         &mut chart,
-        (
-            (hit + reflected * 1.8).x + 0.15,
-            (hit + reflected * 1.8).y + 0.15,
-        ),
+        ((hit + reflected * 1.8).x + 0.15, (hit + reflected * 1.8).y + 0.15),
         "r = d - 2(n.d)n",
         PALETTE[4],
     )?;
@@ -187,54 +120,23 @@ fn draw_reflection(root: &DrawingArea<SVGBackend<'_>, Shift>) -> Result<(), Stri
 }
 
 fn draw_closest_approach(root: &DrawingArea<SVGBackend<'_>, Shift>) -> Result<(), String> {
-    let mut chart = cross_section(
-        root,
-        "Q2c: t = -(e - o).d / |d|^2 is the foot of the perpendicular from o",
-    )?;
+    let mut chart = cross_section(root, "Q2c: t = -(e - o).d / |d|^2 is the foot of the perpendicular from o")?;
     let (ray, sphere) = worked_example();
     let t = closest_approach::closest_approach_algebraic(&ray, sphere.center);
     let foot = ray.at(t);
     chart
-        .draw_series(LineSeries::new(
-            [(ray.origin.x, ray.origin.y), (2.8, ray.origin.y)],
-            PALETTE[0].stroke_width(1),
-        ))
+        .draw_series(LineSeries::new([(ray.origin.x, ray.origin.y), (2.8, ray.origin.y)], PALETTE[0].stroke_width(1)))
         .map_err(err)?;
     arrow(&mut chart, ray.origin, ray.at(1.0), PALETTE[0])?;
-    label(
-        &mut chart,
-        (ray.origin.x, ray.origin.y + 0.45),
-        "e",
-        PALETTE[0],
-    )?;
-    let dashed = DashedLineSeries::new(
-        [(0.0, 0.0), (foot.x, foot.y)],
-        6,
-        4,
-        PALETTE[1].stroke_width(2),
-    );
+    label(&mut chart, (ray.origin.x, ray.origin.y + 0.45), "e", PALETTE[0])?;
+    let dashed = DashedLineSeries::new([(0.0, 0.0), (foot.x, foot.y)], 6, 4, PALETTE[1].stroke_width(2));
     chart.draw_series(dashed).map_err(err)?;
     dot(&mut chart, foot, PALETTE[1])?;
-    label(
-        &mut chart,
-        (foot.x + 0.1, foot.y + 0.4),
-        &format!("p(t) with t = {t}"),
-        PALETTE[1],
-    )?;
+    label(&mut chart, (foot.x + 0.1, foot.y + 0.4), &format!("p(t) with t = {t}"), PALETTE[1])?;
     let half_chord = (sphere.radius.powi(2) - (foot - sphere.center).length_squared()).sqrt();
     let chord = [foot - ray.dir * half_chord, foot + ray.dir * half_chord];
-    chart
-        .draw_series(LineSeries::new(
-            chord.iter().map(|p| (p.x, p.y)),
-            PALETTE[2].stroke_width(3),
-        ))
-        .map_err(err)?;
-    label(
-        &mut chart,
-        (-5.9, 0.75),
-        "green: half-chord sqrt(r^2 - |l|^2)",
-        PALETTE[2],
-    )?;
+    chart.draw_series(LineSeries::new(chord.iter().map(|p| (p.x, p.y)), PALETTE[2].stroke_width(3))).map_err(err)?;
+    label(&mut chart, (-5.9, 0.75), "green: half-chord sqrt(r^2 - |l|^2)", PALETTE[2])?;
     label(&mut chart, (0.1, 0.6), "l", PALETTE[1])?;
     Ok(())
 }
@@ -271,12 +173,7 @@ impl CostTable {
                 && let (Ok(median_ns), Ok(ratio)) = (median.parse(), ratio.parse())
             {
                 let (kind, variant) = (kind.to_string(), variant.to_string());
-                rows.push(CostRow {
-                    kind,
-                    variant,
-                    median_ns,
-                    ratio,
-                });
+                rows.push(CostRow { kind, variant, median_ns, ratio });
             }
         }
         Some(Self { rows, meta })
@@ -290,9 +187,7 @@ impl CostTable {
     /// (the † rows are excluded: there every `f32` variant fails and only `f64` is meaningful).
     /// A wrong hit/miss counts as error 1.
     fn errors(label: &str) -> Option<(f64, f64)> {
-        let index = VARIANTS
-            .iter()
-            .position(|&(m, p)| variant_label(m, p) == label)?;
+        let index = VARIANTS.iter().position(|&(m, p)| variant_label(m, p) == label)?;
         let mut errors: Vec<f64> = catalogue::score_catalogue()
             .iter()
             .filter(|r| !r.case.beyond_f32)
@@ -309,36 +204,24 @@ impl CostTable {
         );
         for row in self.intersections() {
             let (worst, median) = Self::errors(&row.variant)
-                .map_or(("n/a".into(), "n/a".into()), |(w, m)| {
-                    (format!("{w:.1e}"), format!("{m:.1e}"))
-                });
+                .map_or(("n/a".into(), "n/a".into()), |(w, m)| (format!("{w:.1e}"), format!("{m:.1e}")));
             let (name, ns, ratio) = (&row.variant, row.median_ns, row.ratio);
-            out.push_str(&format!(
-                "| {name} | {ns:.2} | {ratio:.2}× | {worst} | {median} |\n"
-            ));
+            out.push_str(&format!("| {name} | {ns:.2} | {ratio:.2}× | {worst} | {median} |\n"));
         }
         out.push_str(
             "\n| spawn policy (f32 hit + reflect) | median ns / call | time vs AtComputedPoint | self-hits, 20000 near rays |\n\
              |---|---|---|---|\n",
         );
         for row in self.rows.iter().filter(|r| r.kind == "spawn") {
-            let policy = SpawnPolicy::ALL
-                .into_iter()
-                .find(|p| format!("{p:?}") == row.variant);
+            let policy = SpawnPolicy::ALL.into_iter().find(|p| format!("{p:?}") == row.variant);
             let rate = policy.map_or("n/a".into(), |p| {
                 let count = self_hit_rate::<f32>(Scenario::Near, p, 20_000, 11);
-                format!(
-                    "{:.2} %",
-                    100.0 * count.self_hits as f64 / count.reflected as f64
-                )
+                format!("{:.2} %", 100.0 * count.self_hits as f64 / count.reflected as f64)
             });
             let (name, ns, ratio) = (&row.variant, row.median_ns, row.ratio);
             out.push_str(&format!("| {name} | {ns:.2} | {ratio:.2}× | {rate} |\n"));
         }
-        out.push_str(&format!(
-            "\nMeasured by `cargo bench --bench q2_cost`: {}\n",
-            self.meta
-        ));
+        out.push_str(&format!("\nMeasured by `cargo bench --bench q2_cost`: {}\n", self.meta));
         out
     }
 
@@ -346,16 +229,12 @@ impl CostTable {
         let points: Vec<(String, f64, f64, f64)> = self
             .intersections()
             .filter_map(|r| {
-                Self::errors(&r.variant)
-                    .map(|(w, m)| (r.variant.clone(), r.median_ns, w.max(1e-17), m.max(1e-17)))
+                Self::errors(&r.variant).map(|(w, m)| (r.variant.clone(), r.median_ns, w.max(1e-17), m.max(1e-17)))
             })
             .collect();
         let max_ns = points.iter().map(|p| p.1).fold(1.0, f64::max) * 1.3;
         let mut chart = ChartBuilder::on(root)
-            .caption(
-                "Q2: catalogue error vs time per intersection",
-                ("sans-serif", 16),
-            )
+            .caption("Q2: catalogue error vs time per intersection", ("sans-serif", 16))
             .margin(8)
             .x_label_area_size(36)
             .y_label_area_size(56)
@@ -400,11 +279,7 @@ mod tests {
     fn diagrams_snapshot() {
         let settings = crate::test_support::insta_settings();
         for name in ["q2_reflection.svg", "q2_closest_approach.svg"] {
-            let figure = figures()
-                .unwrap()
-                .into_iter()
-                .find(|f| f.file_name == name)
-                .unwrap();
+            let figure = figures().unwrap().into_iter().find(|f| f.file_name == name).unwrap();
             let svg = String::from_utf8(figure.bytes).unwrap();
             settings.bind(|| insta::assert_snapshot!(name.replace(".svg", "_svg"), svg));
         }

@@ -26,11 +26,8 @@ pub enum SpawnPolicy {
 
 impl SpawnPolicy {
     /// All policies, in the order the notes present them.
-    pub const ALL: [SpawnPolicy; 3] = [
-        SpawnPolicy::AtComputedPoint,
-        SpawnPolicy::FixedEpsilon,
-        SpawnPolicy::ReprojectAndOffset,
-    ];
+    pub const ALL: [SpawnPolicy; 3] =
+        [SpawnPolicy::AtComputedPoint, SpawnPolicy::FixedEpsilon, SpawnPolicy::ReprojectAndOffset];
 }
 
 /// A reflection at a hit: the surface frame and the reflected ray with its minimum accepted `t`.
@@ -64,39 +61,20 @@ pub struct Reflection<T: Real> {
 /// assert!(bounce.ray.origin.z < -1.0); // just outside the surface
 /// ```
 #[must_use]
-pub fn reflect_at_hit<T: Real>(
-    ray: &Ray<T>,
-    sphere: &Sphere<T>,
-    t: T,
-    policy: SpawnPolicy,
-) -> Reflection<T> {
+pub fn reflect_at_hit<T: Real>(ray: &Ray<T>, sphere: &Sphere<T>, t: T, policy: SpawnPolicy) -> Reflection<T> {
     match policy {
         SpawnPolicy::AtComputedPoint | SpawnPolicy::FixedEpsilon => {
             let point = ray.at(t);
             let normal = (point - sphere.center) * (T::ONE / sphere.radius);
             let dir = reflect::<T>(ray.dir, normal);
-            let t_min = if policy == SpawnPolicy::FixedEpsilon {
-                T::from_f64(1e-4)
-            } else {
-                T::ZERO
-            };
-            Reflection {
-                point,
-                normal,
-                ray: Ray { origin: point, dir },
-                t_min,
-            }
+            let t_min = if policy == SpawnPolicy::FixedEpsilon { T::from_f64(1e-4) } else { T::ZERO };
+            Reflection { point, normal, ray: Ray { origin: point, dir }, t_min }
         }
         SpawnPolicy::ReprojectAndOffset => {
             let hit = surface_hit(ray, sphere, t);
             let dir = reflect::<T>(ray.dir, hit.normal);
             let origin = spawn_origin::<T>(hit.point, hit.normal, dir);
-            Reflection {
-                point: hit.point,
-                normal: hit.normal,
-                ray: Ray { origin, dir },
-                t_min: T::ZERO,
-            }
+            Reflection { point: hit.point, normal: hit.normal, ray: Ray { origin, dir }, t_min: T::ZERO }
         }
     }
 }
@@ -118,13 +96,8 @@ pub enum Scenario {
 
 impl Scenario {
     /// All scenarios.
-    pub const ALL: [Scenario; 5] = [
-        Scenario::Near,
-        Scenario::Far,
-        Scenario::HugeSphere,
-        Scenario::TinySphere,
-        Scenario::Translated,
-    ];
+    pub const ALL: [Scenario; 5] =
+        [Scenario::Near, Scenario::Far, Scenario::HugeSphere, Scenario::TinySphere, Scenario::Translated];
 
     /// Draws a sphere and a ray aimed at a uniform point of a disk of radius 0.999 r facing the eye
     /// (so the ray hits in exact arithmetic).
@@ -149,11 +122,7 @@ impl Scenario {
             }
             Scenario::Far => {
                 let r = 10f64.powf(rng::uniform_in(g, -1.0, 1.0));
-                (
-                    r,
-                    cube(g, 10.0),
-                    r * 10f64.powf(rng::uniform_in(g, 3.0, 4.0)),
-                )
+                (r, cube(g, 10.0), r * 10f64.powf(rng::uniform_in(g, 3.0, 4.0)))
             }
             Scenario::HugeSphere => (1e6, cube(g, 10.0), 1e6 + rng::uniform_in(g, 1.0, 100.0)),
             Scenario::TinySphere => {
@@ -161,35 +130,18 @@ impl Scenario {
                 (r, cube(g, 1.0), r * rng::uniform_in(g, 1.5, 20.0))
             }
         };
-        let offset = if self == Scenario::Translated {
-            DVec3::splat(1e4)
-        } else {
-            DVec3::ZERO
-        };
+        let offset = if self == Scenario::Translated { DVec3::splat(1e4) } else { DVec3::ZERO };
         let center = center + offset;
         let towards_eye = unit(g);
         let eye = center + towards_eye * eye_distance;
         // A point on the disk through the centre perpendicular to the eye direction.
-        let helper = if towards_eye.x.abs() < 0.9 {
-            DVec3::X
-        } else {
-            DVec3::Y
-        };
+        let helper = if towards_eye.x.abs() < 0.9 { DVec3::X } else { DVec3::Y };
         let u = towards_eye.cross(helper).normalize();
         let v = towards_eye.cross(u);
-        let (rho, phi) = (
-            0.999 * radius * rng::uniform(g).sqrt(),
-            rng::uniform_in(g, 0.0, std::f64::consts::TAU),
-        );
+        let (rho, phi) = (0.999 * radius * rng::uniform(g).sqrt(), rng::uniform_in(g, 0.0, std::f64::consts::TAU));
         let target = center + u * (rho * phi.cos()) + v * (rho * phi.sin());
         let scale = 10f64.powf(rng::uniform_in(g, -1.0, 1.0));
-        (
-            Ray {
-                origin: eye,
-                dir: (target - eye) * (scale / eye_distance),
-            },
-            Sphere { center, radius },
-        )
+        (Ray { origin: eye, dir: (target - eye) * (scale / eye_distance) }, Sphere { center, radius })
     }
 }
 
@@ -215,34 +167,19 @@ pub struct SelfHitCount {
 /// assert!(naive.self_hits > 100); // the acne the homework's formula produces
 /// ```
 #[must_use]
-pub fn self_hit_rate<T: Real>(
-    scenario: Scenario,
-    policy: SpawnPolicy,
-    rays: u64,
-    seed: u64,
-) -> SelfHitCount {
+pub fn self_hit_rate<T: Real>(scenario: Scenario, policy: SpawnPolicy, rays: u64, seed: u64) -> SelfHitCount {
     let mut g = rng::seeded(seed, scenario as u64);
-    let mut count = SelfHitCount {
-        reflected: 0,
-        self_hits: 0,
-    };
+    let mut count = SelfHitCount { reflected: 0, self_hits: 0 };
     for _ in 0..rays {
         let (ray64, sphere64) = scenario.draw(&mut g);
-        let ray = Ray::<T> {
-            origin: T::vec_from_f64(ray64.origin),
-            dir: T::vec_from_f64(ray64.dir),
-        };
-        let sphere = Sphere::<T> {
-            center: T::vec_from_f64(sphere64.center),
-            radius: T::from_f64(sphere64.radius),
-        };
+        let ray = Ray::<T> { origin: T::vec_from_f64(ray64.origin), dir: T::vec_from_f64(ray64.dir) };
+        let sphere = Sphere::<T> { center: T::vec_from_f64(sphere64.center), radius: T::from_f64(sphere64.radius) };
         let Some(t) = first_hit_stable(&ray, &sphere) else {
             continue;
         };
         let bounce = reflect_at_hit(&ray, &sphere, t, policy);
         count.reflected += 1;
-        let again = roots_stable(&bounce.ray, &sphere)
-            .and_then(|roots| roots.first_in(bounce.t_min, T::INFINITY));
+        let again = roots_stable(&bounce.ray, &sphere).and_then(|roots| roots.first_in(bounce.t_min, T::INFINITY));
         count.self_hits += u64::from(again.is_some());
     }
     count
@@ -256,14 +193,9 @@ mod tests {
     #[test]
     fn robust_spawn_never_self_intersects_in_a_million_hits_per_scenario() {
         for scenario in Scenario::ALL {
-            let f32_count =
-                self_hit_rate::<f32>(scenario, SpawnPolicy::ReprojectAndOffset, 1_000_000, 7);
-            let f64_count =
-                self_hit_rate::<f64>(scenario, SpawnPolicy::ReprojectAndOffset, 1_000_000, 7);
-            assert!(
-                f32_count.reflected > 900_000 && f64_count.reflected > 900_000,
-                "{scenario:?}: {f32_count:?}"
-            );
+            let f32_count = self_hit_rate::<f32>(scenario, SpawnPolicy::ReprojectAndOffset, 1_000_000, 7);
+            let f64_count = self_hit_rate::<f64>(scenario, SpawnPolicy::ReprojectAndOffset, 1_000_000, 7);
+            assert!(f32_count.reflected > 900_000 && f64_count.reflected > 900_000, "{scenario:?}: {f32_count:?}");
             assert_eq!(f32_count.self_hits, 0, "{scenario:?} f32");
             assert_eq!(f64_count.self_hits, 0, "{scenario:?} f64");
         }
@@ -285,8 +217,7 @@ mod tests {
     #[test]
     fn fixed_epsilon_fails_once_the_scene_is_translated() {
         let near = self_hit_rate::<f32>(Scenario::Near, SpawnPolicy::FixedEpsilon, 20_000, 5);
-        let moved =
-            self_hit_rate::<f32>(Scenario::Translated, SpawnPolicy::FixedEpsilon, 20_000, 5);
+        let moved = self_hit_rate::<f32>(Scenario::Translated, SpawnPolicy::FixedEpsilon, 20_000, 5);
         let rate = |c: SelfHitCount| c.self_hits as f64 / c.reflected as f64;
         assert!(rate(near) < 0.05, "near {}", rate(near));
         assert!(rate(moved) > 0.3, "translated {}", rate(moved));

@@ -70,16 +70,7 @@ pub fn seed_trace<T: Real>(ray: &Ray<T>, sphere: &Sphere<T>) -> SeedTrace<T> {
     let four_ac = T::FOUR * a * c;
     let b_squared = b * b;
     let nan = T::NAN;
-    let no_roots = |branch| SeedTrace {
-        a,
-        b,
-        c,
-        discriminant,
-        branch,
-        t1: nan,
-        t2: nan,
-        chosen: None,
-    };
+    let no_roots = |branch| SeedTrace { a, b, c, discriminant, branch, t1: nan, t2: nan, chosen: None };
     // "If 4AC > B² there is no intersection"; written as a negated `≤` so that NaN also lands here.
     if !(four_ac <= b_squared) {
         return no_roots(SeedBranch::NoRealRoots);
@@ -87,25 +78,13 @@ pub fn seed_trace<T: Real>(ray: &Ray<T>, sphere: &Sphere<T>) -> SeedTrace<T> {
     if four_ac == b_squared {
         let t = -b / (T::TWO * a);
         let chosen = (t >= T::ZERO).then_some(t);
-        return SeedTrace {
-            a,
-            b,
-            c,
-            discriminant,
-            branch: SeedBranch::Tangent,
-            t1: t,
-            t2: t,
-            chosen,
-        };
+        return SeedTrace { a, b, c, discriminant, branch: SeedBranch::Tangent, t1: t, t2: t, chosen };
     }
     let root = discriminant.sqrt();
     let t1 = (-b + root) / (T::TWO * a);
     let t2 = (-b - root) / (T::TWO * a);
-    let (branch, first, second) = if t1 < t2 {
-        (SeedBranch::TwoRootsT1Smaller, t1, t2)
-    } else {
-        (SeedBranch::TwoRootsT2Smaller, t2, t1)
-    };
+    let (branch, first, second) =
+        if t1 < t2 { (SeedBranch::TwoRootsT1Smaller, t1, t2) } else { (SeedBranch::TwoRootsT2Smaller, t2, t1) };
     let chosen = if first > T::ZERO {
         Some(first)
     } else if second > T::ZERO {
@@ -113,16 +92,7 @@ pub fn seed_trace<T: Real>(ray: &Ray<T>, sphere: &Sphere<T>) -> SeedTrace<T> {
     } else {
         None
     };
-    SeedTrace {
-        a,
-        b,
-        c,
-        discriminant,
-        branch,
-        t1,
-        t2,
-        chosen,
-    }
+    SeedTrace { a, b, c, discriminant, branch, t1, t2, chosen }
 }
 
 /// The homework's first intersection, without the trace (the "naive" method of the notes).
@@ -190,10 +160,7 @@ mod tests {
     #[test]
     fn seed_cases_eye_inside_and_sphere_behind() {
         let inside = seed_trace(&ray([0.0; 3], [0.0, 0.0, 2.0]), &unit_sphere());
-        assert_eq!(
-            (inside.t1, inside.t2, inside.chosen),
-            (0.5, -0.5, Some(0.5))
-        );
+        assert_eq!((inside.t1, inside.t2, inside.chosen), (0.5, -0.5, Some(0.5)));
         let behind = seed_trace(&ray([0.0, 0.0, 5.0], [0.0, 0.0, 1.0]), &unit_sphere());
         assert_eq!(behind.chosen, None);
         let miss = seed_trace(&ray([0.0, 2.0, -5.0], [0.0, 0.0, 1.0]), &unit_sphere());
