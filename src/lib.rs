@@ -2,7 +2,9 @@
 #![warn(missing_docs)]
 
 pub mod geometry;
+pub mod kdtree;
 pub mod plot;
+pub mod q3_kd_traversal;
 pub mod real;
 
 /// One question's printed answers, as `hw3 answers` shows them.
@@ -25,7 +27,7 @@ pub struct Answers {
 /// ```
 #[must_use]
 pub fn all_answers() -> Vec<Answers> {
-    vec![]
+    vec![q3_kd_traversal::answers()]
 }
 
 /// Every figure of the course notes, in homework order (deterministic bytes).
@@ -34,6 +36,7 @@ pub fn all_answers() -> Vec<Answers> {
 /// [`plot::PlotError`] if a figure cannot be drawn.
 pub fn all_figures() -> Result<Vec<plot::Figure>, plot::PlotError> {
     let mut figures: Vec<plot::Figure> = Vec::new();
+    figures.extend(q3_kd_traversal::figures()?);
     Ok(figures)
 }
 

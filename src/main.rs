@@ -33,6 +33,18 @@ enum Command {
         #[arg(long, default_value = "docs/figures")]
         out: PathBuf,
     },
+    /// Q3: traverse the homework's 2-D kd-tree with one ray and print the trace.
+    KdTrace {
+        /// The ray's origin `e`, as `X,Y`.
+        #[arg(long, allow_hyphen_values = true)]
+        origin: String,
+        /// The ray's direction `d`, as `X,Y` (non-zero).
+        #[arg(long, allow_hyphen_values = true)]
+        dir: String,
+        /// Print JSON (`leaves` and `steps`) instead of text.
+        #[arg(long)]
+        json: bool,
+    },
 }
 
 /// An error the user caused: reported on one line, exit status 2, nothing written.
@@ -77,6 +89,12 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         }
         Some(Command::Answers { question }) => print_answers(question.as_deref()),
         Some(Command::Figures { out }) => write_figures(&out),
+        Some(Command::KdTrace { origin, dir, json }) => {
+            let out = hw3::q3_kd_traversal::kd_trace_command(&origin, &dir, json)
+                .map_err(|e| UsageError(e.to_string()))?;
+            println!("{out}");
+            Ok(())
+        }
     }
 }
 
