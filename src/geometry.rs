@@ -123,7 +123,7 @@ impl<T: Real> Ray<T> {
 pub struct Sphere<T: Real> {
     /// The centre `o`.
     pub center: T::Vec3,
-    /// The radius `r` (finite, ≥ 0; a radius of 0 is a point that a ray can still pass through).
+    /// The radius `r` (finite, > 0).
     pub radius: T,
 }
 
@@ -132,7 +132,7 @@ impl<T: Real> Sphere<T> {
     ///
     /// # Errors
     /// [`InputError::NonFinite`] for a non-finite centre or radius, [`InputError::OutOfRange`]
-    /// for a negative radius.
+    /// for a radius ≤ 0 (a sphere of radius 0 has no normal, so Q2b would be undefined).
     ///
     /// # Examples
     /// ```
@@ -140,6 +140,7 @@ impl<T: Real> Sphere<T> {
     /// use hw3::geometry::Sphere;
     /// assert!(Sphere::<f64>::new(DVec3::ZERO, 1.0).is_ok());
     /// assert!(Sphere::<f64>::new(DVec3::ZERO, -1.0).is_err());
+    /// assert!(Sphere::<f64>::new(DVec3::ZERO, 0.0).is_err());
     /// assert!(Sphere::<f64>::new(DVec3::ZERO, f64::INFINITY).is_err());
     /// ```
     pub fn new(center: T::Vec3, radius: T) -> Result<Self, InputError> {
@@ -150,11 +151,11 @@ impl<T: Real> Sphere<T> {
                 value: format!("{radius}"),
             });
         }
-        if radius < T::ZERO {
+        if radius <= T::ZERO {
             return Err(InputError::OutOfRange {
                 name: "radius",
                 value: format!("{radius}"),
-                expected: "≥ 0",
+                expected: "> 0",
             });
         }
         Ok(Self { center, radius })

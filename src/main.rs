@@ -27,6 +27,30 @@ enum Command {
         #[arg(long)]
         question: Option<String>,
     },
+    /// Q2: intersect one ray with one sphere (hit, point, normal, reflection, closest approach).
+    Sphere {
+        /// Eye point e, as X,Y,Z.
+        #[arg(long, allow_hyphen_values = true)]
+        origin: String,
+        /// Direction d, as X,Y,Z (any non-zero length).
+        #[arg(long, allow_hyphen_values = true)]
+        dir: String,
+        /// Sphere centre o, as X,Y,Z.
+        #[arg(long, allow_hyphen_values = true)]
+        center: String,
+        /// Sphere radius r (finite, >= 0).
+        #[arg(long, allow_hyphen_values = true)]
+        radius: f64,
+        /// Arithmetic precision.
+        #[arg(long, value_enum, default_value_t = PrecisionArg::F64)]
+        precision: PrecisionArg,
+        /// The homework's formula (naive) or the stable rewrite.
+        #[arg(long, value_enum, default_value_t = MethodArg::Stable)]
+        method: MethodArg,
+        /// Print one JSON object instead of text.
+        #[arg(long)]
+        json: bool,
+    },
     /// Regenerate every figure of the course notes.
     Figures {
         /// Output folder.
@@ -45,6 +69,18 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
+}
+
+#[derive(Clone, Copy, clap::ValueEnum)]
+enum PrecisionArg {
+    F32,
+    F64,
+}
+
+#[derive(Clone, Copy, clap::ValueEnum)]
+enum MethodArg {
+    Naive,
+    Stable,
 }
 
 /// An error the user caused: reported on one line, exit status 2, nothing written.
@@ -95,20 +131,50 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             println!("{out}");
             Ok(())
         }
+        Some(Command::Sphere {
+            origin,
+            dir,
+            center,
+            radius,
+            precision,
+            method,
+            json,
+        }) => {
+            use hw3::q2_ray_sphere::catalogue::{Method, Precision};
+            let (ray, sphere) =
+                hw3::q2_ray_sphere::parse_sphere_args(&origin, &dir, &center, radius)
+                    .map_err(UsageError)?;
+            let precision = match precision {
+                PrecisionArg::F32 => Precision::F32,
+                PrecisionArg::F64 => Precision::F64,
+            };
+            let method = match method {
+                MethodArg::Naive => Method::Naive,
+                MethodArg::Stable => Method::Stable,
+            };
+            let answer = hw3::q2_ray_sphere::solve(&ray, &sphere, method, precision)
+                .map_err(|e| UsageError(e.to_string()))?;
+            if json {
+                println!("{}", serde_json::to_string(&answer)?);
+            } else {
+                println!("{answer:#?}");
+            }
+            Ok(())
+        }
     }
 }
 
 fn print_answers(question: Option<&str>) -> anyhow::Result<()> {
     let all = hw3::all_answers();
-    if let Some(q) = question {
-        if !all.iter().any(|a| a.question == q) {
-            let known: Vec<_> = all.iter().map(|a| a.question).collect();
-            return Err(UsageError(format!(
-                "unknown question `{q}`; known: {}",
-                known.join(", ")
-            ))
-            .into());
-        }
+    if let Some(q) = question
+        && !all.iter().any(|a| a.question == q)
+    {
+        let known: Vec<_> = all.iter().map(|a| a.question).collect();
+        return Err(UsageError(format!(
+            "unknown question `{q}`; known: {}",
+            known.join(", ")
+        ))
+        .into());
     }
     for answers in all
         .iter()

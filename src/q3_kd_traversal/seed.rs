@@ -315,10 +315,8 @@ mod tests {
     /// Away from ties (random real coordinates) the literal rules and ours agree exactly.
     #[test]
     fn literal_rules_agree_with_ours_on_generic_rays() {
-        use rand_core::{Rng as _, SeedableRng as _};
-        let mut rng = rand_pcg::Pcg64::seed_from_u64(3);
-        let mut uniform =
-            |lo: f64, hi: f64| lo + (hi - lo) * (rng.next_u64() >> 11) as f64 / (1u64 << 53) as f64;
+        let mut rng = crate::rng::seeded(3, 0);
+        let mut uniform = |lo: f64, hi: f64| crate::rng::uniform_in(&mut rng, lo, hi);
         for _ in 0..10_000 {
             let ray = Ray2::new(
                 [uniform(-5.0, 10.0), uniform(-5.0, 10.0)],
