@@ -319,7 +319,7 @@ mod tests {
                     uniform(rng, 0.0, 1.0),
                 );
                 let mut r = uniform(rng, 0.01, 0.25);
-                if rng.next_u64() % 4 == 0 {
+                if rng.next_u64().is_multiple_of(4) {
                     c = (c * 8.0).round() / 8.0;
                     r = 0.125;
                 }
@@ -337,7 +337,7 @@ mod tests {
                 uniform(rng, -0.5, 1.5),
                 uniform(rng, -0.5, 1.5),
             );
-            if rng.next_u64() % 4 == 0 {
+            if rng.next_u64().is_multiple_of(4) {
                 o = (o * 8.0).round() / 8.0;
             }
             let mut d = DVec3::new(
@@ -371,8 +371,8 @@ mod tests {
             let tree = KdTree::build(&spheres).unwrap();
             for _ in 0..1_000 {
                 let ray = random_ray(&mut rng);
-                let t_min = if rng.next_u64() % 2 == 0 { 0.0 } else { 1e-4 };
-                let t_max = if rng.next_u64() % 5 == 0 {
+                let t_min = if rng.next_u64().is_multiple_of(2) { 0.0 } else { 1e-4 };
+                let t_max = if rng.next_u64().is_multiple_of(5) {
                     0.7
                 } else {
                     f64::INFINITY
