@@ -29,6 +29,7 @@
 
 mod build;
 mod tree;
+pub mod workload;
 
 pub use build::{BuildError, SahCosts};
 pub use tree::{HitStats, KdTree, brute_force_closest_hit};
