@@ -6,7 +6,9 @@
 )]
 
 pub mod geometry;
+pub mod kdtree;
 pub mod plot;
+pub mod q3_kd_traversal;
 pub mod real;
 pub mod rng;
 
@@ -34,7 +36,7 @@ pub struct Answers {
 /// ```
 #[must_use]
 pub fn all_answers() -> Vec<Answers> {
-    vec![q2_ray_sphere::answers()]
+    vec![q2_ray_sphere::answers(), q3_kd_traversal::answers()]
 }
 
 /// Every figure of the course notes, in homework order (deterministic bytes).
@@ -44,6 +46,7 @@ pub fn all_answers() -> Vec<Answers> {
 pub fn all_figures() -> Result<Vec<plot::Figure>, plot::PlotError> {
     let mut figures: Vec<plot::Figure> = Vec::new();
     figures.extend(q2_ray_sphere::figures()?);
+    figures.extend(q3_kd_traversal::figures()?);
     Ok(figures)
 }
 

@@ -79,6 +79,18 @@ enum Command {
         #[arg(long, default_value = "docs/figures")]
         out: PathBuf,
     },
+    /// Q3: traverse the homework's 2-D kd-tree with one ray and print the trace.
+    KdTrace {
+        /// The ray's origin `e`, as `X,Y`.
+        #[arg(long, allow_hyphen_values = true)]
+        origin: String,
+        /// The ray's direction `d`, as `X,Y` (non-zero).
+        #[arg(long, allow_hyphen_values = true)]
+        dir: String,
+        /// Print JSON (`leaves` and `steps`) instead of text.
+        #[arg(long)]
+        json: bool,
+    },
 }
 
 #[derive(Clone, Copy, clap::ValueEnum)]
@@ -180,6 +192,12 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 }
             }
             if report.all_correct() { Ok(()) } else { Err(SomeWrong.into()) }
+        }
+        Some(Command::KdTrace { origin, dir, json }) => {
+            let out =
+                hw3::q3_kd_traversal::kd_trace_command(&origin, &dir, json).map_err(|e| UsageError(e.to_string()))?;
+            println!("{out}");
+            Ok(())
         }
         Some(Command::Sphere { origin, dir, center, radius, precision, method, json }) => {
             use hw3::q2_ray_sphere::catalogue::{Method, Precision};
