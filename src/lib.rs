@@ -4,6 +4,7 @@
 pub mod geometry;
 pub mod plot;
 pub mod real;
+pub mod render;
 
 /// One question's printed answers, as `hw3 answers` shows them.
 #[derive(Debug, Clone, PartialEq, Eq)]
