@@ -3,6 +3,7 @@
 
 pub mod geometry;
 pub mod plot;
+pub mod q1_hard_scenes;
 pub mod real;
 pub mod render;
 
@@ -26,7 +27,7 @@ pub struct Answers {
 /// ```
 #[must_use]
 pub fn all_answers() -> Vec<Answers> {
-    vec![]
+    vec![q1_hard_scenes::answers()]
 }
 
 /// Every figure of the course notes, in homework order (deterministic bytes).
@@ -35,6 +36,7 @@ pub fn all_answers() -> Vec<Answers> {
 /// [`plot::PlotError`] if a figure cannot be drawn.
 pub fn all_figures() -> Result<Vec<plot::Figure>, plot::PlotError> {
     let mut figures: Vec<plot::Figure> = Vec::new();
+    figures.extend(q1_hard_scenes::figures()?);
     Ok(figures)
 }
 

@@ -7,9 +7,9 @@
 //! shift the others: that is what makes "forced on, image identical" testable bit for bit.
 
 use super::analysis::Passes;
-use super::scene::{Hit, Material, Scene, Shape};
-use crate::geometry::Ray;
+use super::scene::{Camera, Fog, Hit, Material, Object, PointLight, Scene, Shape};
 use crate::geometry::sphere::{reflect, spawn_origin};
+use crate::geometry::{InputError, Ray};
 use glam::DVec3;
 use rand_core::Rng as _;
 use std::f64::consts::PI;
@@ -303,6 +303,134 @@ impl<'a> Tracer<'a> {
     }
 }
 
+/// The single-scattered radiance ("airlight") along a view ray of length `length` in a
+/// non-absorbing homogeneous medium (`σ_s = σ_t = beta`) from an isotropic point light of
+/// intensity `intensity` at distance `light_distance` and angle `gamma` (radians) from the ray:
+/// Sun et al.'s (2005) closed form `A₀ [F(A₁, ξ₁) − F(A₁, γ/2)]` with
+/// `F(u, v) = ∫₀^v e^(−u tan ξ) dξ` evaluated by composite Simpson (20 000 panels). An oracle for
+/// the renderer's marching, computed by a different route (reference note §4).
+///
+/// # Errors
+/// [`InputError::OutOfRange`] unless `beta`, `light_distance` and `length` are finite and > 0
+/// and `gamma` is in `(0, π)` (on the ray's line the integral diverges).
+///
+/// # Examples
+/// ```
+/// use hw3::render::integrator::airlight_closed_form;
+/// // Anchor from the reference note (results_airlight.txt): β = 0.3, D = 1, γ = 5°, 20 units.
+/// let l = airlight_closed_form(0.3, 1.0, 1.0, 5f64.to_radians(), 20.0).unwrap();
+/// assert!((l / 5.770888e-01 - 1.0).abs() < 2e-6);
+/// ```
+pub fn airlight_closed_form(
+    beta: f64,
+    intensity: f64,
+    light_distance: f64,
+    gamma: f64,
+    length: f64,
+) -> Result<f64, InputError> {
+    for (name, value) in [
+        ("beta", beta),
+        ("light distance", light_distance),
+        ("length", length),
+    ] {
+        if !(value > 0.0 && value.is_finite()) {
+            return Err(InputError::OutOfRange {
+                name,
+                value: format!("{value}"),
+                expected: "finite and > 0",
+            });
+        }
+    }
+    if !(gamma > 0.0 && gamma < PI) {
+        return Err(InputError::OutOfRange {
+            name: "gamma",
+            value: format!("{gamma}"),
+            expected: "in (0, π)",
+        });
+    }
+    let f = |u: f64, v: f64| {
+        let n = 20_000;
+        let h = v / f64::from(n);
+        let g = |xi: f64| (-u * xi.tan()).exp();
+        let inner: f64 = (1..n)
+            .map(|i| g(f64::from(i) * h) * if i % 2 == 1 { 4.0 } else { 2.0 })
+            .sum();
+        (g(0.0) + inner + g(v)) * h / 3.0
+    };
+    let (t_sv, t_vp) = (beta * light_distance, beta * length);
+    let a0 =
+        beta * beta * intensity * (-t_sv * gamma.cos()).exp() / (2.0 * PI * t_sv * gamma.sin());
+    let a1 = t_sv * gamma.sin();
+    let v_end = PI / 4.0 + 0.5 * ((t_vp - t_sv * gamma.cos()) / (t_sv * gamma.sin())).atan();
+    Ok(a0 * (f(a1, v_end) - f(a1, gamma / 2.0)))
+}
+
+/// The same airlight as [`airlight_closed_form`], measured by the renderer: a camera ray along
+/// `−z` ends on a black wall at distance `length`, a unit-intensity point light sits at
+/// distance `light_distance` and angle `gamma` from the ray, the fog has `σ_s = beta`, and the
+/// in-scattering integral uses `steps` quadrature steps.
+///
+/// # Errors
+/// [`InputError`] for a non-finite or negative `beta`, or geometry that makes an invalid scene.
+///
+/// # Examples
+/// ```
+/// use hw3::render::integrator::{airlight_closed_form, airlight_traced};
+/// let traced = airlight_traced(0.3, 1.0, 0.5, 20.0, 64).unwrap();
+/// let exact = airlight_closed_form(0.3, 1.0, 1.0, 0.5, 20.0).unwrap();
+/// assert!((traced / exact - 1.0).abs() < 1e-3);
+/// ```
+pub fn airlight_traced(
+    beta: f64,
+    light_distance: f64,
+    gamma: f64,
+    length: f64,
+    steps: usize,
+) -> Result<f64, InputError> {
+    let wall = Object {
+        shape: Shape::Quad {
+            corner: DVec3::new(-1e3, -1e3, -length),
+            edge_u: DVec3::new(2e3, 0.0, 0.0),
+            edge_v: DVec3::new(0.0, 2e3, 0.0),
+        },
+        material: Material::Diffuse {
+            albedo: DVec3::ZERO,
+        },
+    };
+    let light = PointLight {
+        position: DVec3::new(
+            light_distance * gamma.sin(),
+            0.0,
+            -light_distance * gamma.cos(),
+        ),
+        intensity: DVec3::ONE,
+    };
+    let fog = Fog {
+        sigma_a: 0.0,
+        sigma_s: beta,
+    };
+    let camera = Camera {
+        eye: DVec3::ZERO,
+        look_at: DVec3::NEG_Z,
+        up: DVec3::Y,
+        vfov_degrees: 40.0,
+        shutter: (0.0, 0.0),
+    };
+    let scene = Scene::new(camera, vec![wall], vec![light], Some(fog), DVec3::ZERO)?;
+    let tracer = Tracer::new(&scene, Passes::all()).with_in_scatter_steps(steps);
+    let ray = Ray {
+        origin: DVec3::ZERO,
+        dir: DVec3::NEG_Z,
+    };
+    let radiance = tracer.radiance(
+        Integrator::Whitted { max_depth: 0 },
+        &ray,
+        0.0,
+        &mut Sampler::new(0, 0, 0),
+    );
+    Ok(radiance.x)
+}
+
 /// 1 when the ray arrives at the emitting side of a quad (the side its normal points to), else 0.
 fn front_side(ray: &Ray<f64>, hit: &Hit) -> f64 {
     if ray.dir.dot(hit.normal) < 0.0 {
@@ -360,7 +488,7 @@ mod tests {
     use super::*;
     use crate::geometry::Sphere;
     use crate::render::analysis::Pass;
-    use crate::render::scene::{Camera, Fog, Object, PointLight};
+    use crate::render::scene::Camera;
 
     fn camera() -> Camera {
         Camera {
@@ -370,63 +498,6 @@ mod tests {
             vfov_degrees: 40.0,
             shutter: (0.0, 0.0),
         }
-    }
-
-    /// Sun et al.'s closed form of the airlight, with `F(u, v) = ∫₀^v e^(−u tan ξ) dξ` by
-    /// composite Simpson (an independent route to the same integral).
-    fn airlight_closed_form(beta: f64, intensity: f64, d: f64, gamma: f64, length: f64) -> f64 {
-        let f = |u: f64, v: f64| {
-            let n = 20_000;
-            let h = v / n as f64;
-            let g = |xi: f64| (-u * xi.tan()).exp();
-            let inner: f64 = (1..n)
-                .map(|i| g(i as f64 * h) * if i % 2 == 1 { 4.0 } else { 2.0 })
-                .sum();
-            (g(0.0) + inner + g(v)) * h / 3.0
-        };
-        let (t_sv, t_vp) = (beta * d, beta * length);
-        let a0 =
-            beta * beta * intensity * (-t_sv * gamma.cos()).exp() / (2.0 * PI * t_sv * gamma.sin());
-        let a1 = t_sv * gamma.sin();
-        let v_end = PI / 4.0 + 0.5 * ((t_vp - t_sv * gamma.cos()) / (t_sv * gamma.sin())).atan();
-        a0 * (f(a1, v_end) - f(a1, gamma / 2.0))
-    }
-
-    /// A black wall at distance `length` ends the view ray; a light at distance `d`, angle γ.
-    fn airlight_by_tracer(beta: f64, d: f64, gamma: f64, length: f64, steps: usize) -> f64 {
-        let wall = Object {
-            shape: Shape::Quad {
-                corner: DVec3::new(-1e3, -1e3, -length),
-                edge_u: DVec3::new(2e3, 0.0, 0.0),
-                edge_v: DVec3::new(0.0, 2e3, 0.0),
-            },
-            material: Material::Diffuse {
-                albedo: DVec3::ZERO,
-            },
-        };
-        let light = PointLight {
-            position: DVec3::new(d * gamma.sin(), 0.0, -d * gamma.cos()),
-            intensity: DVec3::ONE,
-        };
-        let fog = Fog {
-            sigma_a: 0.0,
-            sigma_s: beta,
-        };
-        let scene = Scene::new(camera(), vec![wall], vec![light], Some(fog), DVec3::ZERO).unwrap();
-        let tracer = Tracer::new(&scene, Passes::all()).with_in_scatter_steps(steps);
-        let ray = Ray {
-            origin: DVec3::ZERO,
-            dir: DVec3::NEG_Z,
-        };
-        let mut sampler = Sampler::new(0, 0, 0);
-        tracer
-            .radiance(
-                Integrator::Whitted { max_depth: 0 },
-                &ray,
-                0.0,
-                &mut sampler,
-            )
-            .x
     }
 
     #[test]
@@ -440,19 +511,19 @@ mod tests {
         ];
         for (beta, d, gamma_degrees, length, anchor) in anchors {
             let gamma = f64::to_radians(gamma_degrees);
-            let closed = airlight_closed_form(beta, 1.0, d, gamma, length);
+            let closed = airlight_closed_form(beta, 1.0, d, gamma, length).unwrap();
             assert!(
                 ((closed - anchor) / anchor).abs() < 2e-6,
                 "{closed} vs {anchor}"
             );
             // The midpoint rule is second order: 1.2e-4 at 256 steps, 7e-6 at 1024, 4e-7 at 4096
             // (β = 0.05, D = 1, γ = 5°).
-            let traced = airlight_by_tracer(beta, d, gamma, length, 4096);
+            let traced = airlight_traced(beta, d, gamma, length, 4096).unwrap();
             assert!(
                 ((traced - closed) / closed).abs() < 2e-6,
                 "β={beta} D={d} γ={gamma_degrees}: traced {traced:e}, closed {closed:e}"
             );
-            let default_steps = airlight_by_tracer(beta, d, gamma, length, IN_SCATTER_STEPS);
+            let default_steps = airlight_traced(beta, d, gamma, length, IN_SCATTER_STEPS).unwrap();
             assert!(((default_steps - closed) / closed).abs() < 1e-2);
         }
     }

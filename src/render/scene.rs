@@ -49,6 +49,15 @@ impl CameraFrame {
         }
     }
 
+    /// Whether `point` projects inside the image of aspect ratio `aspect` (and lies in front).
+    pub(crate) fn sees(&self, point: DVec3, aspect: f64) -> bool {
+        let offset = point - self.eye;
+        let depth = offset.dot(self.forward);
+        depth > 0.0
+            && (offset.dot(self.right) / depth).abs() <= self.half_height * aspect
+            && (offset.dot(self.up) / depth).abs() <= self.half_height
+    }
+
     /// The primary ray through image-plane point `(u, v)` in `[0, 1]²` (`v = 0` is the top row)
     /// for an image of aspect ratio `aspect = width / height`. The direction is unit length.
     pub(crate) fn ray(&self, u: f64, v: f64, aspect: f64) -> Ray<f64> {
