@@ -7,7 +7,7 @@ use crate::render::analysis::analyze;
 use crate::render::integrator::{
     IN_SCATTER_STEPS, Integrator, Sampler, Tracer, airlight_closed_form, airlight_traced,
 };
-use crate::render::scene::{Camera, Fog, Material, Object, PointLight, Scene, Shape};
+use crate::render::scene::{Camera, Material, PointLight, Scene, Shape};
 use crate::render::scenes::{self, CLUTTER_HALF_WIDTH, CLUTTER_RADIUS};
 use crate::render::{Image, Settings, render};
 use glam::DVec3;
@@ -197,39 +197,21 @@ pub struct FogRow {
     pub apparent_contrast: f64,
 }
 
-/// A camera at the origin looking along `−z` at a large emitter quad at distance `distance`
-/// (radiance `target_radiance`), a lamp beside the path, and fog `σ_s = sigma_t`.
+/// The fog measurement's scene: an emitter wall of radiance `target_radiance` at `distance`, a
+/// lamp beside the path, and fog `σ_s = sigma_t`.
 fn fog_target_scene(
     sigma_t: f64,
     distance: f64,
     target_radiance: f64,
 ) -> Result<Scene, InputError> {
-    let target = Object {
-        shape: Shape::Quad {
-            corner: DVec3::new(-50.0, -50.0, -distance),
-            edge_u: DVec3::new(100.0, 0.0, 0.0),
-            edge_v: DVec3::new(0.0, 100.0, 0.0),
-        },
-        material: Material::Emitter {
-            radiance: DVec3::splat(target_radiance),
-        },
-    };
     let lamp = PointLight {
         position: DVec3::new(2.0, 1.5, -distance / 2.0),
         intensity: DVec3::splat(5.0),
     };
-    let camera = Camera {
-        eye: DVec3::ZERO,
-        look_at: DVec3::NEG_Z,
-        up: DVec3::Y,
-        vfov_degrees: 40.0,
-        shutter: (0.0, 0.0),
+    let target = Material::Emitter {
+        radiance: DVec3::splat(target_radiance),
     };
-    let fog = Fog {
-        sigma_a: 0.0,
-        sigma_s: sigma_t,
-    };
-    Scene::new(camera, vec![target], vec![lamp], Some(fog), DVec3::ZERO)
+    scenes::wall_in_fog(distance, target, lamp, sigma_t)
 }
 
 /// Measures one fog row by tracing the probe ray through the lit and the dark target.
@@ -611,6 +593,7 @@ fn chart<X, Y>(
     caption: &str,
     (x_label, y_label): (&str, &str),
     (x_range, y_range): (X, Y),
+    legend: SeriesLabelPosition,
     series: &[Series],
 ) -> Result<Figure, PlotError>
 where
@@ -632,6 +615,11 @@ where
             .x_desc(x_label)
             .y_desc(y_label)
             .label_style(("sans-serif", 13))
+            .light_line_style(TRANSPARENT)
+            .x_labels(12)
+            .y_labels(8)
+            .x_label_formatter(&tick)
+            .y_label_formatter(&tick)
             .draw()
             .map_err(err)?;
         for s in series {
@@ -655,6 +643,7 @@ where
         }
         chart
             .configure_series_labels()
+            .position(legend)
             .label_font(("sans-serif", 13))
             .background_style(WHITE.mix(0.85))
             .border_style(BLACK)
@@ -675,6 +664,11 @@ fn series(
         line,
         color,
     }
+}
+
+/// An axis label: the value rounded to six decimals, so that `0.6000000001` prints `0.6`.
+fn tick(value: &f64) -> String {
+    format!("{}", (value * 1e6).round() / 1e6)
 }
 
 /// A text file placed among the figures (the chapter includes it as a generated table).
@@ -711,6 +705,7 @@ fn clutter_figures(rows: &[ClutterRow]) -> Result<Vec<Figure>, PlotError> {
         "Clutter: gap fraction and visible fraction vs sphere count",
         ("spheres N in the slab", "fraction"),
         ((200.0..5000.0).log_scale(), 0.0..1.05),
+        SeriesLabelPosition::LowerLeft,
         &[
             series(
                 "gap fraction, measured",
@@ -726,7 +721,7 @@ fn clutter_figures(rows: &[ClutterRow]) -> Result<Vec<Figure>, PlotError> {
                 PALETTE[1],
             ),
             series(
-                "law (1 − e^(−τ))/τ",
+                "centre-ray estimate (1 − e^(−τ))/τ",
                 pick(|r| -(-r.optical_depth).exp_m1() / r.optical_depth),
                 true,
                 PALETTE[1],
@@ -779,6 +774,7 @@ fn fog_figures(rows: &[FogRow]) -> Result<Vec<Figure>, PlotError> {
         "Fog: contrast (transmittance) vs distance",
         ("target distance d", "transmittance T = ΔL / L_emitted"),
         (0.0..41.0, (1e-4..1.2).log_scale()),
+        SeriesLabelPosition::LowerLeft,
         &plotted,
     )?;
     Ok(vec![
@@ -800,6 +796,7 @@ fn mirror_figures(rows: &[(f64, f64, f64)]) -> Result<Vec<Figure>, PlotError> {
         "Mirrors: image change per unit camera move (sphere pixels)",
         ("camera displacement δ", "S(δ) = mean |ΔI| / δ"),
         ((0.004..0.12).log_scale(), 0.0..0.6),
+        SeriesLabelPosition::LowerRight,
         &[
             series(
                 "mirror spheres",
@@ -832,7 +829,8 @@ fn motion_figures(change: &MotionChange, noise: &MotionNoise) -> Result<Vec<Figu
         "q1_motion_noise.svg",
         "Motion blur: RMS error vs samples per pixel",
         ("samples per pixel", "RMS luminance error"),
-        ((0.8..40.0).log_scale(), (3e-3..5e-2).log_scale()),
+        ((0.8..40.0).log_scale(), (4e-3..5e-2).log_scale()),
+        SeriesLabelPosition::LowerLeft,
         &[
             series(
                 "moving ball",
@@ -893,6 +891,7 @@ pub fn figures() -> Result<Vec<Figure>, PlotError> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::render::scene::Fog;
 
     fn snapshot(name: &str, text: &str) {
         crate::test_support::insta_settings().bind(|| insta::assert_snapshot!(name, text));

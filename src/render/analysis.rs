@@ -347,7 +347,7 @@ fn light_sees_a_mirror(scene: &Scene) -> bool {
             light_points.iter().any(|&light| {
                 let to_light = light - point;
                 let distance = to_light.length();
-                if !(normal.dot(to_light) > 0.0) {
+                if normal.dot(to_light) <= 0.0 {
                     return false;
                 }
                 let dir = to_light / distance;

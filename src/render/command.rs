@@ -149,7 +149,7 @@ pub fn render_scene(
     let show_progress = std::io::stderr().is_terminal()
         && u64::from(size.0) * u64::from(height) * u64::from(spp) > 1 << 20;
     let progress = |rows: u32| {
-        if show_progress && (rows % 8 == 0 || rows == height) {
+        if show_progress && (rows.is_multiple_of(8) || rows == height) {
             eprint!("\rrendering: {rows}/{height} rows");
         }
     };

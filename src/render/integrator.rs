@@ -7,7 +7,7 @@
 //! shift the others: that is what makes "forced on, image identical" testable bit for bit.
 
 use super::analysis::Passes;
-use super::scene::{Camera, Fog, Hit, Material, Object, PointLight, Scene, Shape};
+use super::scene::{Hit, Material, PointLight, Scene, Shape};
 use crate::geometry::sphere::{reflect, spawn_origin};
 use crate::geometry::{InputError, Ray};
 use glam::DVec3;
@@ -253,7 +253,8 @@ impl<'a> Tracer<'a> {
             let distance = offset.length();
             let dir = offset / distance;
             let cosine = normal.dot(dir);
-            if !(cosine > 0.0) {
+            // NaN fails both tests: it never lights anything.
+            if cosine.is_nan() || cosine <= 0.0 {
                 return;
             }
             let shadow = Ray {
@@ -387,16 +388,6 @@ pub fn airlight_traced(
     length: f64,
     steps: usize,
 ) -> Result<f64, InputError> {
-    let wall = Object {
-        shape: Shape::Quad {
-            corner: DVec3::new(-1e3, -1e3, -length),
-            edge_u: DVec3::new(2e3, 0.0, 0.0),
-            edge_v: DVec3::new(0.0, 2e3, 0.0),
-        },
-        material: Material::Diffuse {
-            albedo: DVec3::ZERO,
-        },
-    };
     let light = PointLight {
         position: DVec3::new(
             light_distance * gamma.sin(),
@@ -405,18 +396,10 @@ pub fn airlight_traced(
         ),
         intensity: DVec3::ONE,
     };
-    let fog = Fog {
-        sigma_a: 0.0,
-        sigma_s: beta,
+    let black = Material::Diffuse {
+        albedo: DVec3::ZERO,
     };
-    let camera = Camera {
-        eye: DVec3::ZERO,
-        look_at: DVec3::NEG_Z,
-        up: DVec3::Y,
-        vfov_degrees: 40.0,
-        shutter: (0.0, 0.0),
-    };
-    let scene = Scene::new(camera, vec![wall], vec![light], Some(fog), DVec3::ZERO)?;
+    let scene = super::scenes::wall_in_fog(length, black, light, beta)?;
     let tracer = Tracer::new(&scene, Passes::all()).with_in_scatter_steps(steps);
     let ray = Ray {
         origin: DVec3::ZERO,
@@ -488,7 +471,7 @@ mod tests {
     use super::*;
     use crate::geometry::Sphere;
     use crate::render::analysis::Pass;
-    use crate::render::scene::Camera;
+    use crate::render::scene::{Camera, Object};
 
     fn camera() -> Camera {
         Camera {
@@ -532,15 +515,12 @@ mod tests {
     fn camera_inside_a_diffuse_sphere_with_a_light_at_its_centre_sees_the_furnace_value() {
         // pbrt-v4's integrator test: albedo 0.5, point light I = π at the centre, all bounces
         // → radiance 0.5/(1 − 0.5) = 1; direct light alone gives 0.5.
-        let shell = Object {
-            shape: Shape::Sphere {
-                sphere: Sphere::new(DVec3::ZERO, 1.0).unwrap(),
-                velocity: DVec3::ZERO,
-            },
-            material: Material::Diffuse {
+        let shell = Object::sphere(
+            Sphere::new(DVec3::ZERO, 1.0).unwrap(),
+            Material::Diffuse {
                 albedo: DVec3::splat(0.5),
             },
-        };
+        );
         let light = PointLight {
             position: DVec3::ZERO,
             intensity: DVec3::splat(PI),

@@ -133,6 +133,33 @@ pub struct Object {
     pub material: Material,
 }
 
+impl Object {
+    /// The quad `corner + a·edge_u + b·edge_v` with `material` (validated by [`Scene::new`]).
+    #[must_use]
+    pub fn quad(corner: DVec3, edge_u: DVec3, edge_v: DVec3, material: Material) -> Self {
+        Self {
+            shape: Shape::Quad {
+                corner,
+                edge_u,
+                edge_v,
+            },
+            material,
+        }
+    }
+
+    /// A static sphere with `material`.
+    #[must_use]
+    pub fn sphere(sphere: Sphere<f64>, material: Material) -> Self {
+        Self {
+            shape: Shape::Sphere {
+                sphere,
+                velocity: DVec3::ZERO,
+            },
+            material,
+        }
+    }
+}
+
 /// An isotropic point light: intensity `I` (W/sr per channel), irradiance `I cosθ / r²`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PointLight {
@@ -367,11 +394,11 @@ pub fn intersect(shape: &Shape, ray: &Ray<f64>, time: f64) -> Option<f64> {
             let n = edge_u.cross(edge_v);
             let denominator = ray.dir.dot(n);
             // Relative test: parallel (or NaN) within rounding is a miss, never a huge `t`.
-            if !(denominator.abs() > 1e-12 * n.length() * ray.dir.length()) {
+            if denominator.is_nan() || denominator.abs() <= 1e-12 * n.length() * ray.dir.length() {
                 return None;
             }
             let t = (corner - ray.origin).dot(n) / denominator;
-            if !(t > 0.0) {
+            if t.is_nan() || t <= 0.0 {
                 return None;
             }
             let offset = ray.at(t) - corner;

@@ -120,16 +120,14 @@ pub fn clutter_forest(count: usize, seed: u64) -> Result<Scene, InputError> {
 /// # Errors
 /// [`InputError`] for a negative or non-finite `sigma_t`.
 pub fn fog_street(sigma_t: f64) -> Result<Scene, InputError> {
-    let ground = Object {
-        shape: Shape::Quad {
-            corner: DVec3::new(-6.0, 0.0, 5.0),
-            edge_u: DVec3::new(12.0, 0.0, 0.0),
-            edge_v: DVec3::new(0.0, 0.0, -70.0),
-        },
-        material: Material::Diffuse {
+    let ground = Object::quad(
+        DVec3::new(-6.0, 0.0, 5.0),
+        DVec3::new(12.0, 0.0, 0.0),
+        DVec3::new(0.0, 0.0, -70.0),
+        Material::Diffuse {
             albedo: DVec3::splat(0.4),
         },
-    };
+    );
     let mut objects = vec![ground];
     for k in 1..=8 {
         for side in [-2.5, 2.5] {
@@ -246,16 +244,14 @@ pub fn mirror_behind_wall() -> Result<Scene, InputError> {
             reflectance: DVec3::ONE,
         },
     };
-    let roof = Object {
-        shape: Shape::Quad {
-            corner: DVec3::new(-10.0, 2.5, 7.0),
-            edge_u: DVec3::new(20.0, 0.0, 0.0),
-            edge_v: DVec3::new(0.0, 0.0, -20.0),
-        },
-        material: Material::Diffuse {
+    let roof = Object::quad(
+        DVec3::new(-10.0, 2.5, 7.0),
+        DVec3::new(20.0, 0.0, 0.0),
+        DVec3::new(0.0, 0.0, -20.0),
+        Material::Diffuse {
             albedo: DVec3::splat(0.5),
         },
-    };
+    );
     let mut objects = checker_floor(4, -3.0);
     objects.extend([mirror, roof]);
     let light = PointLight {
@@ -269,6 +265,38 @@ pub fn mirror_behind_wall() -> Result<Scene, InputError> {
         None,
         DVec3::ZERO,
     )
+}
+
+/// A camera at the origin looking along `−z` at a 2000×2000 wall of `wall` material facing it at
+/// distance `distance`, one `lamp`, and a non-absorbing fog of scattering coefficient `sigma_s`:
+/// the set-up of the fog measurements (transmittance and airlight).
+///
+/// # Errors
+/// [`InputError`] for an invalid distance, lamp, material or density.
+pub fn wall_in_fog(
+    distance: f64,
+    wall: Material,
+    lamp: PointLight,
+    sigma_s: f64,
+) -> Result<Scene, InputError> {
+    let wall = Object::quad(
+        DVec3::new(-1e3, -1e3, -distance),
+        DVec3::new(2e3, 0.0, 0.0),
+        DVec3::new(0.0, 2e3, 0.0),
+        wall,
+    );
+    let camera = Camera {
+        eye: DVec3::ZERO,
+        look_at: DVec3::NEG_Z,
+        up: DVec3::Y,
+        vfov_degrees: 40.0,
+        shutter: (0.0, 0.0),
+    };
+    let fog = Fog {
+        sigma_a: 0.0,
+        sigma_s,
+    };
+    Scene::new(camera, vec![wall], vec![lamp], Some(fog), DVec3::ZERO)
 }
 
 /// Shutter of [`moving_ball`]: open at 0, close at 1.
