@@ -366,6 +366,45 @@ mod tests {
         }
     }
 
+    /// A point light inside a closed sphere lights nothing outside it, and a camera inside a
+    /// mirror sphere sees a finite, black image (light cannot get in; recursion stops at depth 8).
+    #[test]
+    fn enclosed_lights_and_cameras_stay_dark_and_finite() {
+        use crate::geometry::Sphere;
+        use scene::{Camera, Material, Object, PointLight};
+        let camera = Camera::looking_at(DVec3::new(0.0, 0.0, 4.0), DVec3::ZERO, 40.0);
+        let shell = |material| Object::sphere(Sphere::new(DVec3::ZERO, 1.0).unwrap(), material);
+        let lamp = PointLight {
+            position: DVec3::ZERO,
+            intensity: DVec3::splat(100.0),
+        };
+        let diffuse = Material::Diffuse {
+            albedo: DVec3::splat(0.8),
+        };
+        let enclosed =
+            Scene::new(camera, vec![shell(diffuse)], vec![lamp], None, DVec3::ZERO).unwrap();
+        let outside = small(&enclosed, analyze(&enclosed).plan, 1);
+        assert!(outside.pixels.iter().all(|p| *p == DVec3::ZERO));
+        let mirror = Material::Mirror {
+            reflectance: DVec3::splat(0.9),
+        };
+        let inside_camera = Camera::looking_at(DVec3::new(0.0, 0.0, 0.5), DVec3::ZERO, 40.0);
+        let outside_lamp = PointLight {
+            position: DVec3::new(0.0, 5.0, 0.0),
+            ..lamp
+        };
+        let trapped = Scene::new(
+            inside_camera,
+            vec![shell(mirror)],
+            vec![outside_lamp],
+            None,
+            DVec3::ONE,
+        )
+        .unwrap();
+        let image = small(&trapped, analyze(&trapped).plan, 1);
+        assert!(image.pixels.iter().all(|p| *p == DVec3::ZERO));
+    }
+
     #[test]
     fn thumbnail_averages_blocks() {
         let image = Image {

@@ -474,13 +474,7 @@ mod tests {
     use crate::render::scene::{Camera, Object};
 
     fn camera() -> Camera {
-        Camera {
-            eye: DVec3::ZERO,
-            look_at: DVec3::NEG_Z,
-            up: DVec3::Y,
-            vfov_degrees: 40.0,
-            shutter: (0.0, 0.0),
-        }
+        Camera::looking_at(DVec3::ZERO, DVec3::NEG_Z, 40.0)
     }
 
     #[test]

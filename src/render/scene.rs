@@ -23,6 +23,28 @@ pub struct Camera {
     pub shutter: (f64, f64),
 }
 
+impl Camera {
+    /// A camera at `eye` looking at `look_at` with `+y` up, a vertical field of view of
+    /// `vfov_degrees`, and an instantaneous shutter at time 0 (validated by [`Scene::new`]).
+    ///
+    /// # Examples
+    /// ```
+    /// use glam::DVec3;
+    /// let camera = hw3::render::scene::Camera::looking_at(DVec3::Z, DVec3::ZERO, 40.0);
+    /// assert_eq!(camera.shutter, (0.0, 0.0));
+    /// ```
+    #[must_use]
+    pub fn looking_at(eye: DVec3, look_at: DVec3, vfov_degrees: f64) -> Self {
+        Self {
+            eye,
+            look_at,
+            up: DVec3::Y,
+            vfov_degrees,
+            shutter: (0.0, 0.0),
+        }
+    }
+}
+
 /// The camera's orthonormal frame and image-plane extents, precomputed once per render.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct CameraFrame {
@@ -590,11 +612,8 @@ mod tests {
     #[test]
     fn invalid_scenes_are_typed_errors_naming_the_value() {
         let camera = Camera {
-            eye: DVec3::new(0.0, 0.0, 5.0),
-            look_at: DVec3::ZERO,
-            up: DVec3::Y,
-            vfov_degrees: 40.0,
             shutter: (0.0, 1.0),
+            ..Camera::looking_at(DVec3::new(0.0, 0.0, 5.0), DVec3::ZERO, 40.0)
         };
         let name = |r: Result<Scene, InputError>| match r.unwrap_err() {
             InputError::NonFinite { name, .. }

@@ -100,13 +100,11 @@ pub fn clutter_forest(count: usize, seed: u64) -> Result<Scene, InputError> {
             })
         })
         .collect::<Result<Vec<_>, InputError>>()?;
-    let camera = Camera {
-        eye: DVec3::new(0.0, 0.0, 12.0),
-        look_at: DVec3::new(0.0, 0.0, -CLUTTER_DEPTH),
-        up: DVec3::Y,
-        vfov_degrees: 40.0,
-        shutter: (0.0, 0.0),
-    };
+    let camera = Camera::looking_at(
+        DVec3::new(0.0, 0.0, 12.0),
+        DVec3::new(0.0, 0.0, -CLUTTER_DEPTH),
+        40.0,
+    );
     let sun = PointLight {
         position: DVec3::new(10.0, 40.0, 25.0),
         intensity: DVec3::splat(2500.0),
@@ -146,13 +144,7 @@ pub fn fog_street(sigma_t: f64) -> Result<Scene, InputError> {
         position: DVec3::new(0.0, 3.5, z),
         intensity: DVec3::new(40.0, 34.0, 24.0),
     });
-    let camera = Camera {
-        eye: DVec3::new(0.0, 1.6, 4.0),
-        look_at: DVec3::new(0.0, 1.2, -20.0),
-        up: DVec3::Y,
-        vfov_degrees: 45.0,
-        shutter: (0.0, 0.0),
-    };
+    let camera = Camera::looking_at(DVec3::new(0.0, 1.6, 4.0), DVec3::new(0.0, 1.2, -20.0), 45.0);
     let fog = (sigma_t != 0.0).then_some(Fog {
         sigma_a: 0.0,
         sigma_s: sigma_t,
@@ -184,13 +176,11 @@ fn checker_floor(n: u32, center_z: f64) -> Vec<Object> {
 /// The camera of [`mirror_spheres`], moved by `offset` (Q1c displaces it).
 #[must_use]
 pub fn mirror_camera(offset: DVec3) -> Camera {
-    Camera {
-        eye: DVec3::new(0.0, 2.2, 3.0) + offset,
-        look_at: DVec3::new(0.0, 0.6, -3.0) + offset,
-        up: DVec3::Y,
-        vfov_degrees: 40.0,
-        shutter: (0.0, 0.0),
-    }
+    Camera::looking_at(
+        DVec3::new(0.0, 2.2, 3.0) + offset,
+        DVec3::new(0.0, 0.6, -3.0) + offset,
+        40.0,
+    )
 }
 
 /// Four spheres of radius 0.7 in a 2×2 block over an 8×8 checker floor, mirrors (reflectance
@@ -285,13 +275,7 @@ pub fn wall_in_fog(
         DVec3::new(0.0, 2e3, 0.0),
         wall,
     );
-    let camera = Camera {
-        eye: DVec3::ZERO,
-        look_at: DVec3::NEG_Z,
-        up: DVec3::Y,
-        vfov_degrees: 40.0,
-        shutter: (0.0, 0.0),
-    };
+    let camera = Camera::looking_at(DVec3::ZERO, DVec3::NEG_Z, 40.0);
     let fog = Fog {
         sigma_a: 0.0,
         sigma_s,
@@ -408,13 +392,7 @@ pub fn cornell_mirror() -> Result<Scene, InputError> {
             exponent: 40.0,
         },
     });
-    let camera = Camera {
-        eye: DVec3::new(0.0, 0.0, 3.4),
-        look_at: DVec3::ZERO,
-        up: DVec3::Y,
-        vfov_degrees: 40.0,
-        shutter: (0.0, 0.0),
-    };
+    let camera = Camera::looking_at(DVec3::new(0.0, 0.0, 3.4), DVec3::ZERO, 40.0);
     Scene::new(camera, objects, vec![], None, DVec3::ZERO)
 }
 
