@@ -1,13 +1,14 @@
 #![doc = include_str!(concat!(env!("OUT_DIR"), "/q1_hard_scenes.md"))]
 
 use crate::Answers;
+use crate::geometry::Sphere;
 use crate::geometry::{InputError, Ray};
 use crate::plot::{self, Figure, PALETTE, PlotError, err};
 use crate::render::analysis::analyze;
 use crate::render::integrator::{
     IN_SCATTER_STEPS, Integrator, Sampler, Tracer, airlight_closed_form, airlight_traced,
 };
-use crate::render::scene::{Camera, Material, PointLight, Scene, Shape};
+use crate::render::scene::{Camera, Material, Object, PointLight, Scene, Shape};
 use crate::render::scenes::{self, CLUTTER_HALF_WIDTH, CLUTTER_RADIUS};
 use crate::render::{Image, Settings, render};
 use glam::DVec3;
@@ -385,6 +386,156 @@ fn mirror_table(rows: &[(f64, f64, f64)]) -> String {
             "| {delta} | {mirror:.4e} | {diffuse:.4e} | {:.3} |",
             mirror / diffuse
         );
+    }
+    text
+}
+
+/// How fast nearby rays separate between mirrors: curved (chaotic) versus flat (linear).
+#[derive(Debug, Clone, PartialEq)]
+pub struct MirrorDivergence {
+    /// Ray pairs launched at the four mirror spheres.
+    pub trials: usize,
+    /// Pairs that stayed trapped for at least 4 bounces with separation below 1e-3.
+    pub trapped: usize,
+    /// Median separation growth factor per bounce among the trapped pairs.
+    pub median_factor: f64,
+    /// Between two parallel flat mirrors: `(bounces, measured separation, law k h δ / cos²θ)`.
+    pub flat: Vec<(usize, f64, f64)>,
+}
+
+/// Ray pairs of the divergence measurement.
+pub const DIVERGENCE_TRIALS: usize = 2000;
+
+/// Angular offset between the two rays of a pair (radians).
+const PAIR_OFFSET: f64 = 1e-12;
+
+/// The hit points of a ray bouncing between the mirrors of `scene`, at most `bounces` of them.
+fn mirror_path(scene: &Scene, mut ray: Ray<f64>, bounces: usize) -> Vec<DVec3> {
+    let mut points = Vec::new();
+    while points.len() < bounces {
+        let Some(hit) = scene.closest_hit(&ray, 0.0, f64::INFINITY) else {
+            break;
+        };
+        let dir = crate::geometry::sphere::reflect::<f64>(ray.dir, hit.normal);
+        ray = Ray {
+            origin: crate::geometry::sphere::spawn_origin::<f64>(hit.point, hit.normal, dir),
+            dir,
+        };
+        points.push(hit.point);
+    }
+    points
+}
+
+/// Measures [`MirrorDivergence`]: `trials` ray pairs `1e-12` rad apart aimed from 6 units away
+/// at four mirror spheres (radius 1, tetrahedron with edge 2.2, the reference note's set-up),
+/// and one pair at 30° between two parallel mirrors 1 apart.
+///
+/// # Errors
+/// [`InputError`] never for the built-in numbers.
+pub fn mirror_divergence(trials: usize) -> Result<MirrorDivergence, InputError> {
+    let mirror = Material::Mirror {
+        reflectance: DVec3::ONE,
+    };
+    let corners = [
+        [1.0, 1.0, 1.0],
+        [1.0, -1.0, -1.0],
+        [-1.0, 1.0, -1.0],
+        [-1.0, -1.0, 1.0],
+    ];
+    // Vertices of the tetrahedron at distance √3 from its centre have edge √8; scale to 2.2.
+    let scale = 2.2 / 8f64.sqrt();
+    let spheres = corners
+        .iter()
+        .map(|&c| {
+            Ok(Object::sphere(
+                Sphere::new(DVec3::from(c) * scale, 1.0)?,
+                mirror,
+            ))
+        })
+        .collect::<Result<Vec<_>, InputError>>()?;
+    let camera = Camera::looking_at(DVec3::new(0.0, 0.0, 6.0), DVec3::ZERO, 40.0);
+    let cluster = Scene::new(camera, spheres, vec![], None, DVec3::ZERO)?;
+    let mut sampler = Sampler::new(7, 0, 3);
+    let mut rates = Vec::new();
+    for _ in 0..trials {
+        let z = 2.0 * sampler.uniform() - 1.0;
+        let phi = 2.0 * PI * sampler.uniform();
+        let ring = (1.0 - z * z).sqrt();
+        let origin = DVec3::new(ring * phi.cos(), ring * phi.sin(), z) * 6.0;
+        let aim = DVec3::new(sampler.uniform(), sampler.uniform(), sampler.uniform()) * 0.3
+            - DVec3::splat(0.15);
+        let dir = (aim - origin).normalize();
+        let perpendicular = dir.cross(DVec3::new(0.3, 0.5, 0.8)).normalize();
+        let twin = (dir + perpendicular * PAIR_OFFSET).normalize();
+        let first = mirror_path(&cluster, Ray { origin, dir }, 60);
+        let second = mirror_path(&cluster, Ray { origin, dir: twin }, 60);
+        let separations: Vec<f64> = first
+            .iter()
+            .zip(&second)
+            .map(|(a, b)| (*a - *b).length())
+            .collect();
+        // Stay in the linear regime: the last bounce still closer than 1e-3.
+        let linear = separations.iter().take_while(|&&d| d < 1e-3).count();
+        if linear >= 4 && separations[0] > 0.0 {
+            let k = linear - 1;
+            rates.push((separations[k] / separations[0]).ln() / k as f64);
+        }
+    }
+    rates.sort_by(f64::total_cmp);
+    let median_factor = rates
+        .get(rates.len() / 2)
+        .map_or(f64::NAN, |rate| rate.exp());
+    Ok(MirrorDivergence {
+        trials,
+        trapped: rates.len(),
+        median_factor,
+        flat: flat_mirror_separation(mirror)?,
+    })
+}
+
+/// Two parallel mirrors `y = 0` and `y = 1`; a pair of rays at 30° from the normal.
+fn flat_mirror_separation(mirror: Material) -> Result<Vec<(usize, f64, f64)>, InputError> {
+    let plane = |y: f64| {
+        Object::quad(
+            DVec3::new(-1e3, y, -1e3),
+            DVec3::new(0.0, 0.0, 2e3),
+            DVec3::new(2e3, 0.0, 0.0),
+            mirror,
+        )
+    };
+    let camera = Camera::looking_at(DVec3::new(0.0, 0.5, 0.0), DVec3::new(1.0, 0.5, 0.0), 40.0);
+    let pair = Scene::new(
+        camera,
+        vec![plane(0.0), plane(1.0)],
+        vec![],
+        None,
+        DVec3::ZERO,
+    )?;
+    let theta = 30f64.to_radians();
+    let ray = |angle: f64| Ray {
+        origin: DVec3::new(0.0, 0.0, 0.0) + DVec3::Y * 1e-9,
+        dir: DVec3::new(angle.sin(), angle.cos(), 0.0),
+    };
+    let first = mirror_path(&pair, ray(theta), 40);
+    let second = mirror_path(&pair, ray(theta + PAIR_OFFSET), 40);
+    Ok([10usize, 40]
+        .iter()
+        .map(|&k| {
+            let measured = (first[k - 1] - second[k - 1]).length();
+            // Hit k lies k units of height from the start: x = k tanθ, dx/dθ = k / cos²θ.
+            let law = k as f64 * PAIR_OFFSET / theta.cos().powi(2);
+            (k, measured, law)
+        })
+        .collect())
+}
+
+fn divergence_table(result: &MirrorDivergence) -> String {
+    let mut text = format!(
+        "four mirror spheres: {} of {} pairs trapped ≥ 4 bounces; median growth ×{:.2} per bounce (reference note: ×2.45)\n\n| flat mirrors, bounces | separation | law k δ / cos²θ |\n|---|---|---|\n",
+        result.trapped, result.trials, result.median_factor
+    );
+    for (k, measured, law) in &result.flat {
+        let _ = writeln!(text, "| {k} | {measured:.2e} | {law:.2e} |");
     }
     text
 }
@@ -789,7 +940,10 @@ fn fog_figures(rows: &[FogRow]) -> Result<Vec<Figure>, PlotError> {
     ])
 }
 
-fn mirror_figures(rows: &[(f64, f64, f64)]) -> Result<Vec<Figure>, PlotError> {
+fn mirror_figures(
+    rows: &[(f64, f64, f64)],
+    divergence: &MirrorDivergence,
+) -> Result<Vec<Figure>, PlotError> {
     let scene = |m| scenes::mirror_spheres(m).map_err(|e| input_error("q1_mirrors.png", e));
     let sensitivity = chart(
         "q1_mirror_sensitivity.svg",
@@ -817,6 +971,10 @@ fn mirror_figures(rows: &[(f64, f64, f64)]) -> Result<Vec<Figure>, PlotError> {
         render_figure("q1_mirrors_diffuse.png", &scene(false)?, 4)?,
         sensitivity,
         table_figure("q1_mirror_table.md", mirror_table(rows)),
+        table_figure(
+            "q1_mirror_divergence_table.md",
+            divergence_table(divergence),
+        ),
     ])
 }
 
@@ -975,7 +1133,9 @@ pub fn figures() -> Result<Vec<Figure>, PlotError> {
     let noise = motion_noise().map_err(|e| input_error("q1_motion_table.md", e))?;
     let mut figures = clutter_figures(&clutter)?;
     figures.extend(fog_figures(&fog)?);
-    figures.extend(mirror_figures(&mirrors)?);
+    let divergence = mirror_divergence(DIVERGENCE_TRIALS)
+        .map_err(|e| input_error("q1_mirror_divergence_table.md", e))?;
+    figures.extend(mirror_figures(&mirrors, &divergence)?);
     figures.extend(motion_figures(&change, &noise)?);
     let csv_path = concat!(env!("CARGO_MANIFEST_DIR"), "/docs/data/q1_accuracy.csv");
     let csv = std::fs::read_to_string(csv_path).map_err(|e| PlotError::Draw {
@@ -1086,6 +1246,20 @@ mod tests {
     }
 
     #[test]
+    fn rays_separate_exponentially_between_curved_mirrors_and_linearly_between_flat_ones() {
+        let result = mirror_divergence(DIVERGENCE_TRIALS).unwrap();
+        assert!(result.trapped >= 100, "{} trapped", result.trapped);
+        assert!(result.median_factor > 2.0 && result.median_factor < 3.0);
+        for &(_, measured, law) in &result.flat {
+            assert!(
+                (measured / law - 1.0).abs() < 0.05,
+                "{measured:e} vs {law:e}"
+            );
+        }
+        snapshot("q1_mirror_divergence", &divergence_table(&result));
+    }
+
+    #[test]
     fn motion_changes_every_frame_and_blur_costs_samples() {
         let change = motion_change().unwrap();
         assert!(change.mean_change.iter().all(|&c| c > 0.0));
@@ -1135,8 +1309,14 @@ mod tests {
     #[test]
     fn charts_are_deterministic() {
         let rows = [(0.01, 0.5, 0.3), (0.1, 0.3, 0.25)];
-        let a = mirror_figures(&rows).unwrap();
-        let b = mirror_figures(&rows).unwrap();
+        let divergence = MirrorDivergence {
+            trials: 2,
+            trapped: 1,
+            median_factor: 2.5,
+            flat: vec![(10, 1e-11, 1e-11)],
+        };
+        let a = mirror_figures(&rows, &divergence).unwrap();
+        let b = mirror_figures(&rows, &divergence).unwrap();
         assert_eq!(a, b);
         assert!(String::from_utf8_lossy(&a[2].bytes).contains("mirror spheres"));
     }
@@ -1163,6 +1343,7 @@ mod tests {
             "q1_fog_table.md",
             "q1_airlight_table.md",
             "q1_mirror_table.md",
+            "q1_mirror_divergence_table.md",
             "q1_motion_table.md",
         ] {
             assert!(
