@@ -18,7 +18,7 @@ use serde::Serialize;
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Pass {
-    /// Recursion through perfect mirrors (`…S+E`).
+    /// Recursion through perfect mirrors and glass (`…S+E`).
     SpecularRecursion,
     /// Beer–Lambert attenuation `e^(−σ_t d)` of every ray segment in a medium.
     Transmittance,
@@ -210,9 +210,9 @@ pub fn analyze(scene: &Scene) -> Analysis {
         },
         PathClass {
             notation: "L(D|G)?S+E",
-            effect: "reflections in mirrors",
+            effect: "reflections and refractions (mirrors, glass)",
             carries_energy: letters.specular && (letters.area_light || (light && diffuse_like)),
-            reason: yes_no(letters.specular, "a mirror", "no mirror"),
+            reason: yes_no(letters.specular, "a mirror or glass", "no mirror or glass"),
             pass: Some(Pass::SpecularRecursion),
         },
         PathClass {
@@ -231,8 +231,8 @@ pub fn analyze(scene: &Scene) -> Analysis {
             carries_energy: letters.lit_specular && diffuse_like,
             reason: yes_no(
                 letters.lit_specular,
-                "a light sees a mirror",
-                "no light sees a mirror",
+                "a light sees a mirror or glass",
+                "no light sees a mirror or glass",
             ),
             pass: None,
         },
@@ -295,6 +295,7 @@ fn letters(scene: &Scene) -> Letters {
                 letters.glossy |= specular.max_element() > 0.0;
             }
             Material::Mirror { reflectance } => letters.specular |= reflectance.max_element() > 0.0,
+            Material::Glass { .. } => letters.specular = true,
             Material::Emitter { radiance } => letters.area_light |= radiance.max_element() > 0.0,
         }
         letters.diffuse_like_objects += usize::from(reflects_diffusely(&object.material));
@@ -316,7 +317,7 @@ fn reflects_diffusely(material: &Material) -> bool {
         Material::Glossy {
             diffuse, specular, ..
         } => (diffuse + specular).max_element() > 0.0,
-        Material::Mirror { .. } | Material::Emitter { .. } => false,
+        Material::Mirror { .. } | Material::Glass { .. } | Material::Emitter { .. } => false,
     }
 }
 
@@ -341,7 +342,7 @@ fn light_sees_a_mirror(scene: &Scene) -> bool {
     scene
         .objects()
         .iter()
-        .filter(|o| matches!(o.material, Material::Mirror { .. }))
+        .filter(|o| matches!(o.material, Material::Mirror { .. } | Material::Glass { .. }))
         .flat_map(|o| surface_samples(&o.shape, time))
         .any(|(point, normal)| {
             light_points.iter().any(|&light| {

@@ -115,6 +115,21 @@ impl<'a> Tracer<'a> {
                         DVec3::ZERO
                     }
                 }
+                Material::Glass { index } => {
+                    if self.passes.specular_recursion && depth_left > 0 {
+                        let split = dielectric_split(ray, &hit, index);
+                        let reflected = reflected_ray(ray, &hit);
+                        let mut total = split.reflectance
+                            * self.whitted(&reflected, time, depth_left - 1, sampler);
+                        if let Some(refracted) = split.refracted {
+                            total += (1.0 - split.reflectance)
+                                * self.whitted(&refracted, time, depth_left - 1, sampler);
+                        }
+                        total
+                    } else {
+                        DVec3::ZERO
+                    }
+                }
                 Material::Diffuse { .. } | Material::Glossy { .. } => {
                     self.direct_light(ray, &hit, time, sampler)
                 }
@@ -154,6 +169,18 @@ impl<'a> Tracer<'a> {
                     }
                     throughput *= reflectance;
                     ray = reflected_ray(&ray, &hit);
+                    counts_emission = true;
+                }
+                Material::Glass { index } => {
+                    if !self.passes.specular_recursion || bounce == max_depth {
+                        break;
+                    }
+                    // Reflect or refract with the Fresnel probabilities: the weight stays 1.
+                    let split = dielectric_split(&ray, &hit, index);
+                    ray = match split.refracted {
+                        Some(refracted) if sampler.uniform() >= split.reflectance => refracted,
+                        _ => reflected_ray(&ray, &hit),
+                    };
                     counts_emission = true;
                 }
                 material @ (Material::Diffuse { .. } | Material::Glossy { .. }) => {
@@ -440,6 +467,63 @@ fn reflected_ray(ray: &Ray<f64>, hit: &Hit) -> Ray<f64> {
     }
 }
 
+/// What a dielectric interface does to a ray: the Fresnel reflectance and, unless the ray is
+/// totally internally reflected, the refracted ray.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DielectricSplit {
+    /// Fraction reflected (unpolarised Fresnel), in `[0, 1]`; 1 under total internal reflection.
+    pub reflectance: f64,
+    /// The refracted ray (unit direction, origin off the surface on the far side), if any.
+    pub refracted: Option<Ray<f64>>,
+}
+
+/// Snell refraction and exact unpolarised Fresnel reflectance at a hit on a surface of refractive
+/// index `index` in vacuum (air): entering when the ray meets the outward normal head-on.
+///
+/// The refracted direction is `η d + (η cos θ_i − cos θ_t) n` with `η = n₁/n₂` and `n` the normal
+/// facing the incoming ray; `R = (r_s² + r_p²)/2` with the Fresnel amplitudes
+/// `r_s = (n₁ cos θ_i − n₂ cos θ_t)/(n₁ cos θ_i + n₂ cos θ_t)` and
+/// `r_p = (n₂ cos θ_i − n₁ cos θ_t)/(n₂ cos θ_i + n₁ cos θ_t)`.
+///
+/// # Examples
+/// ```
+/// use glam::DVec3;
+/// use hw3::geometry::Ray;
+/// use hw3::render::integrator::dielectric_split;
+/// use hw3::render::scene::Hit;
+/// let ray = Ray { origin: DVec3::new(0.0, 0.0, 1.0), dir: DVec3::NEG_Z };
+/// let hit = Hit { t: 1.0, point: DVec3::ZERO, normal: DVec3::Z, object: 0 };
+/// let split = dielectric_split(&ray, &hit, 1.5);
+/// assert!((split.reflectance - 0.04).abs() < 1e-15); // ((n − 1)/(n + 1))² at normal incidence
+/// assert_eq!(split.refracted.unwrap().dir, DVec3::NEG_Z);
+/// ```
+#[must_use]
+pub fn dielectric_split(ray: &Ray<f64>, hit: &Hit, index: f64) -> DielectricSplit {
+    let normal = facing_normal(ray, hit);
+    let entering = ray.dir.dot(hit.normal) < 0.0;
+    let (n1, n2) = if entering { (1.0, index) } else { (index, 1.0) };
+    let eta = n1 / n2;
+    let cos_i = (-ray.dir.dot(normal)).clamp(0.0, 1.0);
+    let sin_t_squared = eta * eta * (1.0 - cos_i * cos_i);
+    if sin_t_squared >= 1.0 {
+        return DielectricSplit {
+            reflectance: 1.0,
+            refracted: None,
+        };
+    }
+    let cos_t = (1.0 - sin_t_squared).sqrt();
+    let r_s = (n1 * cos_i - n2 * cos_t) / (n1 * cos_i + n2 * cos_t);
+    let r_p = (n2 * cos_i - n1 * cos_t) / (n2 * cos_i + n1 * cos_t);
+    let dir = (ray.dir * eta + normal * (eta * cos_i - cos_t)).normalize();
+    DielectricSplit {
+        reflectance: (r_s * r_s + r_p * r_p) / 2.0,
+        refracted: Some(Ray {
+            origin: spawn_origin::<f64>(hit.point, hit.normal, dir),
+            dir,
+        }),
+    }
+}
+
 /// The BRDF of a diffuse or glossy material for unit `to_eye`, `to_light` and facing `normal`.
 fn brdf(material: &Material, to_eye: DVec3, to_light: DVec3, normal: DVec3) -> DVec3 {
     match *material {
@@ -453,7 +537,7 @@ fn brdf(material: &Material, to_eye: DVec3, to_light: DVec3, normal: DVec3) -> D
             let lobe = mirror_dir.dot(to_light).max(0.0).powf(exponent);
             diffuse / PI + specular * ((exponent + 2.0) / (2.0 * PI) * lobe)
         }
-        Material::Mirror { .. } | Material::Emitter { .. } => DVec3::ZERO,
+        Material::Mirror { .. } | Material::Glass { .. } | Material::Emitter { .. } => DVec3::ZERO,
     }
 }
 
@@ -471,6 +555,7 @@ mod tests {
     use super::*;
     use crate::geometry::Sphere;
     use crate::render::analysis::Pass;
+    use crate::render::scene::Hit;
     use crate::render::scene::{Camera, Object};
 
     fn camera() -> Camera {
@@ -550,6 +635,79 @@ mod tests {
         // Exact up to 0.5^41 truncation; the estimate's spread is 0 here (every bounce sees the
         // light with the same weight), so the tolerance is rounding only.
         assert!((mean - 1.0).abs() < 1e-9, "{mean}");
+    }
+
+    #[test]
+    fn refraction_obeys_snell_and_total_internal_reflection() {
+        let hit = Hit {
+            t: 1.0,
+            point: DVec3::ZERO,
+            normal: DVec3::Z,
+            object: 0,
+        };
+        let incoming = |angle: f64, from_inside: bool| {
+            let side = if from_inside { 1.0 } else { -1.0 };
+            Ray {
+                origin: DVec3::ZERO,
+                dir: DVec3::new(angle.sin(), 0.0, side * angle.cos()),
+            }
+        };
+        for degrees in [0.0, 10.0, 30.0, 60.0, 89.0] {
+            let theta = f64::to_radians(degrees);
+            let split = dielectric_split(&incoming(theta, false), &hit, 1.5);
+            let out = split.refracted.unwrap();
+            assert!(
+                (out.dir.x - theta.sin() / 1.5).abs() < 1e-15,
+                "Snell at {degrees}°"
+            );
+            assert!(
+                out.dir.z < 0.0 && out.origin.z < 0.0,
+                "continues below the surface"
+            );
+            assert!((0.0..1.0).contains(&split.reflectance));
+        }
+        // Inside glass, beyond the critical angle asin(1/1.5) = 41.8°, all light reflects.
+        let inside = dielectric_split(&incoming(f64::to_radians(45.0), true), &hit, 1.5);
+        assert_eq!(inside.reflectance, 1.0);
+        assert!(inside.refracted.is_none());
+        let below = dielectric_split(&incoming(f64::to_radians(40.0), true), &hit, 1.5);
+        assert!(below.refracted.is_some() && below.reflectance < 1.0);
+    }
+
+    /// A glass sphere in front of a uniform background: every path ends in the background, so
+    /// Whitted's reflect-and-refract tree must return the background (energy conservation), up to
+    /// the weight still inside the sphere at depth 8.
+    #[test]
+    fn glass_sphere_against_a_uniform_background_conserves_energy() {
+        let glass = Object::sphere(
+            Sphere::new(DVec3::new(0.0, 0.0, -3.0), 1.0).unwrap(),
+            Material::Glass { index: 1.5 },
+        );
+        let scene = Scene::new(camera(), vec![glass], vec![], None, DVec3::splat(0.7)).unwrap();
+        let tracer = Tracer::new(&scene, Passes::all());
+        for x in [0.0, 0.1, 0.25, 0.32] {
+            let ray = Ray {
+                origin: DVec3::ZERO,
+                dir: DVec3::new(x, 0.05, -1.0).normalize(),
+            };
+            let whitted = tracer.radiance(
+                Integrator::Whitted { max_depth: 8 },
+                &ray,
+                0.0,
+                &mut Sampler::new(0, 0, 0),
+            );
+            assert!((whitted.x - 0.7).abs() < 1e-4, "x = {x}: {}", whitted.x);
+            let path = tracer.radiance(
+                Integrator::PathTracer { max_depth: 40 },
+                &ray,
+                0.0,
+                &mut Sampler::new(0, 1, 0),
+            );
+            assert!(
+                (path.x - 0.7).abs() < 1e-12,
+                "every sampled path ends in the background"
+            );
+        }
     }
 
     #[test]

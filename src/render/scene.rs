@@ -117,6 +117,12 @@ pub enum Material {
         /// Reflectance per channel, in `[0, 1]`.
         reflectance: DVec3,
     },
+    /// Clear dielectric (glass, water) of refractive index `index` in air: Fresnel reflection
+    /// plus Snell refraction, no absorption (letter `S`, like a mirror).
+    Glass {
+        /// Refractive index, in `[1, 4]`.
+        index: f64,
+    },
     /// A one-sided emitter that reflects nothing (letter `L`). Only on quads, which are then area
     /// lights sampled by next-event estimation; the emitting side is the one the normal points to.
     Emitter {
@@ -502,6 +508,9 @@ fn validate_object(object: &Object) -> Result<(), InputError> {
             require_unit_interval("glossy specular", specular)?;
             require_unit_interval("glossy diffuse + specular", diffuse + specular)?;
             require_scalar_range("glossy exponent", exponent, 0.0, 1e6, "in [0, 10⁶]")
+        }
+        Material::Glass { index } => {
+            require_scalar_range("glass index", index, 1.0, 4.0, "in [1, 4]")
         }
         Material::Emitter { radiance } => require_non_negative("emitter radiance", radiance),
     }

@@ -30,7 +30,7 @@ pub const CATALOGUE: [(&str, &str); 8] = [
     ("still", "Q1d's scene with the ball at rest"),
     (
         "cornell",
-        "a closed box, area light, a mirror and a diffuse sphere (indirect light, caustics)",
+        "a closed box, area light, mirror, glossy and glass spheres (indirect light, caustics)",
     ),
 ];
 
@@ -325,7 +325,7 @@ pub fn moving_ball_with_shutter(speed: f64, shutter: (f64, f64)) -> Result<Scene
 }
 
 /// A closed box `[−1, 1]³` (red left wall, green right wall, white elsewhere) lit by a 0.5×0.5
-/// area light under the ceiling, with a mirror sphere and a diffuse sphere on the floor.
+/// area light under the ceiling, with a mirror, a glossy and a glass sphere on the floor.
 ///
 /// # Errors
 /// Never for the built-in numbers.
@@ -392,6 +392,10 @@ pub fn cornell_mirror() -> Result<Scene, InputError> {
             exponent: 40.0,
         },
     });
+    objects.push(Object::sphere(
+        Sphere::new(DVec3::new(0.1, -0.75, 0.6), 0.25)?,
+        Material::Glass { index: 1.5 },
+    ));
     let camera = Camera::looking_at(DVec3::new(0.0, 0.0, 3.4), DVec3::ZERO, 40.0);
     Scene::new(camera, objects, vec![], None, DVec3::ZERO)
 }
