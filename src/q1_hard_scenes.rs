@@ -717,7 +717,7 @@ pub fn answers() -> Answers {
     let text = format!(
         "(a) clutter: the gap fraction of a random forest falls as (1−p)^N ≈ e^(−nπa²Z) and the depth complexity grows as nπa²Z; measured within 2 standard errors over N = 250…4000 (table q1_clutter_table).\n\
          (b) fog: contrast to an object falls as e^(−σ_t d) (the renderer reproduces it to rounding, below 1e-13), visual range ln 50/σ_t = {:.1} / {:.1} / {:.1} units for σ_t = 0.05 / 0.1 / 0.2, and the lamp's glow adds airlight that matches Sun et al.'s closed form (1e-2 at 32 steps, < 1e-6 at 4096).\n\
-         (c) mirrors: over the pixels that see the spheres, the image of curved mirrors changes 1.1–1.6× faster per unit camera move than the same spheres made diffuse (Whitted, 64×48).\n\
+         (c) mirrors: nearby rays separate ×2.55 per bounce between four mirror spheres (reference note ×2.45) but only linearly between flat mirrors; over the pixels that see the spheres, the image changes 1.1–1.6× faster per unit camera move than the same spheres made diffuse (Whitted, 64×48).\n\
          (d) change over time: the moving ball shifts 2.4 px per frame (above the 0.5 px/frame limit for a 1-px feature), and its motion blur needs more samples per pixel than the still scene for the same noise (table q1_motion_table).",
         visual_range(0.05),
         visual_range(0.1),

@@ -220,7 +220,7 @@ pub fn analyze(scene: &Scene) -> Analysis {
             effect: "indirect light, colour bleeding",
             carries_energy: light && letters.diffuse_like_objects >= 2,
             reason: format!(
-                "{} diffuse or glossy objects (two are needed to exchange light)",
+                "{} diffuse or glossy objects; two or more can exchange light",
                 letters.diffuse_like_objects
             ),
             pass: Some(Pass::IndirectBounces),

@@ -63,7 +63,12 @@ fn describe(scene_name: &str, analysis: &Analysis) -> String {
         } else {
             "skip"
         };
-        let _ = writeln!(text, "  {:18} {state}", pass.name());
+        let note = if pass == Pass::IndirectBounces {
+            " (path tracer only; hw3 render traces Whitted-style)"
+        } else {
+            ""
+        };
+        let _ = writeln!(text, "  {:18} {state}{note}", pass.name());
     }
     if !analysis.not_rendered.is_empty() {
         let _ = writeln!(
@@ -193,6 +198,17 @@ mod tests {
             effects_text("nope", true),
             Err(RenderError::UnknownScene { .. })
         ));
+    }
+
+    /// The analysis of every built-in scene, as `hw3 effects` prints it.
+    #[test]
+    fn effects_of_every_built_in_scene() {
+        let text: String = scenes::CATALOGUE
+            .iter()
+            .map(|(name, _)| effects_text(name, false).unwrap() + "\n")
+            .collect();
+        crate::test_support::insta_settings()
+            .bind(|| insta::assert_snapshot!("render_effects_of_built_in_scenes", text));
     }
 
     #[test]

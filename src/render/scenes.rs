@@ -207,8 +207,21 @@ pub fn mirror_spheres(mirror: bool) -> Result<Scene, InputError> {
             },
         });
     }
+    seen_by_mirror_camera(
+        objects,
+        DVec3::new(3.0, 6.0, 1.0),
+        DVec3::new(0.25, 0.35, 0.55),
+    )
+}
+
+/// `objects` lit by one point light of intensity 50 at `light`, seen by [`mirror_camera`].
+fn seen_by_mirror_camera(
+    objects: Vec<Object>,
+    light: DVec3,
+    background: DVec3,
+) -> Result<Scene, InputError> {
     let light = PointLight {
-        position: DVec3::new(3.0, 6.0, 1.0),
+        position: light,
         intensity: DVec3::splat(50.0),
     };
     Scene::new(
@@ -216,7 +229,7 @@ pub fn mirror_spheres(mirror: bool) -> Result<Scene, InputError> {
         objects,
         vec![light],
         None,
-        DVec3::new(0.25, 0.35, 0.55),
+        background,
     )
 }
 
@@ -244,17 +257,7 @@ pub fn mirror_behind_wall() -> Result<Scene, InputError> {
     );
     let mut objects = checker_floor(4, -3.0);
     objects.extend([mirror, roof]);
-    let light = PointLight {
-        position: DVec3::new(0.0, 6.0, -3.0),
-        intensity: DVec3::splat(50.0),
-    };
-    Scene::new(
-        mirror_camera(DVec3::ZERO),
-        objects,
-        vec![light],
-        None,
-        DVec3::ZERO,
-    )
+    seen_by_mirror_camera(objects, DVec3::new(0.0, 6.0, -3.0), DVec3::ZERO)
 }
 
 /// A camera at the origin looking along `−z` at a 2000×2000 wall of `wall` material facing it at
