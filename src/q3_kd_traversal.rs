@@ -2,6 +2,7 @@
 
 mod cli;
 mod diagram;
+mod perf;
 pub mod seed;
 
 pub use cli::{TraceInputError, kd_trace_command, parse_vec2};
@@ -532,12 +533,15 @@ pub fn answers() -> crate::Answers {
 }
 
 /// Q3's figures: the homework tree with the ray of case (d), of case (e), and of a general ray that
-/// visits all four leaves.
+/// visits all four leaves; and the 3-D kd-tree's time per ray against N, drawn from the committed
+/// benchmark CSV.
 ///
 /// # Errors
 /// [`crate::plot::PlotError`] if a diagram cannot be drawn.
 pub fn figures() -> Result<Vec<crate::plot::Figure>, crate::plot::PlotError> {
-    diagram::figures()
+    let mut figures = diagram::figures()?;
+    figures.push(perf::figure()?);
+    Ok(figures)
 }
 
 #[cfg(test)]

@@ -151,7 +151,9 @@ fn answers_for_one_question() {
 
 #[test]
 fn kd_trace_json_has_the_contract_fields() {
-    let value = json(&hw3(&["kd-trace", "--origin", "5,0", "--dir", "-1,1", "--json"]));
+    let value = json(&hw3(&[
+        "kd-trace", "--origin", "5,0", "--dir", "-1,1", "--json",
+    ]));
     assert_eq!(
         value["leaves"],
         serde_json::json!([

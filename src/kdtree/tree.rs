@@ -371,7 +371,11 @@ mod tests {
             let tree = KdTree::build(&spheres).unwrap();
             for _ in 0..1_000 {
                 let ray = random_ray(&mut rng);
-                let t_min = if rng.next_u64().is_multiple_of(2) { 0.0 } else { 1e-4 };
+                let t_min = if rng.next_u64().is_multiple_of(2) {
+                    0.0
+                } else {
+                    1e-4
+                };
                 let t_max = if rng.next_u64().is_multiple_of(5) {
                     0.7
                 } else {
@@ -454,6 +458,12 @@ mod tests {
             tree.closest_hit(&along, 0.0, f64::INFINITY),
             brute_force_closest_hit(&points, &along, 0.0, f64::INFINITY)
         );
+    }
+
+    /// The chapter's memory figures assume 16-byte nodes.
+    #[test]
+    fn nodes_are_16_bytes() {
+        assert_eq!(std::mem::size_of::<Node>(), 16);
     }
 
     #[test]

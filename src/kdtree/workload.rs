@@ -171,7 +171,10 @@ mod tests {
                 .collect();
             let (n, sum) = checksum(&answers);
             assert!(n.abs_diff(hits) <= 3, "hits {n} vs {hits}");
-            assert!(((sum - sum_t) / sum_t).abs() < 2e-5, "sum t {sum} vs {sum_t}");
+            assert!(
+                ((sum - sum_t) / sum_t).abs() < 2e-5,
+                "sum t {sum} vs {sum_t}"
+            );
         }
     }
 }
