@@ -149,9 +149,9 @@ fn main() {
             let random_work = work_per_ray(&tree, &random);
             // Brute force only where it is affordable, on a prefix as in the note.
             let prefix = match n {
-                ..=100 => Some(usize::MAX),
-                ..=1_000 => Some(200_000),
-                ..=10_000 => Some(20_000),
+                0..=100 => Some(usize::MAX),
+                101..=1_000 => Some(200_000),
+                1_001..=10_000 => Some(20_000),
                 _ => None,
             };
             let (brute_camera, brute_random, mismatches) = match prefix {

@@ -143,6 +143,16 @@ impl Ray2 {
     }
 }
 
+/// A ray printed as `e = (5, 0), d = (-1, 1)`.
+pub(crate) struct RayText<'a>(pub &'a Ray2);
+
+impl fmt::Display for RayText<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let ([ex, ey], [dx, dy]) = (self.0.origin, self.0.dir);
+        write!(f, "e = ({ex}, {ey}), d = ({dx}, {dy})")
+    }
+}
+
 /// A node of a 2-D kd-tree: a leaf, or a split with its two children.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Node2 {
@@ -505,17 +515,14 @@ pub fn answers() -> crate::Answers {
     use std::fmt::Write as _;
     let tree = Node2::homework();
     let mut text = String::from(
-        "(a) tree: root x = 3; child x<3 splits y = 1, child x>=3 splits y = 3; four leaves.\n\
+        "tree (reconstructed from (d), (e)): root x = 3; child x<3 splits y = 1, child x>=3 \
+         splits y = 3; four half-open leaves.\n\
          (b)/(c) rule: t = (split - e_a)/d_a; near child by the sign of d_a (by the origin's side \
          when d_a = 0, no division); far only if t <= tmin, near only if t >= tmax.\n",
     );
     for case in seed::cases() {
         let trace = traverse(&tree, &case.ray);
-        let _ = writeln!(
-            text,
-            "({}) e = {:?}, d = {:?}:",
-            case.label, case.ray.origin, case.ray.dir
-        );
+        let _ = writeln!(text, "({}) {}:", case.label, RayText(&case.ray));
         for step in &trace.steps {
             let _ = writeln!(text, "  {step}");
         }
@@ -525,6 +532,10 @@ pub fn answers() -> crate::Answers {
             }
         }
     }
+    text.push_str(
+        "seed error in (d): x<3 starts at the root plane's t = 2, not at the y = 3 plane's t = 3 \
+         (at t = 2.5 the ray is at (2.5, 2.5), in leaf x<3, y>=1).\n",
+    );
     crate::Answers {
         question: "q3",
         title: "kd-tree traversal with parameter intervals",
