@@ -49,6 +49,12 @@ pub enum Side {
 
 impl Side {
     /// The other side.
+    ///
+    /// # Examples
+    /// ```
+    /// use hw3::kdtree::Side;
+    /// assert_eq!(Side::Lower.opposite(), Side::Upper);
+    /// ```
     #[must_use]
     pub fn opposite(self) -> Self {
         match self {

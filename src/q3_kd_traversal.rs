@@ -22,6 +22,12 @@ pub enum Axis2 {
 
 impl Axis2 {
     /// The index of this axis in a `[x, y]` array.
+    ///
+    /// # Examples
+    /// ```
+    /// use hw3::q3_kd_traversal::Axis2;
+    /// assert_eq!([Axis2::X.index(), Axis2::Y.index()], [0, 1]);
+    /// ```
     #[must_use]
     pub fn index(self) -> usize {
         match self {
@@ -42,6 +48,14 @@ impl fmt::Display for Axis2 {
 
 /// One branch condition on the way from the root, printed as the homework writes it, in ASCII:
 /// `x>=3`, `y<1`.
+///
+/// # Examples
+/// ```
+/// use hw3::kdtree::Side;
+/// use hw3::q3_kd_traversal::{Axis2, Branch};
+/// let b = Branch { axis: Axis2::Y, side: Side::Lower, split: 1.0 };
+/// assert_eq!(b.to_string(), "y<1");
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Branch {
     /// The split's axis.
@@ -79,6 +93,13 @@ impl fmt::Display for Interval {
 }
 
 /// Prints a number the shortest way that reads back exactly, with `inf` / `-inf` for infinities.
+///
+/// # Examples
+/// ```
+/// use hw3::q3_kd_traversal::Number;
+/// assert_eq!(Number(2.0).to_string(), "2");
+/// assert_eq!(Number(f64::INFINITY).to_string(), "inf");
+/// ```
 #[derive(Debug, Clone, Copy)]
 pub struct Number(pub f64);
 
@@ -133,7 +154,13 @@ impl Ray2 {
         Ok(Self { origin, dir })
     }
 
-    /// The point at parameter `t`.
+    /// The point at parameter `t`: `e + d t`, rounded per component.
+    ///
+    /// # Examples
+    /// ```
+    /// let ray = hw3::q3_kd_traversal::Ray2::new([5.0, 0.0], [-1.0, 1.0]).unwrap();
+    /// assert_eq!(ray.at(2.0), [3.0, 2.0]);
+    /// ```
     #[must_use]
     pub fn at(&self, t: f64) -> [f64; 2] {
         [
@@ -173,6 +200,13 @@ pub enum Node2 {
 
 impl Node2 {
     /// A split node with two children.
+    ///
+    /// # Examples
+    /// ```
+    /// use hw3::q3_kd_traversal::{Axis2, Node2};
+    /// let tree = Node2::split(Axis2::X, 0.0, Node2::Leaf, Node2::Leaf);
+    /// assert_eq!(tree.cells().len(), 2);
+    /// ```
     #[must_use]
     pub fn split(axis: Axis2, split: f64, lower: Node2, upper: Node2) -> Self {
         Self::Split {
@@ -204,6 +238,13 @@ impl Node2 {
     }
 
     /// Every leaf cell, in tree order (lower child first), with its path and its box.
+    ///
+    /// # Examples
+    /// ```
+    /// let cells = hw3::q3_kd_traversal::Node2::homework().cells();
+    /// let first: Vec<String> = cells[0].path.iter().map(ToString::to_string).collect();
+    /// assert_eq!(first, ["x<3", "y<1"]);
+    /// ```
     #[must_use]
     pub fn cells(&self) -> Vec<Cell> {
         let mut cells = Vec::new();
@@ -244,6 +285,14 @@ pub struct Cell {
 
 impl Cell {
     /// The cell's half-open box on `axis`: `lo ≤ p < hi` (`lo` may be `−∞`, `hi` may be `+∞`).
+    ///
+    /// # Examples
+    /// ```
+    /// use hw3::q3_kd_traversal::{Axis2, Node2};
+    /// let upper_right = &Node2::homework().cells()[3]; // x >= 3, y >= 3
+    /// assert_eq!(upper_right.bounds(Axis2::X), (3.0, f64::INFINITY));
+    /// assert!(upper_right.contains([3.0, 3.0]));
+    /// ```
     #[must_use]
     pub fn bounds(&self, axis: Axis2) -> (f64, f64) {
         self.path.iter().filter(|b| b.axis == axis).fold(
@@ -363,6 +412,14 @@ pub struct Trace {
 
 impl Trace {
     /// The leaves reached, in order.
+    ///
+    /// # Examples
+    /// ```
+    /// use hw3::q3_kd_traversal::{Node2, Ray2, traverse};
+    /// let trace = traverse(&Node2::homework(), &Ray2::new([2.0, 0.0], [-1.0, -1.0]).unwrap());
+    /// assert_eq!(trace.leaves().len(), 1);
+    /// assert_eq!(trace.steps.len(), 5);
+    /// ```
     #[must_use]
     pub fn leaves(&self) -> Vec<LeafVisit> {
         self.steps

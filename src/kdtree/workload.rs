@@ -22,6 +22,12 @@ pub struct SplitMix64(pub u64);
 
 impl SplitMix64 {
     /// The next 64 random bits.
+    ///
+    /// # Examples
+    /// ```
+    /// let mut rng = hw3::kdtree::workload::SplitMix64(0);
+    /// assert_eq!(rng.next_u64(), 0xE220_A839_7B1D_CDAF);
+    /// ```
     pub fn next_u64(&mut self) -> u64 {
         self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
         let mut z = self.0;
@@ -31,6 +37,12 @@ impl SplitMix64 {
     }
 
     /// A uniform `f32` in `[0, 1)`: the top 24 bits over 2²⁴ (exact in `f32`).
+    ///
+    /// # Examples
+    /// ```
+    /// let u = hw3::kdtree::workload::SplitMix64(1).next_f32();
+    /// assert!((0.0..1.0).contains(&u));
+    /// ```
     pub fn next_f32(&mut self) -> f32 {
         (self.next_u64() >> 40) as f32 * (1.0 / 16_777_216.0)
     }
@@ -137,6 +149,12 @@ pub fn random_rays(count: usize, seed: u64) -> Vec<Ray<f64>> {
 }
 
 /// The note's checksum of a batch of answers: number of hits and the sum of their t.
+///
+/// # Examples
+/// ```
+/// let sum = hw3::kdtree::workload::checksum(&[Some((0, 1.5)), None, Some((3, 2.0))]);
+/// assert_eq!(sum, (2, 3.5));
+/// ```
 #[must_use]
 pub fn checksum(hits: &[Option<(usize, f64)>]) -> (usize, f64) {
     hits.iter()
