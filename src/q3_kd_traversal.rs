@@ -450,6 +450,9 @@ impl fmt::Display for Trace {
 /// with the ties made explicit; see the chapter). Leaves are reached in increasing `t`, each with
 /// an interval of positive length; together the intervals tile `[0, ∞)`.
 ///
+/// Preconditions: a ray built by [`Ray2::new`] (finite, non-zero direction); its fields are public
+/// for the seed's data, so a hand-made NaN ray would yield NaN parameters, never a panic.
+///
 /// # Examples
 /// ```
 /// use hw3::q3_kd_traversal::{Node2, Ray2, traverse};
