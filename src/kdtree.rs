@@ -26,6 +26,9 @@
 //!
 //! The Q3 chapter ([`crate::q3_kd_traversal`]) traces this rule on the homework's 2-D tree; the
 //! 3-D [`KdTree`] uses the same function at every interior node.
+//!
+//! [`workload`] reproduces the reference note's benchmark scenes and rays bit for bit;
+//! `benches/q3_kdtree.rs` measures the tree on them (results in the Q3 chapter).
 
 mod build;
 mod tree;
@@ -46,6 +49,12 @@ pub enum Side {
 
 impl Side {
     /// The other side.
+    ///
+    /// # Examples
+    /// ```
+    /// use hw3::kdtree::Side;
+    /// assert_eq!(Side::Lower.opposite(), Side::Upper);
+    /// ```
     #[must_use]
     pub fn opposite(self) -> Self {
         match self {

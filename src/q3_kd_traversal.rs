@@ -2,6 +2,7 @@
 
 mod cli;
 mod diagram;
+mod perf;
 pub mod seed;
 
 pub use cli::{TraceInputError, kd_trace_command, parse_vec2};
@@ -21,6 +22,12 @@ pub enum Axis2 {
 
 impl Axis2 {
     /// The index of this axis in a `[x, y]` array.
+    ///
+    /// # Examples
+    /// ```
+    /// use hw3::q3_kd_traversal::Axis2;
+    /// assert_eq!([Axis2::X.index(), Axis2::Y.index()], [0, 1]);
+    /// ```
     #[must_use]
     pub fn index(self) -> usize {
         match self {
@@ -41,6 +48,14 @@ impl fmt::Display for Axis2 {
 
 /// One branch condition on the way from the root, printed as the homework writes it, in ASCII:
 /// `x>=3`, `y<1`.
+///
+/// # Examples
+/// ```
+/// use hw3::kdtree::Side;
+/// use hw3::q3_kd_traversal::{Axis2, Branch};
+/// let b = Branch { axis: Axis2::Y, side: Side::Lower, split: 1.0 };
+/// assert_eq!(b.to_string(), "y<1");
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Branch {
     /// The split's axis.
@@ -78,6 +93,13 @@ impl fmt::Display for Interval {
 }
 
 /// Prints a number the shortest way that reads back exactly, with `inf` / `-inf` for infinities.
+///
+/// # Examples
+/// ```
+/// use hw3::q3_kd_traversal::Number;
+/// assert_eq!(Number(2.0).to_string(), "2");
+/// assert_eq!(Number(f64::INFINITY).to_string(), "inf");
+/// ```
 #[derive(Debug, Clone, Copy)]
 pub struct Number(pub f64);
 
@@ -126,10 +148,26 @@ impl Ray2 {
         Ok(Self { origin, dir })
     }
 
-    /// The point at parameter `t`.
+    /// The point at parameter `t`: `e + d t`, rounded per component.
+    ///
+    /// # Examples
+    /// ```
+    /// let ray = hw3::q3_kd_traversal::Ray2::new([5.0, 0.0], [-1.0, 1.0]).unwrap();
+    /// assert_eq!(ray.at(2.0), [3.0, 2.0]);
+    /// ```
     #[must_use]
     pub fn at(&self, t: f64) -> [f64; 2] {
         [self.origin[0] + self.dir[0] * t, self.origin[1] + self.dir[1] * t]
+    }
+}
+
+/// A ray printed as `e = (5, 0), d = (-1, 1)`.
+pub(crate) struct RayText<'a>(pub &'a Ray2);
+
+impl fmt::Display for RayText<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let ([ex, ey], [dx, dy]) = (self.0.origin, self.0.dir);
+        write!(f, "e = ({ex}, {ey}), d = ({dx}, {dy})")
     }
 }
 
@@ -153,6 +191,13 @@ pub enum Node2 {
 
 impl Node2 {
     /// A split node with two children.
+    ///
+    /// # Examples
+    /// ```
+    /// use hw3::q3_kd_traversal::{Axis2, Node2};
+    /// let tree = Node2::split(Axis2::X, 0.0, Node2::Leaf, Node2::Leaf);
+    /// assert_eq!(tree.cells().len(), 2);
+    /// ```
     #[must_use]
     pub fn split(axis: Axis2, split: f64, lower: Node2, upper: Node2) -> Self {
         Self::Split { axis, split, lower: Box::new(lower), upper: Box::new(upper) }
@@ -179,6 +224,13 @@ impl Node2 {
     }
 
     /// Every leaf cell, in tree order (lower child first), with its path and its box.
+    ///
+    /// # Examples
+    /// ```
+    /// let cells = hw3::q3_kd_traversal::Node2::homework().cells();
+    /// let first: Vec<String> = cells[0].path.iter().map(ToString::to_string).collect();
+    /// assert_eq!(first, ["x<3", "y<1"]);
+    /// ```
     #[must_use]
     pub fn cells(&self) -> Vec<Cell> {
         let mut cells = Vec::new();
@@ -210,6 +262,14 @@ pub struct Cell {
 
 impl Cell {
     /// The cell's half-open box on `axis`: `lo ≤ p < hi` (`lo` may be `−∞`, `hi` may be `+∞`).
+    ///
+    /// # Examples
+    /// ```
+    /// use hw3::q3_kd_traversal::{Axis2, Node2};
+    /// let upper_right = &Node2::homework().cells()[3]; // x >= 3, y >= 3
+    /// assert_eq!(upper_right.bounds(Axis2::X), (3.0, f64::INFINITY));
+    /// assert!(upper_right.contains([3.0, 3.0]));
+    /// ```
     #[must_use]
     pub fn bounds(&self, axis: Axis2) -> (f64, f64) {
         self.path.iter().filter(|b| b.axis == axis).fold((f64::NEG_INFINITY, f64::INFINITY), |(lo, hi), b| {
@@ -318,6 +378,14 @@ pub struct Trace {
 
 impl Trace {
     /// The leaves reached, in order.
+    ///
+    /// # Examples
+    /// ```
+    /// use hw3::q3_kd_traversal::{Node2, Ray2, traverse};
+    /// let trace = traverse(&Node2::homework(), &Ray2::new([2.0, 0.0], [-1.0, -1.0]).unwrap());
+    /// assert_eq!(trace.leaves().len(), 1);
+    /// assert_eq!(trace.steps.len(), 5);
+    /// ```
     #[must_use]
     pub fn leaves(&self) -> Vec<LeafVisit> {
         self.steps
@@ -344,6 +412,9 @@ impl fmt::Display for Trace {
 /// Each split uses the crate's one interval rule, [`split_interval`] (the seed's rules (b) and (c)
 /// with the ties made explicit; see the chapter). Leaves are reached in increasing `t`, each with
 /// an interval of positive length; together the intervals tile `[0, ∞)`.
+///
+/// Preconditions: a ray built by [`Ray2::new`] (finite, non-zero direction); its fields are public
+/// for the seed's data, so a hand-made NaN ray would yield NaN parameters, never a panic.
 ///
 /// # Examples
 /// ```
@@ -434,13 +505,14 @@ pub fn answers() -> crate::Answers {
     use std::fmt::Write as _;
     let tree = Node2::homework();
     let mut text = String::from(
-        "(a) tree: root x = 3; child x<3 splits y = 1, child x>=3 splits y = 3; four leaves.\n\
+        "tree (reconstructed from (d), (e)): root x = 3; child x<3 splits y = 1, child x>=3 \
+         splits y = 3; four half-open leaves.\n\
          (b)/(c) rule: t = (split - e_a)/d_a; near child by the sign of d_a (by the origin's side \
          when d_a = 0, no division); far only if t <= tmin, near only if t >= tmax.\n",
     );
     for case in seed::cases() {
         let trace = traverse(&tree, &case.ray);
-        let _ = writeln!(text, "({}) e = {:?}, d = {:?}:", case.label, case.ray.origin, case.ray.dir);
+        let _ = writeln!(text, "({}) {}:", case.label, RayText(&case.ray));
         for step in &trace.steps {
             let _ = writeln!(text, "  {step}");
         }
@@ -450,6 +522,10 @@ pub fn answers() -> crate::Answers {
             }
         }
     }
+    text.push_str(
+        "seed error in (d): x<3 starts at the root plane's t = 2, not at the y = 3 plane's t = 3 \
+         (at t = 2.5 the ray is at (2.5, 2.5), in leaf x<3, y>=1).\n",
+    );
     crate::Answers {
         question: "q3",
         title: "kd-tree traversal with parameter intervals",
@@ -458,12 +534,15 @@ pub fn answers() -> crate::Answers {
 }
 
 /// Q3's figures: the homework tree with the ray of case (d), of case (e), and of a general ray that
-/// visits all four leaves.
+/// visits all four leaves; and the 3-D kd-tree's time per ray against N, drawn from the committed
+/// benchmark CSV.
 ///
 /// # Errors
 /// [`crate::plot::PlotError`] if a diagram cannot be drawn.
 pub fn figures() -> Result<Vec<crate::plot::Figure>, crate::plot::PlotError> {
-    diagram::figures()
+    let mut figures = diagram::figures()?;
+    figures.push(perf::figure()?);
+    Ok(figures)
 }
 
 #[cfg(test)]

@@ -150,6 +150,12 @@ impl KdTree {
     }
 
     /// Number of nodes (interior and leaf).
+    ///
+    /// # Examples
+    /// ```
+    /// let tree = hw3::kdtree::KdTree::build(&[]).unwrap();
+    /// assert_eq!((tree.node_count(), tree.reference_count()), (1, 0));
+    /// ```
     #[must_use]
     pub fn node_count(&self) -> usize {
         self.nodes.len()
@@ -184,6 +190,18 @@ impl KdTree {
     }
 
     /// [`KdTree::closest_hit`], also adding the work done to `stats`.
+    ///
+    /// # Examples
+    /// ```
+    /// use glam::DVec3;
+    /// use hw3::geometry::{Ray, Sphere};
+    /// use hw3::kdtree::{HitStats, KdTree};
+    /// let tree = KdTree::build(&[Sphere::new(DVec3::ZERO, 1.0).unwrap()]).unwrap();
+    /// let ray = Ray::new(DVec3::new(0.0, 0.0, -5.0), DVec3::Z).unwrap();
+    /// let mut stats = HitStats::default();
+    /// let _ = tree.closest_hit_with_stats(&ray, 0.0, f64::INFINITY, &mut stats);
+    /// assert_eq!((stats.nodes_visited, stats.sphere_tests), (1, 1));
+    /// ```
     #[must_use]
     pub fn closest_hit_with_stats(
         &self,
@@ -411,6 +429,12 @@ mod tests {
             tree.closest_hit(&along, 0.0, f64::INFINITY),
             brute_force_closest_hit(&points, &along, 0.0, f64::INFINITY)
         );
+    }
+
+    /// The chapter's memory figures assume 16-byte nodes.
+    #[test]
+    fn nodes_are_16_bytes() {
+        assert_eq!(std::mem::size_of::<Node>(), 16);
     }
 
     #[test]

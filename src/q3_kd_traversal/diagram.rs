@@ -1,7 +1,7 @@
 //! Diagrams of the homework's tree: cells and split lines, the ray, and each visited leaf's piece
 //! of the ray, coloured and labelled with its parameter interval.
 
-use super::{Axis2, Interval, Node2, Ray2, seed, traverse, write_path};
+use super::{Axis2, Interval, Node2, Ray2, RayText, seed, traverse, write_path};
 use crate::kdtree::Side;
 use crate::plot::{Figure, PALETTE, PlotError, err, svg_figure};
 use plotters::coord::Shift;
@@ -56,16 +56,6 @@ fn split_lines(node: &Node2, bounds: [(f64, f64); 2], out: &mut Vec<[(f64, f64);
             Side::Upper => child_bounds[a].0 = split.max(bounds[a].0),
         }
         split_lines(child, child_bounds, out);
-    }
-}
-
-/// A ray printed as `e = (5, 0), d = (-1, 1)`.
-struct RayText<'a>(&'a Ray2);
-
-impl fmt::Display for RayText<'_> {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let ([ex, ey], [dx, dy]) = (self.0.origin, self.0.dir);
-        write!(f, "e = ({ex}, {ey}), d = ({dx}, {dy})")
     }
 }
 

@@ -87,6 +87,14 @@ pub struct StepComparison {
 
 impl StepComparison {
     /// Whether both sides wrote the same step.
+    ///
+    /// # Examples
+    /// ```
+    /// use hw3::q3_kd_traversal::{Node2, seed, traverse};
+    /// let case = &seed::cases()[0]; // (d)
+    /// let rows = seed::compare(&traverse(&Node2::homework(), &case.ray), &case.handwritten);
+    /// assert!(!rows[4].agrees()); // step 5: [2, inf] vs the seed's [3, inf]
+    /// ```
     #[must_use]
     pub fn agrees(&self) -> bool {
         self.ours == self.seed

@@ -1,0 +1,200 @@
+//! Q3 cost versus scene size: builds the crate's SAH kd-tree for the reference note's workload
+//! (`kdtree-perf.md` §5: N = 10² … 10⁵ random spheres, both density scalings, 512×512 camera rays
+//! and 10⁶ random rays, t_min = 10⁻⁴), measures build time and closest-hit rays per second on one
+//! thread, counts nodes and sphere tests per ray, checks the note's checksums, times brute force
+//! as a peer where it is affordable (and checks the tree against it ray by ray there), and writes
+//! `docs/data/q3_kdtree_perf.csv` and `.md`, from which the notes' plot is drawn.
+//!
+//! `cargo bench --bench q3_kdtree` measures and writes (`HW3_Q3_MAX_N=1000000` adds N = 10⁶);
+//! under `cargo test --benches` it runs one small smoke round and writes nothing.
+
+use hw3::geometry::{Ray, Sphere};
+use hw3::kdtree::workload::{Density, T_MIN, camera_rays, checksum, random_rays, scene};
+use hw3::kdtree::{HitStats, KdTree, SahCosts, brute_force_closest_hit};
+use std::fmt::Write as _;
+use std::hint::black_box;
+use std::time::Instant;
+
+type Hit = Option<(usize, f64)>;
+
+/// Seconds of the fastest of `repeats` runs of `work`, and its last result.
+fn best_of<R>(repeats: usize, mut work: impl FnMut() -> R) -> (f64, R) {
+    let mut best = f64::INFINITY;
+    let mut result = None;
+    for _ in 0..repeats {
+        let start = Instant::now();
+        let r = black_box(work());
+        best = best.min(start.elapsed().as_secs_f64());
+        result = Some(r);
+    }
+    (best, result.expect("at least one repeat"))
+}
+
+fn trace_all(tree: &KdTree, rays: &[Ray<f64>]) -> Vec<Hit> {
+    rays.iter().map(|r| tree.closest_hit(black_box(r), T_MIN, f64::INFINITY)).collect()
+}
+
+fn brute_all(spheres: &[Sphere<f64>], rays: &[Ray<f64>]) -> Vec<Hit> {
+    rays.iter().map(|r| brute_force_closest_hit(spheres, black_box(r), T_MIN, f64::INFINITY)).collect()
+}
+
+/// Nodes and sphere tests per ray over the first 65 536 rays (as in the note).
+fn work_per_ray(tree: &KdTree, rays: &[Ray<f64>]) -> (f64, f64) {
+    let sample = &rays[..rays.len().min(65_536)];
+    let mut stats = HitStats::default();
+    for r in sample {
+        let _ = tree.closest_hit_with_stats(r, T_MIN, f64::INFINITY, &mut stats);
+    }
+    let n = sample.len() as f64;
+    (stats.nodes_visited as f64 / n, stats.sphere_tests as f64 / n)
+}
+
+/// The note's checksums (f32, fixed k): (N, camera hits, camera Σt, random hits, random Σt).
+const NOTE: [(usize, usize, f64, usize, f64); 5] = [
+    (100, 184_983, 223_855.88, 727_694, 96_248.64),
+    (1_000, 172_545, 215_827.48, 676_168, 104_288.96),
+    (10_000, 172_385, 216_190.76, 652_278, 112_220.02),
+    (100_000, 175_400, 221_348.85, 649_661, 117_884.38),
+    (1_000_000, 175_441, 221_645.86, 647_497, 119_375.47),
+];
+
+/// "ok" when within the note's tolerance for an independent implementation (3 hits, 2·10⁻⁵
+/// relative on Σt), else the differences; "-" when the note has no checksum.
+fn versus_note(n: usize, density: Density, camera: (usize, f64), random: (usize, f64)) -> String {
+    let Some(&(_, ch, ct, rh, rt)) = NOTE.iter().find(|row| row.0 == n) else {
+        return "-".into();
+    };
+    if density != Density::FixedMeanFreePath {
+        return "-".into();
+    }
+    let close = |(h, t): (usize, f64), (eh, et): (usize, f64)| h.abs_diff(eh) <= 3 && ((t - et) / et).abs() < 2e-5;
+    if close(camera, (ch, ct)) && close(random, (rh, rt)) {
+        "ok".into()
+    } else {
+        format!(
+            "differs: camera {} hits / {:+.1e} rel; random {} hits / {:+.1e} rel",
+            camera.0 as i64 - ch as i64,
+            (camera.1 - ct) / ct,
+            random.0 as i64 - rh as i64,
+            (random.1 - rt) / rt
+        )
+    }
+}
+
+fn mrays(count: usize, secs: f64) -> f64 {
+    count as f64 / secs / 1e6
+}
+
+fn main() {
+    let measuring = std::env::args().any(|a| a == "--bench");
+    let max_n: usize = std::env::var("HW3_Q3_MAX_N").ok().and_then(|v| v.parse().ok()).unwrap_or(100_000);
+    // `HW3_Q3_KI` overrides K_I (to tune the cost model); the default is the crate's.
+    let costs = SahCosts {
+        intersection: std::env::var("HW3_Q3_KI")
+            .ok()
+            .and_then(|v| v.parse().ok())
+            .unwrap_or(SahCosts::default().intersection),
+        ..SahCosts::default()
+    };
+    let (sizes, camera, random, repeats): (Vec<usize>, _, _, usize) = if measuring {
+        let sizes = [100, 1_000, 10_000, 100_000, 1_000_000].into_iter().filter(|&n| n <= max_n).collect();
+        (sizes, camera_rays(512, 512), random_rays(1_000_000, 0xBEEF), 3)
+    } else {
+        (vec![100], camera_rays(64, 64), random_rays(4_096, 0xBEEF), 1)
+    };
+    let mut csv = String::from(
+        "density,n,build_ms,nodes,references,camera_mrays,camera_nodes_per_ray,camera_tests_per_ray,\
+         camera_hits,camera_sum_t,random_mrays,random_nodes_per_ray,random_tests_per_ray,random_hits,\
+         random_sum_t,brute_camera_mrays,brute_random_mrays,brute_mismatches,versus_note\n",
+    );
+    for density in [Density::FixedMeanFreePath, Density::FixedVolumeFraction] {
+        let label = match density {
+            Density::FixedMeanFreePath => "fixed_k",
+            Density::FixedVolumeFraction => "fixed_volume",
+        };
+        for &n in &sizes {
+            let spheres = scene(n, density);
+            let build_repeats = if n >= 100_000 { 1 } else { repeats };
+            let (build_secs, tree) = best_of(build_repeats, || KdTree::build_with(&spheres, costs).unwrap());
+            let (camera_secs, camera_hits) = best_of(repeats, || trace_all(&tree, &camera));
+            let (random_secs, random_hits) = best_of(repeats.min(2), || trace_all(&tree, &random));
+            let camera_work = work_per_ray(&tree, &camera);
+            let random_work = work_per_ray(&tree, &random);
+            // Brute force only where it is affordable, on a prefix as in the note.
+            let prefix = match n {
+                0..=100 => Some(usize::MAX),
+                101..=1_000 => Some(200_000),
+                1_001..=10_000 => Some(20_000),
+                _ => None,
+            };
+            let (brute_camera, brute_random, mismatches) = match prefix {
+                Some(p) => {
+                    let (cam, ran) = (&camera[..p.min(camera.len())], &random[..p.min(random.len())]);
+                    let (cs, cb) = best_of(1, || brute_all(&spheres, cam));
+                    let (rs, rb) = best_of(1, || brute_all(&spheres, ran));
+                    let wrong = cb.iter().zip(&camera_hits).filter(|(a, b)| a != b).count()
+                        + rb.iter().zip(&random_hits).filter(|(a, b)| a != b).count();
+                    (format!("{:.3}", mrays(cam.len(), cs)), format!("{:.3}", mrays(ran.len(), rs)), wrong.to_string())
+                }
+                None => ("-".into(), "-".into(), "-".into()),
+            };
+            let (ch, ct) = checksum(&camera_hits);
+            let (rh, rt) = checksum(&random_hits);
+            let note = if measuring { versus_note(n, density, (ch, ct), (rh, rt)) } else { "-".into() };
+            let line = format!(
+                "{label},{n},{:.3},{},{},{:.3},{:.2},{:.2},{ch},{ct:.2},{:.3},{:.2},{:.2},{rh},{rt:.2},\
+                 {brute_camera},{brute_random},{mismatches},{note}\n",
+                build_secs * 1e3,
+                tree.node_count(),
+                tree.reference_count(),
+                mrays(camera.len(), camera_secs),
+                camera_work.0,
+                camera_work.1,
+                mrays(random.len(), random_secs),
+                random_work.0,
+                random_work.1,
+            );
+            eprint!("{line}");
+            csv.push_str(&line);
+            assert!(
+                mismatches == "0" || mismatches == "-",
+                "the kd-tree disagrees with brute force on {mismatches} rays"
+            );
+        }
+    }
+    if measuring {
+        let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/docs/data");
+        std::fs::write(format!("{dir}/q3_kdtree_perf.csv"), &csv).expect("docs/data is writable");
+        std::fs::write(format!("{dir}/q3_kdtree_perf.md"), markdown(&csv)).expect("docs/data is writable");
+        eprintln!("wrote {dir}/q3_kdtree_perf.csv and .md");
+    }
+}
+
+/// The CSV as the chapter's table.
+fn markdown(csv: &str) -> String {
+    let mut md = String::from(
+        "| density | N | build ms | nodes | camera Mrays/s | nodes/ray | tests/ray | random Mrays/s | nodes/ray | tests/ray | brute camera / random Mrays/s | vs note checksums |\n\
+         |---|---|---|---|---|---|---|---|---|---|---|---|\n",
+    );
+    for line in csv.lines().skip(1) {
+        let f: Vec<&str> = line.split(',').collect();
+        let _ = writeln!(
+            md,
+            "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} / {} | {} |",
+            f[0].replace('_', " "),
+            f[1],
+            f[2],
+            f[3],
+            f[5],
+            f[6],
+            f[7],
+            f[10],
+            f[11],
+            f[12],
+            f[15],
+            f[16],
+            f[18]
+        );
+    }
+    md
+}
