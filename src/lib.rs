@@ -3,6 +3,7 @@
 
 pub mod geometry;
 pub mod plot;
+pub mod q4_light_probe;
 pub mod real;
 
 /// One question's printed answers, as `hw3 answers` shows them.
@@ -25,7 +26,7 @@ pub struct Answers {
 /// ```
 #[must_use]
 pub fn all_answers() -> Vec<Answers> {
-    vec![]
+    vec![q4_light_probe::answers()]
 }
 
 /// Every figure of the course notes, in homework order (deterministic bytes).
@@ -34,6 +35,7 @@ pub fn all_answers() -> Vec<Answers> {
 /// [`plot::PlotError`] if a figure cannot be drawn.
 pub fn all_figures() -> Result<Vec<plot::Figure>, plot::PlotError> {
     let mut figures: Vec<plot::Figure> = Vec::new();
+    figures.extend(q4_light_probe::figures()?);
     Ok(figures)
 }
 

@@ -1,0 +1,276 @@
+//! Q4's figures: the blind spot versus distance, the texel solid angle of each format, and the
+//! accuracy-versus-time Pareto plot drawn from the benchmark's committed CSV.
+
+use super::{Probe, ProbeFormat, blind_spot};
+use crate::plot::{Figure, PALETTE, PlotError, err, png_bytes, svg_figure};
+use glam::DMat3;
+use plotters::prelude::*;
+
+/// The benchmark's committed results (written by `cargo bench --bench q4_irradiance`).
+const ACCURACY_CSV: &str = include_str!("../../docs/data/q4_accuracy_time.csv");
+
+/// Every Q4 figure, deterministic bytes.
+///
+/// # Errors
+/// [`PlotError`] if a figure cannot be drawn.
+///
+/// # Examples
+/// ```
+/// let figures = hw3::q4_light_probe::figures().unwrap();
+/// assert!(figures.iter().any(|f| f.file_name == "q4_blind_spot.svg"));
+/// ```
+pub fn figures() -> Result<Vec<Figure>, PlotError> {
+    Ok(vec![
+        blind_spot_figure()?,
+        solid_angle_figure()?,
+        pareto_figure("soft")?,
+        pareto_figure("sun")?,
+    ])
+}
+
+fn blind_spot_figure() -> Result<Figure, PlotError> {
+    svg_figure("q4_blind_spot.svg", (640, 400), |root| {
+        let distances: Vec<f64> = (0..=200)
+            .map(|k| 1.2 * (50.0_f64 / 1.2).powf(k as f64 / 200.0))
+            .collect();
+        let mut chart = ChartBuilder::on(root)
+            .caption(
+                "What a mirrored ball misses, vs camera distance D/R",
+                ("sans-serif", 17),
+            )
+            .margin(10)
+            .x_label_area_size(40)
+            .y_label_area_size(55)
+            .build_cartesian_2d((1.2_f64..50.0).log_scale(), (0.01_f64..100.0).log_scale())
+            .map_err(err)?;
+        chart
+            .configure_mesh()
+            .x_desc("D/R (camera distance in ball radii)")
+            .y_desc("degrees  /  percent")
+            .label_style(("sans-serif", 12))
+            .draw()
+            .map_err(err)?;
+        let series: [(&str, Box<dyn Fn(f64) -> f64>); 3] = [
+            (
+                "blind half-angle arcsin(R/D), degrees",
+                Box::new(|d| blind_spot::half_angle(d).map_or(f64::NAN, f64::to_degrees)),
+            ),
+            (
+                "blind solid angle, % of 4π",
+                Box::new(|d| {
+                    blind_spot::solid_angle(d).map_or(f64::NAN, |s| {
+                        100.0 * s / (4.0 * std::f64::consts::PI)
+                    })
+                }),
+            ),
+            (
+                "irradiance lost at n = away (uniform map), %",
+                Box::new(|d| 100.0 * blind_spot::lost_fraction(d, 0.0).unwrap_or(f64::NAN)),
+            ),
+        ];
+        for (index, (label, f)) in series.iter().enumerate() {
+            let colour = PALETTE[index];
+            chart
+                .draw_series(LineSeries::new(
+                    distances.iter().map(|&d| (d, f(d))),
+                    colour.stroke_width(2),
+                ))
+                .map_err(err)?
+                .label(*label)
+                .legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 18, y)], colour.stroke_width(2))
+                });
+        }
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::LowerLeft)
+            .label_font(("sans-serif", 12))
+            .background_style(WHITE.mix(0.85))
+            .border_style(BLACK)
+            .draw()
+            .map_err(err)?;
+        Ok(())
+    })
+}
+
+/// A false-colour image of `Δω / (mean Δω)` per texel for each disk format and lat-long, on a
+/// shared logarithmic scale: where the format spends its resolution.
+fn solid_angle_figure() -> Result<Figure, PlotError> {
+    let size = 96_usize;
+    let formats = [
+        ProbeFormat::MirrorBall,
+        ProbeFormat::PerspectiveBall {
+            distance_over_radius: 3.0,
+        },
+        ProbeFormat::AngularMap,
+        ProbeFormat::LatLong,
+    ];
+    let gap = 8;
+    let mut image = image::RgbImage::from_pixel(
+        (formats.len() * (size + gap) - gap) as u32,
+        size as u32,
+        image::Rgb([255, 255, 255]),
+    );
+    for (slot, format) in formats.iter().enumerate() {
+        let (w, h) = if *format == ProbeFormat::LatLong {
+            (size, size / 2)
+        } else {
+            (size, size)
+        };
+        let probe = Probe::from_fn(*format, w, h, DMat3::IDENTITY, |_| glam::DVec3::ZERO)
+            .map_err(|e| PlotError::Draw {
+                figure: "q4_texel_solid_angle.png".into(),
+                message: e.to_string(),
+            })?;
+        let mean = 4.0 * std::f64::consts::PI / (w * h) as f64;
+        let y_offset = (size - h) / 2;
+        for (index, texel) in probe.texels().iter().enumerate() {
+            if texel.solid_angle <= 0.0 {
+                continue;
+            }
+            // log10 of the ratio, −2 … +1 mapped onto the palette's blue → orange ramp.
+            let t = (((texel.solid_angle / mean).log10() + 2.0) / 3.0).clamp(0.0, 1.0);
+            let (a, b) = (PALETTE[0], PALETTE[4]);
+            let mix = |x: u8, y: u8| (x as f64 + (y as f64 - x as f64) * t).round() as u8;
+            image.put_pixel(
+                (slot * (size + gap) + index % w) as u32,
+                (y_offset + index / w) as u32,
+                image::Rgb([mix(a.0, b.0), mix(a.1, b.1), mix(a.2, b.2)]),
+            );
+        }
+    }
+    png_bytes("q4_texel_solid_angle.png", &image)
+}
+
+/// One row of the benchmark CSV.
+struct Row {
+    map: String,
+    method: String,
+    label: String,
+    mean_percent: f64,
+    nanoseconds: f64,
+}
+
+fn parse_csv(text: &str) -> Vec<Row> {
+    text.lines()
+        .skip(1)
+        .filter_map(|line| {
+            let f: Vec<&str> = line.split(',').collect();
+            Some(Row {
+                map: f.first()?.to_string(),
+                method: f.get(1)?.to_string(),
+                label: f.get(2)?.to_string(),
+                mean_percent: f.get(5)?.parse().ok()?,
+                nanoseconds: f.get(7)?.parse().ok()?,
+            })
+        })
+        .collect()
+}
+
+fn pareto_figure(map: &str) -> Result<Figure, PlotError> {
+    let rows: Vec<Row> = parse_csv(ACCURACY_CSV)
+        .into_iter()
+        .filter(|r| r.map == map && r.mean_percent > 0.0 && r.nanoseconds > 0.0)
+        .collect();
+    let name = format!("q4_pareto_{map}.svg");
+    svg_figure(&name, (680, 440), |root| {
+        let (t_min, t_max) = rows.iter().fold((f64::INFINITY, 0.0_f64), |(lo, hi), r| {
+            (lo.min(r.nanoseconds), hi.max(r.nanoseconds))
+        });
+        let (e_min, e_max) = rows.iter().fold((f64::INFINITY, 0.0_f64), |(lo, hi), r| {
+            (lo.min(r.mean_percent), hi.max(r.mean_percent))
+        });
+        let mut chart = ChartBuilder::on(root)
+            .caption(
+                format!("Error vs time per normal, {map} map (benchmark data)"),
+                ("sans-serif", 17),
+            )
+            .margin(10)
+            .x_label_area_size(40)
+            .y_label_area_size(60)
+            .build_cartesian_2d(
+                (t_min.min(1.0) * 0.5..t_max.max(10.0) * 2.0).log_scale(),
+                (e_min.min(1e-3) * 0.5..e_max.max(1.0) * 2.0).log_scale(),
+            )
+            .map_err(err)?;
+        chart
+            .configure_mesh()
+            .x_desc("time per normal, ns (log)")
+            .y_desc("mean error, % of peak E (log)")
+            .label_style(("sans-serif", 12))
+            .draw()
+            .map_err(err)?;
+        let methods = [
+            "unweighted",
+            "weighted",
+            "sh9",
+            "uniform",
+            "cosine",
+            "map",
+            "mis",
+        ];
+        for (index, method) in methods.iter().enumerate() {
+            let points: Vec<(f64, f64)> = rows
+                .iter()
+                .filter(|r| r.method == *method)
+                .map(|r| (r.nanoseconds, r.mean_percent))
+                .collect();
+            let colour = PALETTE[index % PALETTE.len()];
+            chart
+                .draw_series(LineSeries::new(points.clone(), colour.stroke_width(1)))
+                .map_err(err)?;
+            chart
+                .draw_series(
+                    points
+                        .iter()
+                        .map(|&p| Circle::new(p, 4, colour.filled())),
+                )
+                .map_err(err)?
+                .label(*method)
+                .legend(move |(x, y)| Circle::new((x + 8, y), 4, colour.filled()));
+        }
+        // Name the SH9 and 256² weighted points, the issue's target pair.
+        for r in rows
+            .iter()
+            .filter(|r| r.label == "sh9 256²" || r.label == "weighted 256²")
+        {
+            chart
+                .draw_series(std::iter::once(Text::new(
+                    r.label.clone(),
+                    (r.nanoseconds * 1.15, r.mean_percent),
+                    ("sans-serif", 11),
+                )))
+                .map_err(err)?;
+        }
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::UpperRight)
+            .label_font(("sans-serif", 12))
+            .background_style(WHITE.mix(0.85))
+            .border_style(BLACK)
+            .draw()
+            .map_err(err)?;
+        Ok(())
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn figures_are_deterministic() {
+        let a = figures().unwrap();
+        let b = figures().unwrap();
+        assert_eq!(a, b);
+    }
+
+    #[test]
+    fn the_committed_csv_parses() {
+        let rows = parse_csv(ACCURACY_CSV);
+        assert!(!rows.is_empty(), "run cargo bench --bench q4_irradiance");
+        for map in ["soft", "sun"] {
+            assert!(rows.iter().any(|r| r.map == map && r.method == "sh9"));
+        }
+    }
+}
