@@ -17,8 +17,13 @@ use std::fmt::Write as _;
 use std::time::Instant;
 
 fn sun_probe(size: usize) -> Probe {
-    Probe::from_map(&AnalyticMap::sun(), ProbeFormat::MirrorBall, size, horizontal_camera())
-        .expect("valid analytic map")
+    Probe::from_map(
+        &AnalyticMap::sun(),
+        ProbeFormat::MirrorBall,
+        size,
+        horizontal_camera(),
+    )
+    .expect("valid analytic map")
 }
 
 fn normal() -> DVec3 {
@@ -108,7 +113,8 @@ fn time_per_normal(prepared: &Irradiance<'_>, config: Config, normals: &[DVec3])
 fn sweep() {
     let normals = fibonacci_normals(64);
     let seeds: Vec<u64> = (1..=8).collect();
-    let mut csv = String::from("map,method,label,size,samples,mean_percent,max_percent,ns_per_normal\n");
+    let mut csv =
+        String::from("map,method,label,size,samples,mean_percent,max_percent,ns_per_normal\n");
     let mut table = String::from(
         "| map | configuration | mean error (% of peak) | max error (% of peak) | time per normal |\n|---|---|---|---|---|\n",
     );
@@ -118,15 +124,37 @@ fn sweep() {
         let mut results: Vec<(Config, study::ErrorSummary, f64)> = Vec::new();
         for config in study::configurations() {
             if !probes.iter().any(|(s, _)| *s == config.size) {
-                let probe = Probe::from_map(&map, ProbeFormat::MirrorBall, config.size, horizontal_camera())
-                    .expect("valid analytic map");
+                let probe = Probe::from_map(
+                    &map,
+                    ProbeFormat::MirrorBall,
+                    config.size,
+                    horizontal_camera(),
+                )
+                .expect("valid analytic map");
                 probes.push((config.size, probe));
             }
-            let probe = &probes.iter().find(|(s, _)| *s == config.size).expect("just built").1;
+            let probe = &probes
+                .iter()
+                .find(|(s, _)| *s == config.size)
+                .expect("just built")
+                .1;
             let prepared = Irradiance::new(probe);
-            let error = study::method_error(&map, &prepared, config.method, config.samples, &seeds, &normals);
+            let error = study::method_error(
+                &map,
+                &prepared,
+                config.method,
+                config.samples,
+                &seeds,
+                &normals,
+            );
             let ns = time_per_normal(&prepared, config, &normals);
-            eprintln!("{map_name:>5} {:<18} {:>9.4} % {:>9.4} % {:>12.1} ns", config.label(), error.mean_percent, error.max_percent, ns);
+            eprintln!(
+                "{map_name:>5} {:<18} {:>9.4} % {:>9.4} % {:>12.1} ns",
+                config.label(),
+                error.mean_percent,
+                error.max_percent,
+                ns
+            );
             let _ = writeln!(
                 csv,
                 "{map_name},{},{},{},{},{:.6},{:.6},{:.1}",
@@ -148,7 +176,12 @@ fn sweep() {
             );
             results.push((config, error, ns));
         }
-        let find = |label: &str| results.iter().find(|(c, _, _)| c.label() == label).expect("swept");
+        let find = |label: &str| {
+            results
+                .iter()
+                .find(|(c, _, _)| c.label() == label)
+                .expect("swept")
+        };
         let (_, sh9_error, sh9_ns) = find("sh9 256²");
         let (_, weighted_error, weighted_ns) = find("weighted 256²");
         let projection = {

@@ -70,7 +70,9 @@ pub fn probe_from_spec(spec: &str, size: usize) -> Result<Probe, ProbeError> {
     } else if let Some(rest) = spec.strip_prefix("constant:") {
         let l = numbers(rest, 1)?[0];
         if l < 0.0 {
-            return Err(ProbeError::Spec(format!("radiance must be ≥ 0 in `{spec}`")));
+            return Err(ProbeError::Spec(format!(
+                "radiance must be ≥ 0 in `{spec}`"
+            )));
         }
         AnalyticMap::constant(l)
     } else if let Some(rest) = spec.strip_prefix("linear:") {
@@ -127,7 +129,8 @@ pub fn irradiance_command(request: &IrradianceRequest) -> Result<String, ProbeEr
 /// normals, for a format at 128 texels across.
 fn unweighted_bias(format: ProbeFormat) -> study::ErrorSummary {
     let map = AnalyticMap::constant(1.0);
-    let probe = Probe::from_map(&map, format, 128, horizontal_camera()).expect("valid analytic map");
+    let probe =
+        Probe::from_map(&map, format, 128, horizontal_camera()).expect("valid analytic map");
     study::method_error(
         &map,
         &Irradiance::new(&probe),
@@ -157,7 +160,10 @@ pub fn answers() -> Answers {
         "Diffuse light from a mirrored-ball probe: E(n) = Σ_t L_t max(0, n·ω_t) Δω_t, and L_o = (K_d/π) E \
          with K_d the albedo. The seed's Σ K_d L (n·l) omits Δω_t: right only if every texel subtends the same solid angle."
     );
-    let _ = writeln!(text, "Unweighted sum on a constant map (error % of πL, mean / max over 64 normals, 128 px):");
+    let _ = writeln!(
+        text,
+        "Unweighted sum on a constant map (error % of πL, mean / max over 64 normals, 128 px):"
+    );
     for format in [
         ProbeFormat::MirrorBall,
         ProbeFormat::AngularMap,
@@ -199,7 +205,8 @@ pub fn answers() -> Answers {
          the rim is smeared (the last pixel ring of a 256 px ball spans ~14° of the sphere); the ball's reflectance < 1."
     );
     let map = AnalyticMap::sun();
-    let probe = Probe::from_map(&map, ProbeFormat::MirrorBall, 64, horizontal_camera()).expect("valid map");
+    let probe =
+        Probe::from_map(&map, ProbeFormat::MirrorBall, 64, horizontal_camera()).expect("valid map");
     let prepared = Irradiance::new(&probe);
     let terminator = DVec3::new(-(30f64.to_radians().sin()), 0.0, 30f64.to_radians().cos());
     let _ = writeln!(

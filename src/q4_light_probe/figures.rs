@@ -58,9 +58,8 @@ fn blind_spot_figure() -> Result<Figure, PlotError> {
             (
                 "blind solid angle, % of 4π",
                 Box::new(|d| {
-                    blind_spot::solid_angle(d).map_or(f64::NAN, |s| {
-                        100.0 * s / (4.0 * std::f64::consts::PI)
-                    })
+                    blind_spot::solid_angle(d)
+                        .map_or(f64::NAN, |s| 100.0 * s / (4.0 * std::f64::consts::PI))
                 }),
             ),
             (
@@ -81,22 +80,33 @@ fn blind_spot_figure() -> Result<Figure, PlotError> {
                     PathElement::new(vec![(x, y), (x + 18, y)], colour.stroke_width(2))
                 });
         }
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::LowerLeft)
-            .label_font(("sans-serif", 12))
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK)
-            .draw()
-            .map_err(err)?;
-        Ok(())
+        draw_legend(&mut chart, SeriesLabelPosition::LowerLeft)
     })
+}
+
+/// The legend box every Q4 chart uses.
+fn draw_legend<'a, DB, CT>(
+    chart: &mut ChartContext<'a, DB, CT>,
+    position: SeriesLabelPosition,
+) -> Result<(), String>
+where
+    DB: DrawingBackend + 'a,
+    CT: plotters::coord::CoordTranslate,
+{
+    chart
+        .configure_series_labels()
+        .position(position)
+        .label_font(("sans-serif", 12))
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK)
+        .draw()
+        .map_err(err)
 }
 
 /// A false-colour image of `Δω / (mean Δω)` per texel for each disk format and lat-long, on a
 /// shared logarithmic scale: where the format spends its resolution.
 fn solid_angle_figure() -> Result<Figure, PlotError> {
-    let size = 96_usize;
+    let size = 128_usize;
     let formats = [
         ProbeFormat::MirrorBall,
         ProbeFormat::PerspectiveBall {
@@ -117,10 +127,12 @@ fn solid_angle_figure() -> Result<Figure, PlotError> {
         } else {
             (size, size)
         };
-        let probe = Probe::from_fn(*format, w, h, DMat3::IDENTITY, |_| glam::DVec3::ZERO)
-            .map_err(|e| PlotError::Draw {
-                figure: "q4_texel_solid_angle.png".into(),
-                message: e.to_string(),
+        let probe =
+            Probe::from_fn(*format, w, h, DMat3::IDENTITY, |_| glam::DVec3::ZERO).map_err(|e| {
+                PlotError::Draw {
+                    figure: "q4_texel_solid_angle.png".into(),
+                    message: e.to_string(),
+                }
             })?;
         let mean = 4.0 * std::f64::consts::PI / (w * h) as f64;
         let y_offset = (size - h) / 2;
@@ -128,14 +140,16 @@ fn solid_angle_figure() -> Result<Figure, PlotError> {
             if texel.solid_angle <= 0.0 {
                 continue;
             }
-            // log10 of the ratio, −2 … +1 mapped onto the palette's blue → orange ramp.
-            let t = (((texel.solid_angle / mean).log10() + 2.0) / 3.0).clamp(0.0, 1.0);
-            let (a, b) = (PALETTE[0], PALETTE[4]);
-            let mix = |x: u8, y: u8| (x as f64 + (y as f64 - x as f64) * t).round() as u8;
+            // log10 of the ratio on a diverging ramp: blue (10× smaller) → pale grey (the mean)
+            // → vermillion (10× larger).
+            let t = (texel.solid_angle / mean).log10().clamp(-1.0, 1.0);
+            let end = if t < 0.0 { PALETTE[0] } else { PALETTE[1] };
+            let mid = 235.0;
+            let mix = |y: u8| (mid + (y as f64 - mid) * t.abs()).round() as u8;
             image.put_pixel(
                 (slot * (size + gap) + index % w) as u32,
                 (y_offset + index / w) as u32,
-                image::Rgb([mix(a.0, b.0), mix(a.1, b.1), mix(a.2, b.2)]),
+                image::Rgb([mix(end.0), mix(end.1), mix(end.2)]),
             );
         }
     }
@@ -220,11 +234,7 @@ fn pareto_figure(map: &str) -> Result<Figure, PlotError> {
                 .draw_series(LineSeries::new(points.clone(), colour.stroke_width(1)))
                 .map_err(err)?;
             chart
-                .draw_series(
-                    points
-                        .iter()
-                        .map(|&p| Circle::new(p, 4, colour.filled())),
-                )
+                .draw_series(points.iter().map(|&p| Circle::new(p, 4, colour.filled())))
                 .map_err(err)?
                 .label(*method)
                 .legend(move |(x, y)| Circle::new((x + 8, y), 4, colour.filled()));
@@ -242,15 +252,7 @@ fn pareto_figure(map: &str) -> Result<Figure, PlotError> {
                 )))
                 .map_err(err)?;
         }
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperRight)
-            .label_font(("sans-serif", 12))
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK)
-            .draw()
-            .map_err(err)?;
-        Ok(())
+        draw_legend(&mut chart, SeriesLabelPosition::LowerLeft)
     })
 }
 

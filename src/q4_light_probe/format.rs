@@ -373,10 +373,8 @@ impl ProbeFormat {
             rect.max,
             DVec2::new(rect.min.x, rect.max.y),
         ];
-        let contains_origin = rect.min.x <= 0.0
-            && rect.max.x >= 0.0
-            && rect.min.y <= 0.0
-            && rect.max.y >= 0.0;
+        let contains_origin =
+            rect.min.x <= 0.0 && rect.max.x >= 0.0 && rect.min.y <= 0.0 && rect.max.y >= 0.0;
         let centre = 0.5 * (rect.min + rect.max);
         let reference = if contains_origin {
             0.0
@@ -620,7 +618,10 @@ mod tests {
                 };
                 let exact = ProbeFormat::MirrorBall.solid_angle(rect, &rule);
                 let polar = ProbeFormat::MirrorBall.polar_solid_angle(rect, &rule);
-                assert!((exact - polar).abs() < 1e-7, "texel {i},{j}: {exact} vs {polar}");
+                assert!(
+                    (exact - polar).abs() < 1e-7,
+                    "texel {i},{j}: {exact} vs {polar}"
+                );
             }
         }
     }
@@ -640,7 +641,10 @@ mod tests {
     fn jacobian_integrates_to_the_visible_sphere() {
         // Independent of the texel quadrature: a radial integral of J ρ dρ dφ.
         let rule = GaussLegendre::new(16);
-        for format in all_formats().into_iter().filter(|f| *f != ProbeFormat::LatLong) {
+        for format in all_formats()
+            .into_iter()
+            .filter(|f| *f != ProbeFormat::LatLong)
+        {
             // ρ = 1 − (1 − x)² removes the perspective ball's 1/√(1 − ρ) rim singularity.
             let pieces = 200;
             let total: f64 = (0..pieces)
@@ -654,7 +658,11 @@ mod tests {
                 })
                 .sum();
             let expected = TAU * (1.0 - format.max_theta().cos());
-            assert!((total - expected).abs() < 1e-9, "{}: {total} vs {expected}", format.name());
+            assert!(
+                (total - expected).abs() < 1e-9,
+                "{}: {total} vs {expected}",
+                format.name()
+            );
         }
     }
 

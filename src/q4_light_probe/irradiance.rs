@@ -357,7 +357,8 @@ impl<'a> Irradiance<'a> {
                 if self.probe.texel_index_at(p) == texel && jacobian > 0.0 {
                     return Some(MapSample {
                         omega,
-                        pdf: self.texel_probability(texel) / (self.probe.texels()[texel].area * jacobian),
+                        pdf: self.texel_probability(texel)
+                            / (self.probe.texels()[texel].area * jacobian),
                         texel,
                     });
                 }
@@ -408,9 +409,8 @@ impl<'a> Irradiance<'a> {
         };
         let cosine_count = samples - map_count;
         let (nc, nm) = (cosine_count as f64, map_count as f64);
-        let combined_pdf = |omega: DVec3| {
-            nc * n.dot(omega).max(0.0) / PI + nm * self.map_pdf(omega)
-        };
+        let combined_pdf =
+            |omega: DVec3| nc * n.dot(omega).max(0.0) / PI + nm * self.map_pdf(omega);
         let mut sum = DVec3::ZERO;
         for _ in 0..cosine_count {
             let omega = Self::cosine_direction(n, rng);
@@ -465,7 +465,14 @@ mod tests {
     #[test]
     fn sh_basis_is_orthonormal() {
         // Fine weighted texel quadrature on a lat-long grid.
-        let probe = Probe::from_fn(ProbeFormat::LatLong, 256, 128, glam::DMat3::IDENTITY, |_| DVec3::ONE).unwrap();
+        let probe = Probe::from_fn(
+            ProbeFormat::LatLong,
+            256,
+            128,
+            glam::DMat3::IDENTITY,
+            |_| DVec3::ONE,
+        )
+        .unwrap();
         let mut gram = [[0.0; 9]; 9];
         for t in probe.texels() {
             let b = sh_basis(t.direction);
@@ -485,7 +492,13 @@ mod tests {
 
     #[test]
     fn one_by_one_probe_gives_finite_answers_for_every_method() {
-        let probe = Probe::from_map(&AnalyticMap::constant(1.0), ProbeFormat::MirrorBall, 1, horizontal_camera()).unwrap();
+        let probe = Probe::from_map(
+            &AnalyticMap::constant(1.0),
+            ProbeFormat::MirrorBall,
+            1,
+            horizontal_camera(),
+        )
+        .unwrap();
         let prepared = Irradiance::new(&probe);
         let mut rng = Pcg64::seed_from_u64(3);
         for method in Method::ALL {
@@ -495,28 +508,57 @@ mod tests {
             }
         }
         // The lookup-based estimators see a constant map whatever the resolution.
-        let e = prepared.estimate(DVec3::X, Method::Cosine, 8, &mut rng).unwrap();
+        let e = prepared
+            .estimate(DVec3::X, Method::Cosine, 8, &mut rng)
+            .unwrap();
         assert!((e.x - PI).abs() < 1e-12);
     }
 
     #[test]
     fn bad_normals_and_zero_samples_are_typed_errors() {
-        let probe = Probe::from_map(&AnalyticMap::sky(), ProbeFormat::MirrorBall, 4, horizontal_camera()).unwrap();
+        let probe = Probe::from_map(
+            &AnalyticMap::sky(),
+            ProbeFormat::MirrorBall,
+            4,
+            horizontal_camera(),
+        )
+        .unwrap();
         let prepared = Irradiance::new(&probe);
         let mut rng = Pcg64::seed_from_u64(3);
-        for bad in [DVec3::ZERO, DVec3::new(f64::NAN, 0.0, 1.0), DVec3::splat(f64::INFINITY)] {
-            assert!(prepared.estimate(bad, Method::Weighted, 1, &mut rng).is_err());
+        for bad in [
+            DVec3::ZERO,
+            DVec3::new(f64::NAN, 0.0, 1.0),
+            DVec3::splat(f64::INFINITY),
+        ] {
+            assert!(
+                prepared
+                    .estimate(bad, Method::Weighted, 1, &mut rng)
+                    .is_err()
+            );
         }
-        assert!(prepared.estimate(DVec3::Z, Method::Cosine, 0, &mut rng).is_err());
+        assert!(
+            prepared
+                .estimate(DVec3::Z, Method::Cosine, 0, &mut rng)
+                .is_err()
+        );
     }
 
     #[test]
     fn black_map_gives_zero_everywhere() {
-        let probe = Probe::from_map(&AnalyticMap::constant(0.0), ProbeFormat::AngularMap, 8, horizontal_camera()).unwrap();
+        let probe = Probe::from_map(
+            &AnalyticMap::constant(0.0),
+            ProbeFormat::AngularMap,
+            8,
+            horizontal_camera(),
+        )
+        .unwrap();
         let prepared = Irradiance::new(&probe);
         let mut rng = Pcg64::seed_from_u64(3);
         for method in Method::ALL {
-            assert_eq!(prepared.estimate(DVec3::Z, method, 16, &mut rng).unwrap(), DVec3::ZERO);
+            assert_eq!(
+                prepared.estimate(DVec3::Z, method, 16, &mut rng).unwrap(),
+                DVec3::ZERO
+            );
         }
     }
 
@@ -524,14 +566,31 @@ mod tests {
     fn map_pdf_integrates_to_one() {
         // ∫ p_map dω over the sphere, by the weighted texel sum on a fine lat-long grid of
         // directions, for a probe in each disk format: checks p_t/(A_t J) is a density.
-        let map = AnalyticMap::new(vec![
-            Term::Linear { a: 1.0, b: 0.8, axis: DVec3::X },
-        ]);
-        let grid = Probe::from_fn(ProbeFormat::LatLong, 400, 200, glam::DMat3::IDENTITY, |_| DVec3::ONE).unwrap();
-        for format in [ProbeFormat::MirrorBall, ProbeFormat::AngularMap, ProbeFormat::perspective_ball(5.0).unwrap()] {
+        let map = AnalyticMap::new(vec![Term::Linear {
+            a: 1.0,
+            b: 0.8,
+            axis: DVec3::X,
+        }]);
+        let grid = Probe::from_fn(
+            ProbeFormat::LatLong,
+            400,
+            200,
+            glam::DMat3::IDENTITY,
+            |_| DVec3::ONE,
+        )
+        .unwrap();
+        for format in [
+            ProbeFormat::MirrorBall,
+            ProbeFormat::AngularMap,
+            ProbeFormat::perspective_ball(5.0).unwrap(),
+        ] {
             let probe = Probe::from_map(&map, format, 24, horizontal_camera()).unwrap();
             let prepared = Irradiance::new(&probe);
-            let total: f64 = grid.texels().iter().map(|t| prepared.map_pdf(t.direction) * t.solid_angle).sum();
+            let total: f64 = grid
+                .texels()
+                .iter()
+                .map(|t| prepared.map_pdf(t.direction) * t.solid_angle)
+                .sum();
             assert!((total - 1.0).abs() < 0.02, "{}: {total}", format.name());
         }
     }

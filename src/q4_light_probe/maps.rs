@@ -298,9 +298,16 @@ mod tests {
     fn oracles_match_brute_force_quadrature() {
         let axis = DVec3::new(0.3, -0.5, 0.8).normalize();
         let terms = [
-            Term::Linear { a: 1.0, b: 0.9, axis },
+            Term::Linear {
+                a: 1.0,
+                b: 0.9,
+                axis,
+            },
             Term::Quadratic { axis },
-            Term::Hemisphere { radiance: 2.0, axis },
+            Term::Hemisphere {
+                radiance: 2.0,
+                axis,
+            },
             Term::ClampedLobe { axis },
             Term::Overcast { zenith: 1.5, axis },
         ];
@@ -309,7 +316,10 @@ mod tests {
                 let exact = term.irradiance(normal);
                 let brute = quadrature(term, normal, axis, PI);
                 // The step terms converge at first order in the grid; 1e-3 of π is the grid's bound.
-                assert!((exact - brute).abs() < 3e-3, "{term:?} at {normal}: {exact} vs {brute}");
+                assert!(
+                    (exact - brute).abs() < 3e-3,
+                    "{term:?} at {normal}: {exact} vs {brute}"
+                );
             }
         }
     }

@@ -172,7 +172,11 @@ impl Probe {
                     solid_angle,
                     area,
                     centre_inside: format.image_to_direction(centre).is_some(),
-                    radiance: if solid_angle > 0.0 { value } else { DVec3::ZERO },
+                    radiance: if solid_angle > 0.0 {
+                        value
+                    } else {
+                        DVec3::ZERO
+                    },
                 });
             }
         }
@@ -450,13 +454,19 @@ mod tests {
             ProbeFormat::perspective_ball(4.0).unwrap(),
             ProbeFormat::LatLong,
         ] {
-            let probe = Probe::from_fn(format, 16, 16, horizontal_camera(), |_| DVec3::ONE).unwrap();
+            let probe =
+                Probe::from_fn(format, 16, 16, horizontal_camera(), |_| DVec3::ONE).unwrap();
             for (index, texel) in probe.texels().iter().enumerate() {
                 if texel.centre_inside {
                     let rect = probe.texel_rect(index);
                     let centre = 0.5 * (rect.min + rect.max);
                     let (omega, _) = probe.image_to_world(centre).unwrap();
-                    assert_eq!(probe.texel_index_toward(omega), Some(index), "{}", format.name());
+                    assert_eq!(
+                        probe.texel_index_toward(omega),
+                        Some(index),
+                        "{}",
+                        format.name()
+                    );
                 }
             }
         }
@@ -464,8 +474,10 @@ mod tests {
 
     #[test]
     fn one_by_one_probe_covers_the_sphere() {
-        let probe =
-            Probe::from_fn(ProbeFormat::MirrorBall, 1, 1, DMat3::IDENTITY, |_| DVec3::ONE).unwrap();
+        let probe = Probe::from_fn(ProbeFormat::MirrorBall, 1, 1, DMat3::IDENTITY, |_| {
+            DVec3::ONE
+        })
+        .unwrap();
         assert_eq!(probe.texels().len(), 1);
         assert!((probe.texels()[0].solid_angle - 4.0 * PI).abs() < 1e-12);
     }
@@ -479,11 +491,19 @@ mod tests {
             .unwrap_err();
             assert!(matches!(error, ProbeError::BadTexel { .. }), "{error}");
         }
-        let error =
-            Probe::from_fn(ProbeFormat::MirrorBall, 0, 3, DMat3::IDENTITY, |_| DVec3::ONE).unwrap_err();
+        let error = Probe::from_fn(ProbeFormat::MirrorBall, 0, 3, DMat3::IDENTITY, |_| {
+            DVec3::ONE
+        })
+        .unwrap_err();
         assert!(matches!(error, ProbeError::Empty { .. }));
-        let error =
-            Probe::from_radiance(ProbeFormat::LatLong, 2, 2, DMat3::IDENTITY, vec![DVec3::ONE]).unwrap_err();
+        let error = Probe::from_radiance(
+            ProbeFormat::LatLong,
+            2,
+            2,
+            DMat3::IDENTITY,
+            vec![DVec3::ONE],
+        )
+        .unwrap_err();
         assert!(matches!(error, ProbeError::WrongLength { .. }));
     }
 
@@ -492,10 +512,18 @@ mod tests {
         let dir = std::env::temp_dir().join(format!("hw3-q4-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
         let truncated = dir.join("truncated.hdr");
-        std::fs::write(&truncated, b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 4 +X 8\n\x02\x02").unwrap();
+        std::fs::write(
+            &truncated,
+            b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 4 +X 8\n\x02\x02",
+        )
+        .unwrap();
         let garbage = dir.join("garbage.hdr");
         std::fs::write(&garbage, b"not an image at all").unwrap();
-        for path in [truncated.as_path(), garbage.as_path(), Path::new("/no/such.hdr")] {
+        for path in [
+            truncated.as_path(),
+            garbage.as_path(),
+            Path::new("/no/such.hdr"),
+        ] {
             let error = Probe::read_lat_long(path).unwrap_err();
             assert!(matches!(error, ProbeError::Read { .. }), "{error}");
         }
@@ -524,14 +552,19 @@ mod tests {
     #[test]
     fn splatted_caps_keep_their_energy() {
         let map = AnalyticMap::sun();
-        let probe = Probe::from_map(&map, ProbeFormat::MirrorBall, 32, horizontal_camera()).unwrap();
+        let probe =
+            Probe::from_map(&map, ProbeFormat::MirrorBall, 32, horizontal_camera()).unwrap();
         let sky_power = 2.0 * PI; // the hemisphere step, radiance 1
         let total: f64 = probe
             .texels()
             .iter()
             .map(|t| t.radiance.x * t.solid_angle)
             .sum();
-        let sun_power = map.terms[1].cap_solid_angle().unwrap() * 10.0 / (0.2665f64.to_radians().sin().powi(2));
-        assert!((total - sky_power - sun_power).abs() < 2e-3 * (sky_power + sun_power), "{total}");
+        let sun_power =
+            map.terms[1].cap_solid_angle().unwrap() * 10.0 / (0.2665f64.to_radians().sin().powi(2));
+        assert!(
+            (total - sky_power - sun_power).abs() < 2e-3 * (sky_power + sun_power),
+            "{total}"
+        );
     }
 }
