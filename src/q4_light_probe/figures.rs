@@ -28,6 +28,9 @@ pub fn figures() -> Result<Vec<Figure>, PlotError> {
     ])
 }
 
+/// A labelled function of D/R.
+type Curve = Box<dyn Fn(f64) -> f64>;
+
 fn blind_spot_figure() -> Result<Figure, PlotError> {
     svg_figure("q4_blind_spot.svg", (640, 400), |root| {
         let distances: Vec<f64> = (0..=200)
@@ -50,7 +53,7 @@ fn blind_spot_figure() -> Result<Figure, PlotError> {
             .label_style(("sans-serif", 12))
             .draw()
             .map_err(err)?;
-        let series: [(&str, Box<dyn Fn(f64) -> f64>); 3] = [
+        let series: [(&str, Curve); 3] = [
             (
                 "blind half-angle arcsin(R/D), degrees",
                 Box::new(|d| blind_spot::half_angle(d).map_or(f64::NAN, f64::to_degrees)),

@@ -270,7 +270,7 @@ impl ProbeFormat {
             return Some(DVec3::new(sin_t * cos_p, sin_t * sin_p, cos_t));
         }
         let rho = p.length();
-        if !(rho <= 1.0) {
+        if rho.is_nan() || rho > 1.0 {
             return None;
         }
         let (sin_t, cos_t) = self.theta_of_rho(rho).sin_cos();

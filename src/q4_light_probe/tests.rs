@@ -418,3 +418,12 @@ fn grazing_normals_have_small_peak_normalised_error() {
         }
     }
 }
+
+#[test]
+fn answers_are_pinned() {
+    // The printed answers: unweighted-sum bias per format, blind-spot table, SH9 near a sun.
+    let answers = super::answers();
+    crate::test_support::insta_settings().bind(|| {
+        insta::assert_snapshot!("q4_answers", answers.text);
+    });
+}
