@@ -1,10 +1,15 @@
 //! Q4's figures: the blind spot versus distance, the texel solid angle of each format, and the
 //! accuracy-versus-time Pareto plot drawn from the benchmark's committed CSV.
 
-use super::{Probe, ProbeFormat, blind_spot};
+use super::irradiance::Irradiance;
+use super::maps::AnalyticMap;
+use super::{Probe, ProbeFormat, blind_spot, horizontal_camera};
 use crate::plot::{Figure, PALETTE, PlotError, err, png_bytes, svg_figure};
 use glam::DMat3;
+use glam::DVec3;
 use plotters::prelude::*;
+use rand_core::SeedableRng;
+use rand_pcg::Pcg64;
 
 /// The benchmark's committed results (written by `cargo bench --bench q4_irradiance`).
 const ACCURACY_CSV: &str = include_str!("../../docs/data/q4_accuracy_time.csv");
@@ -25,6 +30,7 @@ pub fn figures() -> Result<Vec<Figure>, PlotError> {
         solid_angle_figure()?,
         pareto_figure("soft")?,
         pareto_figure("sun")?,
+        sphere_render_figure()?,
     ])
 }
 
@@ -157,6 +163,91 @@ fn solid_angle_figure() -> Result<Figure, PlotError> {
         }
     }
     png_bytes("q4_texel_solid_angle.png", &image)
+}
+
+/// A diffuse white sphere lit by the sun map through a 128² mirror-ball probe, seen from the
+/// side (sun upper right): exact reference, SH9, MIS with 16 samples per pixel, and the two
+/// methods' errors as a fraction of the peak irradiance (white 0 → vermillion ≥ 10 %).
+fn sphere_render_figure() -> Result<Figure, PlotError> {
+    let name = "q4_sphere_render.png";
+    let map = AnalyticMap::sun();
+    let probe =
+        Probe::from_map(&map, ProbeFormat::MirrorBall, 128, horizontal_camera()).map_err(|e| {
+            PlotError::Draw {
+                figure: name.into(),
+                message: e.to_string(),
+            }
+        })?;
+    let prepared = Irradiance::new(&probe);
+    let size = 128_usize;
+    let gap = 8_usize;
+    let label_band = 22_usize;
+    // Camera at −y looking along +y: image right = +x (toward the sun), image up = +z.
+    let (right, up, toward_viewer) = (DVec3::X, DVec3::Z, -DVec3::Y);
+    let peak = map.irradiance(super::study::sun_direction());
+    let mut exact = Vec::new();
+    let mut sh9 = Vec::new();
+    let mut mis = Vec::new();
+    for row in 0..size {
+        for column in 0..size {
+            let a = (column as f64 + 0.5) / size as f64 * 2.0 - 1.0;
+            let b = 1.0 - (row as f64 + 0.5) / size as f64 * 2.0;
+            let r2 = a * a + b * b;
+            if r2 >= 1.0 {
+                exact.push(None);
+                sh9.push(None);
+                mis.push(None);
+                continue;
+            }
+            let n = right * a + up * b + toward_viewer * (1.0 - r2).sqrt();
+            let mut rng = Pcg64::seed_from_u64((row * size + column) as u64);
+            exact.push(Some(map.irradiance(n)));
+            sh9.push(Some(prepared.sh9().irradiance(n).x));
+            mis.push(Some(prepared.mis(n, 16, &mut rng).x));
+        }
+    }
+    // Tone mapping: L_o = E/π for albedo 1, exposure so that the lit side is near white, sRGB-ish.
+    let tone = |e: f64| {
+        let v = (e / peak).clamp(0.0, 1.0).powf(1.0 / 2.2);
+        let byte = (255.0 * v).round() as u8;
+        RGBColor(byte, byte, byte)
+    };
+    let heat = |error: f64| {
+        let t = (error / (0.1 * peak)).clamp(0.0, 1.0);
+        let end = PALETTE[1];
+        let mix = |y: u8| (255.0 + (y as f64 - 255.0) * t).round() as u8;
+        RGBColor(mix(end.0), mix(end.1), mix(end.2))
+    };
+    type Panel<'a> = (&'a str, Box<dyn Fn(usize) -> Option<RGBColor> + 'a>);
+    let panels: [Panel<'_>; 5] = [
+        ("exact", Box::new(|i| exact[i].map(tone))),
+        ("SH9", Box::new(|i| sh9[i].map(tone))),
+        ("MIS, 16 samples", Box::new(|i| mis[i].map(tone))),
+        (
+            "SH9 error",
+            Box::new(|i| Some(heat((sh9[i]? - exact[i]?).abs()))),
+        ),
+        (
+            "MIS error",
+            Box::new(|i| Some(heat((mis[i]? - exact[i]?).abs()))),
+        ),
+    ];
+    let width = panels.len() * (size + gap) - gap;
+    crate::plot::png_figure(name, (width as u32, (size + label_band) as u32), |root| {
+        for (slot, (label, colour)) in panels.iter().enumerate() {
+            let x0 = slot * (size + gap);
+            root.draw(&Text::new(*label, (x0 as i32 + 4, 4), ("sans-serif", 13)))
+                .map_err(err)?;
+            for index in 0..size * size {
+                if let Some(c) = colour(index) {
+                    let x = (x0 + index % size) as i32;
+                    let y = (label_band + index / size) as i32;
+                    root.draw_pixel((x, y), &c).map_err(err)?;
+                }
+            }
+        }
+        Ok(())
+    })
 }
 
 /// One row of the benchmark CSV.

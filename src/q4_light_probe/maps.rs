@@ -257,11 +257,10 @@ impl AnalyticMap {
     /// irradiance `10π` whatever its size.
     #[must_use]
     pub fn sky_with_sun(half_angle: f64) -> Self {
-        let elevation = 30f64.to_radians();
         let mut map = Self::sky();
         map.terms.push(Term::Cap {
             radiance: 10.0 / half_angle.sin().powi(2),
-            centre: DVec3::new(elevation.cos(), 0.0, elevation.sin()),
+            centre: super::study::sun_direction(),
             half_angle,
         });
         map

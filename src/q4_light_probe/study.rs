@@ -121,6 +121,19 @@ pub fn study_maps() -> [(&'static str, AnalyticMap); 2] {
     [("soft", AnalyticMap::soft()), ("sun", AnalyticMap::sun())]
 }
 
+/// The direction of the sun in [`AnalyticMap::sun`] (elevation 30° toward `+x`).
+///
+/// # Examples
+/// ```
+/// let s = hw3::q4_light_probe::study::sun_direction();
+/// assert!((s.z - 0.5).abs() < 1e-12);
+/// ```
+#[must_use]
+pub fn sun_direction() -> DVec3 {
+    let elevation = 30f64.to_radians();
+    DVec3::new(elevation.cos(), 0.0, elevation.sin())
+}
+
 /// Every configuration the benchmark measures: texel sums and SH9 at each probe size, Monte Carlo
 /// at each sample count on a 256² probe.
 #[must_use]

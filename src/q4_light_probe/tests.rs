@@ -56,14 +56,6 @@ fn oracle_maps() -> Vec<(&'static str, AnalyticMap)> {
 /// Maps whose radiance has only l ≤ 2 content plus odd orders (SH9 is exact on them).
 const SH9_EXACT: [&str; 4] = ["constant", "linear", "quadratic", "hemisphere"];
 
-/// The direction of the sun in [`AnalyticMap::sun`].
-fn sun_centre(map: &AnalyticMap) -> DVec3 {
-    match map.terms[1] {
-        Term::Cap { centre, .. } => centre,
-        _ => unreachable!("the sun map's second term is the sun"),
-    }
-}
-
 fn ball(map: &AnalyticMap, size: usize) -> Probe {
     Probe::from_map(map, ProbeFormat::MirrorBall, size, horizontal_camera()).unwrap()
 }
@@ -274,7 +266,7 @@ fn only_map_sampling_finds_a_real_sun() {
     let map = AnalyticMap::sun();
     let probe = ball(&map, 64);
     let prepared = Irradiance::new(&probe);
-    let sun = sun_centre(&map);
+    let sun = study::sun_direction();
     let peak = map.irradiance(sun);
     let rms_percent = |method| {
         let (mean, sd) = seed_statistics(&prepared, sun, method, 256, 64);
@@ -335,7 +327,7 @@ fn sub_texel_sun_straddling_the_horizon_is_all_or_nothing() {
     let map = AnalyticMap::sun();
     let probe = ball(&map, 64);
     let prepared = Irradiance::new(&probe);
-    let sun = sun_centre(&map);
+    let sun = study::sun_direction();
     let facing = prepared.weighted(sun).x;
     assert!(
         (facing / map.irradiance(sun) - 1.0).abs() < 2e-3,
