@@ -119,18 +119,13 @@ fn sweep() {
         "| map | configuration | mean error (% of peak) | max error (% of peak) | time per normal |\n|---|---|---|---|---|\n",
     );
     let mut summary = String::new();
-    for (map_name, map) in study::study_maps() {
+    for (map_name, map) in study::study_maps().expect("the vendored maps are readable") {
+        let reference = map.reference(&normals);
         let mut probes: Vec<(usize, Probe)> = Vec::new();
         let mut results: Vec<(Config, study::ErrorSummary, f64)> = Vec::new();
         for config in study::configurations() {
             if !probes.iter().any(|(s, _)| *s == config.size) {
-                let probe = Probe::from_map(
-                    &map,
-                    ProbeFormat::MirrorBall,
-                    config.size,
-                    horizontal_camera(),
-                )
-                .expect("valid analytic map");
+                let probe = map.ball(config.size).expect("a valid size");
                 probes.push((config.size, probe));
             }
             let probe = &probes
@@ -140,16 +135,16 @@ fn sweep() {
                 .1;
             let prepared = Irradiance::new(probe);
             let error = study::method_error(
-                &map,
                 &prepared,
                 config.method,
                 config.samples,
                 &seeds,
                 &normals,
+                &reference,
             );
             let ns = time_per_normal(&prepared, config, &normals);
             eprintln!(
-                "{map_name:>5} {:<18} {:>9.4} % {:>9.4} % {:>12.1} ns",
+                "{map_name:>9} {:<18} {:>9.4} % {:>9.4} % {:>12.1} ns",
                 config.label(),
                 error.mean_percent,
                 error.max_percent,

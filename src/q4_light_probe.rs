@@ -131,7 +131,7 @@ fn unweighted_bias(format: ProbeFormat) -> study::ErrorSummary {
     let map = AnalyticMap::constant(1.0);
     let probe =
         Probe::from_map(&map, format, 128, horizontal_camera()).expect("valid analytic map");
-    study::method_error(
+    study::analytic_error(
         &map,
         &Irradiance::new(&probe),
         Method::Unweighted,

@@ -188,3 +188,41 @@ fn invalid_input_exits_2_and_prints_nothing() {
         assert!(!out.stderr.is_empty(), "{args:?}");
     }
 }
+
+#[test]
+fn a_vendored_hdr_file_is_read_as_a_lat_long_map() {
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/data/q4/courtyard_256x128.hdr");
+    let e = irradiance(&[
+        "--env", path, "--normal", "0,0,1", "--method", "weighted", "--json",
+    ]);
+    assert!(e.iter().all(|c| c.is_finite() && *c > 0.0), "{e:?}");
+    assert!(e[0] != e[1] || e[1] != e[2], "a real map has colour: {e:?}");
+}
+
+#[test]
+fn a_truncated_hdr_file_exits_2() {
+    let dir = std::env::temp_dir().join(format!("hw3-q4-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("truncated.hdr");
+    let full = std::fs::read(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/data/q4/sunrise_256x128.hdr"
+    ))
+    .unwrap();
+    std::fs::write(&path, &full[..full.len() / 2]).unwrap();
+    let out = hw3(&[
+        "--env",
+        path.to_str().unwrap(),
+        "--normal",
+        "0,0,1",
+        "--method",
+        "sh9",
+    ]);
+    assert_eq!(
+        out.status.code(),
+        Some(2),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -103,8 +103,15 @@ pub(crate) fn uniform01(rng: &mut impl Rng) -> f64 {
     (rng.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
 }
 
-/// Rec. 709 luminance, the scalar the map sampler follows.
-fn luminance(c: DVec3) -> f64 {
+/// Rec. 709 luminance, the scalar the map sampler follows and the study's errors are measured in
+/// (equal to the value itself for grey radiance).
+///
+/// # Examples
+/// ```
+/// assert!((hw3::q4_light_probe::irradiance::luminance(glam::DVec3::splat(2.0)) - 2.0).abs() < 1e-15);
+/// ```
+#[must_use]
+pub fn luminance(c: DVec3) -> f64 {
     c.dot(DVec3::new(0.2126, 0.7152, 0.0722))
 }
 

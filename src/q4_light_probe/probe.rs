@@ -273,6 +273,69 @@ impl Probe {
         Ok(probe)
     }
 
+    /// A probe in `format` synthesised from a lat-long `source` by splatting: each source texel
+    /// sends its power `L Δω` as 4×4 stratified points (uniform in solid angle over the texel) to
+    /// the texels that see them, so energy is conserved whatever the two resolutions (a sun
+    /// smaller than a texel is neither lost nor duplicated). Points in a blind cone are lost, as in
+    /// a photograph.
+    ///
+    /// # Errors
+    /// [`InputError::OutOfRange`] if `source` is not lat-long; [`ProbeError::Empty`] for size 0.
+    ///
+    /// # Examples
+    /// ```
+    /// use glam::{DMat3, DVec3};
+    /// use hw3::q4_light_probe::{horizontal_camera, Probe, ProbeFormat};
+    /// let sky = Probe::from_fn(ProbeFormat::LatLong, 16, 8, DMat3::IDENTITY, |w| DVec3::splat(w.z.max(0.0))).unwrap();
+    /// let ball = Probe::resample_lat_long(&sky, ProbeFormat::MirrorBall, 16, horizontal_camera()).unwrap();
+    /// let power = |p: &Probe| p.texels().iter().map(|t| t.radiance.x * t.solid_angle).sum::<f64>();
+    /// assert!((power(&ball) / power(&sky) - 1.0).abs() < 1e-12);
+    /// ```
+    pub fn resample_lat_long(
+        source: &Probe,
+        format: ProbeFormat,
+        size: usize,
+        world_from_probe: DMat3,
+    ) -> Result<Self, ProbeError> {
+        if source.format != ProbeFormat::LatLong {
+            return Err(InputError::OutOfRange {
+                name: "source format",
+                value: source.format.name(),
+                expected: "lat-long",
+            }
+            .into());
+        }
+        let mut probe = Self::from_fn(format, size, size, world_from_probe, |_| DVec3::ZERO)?;
+        const STRATA: usize = 4;
+        for (index, texel) in source.texels.iter().enumerate() {
+            if texel.solid_angle <= 0.0 || texel.radiance == DVec3::ZERO {
+                continue;
+            }
+            let rect = source.texel_rect(index);
+            let power = texel.radiance * (texel.solid_angle / (STRATA * STRATA) as f64);
+            let (z0, z1) = (
+                (std::f64::consts::PI * rect.min.y).cos(),
+                (std::f64::consts::PI * rect.max.y).cos(),
+            );
+            for a in 0..STRATA {
+                for b in 0..STRATA {
+                    let u =
+                        rect.min.x + (rect.max.x - rect.min.x) * (a as f64 + 0.5) / STRATA as f64;
+                    let z = z0 + (z1 - z0) * (b as f64 + 0.5) / STRATA as f64;
+                    let s = (1.0 - z * z).max(0.0).sqrt();
+                    let (sin_p, cos_p) = (std::f64::consts::TAU * u).sin_cos();
+                    let omega = source.world_from_probe * DVec3::new(s * cos_p, s * sin_p, z);
+                    if let Some(target) = probe.texel_index_toward(omega) {
+                        let t = &mut probe.texels[target];
+                        t.radiance += power / t.solid_angle;
+                    }
+                }
+            }
+        }
+        probe.validate()?;
+        Ok(probe)
+    }
+
     fn splat_cap(&mut self, radiance: f64, centre: DVec3, half_angle: f64, m: usize) {
         let cap_solid_angle = std::f64::consts::TAU * 2.0 * (0.5 * half_angle).sin().powi(2);
         let power = radiance * cap_solid_angle / (m * m) as f64;

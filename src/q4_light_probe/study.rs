@@ -1,8 +1,9 @@
 //! Shared tools of the accuracy study: test normals, peak-normalised errors, and the table of
 //! methods and parameters the benchmark sweeps.
 
-use super::irradiance::{Irradiance, Method};
+use super::irradiance::{Irradiance, Method, luminance};
 use super::maps::AnalyticMap;
+use super::{Probe, ProbeError, ProbeFormat, horizontal_camera};
 use glam::DVec3;
 use rand_core::SeedableRng;
 use rand_pcg::Pcg64;
@@ -36,42 +37,48 @@ pub struct ErrorSummary {
     pub mean_percent: f64,
     /// Worst normal.
     pub max_percent: f64,
+    /// Mean over normals of the error relative to that normal's own reference, where the
+    /// reference exceeds 1 % of the peak (grazing normals are left out): the metric papers quote.
+    pub mean_relative_percent: f64,
 }
 
-/// The error of `method` (first channel) against `map`'s exact irradiance over `normals`; Monte
-/// Carlo methods are run once per seed and summarised by their RMS error per normal.
+/// The error of `method` (luminance) against the exact `reference` irradiance at each of
+/// `normals`; Monte Carlo methods are run once per seed and summarised by their RMS error per
+/// normal.
 ///
 /// # Panics
-/// If `normals` is empty, `seeds` is empty, or a normal is not a unit vector (internal tool).
+/// If `normals` or `seeds` is empty, `reference` has another length, or a normal is not a unit
+/// vector (an internal tool with fixed inputs).
 ///
 /// # Examples
 /// ```
 /// use hw3::q4_light_probe::{horizontal_camera, maps::AnalyticMap, study, irradiance::{Irradiance, Method}, Probe, ProbeFormat};
 /// let map = AnalyticMap::constant(1.0);
 /// let probe = Probe::from_map(&map, ProbeFormat::MirrorBall, 16, horizontal_camera()).unwrap();
-/// let e = study::method_error(&map, &Irradiance::new(&probe), Method::Cosine, 8, &[1, 2], &study::fibonacci_normals(8));
+/// let normals = study::fibonacci_normals(8);
+/// let exact: Vec<f64> = normals.iter().map(|n| map.irradiance(*n)).collect();
+/// let e = study::method_error(&Irradiance::new(&probe), Method::Cosine, 8, &[1, 2], &normals, &exact);
 /// assert!(e.max_percent < 1e-10);
 /// ```
 #[must_use]
 pub fn method_error(
-    map: &AnalyticMap,
     prepared: &Irradiance<'_>,
     method: Method,
     samples: usize,
     seeds: &[u64],
     normals: &[DVec3],
+    reference: &[f64],
 ) -> ErrorSummary {
-    assert!(!normals.is_empty() && !seeds.is_empty());
-    let exact: Vec<f64> = normals.iter().map(|n| map.irradiance(*n)).collect();
-    let peak = exact.iter().copied().fold(0.0, f64::max);
+    assert!(!normals.is_empty() && !seeds.is_empty() && reference.len() == normals.len());
+    let peak = reference.iter().copied().fold(0.0, f64::max);
     let seeds = if method.is_monte_carlo() {
         seeds
     } else {
         &seeds[..1]
     };
-    let errors: Vec<f64> = normals
+    let errors: Vec<(f64, f64)> = normals
         .iter()
-        .zip(&exact)
+        .zip(reference)
         .map(|(n, e)| {
             let squared: f64 = seeds
                 .iter()
@@ -80,16 +87,90 @@ pub fn method_error(
                     let got = prepared
                         .estimate(*n, method, samples, &mut rng)
                         .expect("unit normals and samples ≥ 1");
-                    (got.x - e).powi(2)
+                    (luminance(got) - e).powi(2)
                 })
                 .sum();
-            (squared / seeds.len() as f64).sqrt() / peak * 100.0
+            let rms = (squared / seeds.len() as f64).sqrt();
+            (rms / peak * 100.0, rms / e.abs() * 100.0)
         })
         .collect();
+    let relative: Vec<f64> = errors
+        .iter()
+        .zip(reference)
+        .filter(|(_, e)| e.abs() > 0.01 * peak)
+        .map(|((_, r), _)| *r)
+        .collect();
     ErrorSummary {
-        mean_percent: errors.iter().sum::<f64>() / errors.len() as f64,
-        max_percent: errors.iter().copied().fold(0.0, f64::max),
+        mean_percent: errors.iter().map(|e| e.0).sum::<f64>() / errors.len() as f64,
+        max_percent: errors.iter().map(|e| e.0).fold(0.0, f64::max),
+        mean_relative_percent: relative.iter().sum::<f64>() / relative.len().max(1) as f64,
     }
+}
+
+/// [`method_error`] against an analytic map's exact irradiance.
+#[must_use]
+pub fn analytic_error(
+    map: &AnalyticMap,
+    prepared: &Irradiance<'_>,
+    method: Method,
+    samples: usize,
+    seeds: &[u64],
+    normals: &[DVec3],
+) -> ErrorSummary {
+    let exact: Vec<f64> = normals.iter().map(|n| map.irradiance(*n)).collect();
+    method_error(prepared, method, samples, seeds, normals, &exact)
+}
+
+/// A map of the accuracy study: analytic (exact irradiance known in closed form) or a real
+/// lat-long HDR file (reference: its own solid-angle-weighted texel sum at full resolution).
+#[derive(Debug, Clone)]
+pub enum StudyMap {
+    /// A closed-form map.
+    Analytic(AnalyticMap),
+    /// A lat-long probe read from a file.
+    LatLong(Probe),
+}
+
+impl StudyMap {
+    /// The orthographic mirror-ball probe of `size`² texels synthesised from the map (camera on
+    /// the +x horizon): analytic maps are rasterised, files are resampled by splatting
+    /// ([`Probe::resample_lat_long`]).
+    ///
+    /// # Errors
+    /// [`ProbeError`] for a zero size.
+    pub fn ball(&self, size: usize) -> Result<Probe, ProbeError> {
+        match self {
+            Self::Analytic(map) => {
+                Probe::from_map(map, ProbeFormat::MirrorBall, size, horizontal_camera())
+            }
+            Self::LatLong(source) => {
+                Probe::resample_lat_long(source, ProbeFormat::MirrorBall, size, horizontal_camera())
+            }
+        }
+    }
+
+    /// The reference irradiance (luminance) at each normal.
+    #[must_use]
+    pub fn reference(&self, normals: &[DVec3]) -> Vec<f64> {
+        match self {
+            Self::Analytic(map) => normals.iter().map(|n| map.irradiance(*n)).collect(),
+            Self::LatLong(source) => {
+                let prepared = Irradiance::new(source);
+                normals
+                    .iter()
+                    .map(|n| luminance(prepared.weighted(*n)))
+                    .collect()
+            }
+        }
+    }
+}
+
+/// Path of a vendored real map (`"courtyard"` or `"sunrise"`, see `data/q4/README.md`).
+#[must_use]
+pub fn real_map_path(name: &str) -> std::path::PathBuf {
+    std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("data/q4")
+        .join(format!("{name}_256x128.hdr"))
 }
 
 /// One configuration of the accuracy-versus-time study.
@@ -115,10 +196,24 @@ impl Config {
     }
 }
 
-/// The study's maps: `(name, map)` for the soft sky and the sun.
-#[must_use]
-pub fn study_maps() -> [(&'static str, AnalyticMap); 2] {
-    [("soft", AnalyticMap::soft()), ("sun", AnalyticMap::sun())]
+/// The study's maps: the analytic soft sky and sun, and the vendored real CC0 maps (soft
+/// `courtyard`, hard `sunrise`).
+///
+/// # Errors
+/// [`ProbeError`] if a vendored file cannot be read.
+pub fn study_maps() -> Result<Vec<(&'static str, StudyMap)>, ProbeError> {
+    Ok(vec![
+        ("soft", StudyMap::Analytic(AnalyticMap::soft())),
+        ("sun", StudyMap::Analytic(AnalyticMap::sun())),
+        (
+            "courtyard",
+            StudyMap::LatLong(Probe::read_lat_long(real_map_path("courtyard"))?),
+        ),
+        (
+            "sunrise",
+            StudyMap::LatLong(Probe::read_lat_long(real_map_path("sunrise"))?),
+        ),
+    ])
 }
 
 /// The direction of the sun in [`AnalyticMap::sun`] (elevation 30° toward `+x`).

@@ -61,7 +61,7 @@ fn ball(map: &AnalyticMap, size: usize) -> Probe {
 }
 
 fn deterministic_error(map: &AnalyticMap, probe: &Probe, method: Method) -> study::ErrorSummary {
-    study::method_error(
+    study::analytic_error(
         map,
         &Irradiance::new(probe),
         method,
@@ -418,4 +418,65 @@ fn answers_are_pinned() {
     crate::test_support::insta_settings().bind(|| {
         insta::assert_snapshot!("q4_answers", answers.text);
     });
+}
+
+/// The vendored real maps as (name, ball probe at 128², reference at 64 normals).
+fn real_maps() -> Vec<(&'static str, Probe, Vec<f64>)> {
+    let normals = fibonacci_normals(64);
+    study::study_maps()
+        .unwrap()
+        .into_iter()
+        .filter(|(_, m)| matches!(m, study::StudyMap::LatLong(_)))
+        .map(|(name, map)| (name, map.ball(128).unwrap(), map.reference(&normals)))
+        .collect()
+}
+
+#[test]
+fn real_maps_resampled_into_a_ball_keep_their_irradiance() {
+    // The 128² ball is resampled (nearest texel) from the 256×128 lat-long file; its weighted sum
+    // stays close to the file's own (the splat conserves energy; what is left is the direction of
+    // each texel).
+    let normals = fibonacci_normals(64);
+    for (name, ball, reference) in real_maps() {
+        let e = study::method_error(
+            &Irradiance::new(&ball),
+            Method::Weighted,
+            1,
+            &[0],
+            &normals,
+            &reference,
+        );
+        // Measured mean / max: courtyard 0.03 / 0.12 %, sunrise 0.22 / 0.87 % of peak.
+        assert!(e.mean_percent < 0.5 && e.max_percent < 2.0, "{name}: {e:?}");
+    }
+}
+
+#[test]
+fn sh9_meets_the_target_on_the_soft_real_map_and_not_on_the_sunrise() {
+    // The target, ≤ 3 % mean error on the soft map, holds peak-normalised (measured
+    // 1.6 % mean / 3.8 % max on the courtyard) but not relative to each normal's own irradiance
+    // (4.8 % mean). On the sunrise (61 % of its light in 0.1 % of the sphere) the relative error
+    // is 23.5 % (reference note: 27 % on the same map at full resolution) and the worst normal is
+    // off by 7 % of the peak.
+    let normals = fibonacci_normals(64);
+    let errors: Vec<(&str, study::ErrorSummary)> = real_maps()
+        .into_iter()
+        .map(|(name, ball, reference)| {
+            let prepared = Irradiance::new(&ball);
+            let e = study::method_error(&prepared, Method::Sh9, 1, &[0], &normals, &reference);
+            (name, e)
+        })
+        .collect();
+    let [("courtyard", soft), ("sunrise", sun)] = errors[..] else {
+        panic!("expected the courtyard and the sunrise, got {errors:?}");
+    };
+    assert!(
+        soft.mean_percent < 3.0 && soft.max_percent < 5.0,
+        "{soft:?}"
+    );
+    assert!(
+        sun.mean_relative_percent > 3.0 * soft.mean_relative_percent,
+        "{sun:?} vs {soft:?}"
+    );
+    assert!(sun.max_percent > 5.0, "{sun:?}");
 }
