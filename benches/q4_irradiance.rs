@@ -113,10 +113,11 @@ fn time_per_normal(prepared: &Irradiance<'_>, config: Config, normals: &[DVec3])
 fn sweep() {
     let normals = fibonacci_normals(64);
     let seeds: Vec<u64> = (1..=8).collect();
-    let mut csv =
-        String::from("map,method,label,size,samples,mean_percent,max_percent,ns_per_normal\n");
+    let mut csv = String::from(
+        "map,method,label,size,samples,mean_percent,max_percent,ns_per_normal,mean_relative_percent\n",
+    );
     let mut table = String::from(
-        "| map | configuration | mean error (% of peak) | max error (% of peak) | time per normal |\n|---|---|---|---|---|\n",
+        "| map | configuration | mean error (% of peak) | max error (% of peak) | mean relative error (%) | time per normal |\n|---|---|---|---|---|---|\n",
     );
     let mut summary = String::new();
     for (map_name, map) in study::study_maps().expect("the vendored maps are readable") {
@@ -152,21 +153,23 @@ fn sweep() {
             );
             let _ = writeln!(
                 csv,
-                "{map_name},{},{},{},{},{:.6},{:.6},{:.1}",
+                "{map_name},{},{},{},{},{:.6},{:.6},{:.1},{:.6}",
                 config.method.name(),
                 config.label(),
                 config.size,
                 config.samples,
                 error.mean_percent,
                 error.max_percent,
-                ns
+                ns,
+                error.mean_relative_percent
             );
             let _ = writeln!(
                 table,
-                "| {map_name} | {} | {:.4} | {:.4} | {} |",
+                "| {map_name} | {} | {:.4} | {:.4} | {:.3} | {} |",
                 config.label(),
                 error.mean_percent,
                 error.max_percent,
+                error.mean_relative_percent,
                 human_time(ns)
             );
             results.push((config, error, ns));
@@ -187,11 +190,12 @@ fn sweep() {
         };
         let _ = writeln!(
             summary,
-            "- **{map_name}**: SH9 (256² projection) {:.3} % mean / {:.3} % max error in {} per normal; \
+            "- **{map_name}**: SH9 (256² projection) {:.3} % mean / {:.3} % max error ({:.2} % mean relative) in {} per normal; \
              the 256² weighted sum {:.4} % / {:.4} % in {}: SH9 is {:.0}× faster \
              (plus a one-off projection of {}).",
             sh9_error.mean_percent,
             sh9_error.max_percent,
+            sh9_error.mean_relative_percent,
             human_time(*sh9_ns),
             weighted_error.mean_percent,
             weighted_error.max_percent,
@@ -203,8 +207,11 @@ fn sweep() {
     let markdown = format!(
         "Measured by `cargo bench --bench q4_irradiance` (release, one thread, 2-core shared VM: timings \
          vary by ±30 % between runs). Error: % of the peak exact irradiance over 64 Fibonacci normals; \
+         Relative error: per normal, against that normal's own reference, normals below 1 % of the peak left out. \
          Monte Carlo: per-normal RMS over 8 seeds, on a 256² probe. Orthographic mirror-ball probes \
-         rasterised from the analytic soft and sun maps (synthetic, not photographs).\n\n{summary}\n{table}"
+         rasterised from the analytic soft and sun maps (exact reference: the closed forms), or \
+         resampled from the vendored 256×128 CC0 lat-long maps courtyard and sunrise (reference: the \
+         file's own solid-angle-weighted texel sum); no photograph of a real ball.\n\n{summary}\n{table}"
     );
     let data = concat!(env!("CARGO_MANIFEST_DIR"), "/docs/data");
     std::fs::write(format!("{data}/q4_accuracy_time.csv"), csv).expect("docs/data is writable");

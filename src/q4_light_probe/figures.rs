@@ -30,6 +30,8 @@ pub fn figures() -> Result<Vec<Figure>, PlotError> {
         solid_angle_figure()?,
         pareto_figure("soft")?,
         pareto_figure("sun")?,
+        pareto_figure("courtyard")?,
+        pareto_figure("sunrise")?,
         sphere_render_figure()?,
     ])
 }
@@ -365,7 +367,7 @@ mod tests {
     fn the_committed_csv_parses() {
         let rows = parse_csv(ACCURACY_CSV);
         assert!(!rows.is_empty(), "run cargo bench --bench q4_irradiance");
-        for map in ["soft", "sun"] {
+        for map in ["soft", "sun", "courtyard", "sunrise"] {
             assert!(rows.iter().any(|r| r.map == map && r.method == "sh9"));
         }
     }
