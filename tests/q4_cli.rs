@@ -113,71 +113,24 @@ fn same_seed_same_answer() {
 
 #[test]
 fn invalid_input_exits_2_and_prints_nothing() {
-    let cases: &[&[&str]] = &[
-        &["--env", "sky", "--normal", "0,0,1", "--method", "guess"],
-        &["--env", "sky", "--normal", "0,0", "--method", "sh9"],
-        &["--env", "sky", "--normal", "0,0,0", "--method", "sh9"],
-        &["--env", "sky", "--normal", "nan,0,1", "--method", "sh9"],
-        &[
-            "--env",
-            "constant:-1",
-            "--normal",
-            "0,0,1",
-            "--method",
-            "sh9",
-        ],
-        &[
-            "--env",
-            "constant:inf",
-            "--normal",
-            "0,0,1",
-            "--method",
-            "sh9",
-        ],
-        &[
-            "--env",
-            "linear:1,2",
-            "--normal",
-            "0,0,1",
-            "--method",
-            "sh9",
-        ],
-        &["--env", "linear:1", "--normal", "0,0,1", "--method", "sh9"],
-        &[
-            "--env",
-            "/no/such/map.hdr",
-            "--normal",
-            "0,0,1",
-            "--method",
-            "sh9",
-        ],
-        &[
-            "--env", "sky", "--normal", "0,0,1", "--method", "sh9", "--size", "0",
-        ],
-        &[
-            "--env",
-            "sky",
-            "--normal",
-            "0,0,1",
-            "--method",
-            "cosine",
-            "--samples",
-            "0",
-        ],
-        &[
-            "--env",
-            "sky",
-            "--normal",
-            "0,0,1",
-            "--method",
-            "cosine",
-            "--samples",
-            "-3",
-        ],
-        &["--env", "sky", "--method", "sh9"],
+    let cases = [
+        "--env sky --normal 0,0,1 --method guess",
+        "--env sky --normal 0,0 --method sh9",
+        "--env sky --normal 0,0,0 --method sh9",
+        "--env sky --normal nan,0,1 --method sh9",
+        "--env constant:-1 --normal 0,0,1 --method sh9",
+        "--env constant:inf --normal 0,0,1 --method sh9",
+        "--env linear:1,2 --normal 0,0,1 --method sh9",
+        "--env linear:1 --normal 0,0,1 --method sh9",
+        "--env /no/such/map.hdr --normal 0,0,1 --method sh9",
+        "--env sky --normal 0,0,1 --method sh9 --size 0",
+        "--env sky --normal 0,0,1 --method cosine --samples 0",
+        "--env sky --normal 0,0,1 --method cosine --samples -3",
+        "--env sky --method sh9",
     ];
-    for args in cases {
-        let out = hw3(args);
+    for case in cases {
+        let args: Vec<&str> = case.split_whitespace().collect();
+        let out = hw3(&args);
         assert_eq!(
             out.status.code(),
             Some(2),

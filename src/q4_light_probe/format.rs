@@ -20,6 +20,16 @@ use glam::{DVec2, DVec3};
 use std::f64::consts::{PI, TAU};
 
 /// How a light-probe image encodes directions.
+///
+/// # Examples
+/// ```
+/// use hw3::q4_light_probe::ProbeFormat;
+/// // The four formats agree on the direction back to the camera / the zenith at θ = 0.
+/// for format in [ProbeFormat::MirrorBall, ProbeFormat::AngularMap, ProbeFormat::perspective_ball(5.0).unwrap()] {
+///     let p = format.direction_to_image(glam::DVec3::Z).unwrap();
+///     assert!(p.length() < 1e-12);
+/// }
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum ProbeFormat {
     /// A mirrored ball seen by an orthographic camera: `θ = 2 arcsin ρ`. Equal-area (`dω = 4 dA`),
@@ -142,6 +152,11 @@ impl ProbeFormat {
     }
 
     /// A short name for tables and figures.
+    ///
+    /// # Examples
+    /// ```
+    /// assert_eq!(hw3::q4_light_probe::ProbeFormat::AngularMap.name(), "angular map");
+    /// ```
     #[must_use]
     pub fn name(&self) -> String {
         match self {
@@ -202,6 +217,14 @@ impl ProbeFormat {
     }
 
     /// The largest `θ` the disk format sees (`π`, or `π − arcsin(R/D)` for the perspective ball).
+    ///
+    /// # Examples
+    /// ```
+    /// use hw3::q4_light_probe::ProbeFormat;
+    /// assert_eq!(ProbeFormat::MirrorBall.max_theta(), std::f64::consts::PI);
+    /// let blind = std::f64::consts::PI - ProbeFormat::perspective_ball(2.0).unwrap().max_theta();
+    /// assert!((blind.to_degrees() - 30.0).abs() < 1e-9); // arcsin(1/2)
+    /// ```
     #[must_use]
     pub fn max_theta(&self) -> f64 {
         match *self {
@@ -454,28 +477,32 @@ fn ray_rect_span(dir: DVec2, rect: Rect) -> Option<(f64, f64)> {
 
 /// Points where the rectangle's edges cross the unit circle.
 fn rim_crossings(rect: Rect) -> Vec<DVec2> {
-    let mut points = Vec::new();
-    for x in [rect.min.x, rect.max.x] {
-        if x.abs() < 1.0 {
-            let y = (1.0 - x * x).sqrt();
-            for y in [y, -y] {
-                if (rect.min.y..=rect.max.y).contains(&y) {
-                    points.push(DVec2::new(x, y));
-                }
-            }
-        }
-    }
-    for y in [rect.min.y, rect.max.y] {
-        if y.abs() < 1.0 {
-            let x = (1.0 - y * y).sqrt();
-            for x in [x, -x] {
-                if (rect.min.x..=rect.max.x).contains(&x) {
-                    points.push(DVec2::new(x, y));
-                }
-            }
-        }
-    }
+    // The horizontal edges are the vertical edges of the transposed rectangle.
+    let transpose = |p: DVec2| DVec2::new(p.y, p.x);
+    let transposed = Rect {
+        min: transpose(rect.min),
+        max: transpose(rect.max),
+    };
+    let mut points = vertical_edge_crossings(rect);
+    points.extend(
+        vertical_edge_crossings(transposed)
+            .into_iter()
+            .map(transpose),
+    );
     points
+}
+
+/// Points where the edges `x = min.x` and `x = max.x` cross the unit circle.
+fn vertical_edge_crossings(rect: Rect) -> Vec<DVec2> {
+    [rect.min.x, rect.max.x]
+        .into_iter()
+        .filter(|x| x.abs() < 1.0)
+        .flat_map(|x| {
+            let y = (1.0 - x * x).sqrt();
+            [DVec2::new(x, y), DVec2::new(x, -y)]
+        })
+        .filter(|p| (rect.min.y..=rect.max.y).contains(&p.y))
+        .collect()
 }
 
 /// `∫_{-1}^{x} √(1−s²) ds` for `x ∈ [-1, 1]`.

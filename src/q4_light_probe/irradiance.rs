@@ -12,6 +12,16 @@ use std::f64::consts::{PI, TAU};
 use std::str::FromStr;
 
 /// An irradiance method (the CLI's `--method`).
+///
+/// # Examples
+/// ```
+/// use hw3::q4_light_probe::Method;
+/// let m: Method = "mis".parse().unwrap();
+/// assert_eq!(m, Method::Mis);
+/// assert!(m.is_monte_carlo() && !Method::Sh9.is_monte_carlo());
+/// assert_eq!(Method::ALL.map(Method::name).join("|"), "unweighted|weighted|uniform|cosine|map|mis|sh9");
+/// assert!("guess".parse::<Method>().is_err());
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Method {
     /// The seed's literal sum: every texel inside the ball weighted equally (`Ω_covered / N`).
@@ -117,6 +127,13 @@ pub fn luminance(c: DVec3) -> f64 {
 
 /// The spherical-harmonic basis `Y_lm(ω)` for l ≤ 2, ordered (0,0), (1,−1), (1,0), (1,1),
 /// (2,−2), (2,−1), (2,0), (2,1), (2,2) (reference note §2).
+///
+/// # Examples
+/// ```
+/// use hw3::q4_light_probe::irradiance::sh_basis;
+/// let y = sh_basis(glam::DVec3::Z);
+/// assert!((y[0] - 0.282095).abs() < 1e-6 && (y[2] - 0.488603).abs() < 1e-6);
+/// ```
 #[must_use]
 pub fn sh_basis(omega: DVec3) -> [f64; 9] {
     let (x, y, z) = (omega.x, omega.y, omega.z);
@@ -152,6 +169,18 @@ const KERNEL: [f64; 9] = [
 ];
 
 /// The 9 RGB SH coefficients `L_lm = Σ_t L_t Y_lm(ω_t) Δω_t` of a probe.
+///
+/// # Examples
+/// ```
+/// use glam::{DMat3, DVec3};
+/// use hw3::q4_light_probe::{Probe, ProbeFormat, Sh9};
+/// // L = 1 + ω_z has only l ≤ 1 content: SH9 is exact up to the projection's quadrature.
+/// let probe = Probe::from_fn(ProbeFormat::MirrorBall, 64, 64, DMat3::IDENTITY, |w| DVec3::splat(1.0 + w.z)).unwrap();
+/// let sh9 = Sh9::project(&probe);
+/// let exact = std::f64::consts::PI * (1.0 + 2.0 / 3.0);
+/// assert!((sh9.irradiance(DVec3::Z).x / exact - 1.0).abs() < 1e-3);
+/// assert!(sh9.irradiance_unclamped(-DVec3::Z).x > 0.0);
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Sh9 {
     /// Coefficients in [`sh_basis`] order.
@@ -257,6 +286,20 @@ impl<'a> Irradiance<'a> {
     ///
     /// # Errors
     /// [`InputError`] for a non-finite or zero normal, or zero samples for a Monte Carlo method.
+    ///
+    /// # Examples
+    /// ```
+    /// use glam::DVec3;
+    /// use hw3::q4_light_probe::{horizontal_camera, maps::AnalyticMap, Irradiance, Method, Probe, ProbeFormat};
+    /// use rand_core::SeedableRng;
+    /// let probe = Probe::from_map(&AnalyticMap::sky(), ProbeFormat::MirrorBall, 16, horizontal_camera()).unwrap();
+    /// let prepared = Irradiance::new(&probe);
+    /// let mut rng = rand_pcg::Pcg64::seed_from_u64(0);
+    /// assert!(prepared.estimate(DVec3::ZERO, Method::Sh9, 1, &mut rng).is_err());
+    /// assert!(prepared.estimate(DVec3::Z, Method::Map, 0, &mut rng).is_err());
+    /// let e = prepared.estimate(DVec3::new(0.0, 0.0, 5.0), Method::Sh9, 1, &mut rng).unwrap(); // any length
+    /// assert!((e.x / std::f64::consts::PI - 1.0).abs() < 0.01);
+    /// ```
     pub fn estimate(
         &self,
         normal: DVec3,
@@ -286,6 +329,19 @@ impl<'a> Irradiance<'a> {
 
     /// The seed's sum with equal weights `Ω_covered / N` over the `N` texels whose centre is in
     /// the image disk: right only where texels subtend equal solid angles (the orthographic ball).
+    ///
+    /// # Examples
+    /// ```
+    /// use glam::DVec3;
+    /// use hw3::q4_light_probe::{horizontal_camera, maps::AnalyticMap, Irradiance, Probe, ProbeFormat};
+    /// // Equal weights are nearly right on the equal-area mirror ball, far off on the angular map.
+    /// let map = AnalyticMap::constant(1.0);
+    /// let pi = std::f64::consts::PI;
+    /// let ball = Probe::from_map(&map, ProbeFormat::MirrorBall, 64, horizontal_camera()).unwrap();
+    /// assert!((Irradiance::new(&ball).unweighted(DVec3::Z).x / pi - 1.0).abs() < 0.01);
+    /// let angular = Probe::from_map(&map, ProbeFormat::AngularMap, 64, horizontal_camera()).unwrap();
+    /// assert!((Irradiance::new(&angular).unweighted(DVec3::Z).x / pi - 1.0).abs() > 0.1);
+    /// ```
     #[must_use]
     pub fn unweighted(&self, n: DVec3) -> DVec3 {
         self.probe
@@ -298,6 +354,16 @@ impl<'a> Irradiance<'a> {
     }
 
     /// `Σ_t L_t max(0, n·ω_t) Δω_t`.
+    ///
+    /// # Examples
+    /// ```
+    /// use glam::DVec3;
+    /// use hw3::q4_light_probe::{horizontal_camera, maps::AnalyticMap, Irradiance, Probe, ProbeFormat};
+    /// let map = AnalyticMap::sky();
+    /// let probe = Probe::from_map(&map, ProbeFormat::AngularMap, 64, horizontal_camera()).unwrap();
+    /// let e = Irradiance::new(&probe).weighted(DVec3::Z).x;
+    /// assert!((e / std::f64::consts::PI - 1.0).abs() < 2e-3);
+    /// ```
     #[must_use]
     pub fn weighted(&self, n: DVec3) -> DVec3 {
         self.probe
@@ -308,6 +374,17 @@ impl<'a> Irradiance<'a> {
     }
 
     /// Uniform hemisphere sampling: `(2π/N) Σ L(ω_i) cos θ_i`.
+    ///
+    /// # Examples
+    /// ```
+    /// use glam::DVec3;
+    /// use hw3::q4_light_probe::{horizontal_camera, maps::AnalyticMap, Irradiance, Probe, ProbeFormat};
+    /// use rand_core::SeedableRng;
+    /// let probe = Probe::from_map(&AnalyticMap::sky(), ProbeFormat::MirrorBall, 32, horizontal_camera()).unwrap();
+    /// let mut rng = rand_pcg::Pcg64::seed_from_u64(5);
+    /// let e = Irradiance::new(&probe).uniform(DVec3::Z, 4096, &mut rng).x;
+    /// assert!((e / std::f64::consts::PI - 1.0).abs() < 0.1); // a loose bound: one seed
+    /// ```
     pub fn uniform(&self, n: DVec3, samples: usize, rng: &mut impl Rng) -> DVec3 {
         let (t1, t2) = n.any_orthonormal_pair();
         let sum: DVec3 = (0..samples)
@@ -332,6 +409,17 @@ impl<'a> Irradiance<'a> {
     }
 
     /// Cosine-weighted sampling: `(π/N) Σ L(ω_i)`; zero variance on a constant map.
+    ///
+    /// # Examples
+    /// ```
+    /// use glam::DVec3;
+    /// use hw3::q4_light_probe::{horizontal_camera, maps::AnalyticMap, Irradiance, Probe, ProbeFormat};
+    /// use rand_core::SeedableRng;
+    /// let probe = Probe::from_map(&AnalyticMap::constant(1.0), ProbeFormat::MirrorBall, 8, horizontal_camera()).unwrap();
+    /// let mut rng = rand_pcg::Pcg64::seed_from_u64(5);
+    /// // π L exactly, whatever the seed: L/pdf is constant.
+    /// assert!((Irradiance::new(&probe).cosine(DVec3::X, 3, &mut rng).x - std::f64::consts::PI).abs() < 1e-12);
+    /// ```
     pub fn cosine(&self, n: DVec3, samples: usize, rng: &mut impl Rng) -> DVec3 {
         let sum: DVec3 = (0..samples)
             .map(|_| self.probe.radiance_toward(Self::cosine_direction(n, rng)))
@@ -401,6 +489,19 @@ impl<'a> Irradiance<'a> {
 
     /// Map (light) sampling: `(1/N) Σ L_t max(0, n·ω_i) / pdf(ω_i)`; below-horizon samples are
     /// wasted, so it is noisy on soft maps and excellent on a sun.
+    ///
+    /// # Examples
+    /// ```
+    /// use hw3::q4_light_probe::{horizontal_camera, maps::AnalyticMap, study, Irradiance, Probe, ProbeFormat};
+    /// use rand_core::SeedableRng;
+    /// // A sub-texel sun is found by every sample.
+    /// let map = AnalyticMap::sun();
+    /// let probe = Probe::from_map(&map, ProbeFormat::MirrorBall, 64, horizontal_camera()).unwrap();
+    /// let mut rng = rand_pcg::Pcg64::seed_from_u64(5);
+    /// let n = study::sun_direction();
+    /// let e = Irradiance::new(&probe).map(n, 1024, &mut rng).x;
+    /// assert!((e / map.irradiance(n) - 1.0).abs() < 0.1); // a loose bound: one seed
+    /// ```
     pub fn map(&self, n: DVec3, samples: usize, rng: &mut impl Rng) -> DVec3 {
         let sum: DVec3 = (0..samples)
             .filter_map(|_| self.sample_map(rng))
@@ -411,6 +512,18 @@ impl<'a> Irradiance<'a> {
 
     /// Multi-sample MIS with the balance heuristic: `⌈N/2⌉` cosine and `⌊N/2⌋` map samples, each
     /// contributing `f(ω) / (N_c p_c(ω) + N_m p_m(ω))`.
+    ///
+    /// # Examples
+    /// ```
+    /// use hw3::q4_light_probe::{horizontal_camera, maps::AnalyticMap, study, Irradiance, Probe, ProbeFormat};
+    /// use rand_core::SeedableRng;
+    /// let map = AnalyticMap::sun();
+    /// let probe = Probe::from_map(&map, ProbeFormat::MirrorBall, 64, horizontal_camera()).unwrap();
+    /// let mut rng = rand_pcg::Pcg64::seed_from_u64(5);
+    /// let n = study::sun_direction();
+    /// let e = Irradiance::new(&probe).mis(n, 1024, &mut rng).x;
+    /// assert!((e / map.irradiance(n) - 1.0).abs() < 0.1); // a loose bound: one seed
+    /// ```
     pub fn mis(&self, n: DVec3, samples: usize, rng: &mut impl Rng) -> DVec3 {
         let map_count = if self.total_power() > 0.0 {
             samples / 2

@@ -9,6 +9,17 @@ use glam::DVec3;
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
 /// One analytic radiance term.
+///
+/// # Examples
+/// ```
+/// use glam::DVec3;
+/// use hw3::q4_light_probe::maps::Term;
+/// let lobe = Term::ClampedLobe { axis: DVec3::Z };
+/// assert_eq!(lobe.radiance(DVec3::X), 0.0);
+/// assert!((lobe.irradiance(DVec3::Z) - 2.0 * std::f64::consts::PI / 3.0).abs() < 1e-12);
+/// let sun = Term::Cap { radiance: 1.0, centre: DVec3::Z, half_angle: 0.1 };
+/// assert!((sun.cap_solid_angle().unwrap() - 2.0 * std::f64::consts::PI * (1.0 - 0.1f64.cos())).abs() < 1e-15);
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Term {
     /// `L(ω) = radiance` everywhere. `E = π L`.
@@ -160,6 +171,19 @@ pub fn cap_irradiance_per_radiance(alpha: f64, half_angle: f64) -> f64 {
 }
 
 /// A sum of analytic terms.
+///
+/// # Examples
+/// ```
+/// use glam::DVec3;
+/// use hw3::q4_light_probe::maps::AnalyticMap;
+/// let pi = std::f64::consts::PI;
+/// assert_eq!(AnalyticMap::constant(2.0).irradiance(DVec3::X), 2.0 * pi);
+/// assert!((AnalyticMap::linear_z(1.0, 0.5).irradiance(DVec3::Z) - pi * (1.0 + 1.0 / 3.0)).abs() < 1e-12);
+/// // The sun map: the sky plus a sun of direct normal irradiance 10π; caps are not "smooth".
+/// let sun = AnalyticMap::sun();
+/// assert_eq!(sun.terms.len(), 2);
+/// assert_eq!(sun.smooth_radiance(DVec3::Z), 1.0);
+/// ```
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct AnalyticMap {
     /// The terms; radiance and irradiance add.

@@ -8,6 +8,13 @@ use glam::{DMat3, DVec2, DVec3};
 use std::path::Path;
 
 /// Why a probe could not be built or read.
+///
+/// # Examples
+/// ```
+/// use hw3::q4_light_probe::{probe_from_spec, ProbeError};
+/// assert!(matches!(probe_from_spec("sky", 0), Err(ProbeError::Empty { .. })));
+/// assert!(matches!(probe_from_spec("missing.hdr", 8), Err(ProbeError::Read { .. })));
+/// ```
 #[derive(Debug, thiserror::Error)]
 pub enum ProbeError {
     /// An argument is invalid (a non-finite normal, a bad `D/R`, …).
@@ -68,6 +75,16 @@ pub struct Texel {
 }
 
 /// A light probe image with per-texel geometry.
+///
+/// # Examples
+/// ```
+/// use glam::DVec3;
+/// use hw3::q4_light_probe::{horizontal_camera, maps::AnalyticMap, Probe, ProbeFormat};
+/// let probe = Probe::from_map(&AnalyticMap::sky(), ProbeFormat::LatLong, 8, horizontal_camera()).unwrap();
+/// assert_eq!((probe.width(), probe.height(), probe.format()), (16, 8, ProbeFormat::LatLong));
+/// let up = probe.texel_index_toward(DVec3::Z).unwrap();
+/// assert_eq!(probe.radiance_toward(DVec3::Z), probe.texels()[up].radiance);
+/// ```
 #[derive(Debug, Clone, PartialEq)]
 pub struct Probe {
     format: ProbeFormat,
@@ -83,6 +100,14 @@ const SUBSAMPLES: usize = 4;
 /// Rotation that puts a ball's camera on the `+x` horizon with the image's up along world `+z`:
 /// probe `x` (image right) → world `+y`, probe `y` (image up) → world `+z`, probe `z` (toward the
 /// camera) → world `+x`. Lat-long images use the identity (`+z` up already).
+///
+/// # Examples
+/// ```
+/// use glam::DVec3;
+/// let m = hw3::q4_light_probe::horizontal_camera();
+/// assert_eq!(m * DVec3::Z, DVec3::X); // the camera sits on the +x horizon
+/// assert_eq!(m * DVec3::Y, DVec3::Z); // image up is world up
+/// ```
 #[must_use]
 pub fn horizontal_camera() -> DMat3 {
     DMat3::from_cols(DVec3::Y, DVec3::Z, DVec3::X)

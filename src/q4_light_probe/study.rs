@@ -108,6 +108,15 @@ pub fn method_error(
 }
 
 /// [`method_error`] against an analytic map's exact irradiance.
+///
+/// # Examples
+/// ```
+/// use hw3::q4_light_probe::{horizontal_camera, maps::AnalyticMap, study, Irradiance, Method, Probe, ProbeFormat};
+/// let map = AnalyticMap::sky();
+/// let probe = Probe::from_map(&map, ProbeFormat::MirrorBall, 32, horizontal_camera()).unwrap();
+/// let e = study::analytic_error(&map, &Irradiance::new(&probe), Method::Sh9, 1, &[0], &study::fibonacci_normals(16));
+/// assert!(e.mean_percent < 0.5 && e.max_percent >= e.mean_percent);
+/// ```
 #[must_use]
 pub fn analytic_error(
     map: &AnalyticMap,
@@ -123,6 +132,17 @@ pub fn analytic_error(
 
 /// A map of the accuracy study: analytic (exact irradiance known in closed form) or a real
 /// lat-long HDR file (reference: its own solid-angle-weighted texel sum at full resolution).
+///
+/// # Examples
+/// ```
+/// use hw3::q4_light_probe::study::{self, StudyMap};
+/// let normals = study::fibonacci_normals(4);
+/// for (name, map) in study::study_maps().unwrap() {
+///     let ball = map.ball(8).unwrap();
+///     assert_eq!(ball.width(), 8);
+///     assert!(map.reference(&normals).iter().all(|e| e.is_finite() && *e >= 0.0), "{name}");
+/// }
+/// ```
 #[derive(Debug, Clone)]
 pub enum StudyMap {
     /// A closed-form map.
@@ -231,6 +251,13 @@ pub fn sun_direction() -> DVec3 {
 
 /// Every configuration the benchmark measures: texel sums and SH9 at each probe size, Monte Carlo
 /// at each sample count on a 256² probe.
+///
+/// # Examples
+/// ```
+/// let configs = hw3::q4_light_probe::study::configurations();
+/// assert!(configs.iter().any(|c| c.label() == "sh9 256²"));
+/// assert!(configs.iter().any(|c| c.label() == "mis N=4096"));
+/// ```
 #[must_use]
 pub fn configurations() -> Vec<Config> {
     let mut configs = Vec::new();
