@@ -11,19 +11,12 @@ use hw3::q4_light_probe::irradiance::{Irradiance, Method, Sh9};
 use hw3::q4_light_probe::maps::AnalyticMap;
 use hw3::q4_light_probe::study::{self, Config};
 use hw3::q4_light_probe::{Probe, ProbeFormat, fibonacci_normals, horizontal_camera};
-use rand_core::SeedableRng;
-use rand_pcg::Pcg64;
 use std::fmt::Write as _;
 use std::time::Instant;
 
 fn sun_probe(size: usize) -> Probe {
-    Probe::from_map(
-        &AnalyticMap::sun(),
-        ProbeFormat::MirrorBall,
-        size,
-        horizontal_camera(),
-    )
-    .expect("valid analytic map")
+    Probe::from_map(&AnalyticMap::sun(), ProbeFormat::MirrorBall, size, horizontal_camera())
+        .expect("valid analytic map")
 }
 
 fn normal() -> DVec3 {
@@ -60,12 +53,8 @@ fn sh9_evaluation(bencher: Bencher) {
 fn monte_carlo(bencher: Bencher, method: Method, samples: usize) {
     let probe = sun_probe(256);
     let prepared = Irradiance::new(&probe);
-    let mut rng = Pcg64::seed_from_u64(1);
-    bencher.bench_local(|| {
-        prepared
-            .estimate(black_box(normal()), method, samples, &mut rng)
-            .expect("valid normal")
-    });
+    let mut rng = hw3::rng::seeded(1, 0);
+    bencher.bench_local(|| prepared.estimate(black_box(normal()), method, samples, &mut rng).expect("valid normal"));
 }
 
 #[divan::bench(args = [16, 256, 4096])]
@@ -90,18 +79,14 @@ fn mis_mc(bencher: Bencher, samples: usize) {
 
 /// Nanoseconds per normal: the best of 5 batches, each at least 20 ms long.
 fn time_per_normal(prepared: &Irradiance<'_>, config: Config, normals: &[DVec3]) -> f64 {
-    let mut rng = Pcg64::seed_from_u64(99);
+    let mut rng = hw3::rng::seeded(99, 0);
     let mut best = f64::INFINITY;
     for _ in 0..5 {
         let start = Instant::now();
         let mut evaluations = 0usize;
         while start.elapsed().as_secs_f64() < 0.02 {
             for n in normals {
-                black_box(
-                    prepared
-                        .estimate(*n, config.method, config.samples.max(1), &mut rng)
-                        .expect("unit normal"),
-                );
+                black_box(prepared.estimate(*n, config.method, config.samples.max(1), &mut rng).expect("unit normal"));
             }
             evaluations += normals.len();
         }
@@ -113,9 +98,8 @@ fn time_per_normal(prepared: &Irradiance<'_>, config: Config, normals: &[DVec3])
 fn sweep() {
     let normals = fibonacci_normals(64);
     let seeds: Vec<u64> = (1..=8).collect();
-    let mut csv = String::from(
-        "map,method,label,size,samples,mean_percent,max_percent,ns_per_normal,mean_relative_percent\n",
-    );
+    let mut csv =
+        String::from("map,method,label,size,samples,mean_percent,max_percent,ns_per_normal,mean_relative_percent\n");
     let mut table = String::from(
         "| map | configuration | mean error (% of peak) | max error (% of peak) | mean relative error (%) | time per normal |\n|---|---|---|---|---|---|\n",
     );
@@ -129,20 +113,9 @@ fn sweep() {
                 let probe = map.ball(config.size).expect("a valid size");
                 probes.push((config.size, probe));
             }
-            let probe = &probes
-                .iter()
-                .find(|(s, _)| *s == config.size)
-                .expect("just built")
-                .1;
+            let probe = &probes.iter().find(|(s, _)| *s == config.size).expect("just built").1;
             let prepared = Irradiance::new(probe);
-            let error = study::method_error(
-                &prepared,
-                config.method,
-                config.samples,
-                &seeds,
-                &normals,
-                &reference,
-            );
+            let error = study::method_error(&prepared, config.method, config.samples, &seeds, &normals, &reference);
             let ns = time_per_normal(&prepared, config, &normals);
             eprintln!(
                 "{map_name:>9} {:<18} {:>9.4} % {:>9.4} % {:>12.1} ns",
@@ -174,12 +147,7 @@ fn sweep() {
             );
             results.push((config, error, ns));
         }
-        let find = |label: &str| {
-            results
-                .iter()
-                .find(|(c, _, _)| c.label() == label)
-                .expect("swept")
-        };
+        let find = |label: &str| results.iter().find(|(c, _, _)| c.label() == label).expect("swept");
         let (_, sh9_error, sh9_ns) = find("sh9 256²");
         let (_, weighted_error, weighted_ns) = find("weighted 256²");
         let projection = {

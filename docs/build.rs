@@ -23,16 +23,14 @@ use std::path::{Path, PathBuf};
 const MISSING_MARKER: &str = "hw3-missing-asset";
 
 fn main() {
-    let manifest =
-        PathBuf::from(std::env::var("CARGO_MANIFEST_DIR").expect("cargo sets CARGO_MANIFEST_DIR"));
+    let manifest = PathBuf::from(std::env::var("CARGO_MANIFEST_DIR").expect("cargo sets CARGO_MANIFEST_DIR"));
     let out_dir = PathBuf::from(std::env::var("OUT_DIR").expect("cargo sets OUT_DIR"));
     let docs = manifest.join("docs");
     println!("cargo::rerun-if-changed=docs");
     println!("cargo::rerun-if-changed=docs/figures");
     println!("cargo::rerun-if-changed=docs/data");
 
-    let converter =
-        LatexToMathML::new(MathCoreConfig::default()).expect("default math-core config is valid");
+    let converter = LatexToMathML::new(MathCoreConfig::default()).expect("default math-core config is valid");
     let mut chapters: Vec<PathBuf> = fs::read_dir(&docs)
         .expect("docs/ exists")
         .filter_map(|entry| entry.ok().map(|e| e.path()))
@@ -42,8 +40,8 @@ fn main() {
     for chapter in chapters {
         println!("cargo::rerun-if-changed={}", chapter.display());
         let source = fs::read_to_string(&chapter).expect("chapter is UTF-8 text");
-        let rendered = render_chapter(&source, &docs, &converter)
-            .unwrap_or_else(|e| panic!("{}: {e}", chapter.display()));
+        let rendered =
+            render_chapter(&source, &docs, &converter).unwrap_or_else(|e| panic!("{}: {e}", chapter.display()));
         let name = chapter.file_name().expect("a file name");
         fs::write(out_dir.join(name), rendered).expect("OUT_DIR is writable");
     }
@@ -90,18 +88,12 @@ fn render_chapter(source: &str, docs: &Path, converter: &LatexToMathML) -> Resul
             }
             continue;
         }
-        if let Some(directive) = trimmed
-            .strip_prefix("{{figure:")
-            .and_then(|r| r.strip_suffix("}}"))
-        {
+        if let Some(directive) = trimmed.strip_prefix("{{figure:").and_then(|r| r.strip_suffix("}}")) {
             out.push_str(&figure(directive, docs));
             out.push('\n');
             continue;
         }
-        if let Some(path) = trimmed
-            .strip_prefix("{{include:")
-            .and_then(|r| r.strip_suffix("}}"))
-        {
+        if let Some(path) = trimmed.strip_prefix("{{include:").and_then(|r| r.strip_suffix("}}")) {
             out.push_str(&include(path, docs, converter)?);
             out.push('\n');
             continue;
@@ -125,10 +117,7 @@ fn display_math(tex: &str, converter: &LatexToMathML) -> Result<String, String> 
         .convert_with_local_state(tex.trim(), MathDisplay::Block)
         .map_err(|e| format!("display math `{}`: {e}", tex.trim()))?
         .mathml;
-    Ok(format!(
-        "<div class=\"math-display\">{}</div>\n",
-        protect_from_markdown(&mathml)
-    ))
+    Ok(format!("<div class=\"math-display\">{}</div>\n", protect_from_markdown(&mathml)))
 }
 
 /// Replaces `$…$` spans outside inline code with MathML. A `\$` stays a literal dollar.
@@ -143,18 +132,14 @@ fn inline_math(line: &str, converter: &LatexToMathML) -> Result<String, String> 
                 let ticks = rest[c..].chars().take_while(|&ch| ch == '`').count();
                 let fence = &rest[c..c + ticks];
                 let after = &rest[c + ticks..];
-                let close = after
-                    .find(fence)
-                    .map(|i| c + ticks + i + ticks)
-                    .unwrap_or(rest.len());
+                let close = after.find(fence).map(|i| c + ticks + i + ticks).unwrap_or(rest.len());
                 out.push_str(&rest[..close]);
                 rest = &rest[close..];
             }
             (_, Some(d)) => {
                 out.push_str(&rest[..d].replace("\\$", "$"));
                 let after = &rest[d + 1..];
-                let end = find_unescaped_dollar(after)
-                    .ok_or_else(|| format!("unterminated $ in line `{line}`"))?;
+                let end = find_unescaped_dollar(after).ok_or_else(|| format!("unterminated $ in line `{line}`"))?;
                 let tex = &after[..end];
                 let mathml = converter
                     .convert_with_local_state(tex, MathDisplay::Inline)
@@ -208,30 +193,22 @@ fn figure(directive: &str, docs: &Path) -> String {
     println!("cargo::rerun-if-changed={}", path.display());
     let body = if file.ends_with(".svg") {
         fs::read_to_string(&path).ok().map(|svg| {
-            svg.lines()
-                .filter(|l| !l.trim().is_empty() && !l.starts_with("<?xml"))
-                .collect::<Vec<_>>()
-                .join("\n")
+            svg.lines().filter(|l| !l.trim().is_empty() && !l.starts_with("<?xml")).collect::<Vec<_>>().join("\n")
         })
     } else if file.ends_with(".png") {
-        fs::read(&path).ok().map(|png| {
-            format!(
-                "<img alt=\"{}\" src=\"data:image/png;base64,{}\">",
-                html_escape(caption),
-                base64(&png)
-            )
-        })
+        fs::read(&path)
+            .ok()
+            .map(|png| format!("<img alt=\"{}\" src=\"data:image/png;base64,{}\">", html_escape(caption), base64(&png)))
     } else {
         None
     };
     let body = body.unwrap_or_else(|| {
         println!("cargo::warning=figure {} is missing: run `cargo run --release`", path.display());
-        format!("<p class=\"{MISSING_MARKER}\">figure {file} not generated yet: run <code>cargo run --release</code></p>")
+        format!(
+            "<p class=\"{MISSING_MARKER}\">figure {file} not generated yet: run <code>cargo run --release</code></p>"
+        )
     });
-    format!(
-        "<figure>\n{body}\n<figcaption>{}</figcaption>\n</figure>\n",
-        html_escape(caption)
-    )
+    format!("<figure>\n{body}\n<figcaption>{}</figcaption>\n</figure>\n", html_escape(caption))
 }
 
 fn include(path: &str, docs: &Path, converter: &LatexToMathML) -> Result<String, String> {
@@ -244,18 +221,13 @@ fn include(path: &str, docs: &Path, converter: &LatexToMathML) -> Result<String,
         }),
         Err(_) => {
             println!("cargo::warning=include {} is missing", full.display());
-            Ok(format!(
-                "<p class=\"{MISSING_MARKER}\">{path} not generated yet</p>"
-            ))
+            Ok(format!("<p class=\"{MISSING_MARKER}\">{path} not generated yet</p>"))
         }
     }
 }
 
 fn html_escape(s: &str) -> String {
-    s.replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
-        .replace('"', "&quot;")
+    s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;").replace('"', "&quot;")
 }
 
 /// Standard base64 with padding (RFC 4648 §4); ten lines are cheaper than a dependency here.
@@ -263,10 +235,7 @@ fn base64(bytes: &[u8]) -> String {
     const ALPHABET: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
     let mut out = String::with_capacity(bytes.len().div_ceil(3) * 4);
     for chunk in bytes.chunks(3) {
-        let n = chunk
-            .iter()
-            .enumerate()
-            .fold(0u32, |acc, (i, &b)| acc | (b as u32) << (16 - 8 * i));
+        let n = chunk.iter().enumerate().fold(0u32, |acc, (i, &b)| acc | (b as u32) << (16 - 8 * i));
         for i in 0..4 {
             if i <= chunk.len() {
                 out.push(ALPHABET[(n >> (18 - 6 * i) & 63) as usize] as char);

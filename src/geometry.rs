@@ -49,10 +49,7 @@ pub fn require_finite<T: Real>(name: &'static str, v: T::Vec3) -> Result<T::Vec3
     if T::components(v).iter().all(|c| c.is_finite()) {
         Ok(v)
     } else {
-        Err(InputError::NonFinite {
-            name,
-            value: format!("{v:?}"),
-        })
+        Err(InputError::NonFinite { name, value: format!("{v:?}") })
     }
 }
 
@@ -64,18 +61,11 @@ pub fn require_finite<T: Real>(name: &'static str, v: T::Vec3) -> Result<T::Vec3
 pub fn require_direction<T: Real>(name: &'static str, v: T::Vec3) -> Result<T::Vec3, InputError> {
     require_finite::<T>(name, v)?;
     let a = T::dot(v, v);
-    let smallest_normal = T::from_f64(if T::NAME == "f32" {
-        f32::MIN_POSITIVE as f64
-    } else {
-        f64::MIN_POSITIVE
-    });
+    let smallest_normal = T::from_f64(if T::NAME == "f32" { f32::MIN_POSITIVE as f64 } else { f64::MIN_POSITIVE });
     if a.is_finite() && a >= smallest_normal {
         Ok(v)
     } else {
-        Err(InputError::DegenerateDirection {
-            name,
-            value: format!("{v:?}"),
-        })
+        Err(InputError::DegenerateDirection { name, value: format!("{v:?}") })
     }
 }
 
@@ -105,10 +95,7 @@ impl<T: Real> Ray<T> {
     /// assert!(Ray::<f64>::new(DVec3::ZERO, DVec3::ZERO).is_err());
     /// ```
     pub fn new(origin: T::Vec3, dir: T::Vec3) -> Result<Self, InputError> {
-        Ok(Self {
-            origin: require_finite::<T>("origin", origin)?,
-            dir: require_direction::<T>("direction", dir)?,
-        })
+        Ok(Self { origin: require_finite::<T>("origin", origin)?, dir: require_direction::<T>("direction", dir)? })
     }
 
     /// The point at parameter `t`: `e + d t`.
@@ -123,7 +110,7 @@ impl<T: Real> Ray<T> {
 pub struct Sphere<T: Real> {
     /// The centre `o`.
     pub center: T::Vec3,
-    /// The radius `r` (finite, ≥ 0; a radius of 0 is a point that a ray can still pass through).
+    /// The radius `r` (finite, > 0).
     pub radius: T,
 }
 
@@ -132,7 +119,7 @@ impl<T: Real> Sphere<T> {
     ///
     /// # Errors
     /// [`InputError::NonFinite`] for a non-finite centre or radius, [`InputError::OutOfRange`]
-    /// for a negative radius.
+    /// for a radius ≤ 0 (a sphere of radius 0 has no normal, so Q2b would be undefined).
     ///
     /// # Examples
     /// ```
@@ -140,22 +127,16 @@ impl<T: Real> Sphere<T> {
     /// use hw3::geometry::Sphere;
     /// assert!(Sphere::<f64>::new(DVec3::ZERO, 1.0).is_ok());
     /// assert!(Sphere::<f64>::new(DVec3::ZERO, -1.0).is_err());
+    /// assert!(Sphere::<f64>::new(DVec3::ZERO, 0.0).is_err());
     /// assert!(Sphere::<f64>::new(DVec3::ZERO, f64::INFINITY).is_err());
     /// ```
     pub fn new(center: T::Vec3, radius: T) -> Result<Self, InputError> {
         require_finite::<T>("center", center)?;
         if !radius.is_finite() {
-            return Err(InputError::NonFinite {
-                name: "radius",
-                value: format!("{radius}"),
-            });
+            return Err(InputError::NonFinite { name: "radius", value: format!("{radius}") });
         }
-        if radius < T::ZERO {
-            return Err(InputError::OutOfRange {
-                name: "radius",
-                value: format!("{radius}"),
-                expected: "≥ 0",
-            });
+        if radius <= T::ZERO {
+            return Err(InputError::OutOfRange { name: "radius", value: format!("{radius}"), expected: "> 0" });
         }
         Ok(Self { center, radius })
     }
@@ -185,8 +166,6 @@ pub fn parse_vec3(name: &str, text: &str) -> Result<DVec3, String> {
     let numbers: Result<Vec<f64>, _> = parts.iter().map(|p| p.parse::<f64>()).collect();
     match numbers {
         Ok(n) if n.len() == 3 => Ok(DVec3::new(n[0], n[1], n[2])),
-        _ => Err(format!(
-            "{name}: expected three comma-separated numbers like 1,0,-2.5, got `{text}`"
-        )),
+        _ => Err(format!("{name}: expected three comma-separated numbers like 1,0,-2.5, got `{text}`")),
     }
 }

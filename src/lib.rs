@@ -1,10 +1,19 @@
 #![doc = include_str!(concat!(env!("OUT_DIR"), "/index.md"))]
 #![warn(missing_docs)]
+#![allow(
+    clippy::neg_cmp_op_on_partial_ord,
+    reason = "`!(x >= 0)` is how the numerics say 'negative or NaN': NaN must fail every test"
+)]
 
 pub mod geometry;
 pub mod plot;
-pub mod q4_light_probe;
 pub mod real;
+pub mod rng;
+
+pub mod q2_ray_sphere;
+pub mod q4_light_probe;
+
+pub mod checker;
 
 /// One question's printed answers, as `hw3 answers` shows them.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -26,7 +35,7 @@ pub struct Answers {
 /// ```
 #[must_use]
 pub fn all_answers() -> Vec<Answers> {
-    vec![q4_light_probe::answers()]
+    vec![q2_ray_sphere::answers(), q4_light_probe::answers()]
 }
 
 /// Every figure of the course notes, in homework order (deterministic bytes).
@@ -35,6 +44,7 @@ pub fn all_answers() -> Vec<Answers> {
 /// [`plot::PlotError`] if a figure cannot be drawn.
 pub fn all_figures() -> Result<Vec<plot::Figure>, plot::PlotError> {
     let mut figures: Vec<plot::Figure> = Vec::new();
+    figures.extend(q2_ray_sphere::figures()?);
     figures.extend(q4_light_probe::figures()?);
     Ok(figures)
 }

@@ -9,11 +9,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 #[derive(Parser)]
-#[command(
-    name = "hw3",
-    version,
-    about = "Ray-tracing homework 3: answers, figures and checks"
-)]
+#[command(name = "hw3", version, about = "Ray-tracing homework 3: answers, figures and checks")]
 struct Cli {
     #[command(subcommand)]
     command: Option<Command>,
@@ -27,6 +23,56 @@ enum Command {
         #[arg(long)]
         question: Option<String>,
     },
+    /// Q2: intersect one ray with one sphere (hit, point, normal, reflection, closest approach).
+    Sphere {
+        /// Eye point e, as X,Y,Z.
+        #[arg(long, allow_hyphen_values = true)]
+        origin: String,
+        /// Direction d, as X,Y,Z (any non-zero length).
+        #[arg(long, allow_hyphen_values = true)]
+        dir: String,
+        /// Sphere centre o, as X,Y,Z.
+        #[arg(long, allow_hyphen_values = true)]
+        center: String,
+        /// Sphere radius r (finite, >= 0).
+        #[arg(long, allow_hyphen_values = true)]
+        radius: f64,
+        /// Arithmetic precision.
+        #[arg(long, value_enum, default_value_t = PrecisionArg::F64)]
+        precision: PrecisionArg,
+        /// The homework's formula (naive) or the stable rewrite.
+        #[arg(long, value_enum, default_value_t = MethodArg::Stable)]
+        method: MethodArg,
+        /// Print one JSON object instead of text.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Write a blank answers file: every question of a variant, every key commented out.
+    Template {
+        /// Variant seed (0 = the notes' worked example).
+        #[arg(long, default_value_t = 0)]
+        seed: u64,
+    },
+    /// Grade an answers file (TOML). Exit status 0 = all correct, 1 = some wrong, 2 = unreadable.
+    Check {
+        /// The answers file.
+        file: PathBuf,
+        /// Variant seed (overrides `[meta] seed` in the file).
+        #[arg(long)]
+        seed: Option<u64>,
+        /// Report format.
+        #[arg(long, value_enum, default_value_t = FormatArg::Text)]
+        format: FormatArg,
+    },
+    /// Print a randomised variant of a question with its solution.
+    Variant {
+        /// The question (q2).
+        #[arg(long)]
+        question: String,
+        /// Variant seed (0 = the notes' worked example).
+        #[arg(long, default_value_t = 0)]
+        seed: u64,
+    },
     /// Q4: irradiance E(n) of an environment map through a light probe.
     Irradiance(Q4IrradianceArgs),
     /// Regenerate every figure of the course notes.
@@ -35,6 +81,25 @@ enum Command {
         #[arg(long, default_value = "docs/figures")]
         out: PathBuf,
     },
+}
+
+#[derive(Clone, Copy, clap::ValueEnum)]
+enum PrecisionArg {
+    F32,
+    F64,
+}
+
+#[derive(Clone, Copy, clap::ValueEnum)]
+enum MethodArg {
+    Naive,
+    Stable,
+}
+
+#[derive(Clone, Copy, clap::ValueEnum)]
+enum FormatArg {
+    Text,
+    Json,
+    Gradescope,
 }
 
 #[derive(clap::Args)]
@@ -74,6 +139,18 @@ impl std::fmt::Display for UsageError {
 
 impl std::error::Error for UsageError {}
 
+/// `hw3 check` found wrong answers: exit status 1, the report already printed.
+#[derive(Debug)]
+struct SomeWrong;
+
+impl std::fmt::Display for SomeWrong {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("some answers are not correct")
+    }
+}
+
+impl std::error::Error for SomeWrong {}
+
 fn main() -> ExitCode {
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
@@ -85,6 +162,7 @@ fn main() -> ExitCode {
     };
     match run(cli) {
         Ok(()) => ExitCode::SUCCESS,
+        Err(e) if e.downcast_ref::<SomeWrong>().is_some() => ExitCode::from(1),
         Err(e) if e.downcast_ref::<UsageError>().is_some() => {
             eprintln!("hw3: {e}");
             ExitCode::from(2)
@@ -104,6 +182,53 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         }
         Some(Command::Answers { question }) => print_answers(question.as_deref()),
         Some(Command::Figures { out }) => write_figures(&out),
+        Some(Command::Template { seed }) => {
+            print!("{}", hw3::checker::template(seed).map_err(|e| UsageError(e.to_string()))?);
+            Ok(())
+        }
+        Some(Command::Variant { question, seed }) => {
+            let variant = hw3::checker::variant(&question, seed).map_err(|e| UsageError(e.to_string()))?;
+            println!("{}\n\nSolution:", variant.statement);
+            for part in &variant.parts {
+                println!("  {} = {:?}", part.key, part.expected);
+            }
+            Ok(())
+        }
+        Some(Command::Check { file, seed, format }) => {
+            let text = std::fs::read_to_string(&file)
+                .map_err(|e| UsageError(format!("cannot read {}: {e}", file.display())))?;
+            let report = hw3::checker::check(&text, seed)
+                .map_err(|e| UsageError(format!("{}: {e}", file.display()).replace('\n', " ")))?;
+            match format {
+                FormatArg::Text => println!("{}", hw3::checker::report_text(&report)),
+                FormatArg::Json => println!("{}", serde_json::to_string_pretty(&report)?),
+                FormatArg::Gradescope => {
+                    println!("{}", serde_json::to_string_pretty(&hw3::checker::report_gradescope(&report))?)
+                }
+            }
+            if report.all_correct() { Ok(()) } else { Err(SomeWrong.into()) }
+        }
+        Some(Command::Sphere { origin, dir, center, radius, precision, method, json }) => {
+            use hw3::q2_ray_sphere::catalogue::{Method, Precision};
+            let (ray, sphere) =
+                hw3::q2_ray_sphere::parse_sphere_args(&origin, &dir, &center, radius).map_err(UsageError)?;
+            let precision = match precision {
+                PrecisionArg::F32 => Precision::F32,
+                PrecisionArg::F64 => Precision::F64,
+            };
+            let method = match method {
+                MethodArg::Naive => Method::Naive,
+                MethodArg::Stable => Method::Stable,
+            };
+            let answer =
+                hw3::q2_ray_sphere::solve(&ray, &sphere, method, precision).map_err(|e| UsageError(e.to_string()))?;
+            if json {
+                println!("{}", serde_json::to_string(&answer)?);
+            } else {
+                println!("{answer:#?}");
+            }
+            Ok(())
+        }
         Some(Command::Irradiance(args)) => {
             let normal = hw3::geometry::parse_vec3("--normal", &args.normal).map_err(UsageError)?;
             let request = hw3::q4_light_probe::IrradianceRequest {
@@ -115,8 +240,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 size: args.size,
                 json: args.json,
             };
-            let out = hw3::q4_light_probe::irradiance_command(&request)
-                .map_err(|e| UsageError(e.to_string()))?;
+            let out = hw3::q4_light_probe::irradiance_command(&request).map_err(|e| UsageError(e.to_string()))?;
             println!("{out}");
             Ok(())
         }
@@ -125,26 +249,14 @@ fn run(cli: Cli) -> anyhow::Result<()> {
 
 fn print_answers(question: Option<&str>) -> anyhow::Result<()> {
     let all = hw3::all_answers();
-    if let Some(q) = question {
-        if !all.iter().any(|a| a.question == q) {
-            let known: Vec<_> = all.iter().map(|a| a.question).collect();
-            return Err(UsageError(format!(
-                "unknown question `{q}`; known: {}",
-                known.join(", ")
-            ))
-            .into());
-        }
-    }
-    for answers in all
-        .iter()
-        .filter(|a| question.is_none_or(|q| a.question == q))
+    if let Some(q) = question
+        && !all.iter().any(|a| a.question == q)
     {
-        println!(
-            "== {} — {} ==\n{}\n",
-            answers.question.to_uppercase(),
-            answers.title,
-            answers.text
-        );
+        let known: Vec<_> = all.iter().map(|a| a.question).collect();
+        return Err(UsageError(format!("unknown question `{q}`; known: {}", known.join(", "))).into());
+    }
+    for answers in all.iter().filter(|a| question.is_none_or(|q| a.question == q)) {
+        println!("== {} — {} ==\n{}\n", answers.question.to_uppercase(), answers.title, answers.text);
     }
     Ok(())
 }
@@ -156,8 +268,7 @@ fn write_figures(out: &PathBuf) -> anyhow::Result<()> {
         let path = out.join(&figure.file_name);
         let unchanged = std::fs::read(&path).is_ok_and(|old| old == figure.bytes);
         if !unchanged {
-            std::fs::write(&path, &figure.bytes)
-                .with_context(|| format!("writing {}", path.display()))?;
+            std::fs::write(&path, &figure.bytes).with_context(|| format!("writing {}", path.display()))?;
         }
     }
     eprintln!("{} figures in {}", figures.len(), out.display());

@@ -67,11 +67,7 @@ pub fn init_fonts() {
 ///
 /// # Errors
 /// [`PlotError::Draw`] when `draw` or plotters fails.
-pub fn svg_figure<F>(
-    file_name: &str,
-    (width, height): (u32, u32),
-    draw: F,
-) -> Result<Figure, PlotError>
+pub fn svg_figure<F>(file_name: &str, (width, height): (u32, u32), draw: F) -> Result<Figure, PlotError>
 where
     F: FnOnce(&DrawingArea<SVGBackend<'_>, plotters::coord::Shift>) -> Result<(), String>,
 {
@@ -80,16 +76,10 @@ where
     {
         let root = SVGBackend::with_string(&mut svg, (width, height)).into_drawing_area();
         root.fill(&WHITE).map_err(|e| draw_error(file_name, e))?;
-        draw(&root).map_err(|message| PlotError::Draw {
-            figure: file_name.into(),
-            message,
-        })?;
+        draw(&root).map_err(|message| PlotError::Draw { figure: file_name.into(), message })?;
         root.present().map_err(|e| draw_error(file_name, e))?;
     }
-    Ok(Figure {
-        file_name: file_name.into(),
-        bytes: svg.into_bytes(),
-    })
+    Ok(Figure { file_name: file_name.into(), bytes: svg.into_bytes() })
 }
 
 /// Draws a PNG figure of `width`×`height` pixels with `draw` (plotters' bitmap backend, then the
@@ -97,11 +87,7 @@ where
 ///
 /// # Errors
 /// [`PlotError::Draw`] when drawing fails, [`PlotError::Encode`] when encoding does.
-pub fn png_figure<F>(
-    file_name: &str,
-    (width, height): (u32, u32),
-    draw: F,
-) -> Result<Figure, PlotError>
+pub fn png_figure<F>(file_name: &str, (width, height): (u32, u32), draw: F) -> Result<Figure, PlotError>
 where
     F: FnOnce(&DrawingArea<BitMapBackend<'_>, plotters::coord::Shift>) -> Result<(), String>,
 {
@@ -110,14 +96,10 @@ where
     {
         let root = BitMapBackend::with_buffer(&mut rgb, (width, height)).into_drawing_area();
         root.fill(&WHITE).map_err(|e| draw_error(file_name, e))?;
-        draw(&root).map_err(|message| PlotError::Draw {
-            figure: file_name.into(),
-            message,
-        })?;
+        draw(&root).map_err(|message| PlotError::Draw { figure: file_name.into(), message })?;
         root.present().map_err(|e| draw_error(file_name, e))?;
     }
-    let image =
-        image::RgbImage::from_raw(width, height, rgb).expect("buffer has width*height*3 bytes");
+    let image = image::RgbImage::from_raw(width, height, rgb).expect("buffer has width*height*3 bytes");
     png_bytes(file_name, &image)
 }
 
@@ -129,14 +111,8 @@ pub fn png_bytes(file_name: &str, image: &image::RgbImage) -> Result<Figure, Plo
     let mut bytes = Vec::new();
     image
         .write_to(&mut Cursor::new(&mut bytes), image::ImageFormat::Png)
-        .map_err(|source| PlotError::Encode {
-            figure: file_name.into(),
-            source,
-        })?;
-    Ok(Figure {
-        file_name: file_name.into(),
-        bytes,
-    })
+        .map_err(|source| PlotError::Encode { figure: file_name.into(), source })?;
+    Ok(Figure { file_name: file_name.into(), bytes })
 }
 
 /// Turns any displayable plotters error into the `String` the drawing closures return.
@@ -145,10 +121,7 @@ pub fn err<E: std::fmt::Display>(e: E) -> String {
 }
 
 fn draw_error<E: std::fmt::Display>(figure: &str, e: E) -> PlotError {
-    PlotError::Draw {
-        figure: figure.into(),
-        message: e.to_string(),
-    }
+    PlotError::Draw { figure: figure.into(), message: e.to_string() }
 }
 
 /// A colour-blind-safe palette (Okabe & Ito, 2008) for series that must stay distinguishable.
@@ -176,9 +149,7 @@ mod tests {
             .build_cartesian_2d(0.0..1.0, 0.0..1.0)
             .map_err(err)?;
         chart.configure_mesh().draw().map_err(err)?;
-        chart
-            .draw_series(LineSeries::new([(0.0, 0.0), (1.0, 1.0)], PALETTE[0]))
-            .map_err(err)?;
+        chart.draw_series(LineSeries::new([(0.0, 0.0), (1.0, 1.0)], PALETTE[0])).map_err(err)?;
         Ok(())
     }
 
@@ -188,25 +159,18 @@ mod tests {
         let b = svg_figure("t.svg", (200, 150), sample).unwrap();
         assert_eq!(a, b);
         let text = String::from_utf8(a.bytes).unwrap();
-        assert!(
-            text.contains("α √ test"),
-            "caption text is laid out with the embedded font"
-        );
+        assert!(text.contains("α √ test"), "caption text is laid out with the embedded font");
     }
 
     #[test]
     fn png_with_text_is_byte_identical_and_decodes() {
         let draw = |root: &DrawingArea<BitMapBackend<'_>, plotters::coord::Shift>| {
-            root.draw(&Text::new("abc", (10, 10), ("sans-serif", 14)))
-                .map_err(err)
+            root.draw(&Text::new("abc", (10, 10), ("sans-serif", 14))).map_err(err)
         };
         let a = png_figure("t.png", (64, 32), draw).unwrap();
         let b = png_figure("t.png", (64, 32), draw).unwrap();
         assert_eq!(a, b);
         let decoded = image::load_from_memory(&a.bytes).unwrap().to_rgb8();
-        assert!(
-            decoded.pixels().any(|p| p.0 != [255, 255, 255]),
-            "text drew some pixels"
-        );
+        assert!(decoded.pixels().any(|p| p.0 != [255, 255, 255]), "text drew some pixels");
     }
 }

@@ -19,7 +19,6 @@ pub use study::fibonacci_normals;
 use crate::Answers;
 use glam::DVec3;
 use maps::AnalyticMap;
-use rand_core::SeedableRng;
 use std::fmt::Write as _;
 
 /// The `hw3 irradiance` request, as parsed by the CLI.
@@ -60,9 +59,7 @@ pub fn probe_from_spec(spec: &str, size: usize) -> Result<Probe, ProbeError> {
         let values: Result<Vec<f64>, _> = text.split(',').map(|p| p.trim().parse()).collect();
         match values {
             Ok(v) if v.len() == count && v.iter().all(|x| x.is_finite()) => Ok(v),
-            _ => Err(ProbeError::Spec(format!(
-                "expected {count} finite number(s) after the colon in `{spec}`"
-            ))),
+            _ => Err(ProbeError::Spec(format!("expected {count} finite number(s) after the colon in `{spec}`"))),
         }
     };
     let map = if spec == "sky" {
@@ -70,9 +67,7 @@ pub fn probe_from_spec(spec: &str, size: usize) -> Result<Probe, ProbeError> {
     } else if let Some(rest) = spec.strip_prefix("constant:") {
         let l = numbers(rest, 1)?[0];
         if l < 0.0 {
-            return Err(ProbeError::Spec(format!(
-                "radiance must be ≥ 0 in `{spec}`"
-            )));
+            return Err(ProbeError::Spec(format!("radiance must be ≥ 0 in `{spec}`")));
         }
         AnalyticMap::constant(l)
     } else if let Some(rest) = spec.strip_prefix("linear:") {
@@ -108,7 +103,7 @@ pub fn irradiance_command(request: &IrradianceRequest) -> Result<String, ProbeEr
     let method: Method = request.method.parse().map_err(ProbeError::Spec)?;
     let probe = probe_from_spec(&request.env, request.size)?;
     let prepared = Irradiance::new(&probe);
-    let mut rng = rand_pcg::Pcg64::seed_from_u64(request.seed);
+    let mut rng = crate::rng::seeded(request.seed, 0);
     let e = prepared.estimate(request.normal, method, request.samples, &mut rng)?;
     if request.json {
         Ok(serde_json::json!({ "irradiance": [e.x, e.y, e.z] }).to_string())
@@ -129,16 +124,8 @@ pub fn irradiance_command(request: &IrradianceRequest) -> Result<String, ProbeEr
 /// normals, for a format at 128 texels across.
 fn unweighted_bias(format: ProbeFormat) -> study::ErrorSummary {
     let map = AnalyticMap::constant(1.0);
-    let probe =
-        Probe::from_map(&map, format, 128, horizontal_camera()).expect("valid analytic map");
-    study::analytic_error(
-        &map,
-        &Irradiance::new(&probe),
-        Method::Unweighted,
-        1,
-        &[0],
-        &fibonacci_normals(64),
-    )
+    let probe = Probe::from_map(&map, format, 128, horizontal_camera()).expect("valid analytic map");
+    study::analytic_error(&map, &Irradiance::new(&probe), Method::Unweighted, 1, &[0], &fibonacci_normals(64))
 }
 
 /// Q4's answers, computed.
@@ -160,26 +147,15 @@ pub fn answers() -> Answers {
         "Diffuse light from a mirrored-ball probe: E(n) = Σ_t L_t max(0, n·ω_t) Δω_t, and L_o = (K_d/π) E \
          with K_d the albedo. The seed's Σ K_d L (n·l) omits Δω_t: right only if every texel subtends the same solid angle."
     );
-    let _ = writeln!(
-        text,
-        "Unweighted sum on a constant map (error % of πL, mean / max over 64 normals, 128 px):"
-    );
+    let _ = writeln!(text, "Unweighted sum on a constant map (error % of πL, mean / max over 64 normals, 128 px):");
     for format in [
         ProbeFormat::MirrorBall,
         ProbeFormat::AngularMap,
         ProbeFormat::LatLong,
-        ProbeFormat::PerspectiveBall {
-            distance_over_radius: 10.0,
-        },
+        ProbeFormat::PerspectiveBall { distance_over_radius: 10.0 },
     ] {
         let e = unweighted_bias(format);
-        let _ = writeln!(
-            text,
-            "  {:<28} {:>7.3} / {:>7.3}",
-            format.name(),
-            e.mean_percent,
-            e.max_percent
-        );
+        let _ = writeln!(text, "  {:<28} {:>7.3} / {:>7.3}", format.name(), e.mean_percent, e.max_percent);
     }
     let _ = writeln!(
         text,
@@ -205,8 +181,7 @@ pub fn answers() -> Answers {
          the rim is smeared (the last pixel ring of a 256 px ball spans ~14° of the sphere); the ball's reflectance < 1."
     );
     let map = AnalyticMap::sun();
-    let probe =
-        Probe::from_map(&map, ProbeFormat::MirrorBall, 64, horizontal_camera()).expect("valid map");
+    let probe = Probe::from_map(&map, ProbeFormat::MirrorBall, 64, horizontal_camera()).expect("valid map");
     let prepared = Irradiance::new(&probe);
     let terminator = DVec3::new(-(30f64.to_radians().sin()), 0.0, 30f64.to_radians().cos());
     let _ = writeln!(
@@ -216,9 +191,5 @@ pub fn answers() -> Answers {
         prepared.sh9().irradiance(terminator).x,
         prepared.weighted(terminator).x
     );
-    Answers {
-        question: "q4",
-        title: "Environment lighting from a mirrored-ball light probe",
-        text,
-    }
+    Answers { question: "q4", title: "Environment lighting from a mirrored-ball light probe", text }
 }

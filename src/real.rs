@@ -52,6 +52,8 @@ pub trait Real:
     const MAX: Self;
     /// +∞.
     const INFINITY: Self;
+    /// A quiet NaN (marks "no value" in traces).
+    const NAN: Self;
 
     /// Rounds an `f64` to this precision (exact for `f64`).
     fn from_f64(x: f64) -> Self;
@@ -65,12 +67,8 @@ pub trait Real:
     fn copysign(self, sign: Self) -> Self;
     /// True when neither NaN nor ±∞.
     fn is_finite(self) -> bool;
-    /// Moves `self` by `ulps` units in the last place, by adding to its bit pattern. This is the
-    /// integer offset of Wächter & Binder (Ray Tracing Gems ch. 6): the step grows with the
-    /// magnitude of the coordinate, so one rule works near the origin and far from it.
-    /// Positive `ulps` move away from zero for positive numbers, towards zero for negative ones,
-    /// so callers pass `ulps` with the sign of `self` times the wanted direction.
-    fn add_ulps(self, ulps: i64) -> Self;
+    /// The larger of two numbers (IEEE `maxNum`: a NaN argument loses to a number).
+    fn max(self, other: Self) -> Self;
 
     /// Builds a vector from three scalars.
     fn vec3(x: Self, y: Self, z: Self) -> Self::Vec3;
@@ -80,11 +78,7 @@ pub trait Real:
     fn dot(a: Self::Vec3, b: Self::Vec3) -> Self;
     /// Rounds a `DVec3` to this precision.
     fn vec_from_f64(v: DVec3) -> Self::Vec3 {
-        Self::vec3(
-            Self::from_f64(v.x),
-            Self::from_f64(v.y),
-            Self::from_f64(v.z),
-        )
+        Self::vec3(Self::from_f64(v.x), Self::from_f64(v.y), Self::from_f64(v.z))
     }
     /// Widens a vector to `DVec3` (exact).
     fn vec_to_f64(v: Self::Vec3) -> DVec3 {
@@ -103,6 +97,7 @@ impl Real for f32 {
     const EPSILON: Self = f32::EPSILON;
     const MAX: Self = f32::MAX;
     const INFINITY: Self = f32::INFINITY;
+    const NAN: Self = f32::NAN;
 
     fn from_f64(x: f64) -> Self {
         x as f32
@@ -122,9 +117,8 @@ impl Real for f32 {
     fn is_finite(self) -> bool {
         f32::is_finite(self)
     }
-    fn add_ulps(self, ulps: i64) -> Self {
-        let ulps = ulps.clamp(i64::from(i32::MIN), i64::from(i32::MAX)) as i32;
-        f32::from_bits((self.to_bits() as i32).wrapping_add(ulps) as u32)
+    fn max(self, other: Self) -> Self {
+        f32::max(self, other)
     }
     fn vec3(x: Self, y: Self, z: Self) -> Vec3 {
         Vec3::new(x, y, z)
@@ -147,6 +141,7 @@ impl Real for f64 {
     const EPSILON: Self = f64::EPSILON;
     const MAX: Self = f64::MAX;
     const INFINITY: Self = f64::INFINITY;
+    const NAN: Self = f64::NAN;
 
     fn from_f64(x: f64) -> Self {
         x
@@ -166,8 +161,8 @@ impl Real for f64 {
     fn is_finite(self) -> bool {
         f64::is_finite(self)
     }
-    fn add_ulps(self, ulps: i64) -> Self {
-        f64::from_bits((self.to_bits() as i64).wrapping_add(ulps) as u64)
+    fn max(self, other: Self) -> Self {
+        f64::max(self, other)
     }
     fn vec3(x: Self, y: Self, z: Self) -> DVec3 {
         DVec3::new(x, y, z)
@@ -183,17 +178,6 @@ impl Real for f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn add_ulps_steps_one_float_at_a_time() {
-        assert_eq!(1.0f32.add_ulps(1), 1.0 + f32::EPSILON);
-        assert_eq!(1.0f64.add_ulps(1), 1.0 + f64::EPSILON);
-        assert_eq!(
-            (-1.0f32).add_ulps(1),
-            -(1.0 + f32::EPSILON),
-            "bit step moves away from zero"
-        );
-    }
 
     #[test]
     fn dot_matches_glam_without_fma() {

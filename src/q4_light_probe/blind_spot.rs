@@ -93,11 +93,7 @@ mod tests {
     /// Traces camera rays at angle β off the axis into a unit ball with the crate's sphere solver,
     /// and returns the reflected direction.
     fn traced_reflection(d: f64, beta: f64) -> Option<DVec3> {
-        let ray = Ray::<f64>::new(
-            DVec3::new(0.0, 0.0, d),
-            DVec3::new(beta.sin(), 0.0, -beta.cos()),
-        )
-        .ok()?;
+        let ray = Ray::<f64>::new(DVec3::new(0.0, 0.0, d), DVec3::new(beta.sin(), 0.0, -beta.cos())).ok()?;
         let ball = Sphere::<f64>::new(DVec3::ZERO, 1.0).ok()?;
         let t = first_hit_stable(&ray, &ball)?;
         let hit = surface_hit(&ray, &ball, t);
@@ -114,10 +110,7 @@ mod tests {
                 let traced = traced_reflection(d, beta).unwrap();
                 let rho = beta.tan() / beta_max.tan();
                 let mapped = format.image_to_direction(DVec2::new(rho, 0.0)).unwrap();
-                assert!(
-                    (traced - mapped).length() < 1e-6,
-                    "D/R {d}, β {beta}: {traced} vs {mapped}"
-                );
+                assert!((traced - mapped).length() < 1e-6, "D/R {d}, β {beta}: {traced} vs {mapped}");
             }
         }
     }
@@ -136,14 +129,8 @@ mod tests {
                 .filter_map(|beta| traced_reflection(d, beta))
                 .map(|r| r.dot(-DVec3::Z).clamp(-1.0, 1.0).acos())
                 .fold(f64::INFINITY, f64::min);
-            assert!(
-                closest >= gamma - 1e-9,
-                "D/R {d}: reached {closest} < γ {gamma}"
-            );
-            assert!(
-                closest < gamma + 1e-4,
-                "D/R {d}: the cone is tight ({closest} vs {gamma})"
-            );
+            assert!(closest >= gamma - 1e-9, "D/R {d}: reached {closest} < γ {gamma}");
+            assert!(closest < gamma + 1e-4, "D/R {d}: the cone is tight ({closest} vs {gamma})");
         }
     }
 
@@ -167,8 +154,7 @@ mod tests {
         use crate::q4_light_probe::Probe;
         for d in [3.0, 10.0] {
             let format = ProbeFormat::perspective_ball(d).unwrap();
-            let probe =
-                Probe::from_fn(format, 24, 24, glam::DMat3::IDENTITY, |_| DVec3::ONE).unwrap();
+            let probe = Probe::from_fn(format, 24, 24, glam::DMat3::IDENTITY, |_| DVec3::ONE).unwrap();
             let covered: f64 = probe.texels().iter().map(|t| t.solid_angle).sum();
             assert!((4.0 * PI - covered - solid_angle(d).unwrap()).abs() < 1e-9);
         }

@@ -8,8 +8,6 @@ use crate::plot::{Figure, PALETTE, PlotError, err, png_bytes, svg_figure};
 use glam::DMat3;
 use glam::DVec3;
 use plotters::prelude::*;
-use rand_core::SeedableRng;
-use rand_pcg::Pcg64;
 
 /// The benchmark's committed results (written by `cargo bench --bench q4_irradiance`).
 const ACCURACY_CSV: &str = include_str!("../../docs/data/q4_accuracy_time.csv");
@@ -41,14 +39,9 @@ type Curve = Box<dyn Fn(f64) -> f64>;
 
 fn blind_spot_figure() -> Result<Figure, PlotError> {
     svg_figure("q4_blind_spot.svg", (640, 400), |root| {
-        let distances: Vec<f64> = (0..=200)
-            .map(|k| 1.2 * (50.0_f64 / 1.2).powf(k as f64 / 200.0))
-            .collect();
+        let distances: Vec<f64> = (0..=200).map(|k| 1.2 * (50.0_f64 / 1.2).powf(k as f64 / 200.0)).collect();
         let mut chart = ChartBuilder::on(root)
-            .caption(
-                "What a mirrored ball misses, vs camera distance D/R",
-                ("sans-serif", 17),
-            )
+            .caption("What a mirrored ball misses, vs camera distance D/R", ("sans-serif", 17))
             .margin(10)
             .x_label_area_size(40)
             .y_label_area_size(55)
@@ -68,10 +61,7 @@ fn blind_spot_figure() -> Result<Figure, PlotError> {
             ),
             (
                 "blind solid angle, % of 4π",
-                Box::new(|d| {
-                    blind_spot::solid_angle(d)
-                        .map_or(f64::NAN, |s| 100.0 * s / (4.0 * std::f64::consts::PI))
-                }),
+                Box::new(|d| blind_spot::solid_angle(d).map_or(f64::NAN, |s| 100.0 * s / (4.0 * std::f64::consts::PI))),
             ),
             (
                 "irradiance lost at n = away (uniform map), %",
@@ -81,25 +71,17 @@ fn blind_spot_figure() -> Result<Figure, PlotError> {
         for (index, (label, f)) in series.iter().enumerate() {
             let colour = PALETTE[index];
             chart
-                .draw_series(LineSeries::new(
-                    distances.iter().map(|&d| (d, f(d))),
-                    colour.stroke_width(2),
-                ))
+                .draw_series(LineSeries::new(distances.iter().map(|&d| (d, f(d))), colour.stroke_width(2)))
                 .map_err(err)?
                 .label(*label)
-                .legend(move |(x, y)| {
-                    PathElement::new(vec![(x, y), (x + 18, y)], colour.stroke_width(2))
-                });
+                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], colour.stroke_width(2)));
         }
         draw_legend(&mut chart, SeriesLabelPosition::LowerLeft)
     })
 }
 
 /// The legend box every Q4 chart uses.
-fn draw_legend<'a, DB, CT>(
-    chart: &mut ChartContext<'a, DB, CT>,
-    position: SeriesLabelPosition,
-) -> Result<(), String>
+fn draw_legend<'a, DB, CT>(chart: &mut ChartContext<'a, DB, CT>, position: SeriesLabelPosition) -> Result<(), String>
 where
     DB: DrawingBackend + 'a,
     CT: plotters::coord::CoordTranslate,
@@ -120,9 +102,7 @@ fn solid_angle_figure() -> Result<Figure, PlotError> {
     let size = 128_usize;
     let formats = [
         ProbeFormat::MirrorBall,
-        ProbeFormat::PerspectiveBall {
-            distance_over_radius: 3.0,
-        },
+        ProbeFormat::PerspectiveBall { distance_over_radius: 3.0 },
         ProbeFormat::AngularMap,
         ProbeFormat::LatLong,
     ];
@@ -133,18 +113,9 @@ fn solid_angle_figure() -> Result<Figure, PlotError> {
         image::Rgb([255, 255, 255]),
     );
     for (slot, format) in formats.iter().enumerate() {
-        let (w, h) = if *format == ProbeFormat::LatLong {
-            (size, size / 2)
-        } else {
-            (size, size)
-        };
-        let probe =
-            Probe::from_fn(*format, w, h, DMat3::IDENTITY, |_| glam::DVec3::ZERO).map_err(|e| {
-                PlotError::Draw {
-                    figure: "q4_texel_solid_angle.png".into(),
-                    message: e.to_string(),
-                }
-            })?;
+        let (w, h) = if *format == ProbeFormat::LatLong { (size, size / 2) } else { (size, size) };
+        let probe = Probe::from_fn(*format, w, h, DMat3::IDENTITY, |_| glam::DVec3::ZERO)
+            .map_err(|e| PlotError::Draw { figure: "q4_texel_solid_angle.png".into(), message: e.to_string() })?;
         let mean = 4.0 * std::f64::consts::PI / (w * h) as f64;
         let y_offset = (size - h) / 2;
         for (index, texel) in probe.texels().iter().enumerate() {
@@ -173,13 +144,8 @@ fn solid_angle_figure() -> Result<Figure, PlotError> {
 fn sphere_render_figure() -> Result<Figure, PlotError> {
     let name = "q4_sphere_render.png";
     let map = AnalyticMap::sun();
-    let probe =
-        Probe::from_map(&map, ProbeFormat::MirrorBall, 128, horizontal_camera()).map_err(|e| {
-            PlotError::Draw {
-                figure: name.into(),
-                message: e.to_string(),
-            }
-        })?;
+    let probe = Probe::from_map(&map, ProbeFormat::MirrorBall, 128, horizontal_camera())
+        .map_err(|e| PlotError::Draw { figure: name.into(), message: e.to_string() })?;
     let prepared = Irradiance::new(&probe);
     let size = 128_usize;
     let gap = 8_usize;
@@ -202,7 +168,7 @@ fn sphere_render_figure() -> Result<Figure, PlotError> {
                 continue;
             }
             let n = right * a + up * b + toward_viewer * (1.0 - r2).sqrt();
-            let mut rng = Pcg64::seed_from_u64((row * size + column) as u64);
+            let mut rng = crate::rng::seeded((row * size + column) as u64, 0);
             exact.push(Some(map.irradiance(n)));
             sh9.push(Some(prepared.sh9().irradiance(n).x));
             mis.push(Some(prepared.mis(n, 16, &mut rng).x));
@@ -225,21 +191,14 @@ fn sphere_render_figure() -> Result<Figure, PlotError> {
         ("exact", Box::new(|i| exact[i].map(tone))),
         ("SH9", Box::new(|i| sh9[i].map(tone))),
         ("MIS, 16 samples", Box::new(|i| mis[i].map(tone))),
-        (
-            "SH9 error",
-            Box::new(|i| Some(heat((sh9[i]? - exact[i]?).abs()))),
-        ),
-        (
-            "MIS error",
-            Box::new(|i| Some(heat((mis[i]? - exact[i]?).abs()))),
-        ),
+        ("SH9 error", Box::new(|i| Some(heat((sh9[i]? - exact[i]?).abs())))),
+        ("MIS error", Box::new(|i| Some(heat((mis[i]? - exact[i]?).abs())))),
     ];
     let width = panels.len() * (size + gap) - gap;
     crate::plot::png_figure(name, (width as u32, (size + label_band) as u32), |root| {
         for (slot, (label, colour)) in panels.iter().enumerate() {
             let x0 = slot * (size + gap);
-            root.draw(&Text::new(*label, (x0 as i32 + 4, 4), ("sans-serif", 13)))
-                .map_err(err)?;
+            root.draw(&Text::new(*label, (x0 as i32 + 4, 4), ("sans-serif", 13))).map_err(err)?;
             for index in 0..size * size {
                 if let Some(c) = colour(index) {
                     let x = (x0 + index % size) as i32;
@@ -284,17 +243,12 @@ fn pareto_figure(map: &str) -> Result<Figure, PlotError> {
         .collect();
     let name = format!("q4_pareto_{map}.svg");
     svg_figure(&name, (680, 440), |root| {
-        let (t_min, t_max) = rows.iter().fold((f64::INFINITY, 0.0_f64), |(lo, hi), r| {
-            (lo.min(r.nanoseconds), hi.max(r.nanoseconds))
-        });
-        let (e_min, e_max) = rows.iter().fold((f64::INFINITY, 0.0_f64), |(lo, hi), r| {
-            (lo.min(r.mean_percent), hi.max(r.mean_percent))
-        });
+        let (t_min, t_max) =
+            rows.iter().fold((f64::INFINITY, 0.0_f64), |(lo, hi), r| (lo.min(r.nanoseconds), hi.max(r.nanoseconds)));
+        let (e_min, e_max) =
+            rows.iter().fold((f64::INFINITY, 0.0_f64), |(lo, hi), r| (lo.min(r.mean_percent), hi.max(r.mean_percent)));
         let mut chart = ChartBuilder::on(root)
-            .caption(
-                format!("Error vs time per normal, {map} map (benchmark data)"),
-                ("sans-serif", 17),
-            )
+            .caption(format!("Error vs time per normal, {map} map (benchmark data)"), ("sans-serif", 17))
             .margin(10)
             .x_label_area_size(40)
             .y_label_area_size(60)
@@ -310,25 +264,12 @@ fn pareto_figure(map: &str) -> Result<Figure, PlotError> {
             .label_style(("sans-serif", 12))
             .draw()
             .map_err(err)?;
-        let methods = [
-            "unweighted",
-            "weighted",
-            "sh9",
-            "uniform",
-            "cosine",
-            "map",
-            "mis",
-        ];
+        let methods = ["unweighted", "weighted", "sh9", "uniform", "cosine", "map", "mis"];
         for (index, method) in methods.iter().enumerate() {
-            let points: Vec<(f64, f64)> = rows
-                .iter()
-                .filter(|r| r.method == *method)
-                .map(|r| (r.nanoseconds, r.mean_percent))
-                .collect();
+            let points: Vec<(f64, f64)> =
+                rows.iter().filter(|r| r.method == *method).map(|r| (r.nanoseconds, r.mean_percent)).collect();
             let colour = PALETTE[index % PALETTE.len()];
-            chart
-                .draw_series(LineSeries::new(points.clone(), colour.stroke_width(1)))
-                .map_err(err)?;
+            chart.draw_series(LineSeries::new(points.clone(), colour.stroke_width(1))).map_err(err)?;
             chart
                 .draw_series(points.iter().map(|&p| Circle::new(p, 4, colour.filled())))
                 .map_err(err)?
@@ -336,10 +277,7 @@ fn pareto_figure(map: &str) -> Result<Figure, PlotError> {
                 .legend(move |(x, y)| Circle::new((x + 8, y), 4, colour.filled()));
         }
         // Name the SH9 and 256² weighted points, the target pair.
-        for r in rows
-            .iter()
-            .filter(|r| r.label == "sh9 256²" || r.label == "weighted 256²")
-        {
+        for r in rows.iter().filter(|r| r.label == "sh9 256²" || r.label == "weighted 256²") {
             chart
                 .draw_series(std::iter::once(Text::new(
                     r.label.clone(),

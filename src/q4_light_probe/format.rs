@@ -91,11 +91,7 @@ impl GaussLegendre {
     pub(crate) fn integrate(&self, a: f64, b: f64, f: impl Fn(f64) -> f64) -> f64 {
         let half = 0.5 * (b - a);
         let mid = 0.5 * (a + b);
-        half * self
-            .nodes
-            .iter()
-            .map(|&(x, w)| w * f(mid + half * x))
-            .sum::<f64>()
+        half * self.nodes.iter().map(|&(x, w)| w * f(mid + half * x)).sum::<f64>()
     }
 }
 
@@ -134,10 +130,7 @@ impl ProbeFormat {
     /// ```
     pub fn perspective_ball(distance_over_radius: f64) -> Result<Self, InputError> {
         if !distance_over_radius.is_finite() {
-            return Err(InputError::NonFinite {
-                name: "D/R",
-                value: format!("{distance_over_radius}"),
-            });
+            return Err(InputError::NonFinite { name: "D/R", value: format!("{distance_over_radius}") });
         }
         if distance_over_radius <= 1.0 {
             return Err(InputError::OutOfRange {
@@ -146,9 +139,7 @@ impl ProbeFormat {
                 expected: "> 1 (camera outside the ball)",
             });
         }
-        Ok(Self::PerspectiveBall {
-            distance_over_radius,
-        })
+        Ok(Self::PerspectiveBall { distance_over_radius })
     }
 
     /// A short name for tables and figures.
@@ -161,9 +152,7 @@ impl ProbeFormat {
     pub fn name(&self) -> String {
         match self {
             Self::MirrorBall => "mirror ball".into(),
-            Self::PerspectiveBall {
-                distance_over_radius,
-            } => format!("perspective ball D/R={distance_over_radius}"),
+            Self::PerspectiveBall { distance_over_radius } => format!("perspective ball D/R={distance_over_radius}"),
             Self::AngularMap => "angular map".into(),
             Self::LatLong => "lat-long".into(),
         }
@@ -172,15 +161,9 @@ impl ProbeFormat {
     /// The image rectangle: `[-1,1]²` for the disk formats, `[0,1]²` for lat-long.
     pub(crate) fn image_rect(&self) -> Rect {
         if *self == Self::LatLong {
-            Rect {
-                min: DVec2::ZERO,
-                max: DVec2::ONE,
-            }
+            Rect { min: DVec2::ZERO, max: DVec2::ONE }
         } else {
-            Rect {
-                min: DVec2::splat(-1.0),
-                max: DVec2::ONE,
-            }
+            Rect { min: DVec2::splat(-1.0), max: DVec2::ONE }
         }
     }
 
@@ -189,9 +172,7 @@ impl ProbeFormat {
         match *self {
             Self::MirrorBall => 2.0 * rho.min(1.0).asin(),
             Self::AngularMap => PI * rho,
-            Self::PerspectiveBall {
-                distance_over_radius: k,
-            } => {
+            Self::PerspectiveBall { distance_over_radius: k } => {
                 let (beta, incidence) = perspective_angles(k, rho);
                 2.0 * incidence - beta
             }
@@ -204,9 +185,7 @@ impl ProbeFormat {
         match *self {
             Self::MirrorBall => 2.0 / (1.0 - rho * rho).max(0.0).sqrt(),
             Self::AngularMap => PI,
-            Self::PerspectiveBall {
-                distance_over_radius: k,
-            } => {
+            Self::PerspectiveBall { distance_over_radius: k } => {
                 let tan_max = 1.0 / (k * k - 1.0).sqrt();
                 let (beta, incidence) = perspective_angles(k, rho);
                 let dbeta = tan_max / (1.0 + rho * rho * tan_max * tan_max);
@@ -228,9 +207,7 @@ impl ProbeFormat {
     #[must_use]
     pub fn max_theta(&self) -> f64 {
         match *self {
-            Self::PerspectiveBall {
-                distance_over_radius: k,
-            } => PI - (1.0 / k).asin(),
+            Self::PerspectiveBall { distance_over_radius: k } => PI - (1.0 / k).asin(),
             _ => PI,
         }
     }
@@ -297,11 +274,7 @@ impl ProbeFormat {
             return None;
         }
         let (sin_t, cos_t) = self.theta_of_rho(rho).sin_cos();
-        let (cos_p, sin_p) = if rho > 0.0 {
-            (p.x / rho, p.y / rho)
-        } else {
-            (1.0, 0.0)
-        };
+        let (cos_p, sin_p) = if rho > 0.0 { (p.x / rho, p.y / rho) } else { (1.0, 0.0) };
         Some(DVec3::new(sin_t * cos_p, sin_t * sin_p, cos_t))
     }
 
@@ -367,20 +340,13 @@ impl ProbeFormat {
 
     /// The image area of `rect` that lies inside the format's domain.
     pub(crate) fn area_inside(&self, rect: Rect) -> f64 {
-        if *self == Self::LatLong {
-            (rect.max - rect.min).element_product()
-        } else {
-            disk_rect_area(rect)
-        }
+        if *self == Self::LatLong { (rect.max - rect.min).element_product() } else { disk_rect_area(rect) }
     }
 
     /// The solid angle seen through image rectangle `rect` (the part inside the domain).
     pub(crate) fn solid_angle(&self, rect: Rect, rule: &GaussLegendre) -> f64 {
         match self {
-            Self::LatLong => {
-                TAU * (rect.max.x - rect.min.x)
-                    * ((PI * rect.min.y).cos() - (PI * rect.max.y).cos())
-            }
+            Self::LatLong => TAU * (rect.max.x - rect.min.x) * ((PI * rect.min.y).cos() - (PI * rect.max.y).cos()),
             Self::MirrorBall => 4.0 * disk_rect_area(rect),
             _ => self.polar_solid_angle(rect, rule),
         }
@@ -390,29 +356,15 @@ impl ProbeFormat {
     /// cross `rect`; the φ axis is split at every corner and every rim crossing so that each piece
     /// is smooth and Gauss–Legendre converges fast.
     fn polar_solid_angle(&self, rect: Rect, rule: &GaussLegendre) -> f64 {
-        let corners = [
-            rect.min,
-            DVec2::new(rect.max.x, rect.min.y),
-            rect.max,
-            DVec2::new(rect.min.x, rect.max.y),
-        ];
-        let contains_origin =
-            rect.min.x <= 0.0 && rect.max.x >= 0.0 && rect.min.y <= 0.0 && rect.max.y >= 0.0;
+        let corners = [rect.min, DVec2::new(rect.max.x, rect.min.y), rect.max, DVec2::new(rect.min.x, rect.max.y)];
+        let contains_origin = rect.min.x <= 0.0 && rect.max.x >= 0.0 && rect.min.y <= 0.0 && rect.max.y >= 0.0;
         let centre = 0.5 * (rect.min + rect.max);
-        let reference = if contains_origin {
-            0.0
-        } else {
-            centre.y.atan2(centre.x)
-        };
+        let reference = if contains_origin { 0.0 } else { centre.y.atan2(centre.x) };
         let relative = |p: DVec2| {
             let a = p.y.atan2(p.x) - reference;
             (a + PI).rem_euclid(TAU) - PI
         };
-        let mut breaks: Vec<f64> = corners
-            .iter()
-            .filter(|c| c.length_squared() > 0.0)
-            .map(|&c| relative(c))
-            .collect();
+        let mut breaks: Vec<f64> = corners.iter().filter(|c| c.length_squared() > 0.0).map(|&c| relative(c)).collect();
         let (lo, hi) = if contains_origin {
             (-PI, PI)
         } else {
@@ -431,16 +383,11 @@ impl ProbeFormat {
         let integrand = |phi: f64| {
             let (sin_p, cos_p) = (phi + reference).sin_cos();
             match ray_rect_span(DVec2::new(cos_p, sin_p), rect) {
-                Some((t_in, t_out)) if t_in < 1.0 => {
-                    self.cap_fraction(t_out.min(1.0)) - self.cap_fraction(t_in)
-                }
+                Some((t_in, t_out)) if t_in < 1.0 => self.cap_fraction(t_out.min(1.0)) - self.cap_fraction(t_in),
                 _ => 0.0,
             }
         };
-        breaks
-            .windows(2)
-            .map(|w| rule.integrate_endpoint_regular(w[0], w[1], integrand))
-            .sum()
+        breaks.windows(2).map(|w| rule.integrate_endpoint_regular(w[0], w[1], integrand)).sum()
     }
 }
 
@@ -458,10 +405,7 @@ fn perspective_angles(k: f64, rho: f64) -> (f64, f64) {
 fn ray_rect_span(dir: DVec2, rect: Rect) -> Option<(f64, f64)> {
     let mut t_in = 0.0_f64;
     let mut t_out = f64::INFINITY;
-    for (d, lo, hi) in [
-        (dir.x, rect.min.x, rect.max.x),
-        (dir.y, rect.min.y, rect.max.y),
-    ] {
+    for (d, lo, hi) in [(dir.x, rect.min.x, rect.max.x), (dir.y, rect.min.y, rect.max.y)] {
         if d == 0.0 {
             if lo > 0.0 || hi < 0.0 {
                 return None;
@@ -479,16 +423,9 @@ fn ray_rect_span(dir: DVec2, rect: Rect) -> Option<(f64, f64)> {
 fn rim_crossings(rect: Rect) -> Vec<DVec2> {
     // The horizontal edges are the vertical edges of the transposed rectangle.
     let transpose = |p: DVec2| DVec2::new(p.y, p.x);
-    let transposed = Rect {
-        min: transpose(rect.min),
-        max: transpose(rect.max),
-    };
+    let transposed = Rect { min: transpose(rect.min), max: transpose(rect.max) };
     let mut points = vertical_edge_crossings(rect);
-    points.extend(
-        vertical_edge_crossings(transposed)
-            .into_iter()
-            .map(transpose),
-    );
+    points.extend(vertical_edge_crossings(transposed).into_iter().map(transpose));
     points
 }
 
@@ -543,16 +480,8 @@ pub(crate) fn disk_rect_area(rect: Rect) -> f64 {
                 return 0.0;
             }
             let circle = half_disk_primitive(b) - half_disk_primitive(a);
-            let upper = if upper_is_circle {
-                circle
-            } else {
-                rect.max.y * (b - a)
-            };
-            let lower = if lower_is_circle {
-                -circle
-            } else {
-                rect.min.y * (b - a)
-            };
+            let upper = if upper_is_circle { circle } else { rect.max.y * (b - a) };
+            let lower = if lower_is_circle { -circle } else { rect.min.y * (b - a) };
             upper - lower
         })
         .sum()
@@ -583,20 +512,11 @@ mod tests {
 
     #[test]
     fn disk_rect_area_matches_the_whole_disk_and_quadrants() {
-        let whole = Rect {
-            min: DVec2::splat(-2.0),
-            max: DVec2::splat(2.0),
-        };
+        let whole = Rect { min: DVec2::splat(-2.0), max: DVec2::splat(2.0) };
         assert!((disk_rect_area(whole) - PI).abs() < 1e-14);
-        let quadrant = Rect {
-            min: DVec2::ZERO,
-            max: DVec2::ONE,
-        };
+        let quadrant = Rect { min: DVec2::ZERO, max: DVec2::ONE };
         assert!((disk_rect_area(quadrant) - PI / 4.0).abs() < 1e-14);
-        let inside = Rect {
-            min: DVec2::new(-0.1, 0.2),
-            max: DVec2::new(0.3, 0.5),
-        };
+        let inside = Rect { min: DVec2::new(-0.1, 0.2), max: DVec2::new(0.3, 0.5) };
         assert!((disk_rect_area(inside) - 0.12).abs() < 1e-15);
     }
 
@@ -611,22 +531,12 @@ mod tests {
                 for j in 0..size {
                     for i in 0..size {
                         let min = rect.min + step * DVec2::new(i as f64, j as f64);
-                        total += format.solid_angle(
-                            Rect {
-                                min,
-                                max: min + step,
-                            },
-                            &rule,
-                        );
+                        total += format.solid_angle(Rect { min, max: min + step }, &rule);
                     }
                 }
                 let blind = 2.0 * PI * (1.0 + format.max_theta().cos());
                 let expected = 4.0 * PI - blind;
-                assert!(
-                    (total - expected).abs() < 2e-9,
-                    "{} at {size}²: {total} vs {expected}",
-                    format.name()
-                );
+                assert!((total - expected).abs() < 2e-9, "{} at {size}²: {total} vs {expected}", format.name());
             }
         }
     }
@@ -639,16 +549,10 @@ mod tests {
         for j in 0..9 {
             for i in 0..9 {
                 let min = DVec2::new(-1.0 + step * i as f64, -1.0 + step * j as f64);
-                let rect = Rect {
-                    min,
-                    max: min + DVec2::splat(step),
-                };
+                let rect = Rect { min, max: min + DVec2::splat(step) };
                 let exact = ProbeFormat::MirrorBall.solid_angle(rect, &rule);
                 let polar = ProbeFormat::MirrorBall.polar_solid_angle(rect, &rule);
-                assert!(
-                    (exact - polar).abs() < 1e-7,
-                    "texel {i},{j}: {exact} vs {polar}"
-                );
+                assert!((exact - polar).abs() < 1e-7, "texel {i},{j}: {exact} vs {polar}");
             }
         }
     }
@@ -668,10 +572,7 @@ mod tests {
     fn jacobian_integrates_to_the_visible_sphere() {
         // Independent of the texel quadrature: a radial integral of J ρ dρ dφ.
         let rule = GaussLegendre::new(16);
-        for format in all_formats()
-            .into_iter()
-            .filter(|f| *f != ProbeFormat::LatLong)
-        {
+        for format in all_formats().into_iter().filter(|f| *f != ProbeFormat::LatLong) {
             // ρ = 1 − (1 − x)² removes the perspective ball's 1/√(1 − ρ) rim singularity.
             let pieces = 200;
             let total: f64 = (0..pieces)
@@ -685,11 +586,7 @@ mod tests {
                 })
                 .sum();
             let expected = TAU * (1.0 - format.max_theta().cos());
-            assert!(
-                (total - expected).abs() < 1e-9,
-                "{}: {total} vs {expected}",
-                format.name()
-            );
+            assert!((total - expected).abs() < 1e-9, "{}: {total} vs {expected}", format.name());
         }
     }
 

@@ -6,8 +6,8 @@
 
 use super::probe::{Probe, ProbeError};
 use crate::geometry::{InputError, require_direction};
+use crate::rng::{Generator, uniform};
 use glam::{DVec2, DVec3};
-use rand_core::Rng;
 use std::f64::consts::{PI, TAU};
 use std::str::FromStr;
 
@@ -42,15 +42,8 @@ pub enum Method {
 
 impl Method {
     /// Every method, in the CLI's order.
-    pub const ALL: [Method; 7] = [
-        Method::Unweighted,
-        Method::Weighted,
-        Method::Uniform,
-        Method::Cosine,
-        Method::Map,
-        Method::Mis,
-        Method::Sh9,
-    ];
+    pub const ALL: [Method; 7] =
+        [Method::Unweighted, Method::Weighted, Method::Uniform, Method::Cosine, Method::Map, Method::Mis, Method::Sh9];
 
     /// The CLI name.
     #[must_use]
@@ -69,10 +62,7 @@ impl Method {
     /// Whether the method draws random samples (and so takes `--samples` and `--seed`).
     #[must_use]
     pub fn is_monte_carlo(self) -> bool {
-        matches!(
-            self,
-            Method::Uniform | Method::Cosine | Method::Map | Method::Mis
-        )
+        matches!(self, Method::Uniform | Method::Cosine | Method::Map | Method::Mis)
     }
 }
 
@@ -80,13 +70,10 @@ impl FromStr for Method {
     type Err = String;
 
     fn from_str(s: &str) -> Result<Self, Self::Err> {
-        Method::ALL
-            .into_iter()
-            .find(|m| m.name() == s)
-            .ok_or_else(|| {
-                let names: Vec<_> = Method::ALL.iter().map(|m| m.name()).collect();
-                format!("unknown method `{s}`; expected one of {}", names.join("|"))
-            })
+        Method::ALL.into_iter().find(|m| m.name() == s).ok_or_else(|| {
+            let names: Vec<_> = Method::ALL.iter().map(|m| m.name()).collect();
+            format!("unknown method `{s}`; expected one of {}", names.join("|"))
+        })
     }
 }
 
@@ -106,11 +93,6 @@ impl FromStr for Method {
 #[must_use]
 pub fn outgoing_radiance(albedo: f64, irradiance: DVec3) -> DVec3 {
     irradiance * (albedo / PI)
-}
-
-/// A uniform double in `[0, 1)` from the top 53 bits.
-pub(crate) fn uniform01(rng: &mut impl Rng) -> f64 {
-    (rng.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
 }
 
 /// Rec. 709 luminance, the scalar the map sampler follows and the study's errors are measured in
@@ -142,31 +124,11 @@ pub fn sh_basis(omega: DVec3) -> [f64; 9] {
     let y2 = 0.5 * (15.0 / PI).sqrt();
     let y20 = 0.25 * (5.0 / PI).sqrt();
     let y22 = 0.25 * (15.0 / PI).sqrt();
-    [
-        y0,
-        y1 * y,
-        y1 * z,
-        y1 * x,
-        y2 * x * y,
-        y2 * y * z,
-        y20 * (3.0 * z * z - 1.0),
-        y2 * x * z,
-        y22 * (x * x - y * y),
-    ]
+    [y0, y1 * y, y1 * z, y1 * x, y2 * x * y, y2 * y * z, y20 * (3.0 * z * z - 1.0), y2 * x * z, y22 * (x * x - y * y)]
 }
 
 /// `Â_l`, the clamped-cosine kernel's SH coefficients (π, 2π/3, π/4), per basis index.
-const KERNEL: [f64; 9] = [
-    PI,
-    TAU / 3.0,
-    TAU / 3.0,
-    TAU / 3.0,
-    PI / 4.0,
-    PI / 4.0,
-    PI / 4.0,
-    PI / 4.0,
-    PI / 4.0,
-];
+const KERNEL: [f64; 9] = [PI, TAU / 3.0, TAU / 3.0, TAU / 3.0, PI / 4.0, PI / 4.0, PI / 4.0, PI / 4.0, PI / 4.0];
 
 /// The 9 RGB SH coefficients `L_lm = Σ_t L_t Y_lm(ω_t) Δω_t` of a probe.
 ///
@@ -204,12 +166,7 @@ impl Sh9 {
     /// `E(n) = Σ Â_l L_lm Y_lm(n)` without clamping: can be negative behind a bright source.
     #[must_use]
     pub fn irradiance_unclamped(&self, normal: DVec3) -> DVec3 {
-        sh_basis(normal)
-            .iter()
-            .zip(KERNEL)
-            .zip(&self.coefficients)
-            .map(|((y, a), c)| *c * (a * y))
-            .sum()
+        sh_basis(normal).iter().zip(KERNEL).zip(&self.coefficients).map(|((y, a), c)| *c * (a * y)).sum()
     }
 
     /// [`Self::irradiance_unclamped`] clamped at 0 per channel (irradiance cannot be negative).
@@ -244,10 +201,9 @@ impl<'a> Irradiance<'a> {
     /// ```
     /// use glam::{DMat3, DVec3};
     /// use hw3::q4_light_probe::{irradiance::{Irradiance, Method}, Probe, ProbeFormat};
-    /// use rand_core::SeedableRng;
     /// let probe = Probe::from_fn(ProbeFormat::MirrorBall, 16, 16, DMat3::IDENTITY, |_| DVec3::ONE).unwrap();
     /// let prepared = Irradiance::new(&probe);
-    /// let mut rng = rand_pcg::Pcg64::seed_from_u64(1);
+    /// let mut rng = hw3::rng::seeded(1, 0);
     /// let e = prepared.estimate(DVec3::Z, Method::Cosine, 16, &mut rng).unwrap();
     /// assert!((e.x - std::f64::consts::PI).abs() < 1e-12); // zero variance on a constant map
     /// ```
@@ -268,11 +224,7 @@ impl<'a> Irradiance<'a> {
             probe,
             cdf,
             sh9: Sh9::project(probe),
-            equal_weight: if inside > 0 {
-                covered / inside as f64
-            } else {
-                0.0
-            },
+            equal_weight: if inside > 0 { covered / inside as f64 } else { 0.0 },
         }
     }
 
@@ -291,10 +243,9 @@ impl<'a> Irradiance<'a> {
     /// ```
     /// use glam::DVec3;
     /// use hw3::q4_light_probe::{horizontal_camera, maps::AnalyticMap, Irradiance, Method, Probe, ProbeFormat};
-    /// use rand_core::SeedableRng;
     /// let probe = Probe::from_map(&AnalyticMap::sky(), ProbeFormat::MirrorBall, 16, horizontal_camera()).unwrap();
     /// let prepared = Irradiance::new(&probe);
-    /// let mut rng = rand_pcg::Pcg64::seed_from_u64(0);
+    /// let mut rng = hw3::rng::seeded(0, 0);
     /// assert!(prepared.estimate(DVec3::ZERO, Method::Sh9, 1, &mut rng).is_err());
     /// assert!(prepared.estimate(DVec3::Z, Method::Map, 0, &mut rng).is_err());
     /// let e = prepared.estimate(DVec3::new(0.0, 0.0, 5.0), Method::Sh9, 1, &mut rng).unwrap(); // any length
@@ -305,16 +256,11 @@ impl<'a> Irradiance<'a> {
         normal: DVec3,
         method: Method,
         samples: usize,
-        rng: &mut impl Rng,
+        rng: &mut Generator,
     ) -> Result<DVec3, ProbeError> {
         let n = require_direction::<f64>("normal", normal)?.normalize();
         if method.is_monte_carlo() && samples == 0 {
-            return Err(InputError::OutOfRange {
-                name: "samples",
-                value: "0".into(),
-                expected: "≥ 1",
-            }
-            .into());
+            return Err(InputError::OutOfRange { name: "samples", value: "0".into(), expected: "≥ 1" }.into());
         }
         Ok(match method {
             Method::Unweighted => self.unweighted(n),
@@ -366,11 +312,7 @@ impl<'a> Irradiance<'a> {
     /// ```
     #[must_use]
     pub fn weighted(&self, n: DVec3) -> DVec3 {
-        self.probe
-            .texels()
-            .iter()
-            .map(|t| t.radiance * (n.dot(t.direction).max(0.0) * t.solid_angle))
-            .sum()
+        self.probe.texels().iter().map(|t| t.radiance * (n.dot(t.direction).max(0.0) * t.solid_angle)).sum()
     }
 
     /// Uniform hemisphere sampling: `(2π/N) Σ L(ω_i) cos θ_i`.
@@ -379,18 +321,17 @@ impl<'a> Irradiance<'a> {
     /// ```
     /// use glam::DVec3;
     /// use hw3::q4_light_probe::{horizontal_camera, maps::AnalyticMap, Irradiance, Probe, ProbeFormat};
-    /// use rand_core::SeedableRng;
     /// let probe = Probe::from_map(&AnalyticMap::sky(), ProbeFormat::MirrorBall, 32, horizontal_camera()).unwrap();
-    /// let mut rng = rand_pcg::Pcg64::seed_from_u64(5);
+    /// let mut rng = hw3::rng::seeded(5, 0);
     /// let e = Irradiance::new(&probe).uniform(DVec3::Z, 4096, &mut rng).x;
     /// assert!((e / std::f64::consts::PI - 1.0).abs() < 0.1); // a loose bound: one seed
     /// ```
-    pub fn uniform(&self, n: DVec3, samples: usize, rng: &mut impl Rng) -> DVec3 {
+    pub fn uniform(&self, n: DVec3, samples: usize, rng: &mut Generator) -> DVec3 {
         let (t1, t2) = n.any_orthonormal_pair();
         let sum: DVec3 = (0..samples)
             .map(|_| {
-                let z = uniform01(rng);
-                let phi = TAU * uniform01(rng);
+                let z = uniform(rng);
+                let phi = TAU * uniform(rng);
                 let r = (1.0 - z * z).max(0.0).sqrt();
                 let omega = n * z + t1 * (r * phi.cos()) + t2 * (r * phi.sin());
                 self.probe.radiance_toward(omega) * z
@@ -400,10 +341,10 @@ impl<'a> Irradiance<'a> {
     }
 
     /// A cosine-distributed direction around `n` (pdf `cos θ / π`).
-    fn cosine_direction(n: DVec3, rng: &mut impl Rng) -> DVec3 {
+    fn cosine_direction(n: DVec3, rng: &mut Generator) -> DVec3 {
         let (t1, t2) = n.any_orthonormal_pair();
-        let u1 = uniform01(rng);
-        let phi = TAU * uniform01(rng);
+        let u1 = uniform(rng);
+        let phi = TAU * uniform(rng);
         let r = u1.sqrt();
         n * (1.0 - u1).sqrt() + t1 * (r * phi.cos()) + t2 * (r * phi.sin())
     }
@@ -414,16 +355,13 @@ impl<'a> Irradiance<'a> {
     /// ```
     /// use glam::DVec3;
     /// use hw3::q4_light_probe::{horizontal_camera, maps::AnalyticMap, Irradiance, Probe, ProbeFormat};
-    /// use rand_core::SeedableRng;
     /// let probe = Probe::from_map(&AnalyticMap::constant(1.0), ProbeFormat::MirrorBall, 8, horizontal_camera()).unwrap();
-    /// let mut rng = rand_pcg::Pcg64::seed_from_u64(5);
+    /// let mut rng = hw3::rng::seeded(5, 0);
     /// // π L exactly, whatever the seed: L/pdf is constant.
     /// assert!((Irradiance::new(&probe).cosine(DVec3::X, 3, &mut rng).x - std::f64::consts::PI).abs() < 1e-12);
     /// ```
-    pub fn cosine(&self, n: DVec3, samples: usize, rng: &mut impl Rng) -> DVec3 {
-        let sum: DVec3 = (0..samples)
-            .map(|_| self.probe.radiance_toward(Self::cosine_direction(n, rng)))
-            .sum();
+    pub fn cosine(&self, n: DVec3, samples: usize, rng: &mut Generator) -> DVec3 {
+        let sum: DVec3 = (0..samples).map(|_| self.probe.radiance_toward(Self::cosine_direction(n, rng))).sum();
         sum * (PI / samples as f64)
     }
 
@@ -433,22 +371,19 @@ impl<'a> Irradiance<'a> {
 
     /// Draws a texel in proportion to luminance × Δω, then a point uniformly in the texel's image
     /// area inside the domain; the solid-angle pdf is `p_t / (A_t · dω/dA)`.
-    fn sample_map(&self, rng: &mut impl Rng) -> Option<MapSample> {
+    fn sample_map(&self, rng: &mut Generator) -> Option<MapSample> {
         let total = self.total_power();
         if total <= 0.0 {
             return None;
         }
-        let target = uniform01(rng) * total;
-        let texel = self
-            .cdf
-            .partition_point(|c| *c <= target)
-            .min(self.cdf.len() - 1);
+        let target = uniform(rng) * total;
+        let texel = self.cdf.partition_point(|c| *c <= target).min(self.cdf.len() - 1);
         let rect = self.probe.texel_rect(texel);
         // Rejection against the disk. A rim texel with a fraction f of its square inside the
         // disk fails all 64 tries with probability (1 − f)^64; such a sample then counts as zero,
         // a bias below 1e-3 of that texel's (already tiny, since Δω ∝ f) share unless f < 0.1.
         for _ in 0..64 {
-            let u = DVec2::new(uniform01(rng), uniform01(rng));
+            let u = DVec2::new(uniform(rng), uniform(rng));
             let p = rect.min + (rect.max - rect.min) * u;
             if let Some((omega, jacobian)) = self.probe.image_to_world(p)
                 && self.probe.texel_index_at(p) == texel
@@ -456,8 +391,7 @@ impl<'a> Irradiance<'a> {
             {
                 return Some(MapSample {
                     omega,
-                    pdf: self.texel_probability(texel)
-                        / (self.probe.texels()[texel].area * jacobian),
+                    pdf: self.texel_probability(texel) / (self.probe.texels()[texel].area * jacobian),
                     texel,
                 });
             }
@@ -493,16 +427,15 @@ impl<'a> Irradiance<'a> {
     /// # Examples
     /// ```
     /// use hw3::q4_light_probe::{horizontal_camera, maps::AnalyticMap, study, Irradiance, Probe, ProbeFormat};
-    /// use rand_core::SeedableRng;
     /// // A sub-texel sun is found by every sample.
     /// let map = AnalyticMap::sun();
     /// let probe = Probe::from_map(&map, ProbeFormat::MirrorBall, 64, horizontal_camera()).unwrap();
-    /// let mut rng = rand_pcg::Pcg64::seed_from_u64(5);
+    /// let mut rng = hw3::rng::seeded(5, 0);
     /// let n = study::sun_direction();
     /// let e = Irradiance::new(&probe).map(n, 1024, &mut rng).x;
     /// assert!((e / map.irradiance(n) - 1.0).abs() < 0.1); // a loose bound: one seed
     /// ```
-    pub fn map(&self, n: DVec3, samples: usize, rng: &mut impl Rng) -> DVec3 {
+    pub fn map(&self, n: DVec3, samples: usize, rng: &mut Generator) -> DVec3 {
         let sum: DVec3 = (0..samples)
             .filter_map(|_| self.sample_map(rng))
             .map(|s| self.probe.texels()[s.texel].radiance * (n.dot(s.omega).max(0.0) / s.pdf))
@@ -516,24 +449,18 @@ impl<'a> Irradiance<'a> {
     /// # Examples
     /// ```
     /// use hw3::q4_light_probe::{horizontal_camera, maps::AnalyticMap, study, Irradiance, Probe, ProbeFormat};
-    /// use rand_core::SeedableRng;
     /// let map = AnalyticMap::sun();
     /// let probe = Probe::from_map(&map, ProbeFormat::MirrorBall, 64, horizontal_camera()).unwrap();
-    /// let mut rng = rand_pcg::Pcg64::seed_from_u64(5);
+    /// let mut rng = hw3::rng::seeded(5, 0);
     /// let n = study::sun_direction();
     /// let e = Irradiance::new(&probe).mis(n, 1024, &mut rng).x;
     /// assert!((e / map.irradiance(n) - 1.0).abs() < 0.1); // a loose bound: one seed
     /// ```
-    pub fn mis(&self, n: DVec3, samples: usize, rng: &mut impl Rng) -> DVec3 {
-        let map_count = if self.total_power() > 0.0 {
-            samples / 2
-        } else {
-            0
-        };
+    pub fn mis(&self, n: DVec3, samples: usize, rng: &mut Generator) -> DVec3 {
+        let map_count = if self.total_power() > 0.0 { samples / 2 } else { 0 };
         let cosine_count = samples - map_count;
         let (nc, nm) = (cosine_count as f64, map_count as f64);
-        let combined_pdf =
-            |omega: DVec3| nc * n.dot(omega).max(0.0) / PI + nm * self.map_pdf(omega);
+        let combined_pdf = |omega: DVec3| nc * n.dot(omega).max(0.0) / PI + nm * self.map_pdf(omega);
         let mut sum = DVec3::ZERO;
         for _ in 0..cosine_count {
             let omega = Self::cosine_direction(n, rng);
@@ -561,8 +488,6 @@ mod tests {
     use super::*;
     use crate::q4_light_probe::maps::{AnalyticMap, Term};
     use crate::q4_light_probe::{ProbeFormat, fibonacci_normals, horizontal_camera};
-    use rand_core::SeedableRng;
-    use rand_pcg::Pcg64;
 
     #[test]
     fn sh_constants_match_ramamoorthi_hanrahan() {
@@ -573,13 +498,7 @@ mod tests {
         let c3 = 3.0 * KERNEL[6] * y(DVec3::Z, 6) / 2.0;
         let c4 = KERNEL[0] * y(DVec3::Z, 0);
         let c5 = KERNEL[6] * y(DVec3::Z, 6) / 2.0;
-        for (got, paper) in [
-            (c1, 0.429043),
-            (c2, 0.511664),
-            (c3, 0.743125),
-            (c4, 0.886227),
-            (c5, 0.247708),
-        ] {
+        for (got, paper) in [(c1, 0.429043), (c2, 0.511664), (c3, 0.743125), (c4, 0.886227), (c5, 0.247708)] {
             // The paper prints 6 digits computed from 6-digit basis constants: 2e-6 of slack.
             assert!((got - paper).abs() < 2e-6, "{got} vs {paper}");
         }
@@ -588,14 +507,7 @@ mod tests {
     #[test]
     fn sh_basis_is_orthonormal() {
         // Fine weighted texel quadrature on a lat-long grid.
-        let probe = Probe::from_fn(
-            ProbeFormat::LatLong,
-            256,
-            128,
-            glam::DMat3::IDENTITY,
-            |_| DVec3::ONE,
-        )
-        .unwrap();
+        let probe = Probe::from_fn(ProbeFormat::LatLong, 256, 128, glam::DMat3::IDENTITY, |_| DVec3::ONE).unwrap();
         let mut gram = [[0.0; 9]; 9];
         for t in probe.texels() {
             let b = sh_basis(t.direction);
@@ -615,15 +527,10 @@ mod tests {
 
     #[test]
     fn one_by_one_probe_gives_finite_answers_for_every_method() {
-        let probe = Probe::from_map(
-            &AnalyticMap::constant(1.0),
-            ProbeFormat::MirrorBall,
-            1,
-            horizontal_camera(),
-        )
-        .unwrap();
+        let probe =
+            Probe::from_map(&AnalyticMap::constant(1.0), ProbeFormat::MirrorBall, 1, horizontal_camera()).unwrap();
         let prepared = Irradiance::new(&probe);
-        let mut rng = Pcg64::seed_from_u64(3);
+        let mut rng = crate::rng::seeded(3, 0);
         for method in Method::ALL {
             for n in fibonacci_normals(8) {
                 let e = prepared.estimate(n, method, 8, &mut rng).unwrap();
@@ -631,57 +538,29 @@ mod tests {
             }
         }
         // The lookup-based estimators see a constant map whatever the resolution.
-        let e = prepared
-            .estimate(DVec3::X, Method::Cosine, 8, &mut rng)
-            .unwrap();
+        let e = prepared.estimate(DVec3::X, Method::Cosine, 8, &mut rng).unwrap();
         assert!((e.x - PI).abs() < 1e-12);
     }
 
     #[test]
     fn bad_normals_and_zero_samples_are_typed_errors() {
-        let probe = Probe::from_map(
-            &AnalyticMap::sky(),
-            ProbeFormat::MirrorBall,
-            4,
-            horizontal_camera(),
-        )
-        .unwrap();
+        let probe = Probe::from_map(&AnalyticMap::sky(), ProbeFormat::MirrorBall, 4, horizontal_camera()).unwrap();
         let prepared = Irradiance::new(&probe);
-        let mut rng = Pcg64::seed_from_u64(3);
-        for bad in [
-            DVec3::ZERO,
-            DVec3::new(f64::NAN, 0.0, 1.0),
-            DVec3::splat(f64::INFINITY),
-        ] {
-            assert!(
-                prepared
-                    .estimate(bad, Method::Weighted, 1, &mut rng)
-                    .is_err()
-            );
+        let mut rng = crate::rng::seeded(3, 0);
+        for bad in [DVec3::ZERO, DVec3::new(f64::NAN, 0.0, 1.0), DVec3::splat(f64::INFINITY)] {
+            assert!(prepared.estimate(bad, Method::Weighted, 1, &mut rng).is_err());
         }
-        assert!(
-            prepared
-                .estimate(DVec3::Z, Method::Cosine, 0, &mut rng)
-                .is_err()
-        );
+        assert!(prepared.estimate(DVec3::Z, Method::Cosine, 0, &mut rng).is_err());
     }
 
     #[test]
     fn black_map_gives_zero_everywhere() {
-        let probe = Probe::from_map(
-            &AnalyticMap::constant(0.0),
-            ProbeFormat::AngularMap,
-            8,
-            horizontal_camera(),
-        )
-        .unwrap();
+        let probe =
+            Probe::from_map(&AnalyticMap::constant(0.0), ProbeFormat::AngularMap, 8, horizontal_camera()).unwrap();
         let prepared = Irradiance::new(&probe);
-        let mut rng = Pcg64::seed_from_u64(3);
+        let mut rng = crate::rng::seeded(3, 0);
         for method in Method::ALL {
-            assert_eq!(
-                prepared.estimate(DVec3::Z, method, 16, &mut rng).unwrap(),
-                DVec3::ZERO
-            );
+            assert_eq!(prepared.estimate(DVec3::Z, method, 16, &mut rng).unwrap(), DVec3::ZERO);
         }
     }
 
@@ -689,31 +568,12 @@ mod tests {
     fn map_pdf_integrates_to_one() {
         // ∫ p_map dω over the sphere, by the weighted texel sum on a fine lat-long grid of
         // directions, for a probe in each disk format: checks p_t/(A_t J) is a density.
-        let map = AnalyticMap::new(vec![Term::Linear {
-            a: 1.0,
-            b: 0.8,
-            axis: DVec3::X,
-        }]);
-        let grid = Probe::from_fn(
-            ProbeFormat::LatLong,
-            400,
-            200,
-            glam::DMat3::IDENTITY,
-            |_| DVec3::ONE,
-        )
-        .unwrap();
-        for format in [
-            ProbeFormat::MirrorBall,
-            ProbeFormat::AngularMap,
-            ProbeFormat::perspective_ball(5.0).unwrap(),
-        ] {
+        let map = AnalyticMap::new(vec![Term::Linear { a: 1.0, b: 0.8, axis: DVec3::X }]);
+        let grid = Probe::from_fn(ProbeFormat::LatLong, 400, 200, glam::DMat3::IDENTITY, |_| DVec3::ONE).unwrap();
+        for format in [ProbeFormat::MirrorBall, ProbeFormat::AngularMap, ProbeFormat::perspective_ball(5.0).unwrap()] {
             let probe = Probe::from_map(&map, format, 24, horizontal_camera()).unwrap();
             let prepared = Irradiance::new(&probe);
-            let total: f64 = grid
-                .texels()
-                .iter()
-                .map(|t| prepared.map_pdf(t.direction) * t.solid_angle)
-                .sum();
+            let total: f64 = grid.texels().iter().map(|t| prepared.map_pdf(t.direction) * t.solid_angle).sum();
             assert!((total - 1.0).abs() < 0.02, "{}: {total}", format.name());
         }
     }

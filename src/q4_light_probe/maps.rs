@@ -89,17 +89,9 @@ impl Term {
             Self::ClampedLobe { axis } => omega.dot(axis).max(0.0),
             Self::Overcast { zenith, axis } => {
                 let c = omega.dot(axis);
-                if c > 0.0 {
-                    zenith * (1.0 + 2.0 * c) / 3.0
-                } else {
-                    0.0
-                }
+                if c > 0.0 { zenith * (1.0 + 2.0 * c) / 3.0 } else { 0.0 }
             }
-            Self::Cap {
-                radiance,
-                centre,
-                half_angle,
-            } => {
+            Self::Cap { radiance, centre, half_angle } => {
                 if omega.dot(centre) >= half_angle.cos() {
                     radiance
                 } else {
@@ -123,11 +115,9 @@ impl Term {
                 let alpha = angle_to(axis);
                 zenith / 3.0 * (FRAC_PI_2 * (1.0 + alpha.cos()) + 2.0 * clamped_lobe(alpha))
             }
-            Self::Cap {
-                radiance,
-                centre,
-                half_angle,
-            } => radiance * cap_irradiance_per_radiance(angle_to(centre), half_angle),
+            Self::Cap { radiance, centre, half_angle } => {
+                radiance * cap_irradiance_per_radiance(angle_to(centre), half_angle)
+            }
         }
     }
 
@@ -206,11 +196,7 @@ impl AnalyticMap {
     /// Radiance of the terms that are not caps (caps are splatted, not point-sampled).
     #[must_use]
     pub fn smooth_radiance(&self, omega: DVec3) -> f64 {
-        self.terms
-            .iter()
-            .filter(|t| t.cap_solid_angle().is_none())
-            .map(|t| t.radiance(omega))
-            .sum()
+        self.terms.iter().filter(|t| t.cap_solid_angle().is_none()).map(|t| t.radiance(omega)).sum()
     }
 
     /// Exact irradiance at unit normal `normal`.
@@ -235,20 +221,13 @@ impl AnalyticMap {
     /// `sky`: radiance 1 above the horizon (`+z` up), 0 below.
     #[must_use]
     pub fn sky() -> Self {
-        Self::new(vec![Term::Hemisphere {
-            radiance: 1.0,
-            axis: DVec3::Z,
-        }])
+        Self::new(vec![Term::Hemisphere { radiance: 1.0, axis: DVec3::Z }])
     }
 
     /// `linear:A,B`: `L = A + B ω_z`.
     #[must_use]
     pub fn linear_z(a: f64, b: f64) -> Self {
-        Self::new(vec![Term::Linear {
-            a,
-            b,
-            axis: DVec3::Z,
-        }])
+        Self::new(vec![Term::Linear { a, b, axis: DVec3::Z }])
     }
 
     /// The accuracy study's soft map: an overcast sky over a dim ground, with a broad warm glow
@@ -256,16 +235,9 @@ impl AnalyticMap {
     #[must_use]
     pub fn soft() -> Self {
         Self::new(vec![
-            Term::Overcast {
-                zenith: 1.0,
-                axis: DVec3::Z,
-            },
+            Term::Overcast { zenith: 1.0, axis: DVec3::Z },
             Term::Constant { radiance: 0.15 },
-            Term::Cap {
-                radiance: 0.5,
-                centre: DVec3::new(1.0, 0.0, 0.35).normalize(),
-                half_angle: 40f64.to_radians(),
-            },
+            Term::Cap { radiance: 0.5, centre: DVec3::new(1.0, 0.0, 0.35).normalize(), half_angle: 40f64.to_radians() },
         ])
     }
 
@@ -321,16 +293,9 @@ mod tests {
     fn oracles_match_brute_force_quadrature() {
         let axis = DVec3::new(0.3, -0.5, 0.8).normalize();
         let terms = [
-            Term::Linear {
-                a: 1.0,
-                b: 0.9,
-                axis,
-            },
+            Term::Linear { a: 1.0, b: 0.9, axis },
             Term::Quadratic { axis },
-            Term::Hemisphere {
-                radiance: 2.0,
-                axis,
-            },
+            Term::Hemisphere { radiance: 2.0, axis },
             Term::ClampedLobe { axis },
             Term::Overcast { zenith: 1.5, axis },
         ];
@@ -339,10 +304,7 @@ mod tests {
                 let exact = term.irradiance(normal);
                 let brute = quadrature(term, normal, axis, PI);
                 // The step terms converge at first order in the grid; 1e-3 of π is the grid's bound.
-                assert!(
-                    (exact - brute).abs() < 3e-3,
-                    "{term:?} at {normal}: {exact} vs {brute}"
-                );
+                assert!((exact - brute).abs() < 3e-3, "{term:?} at {normal}: {exact} vs {brute}");
             }
         }
     }
@@ -353,31 +315,20 @@ mod tests {
         for alpha_deg in [0.0, 45.0, 80.0, 85.0, 90.0, 95.0, 99.0, 100.5] {
             let alpha = f64::to_radians(alpha_deg);
             let centre = DVec3::new(alpha.sin(), 0.0, alpha.cos());
-            let term = Term::Cap {
-                radiance: 1.0,
-                centre,
-                half_angle,
-            };
+            let term = Term::Cap { radiance: 1.0, centre, half_angle };
             let exact = term.irradiance(DVec3::Z);
             // Integrate over the cap only, in the cap's own frame; the horizon cuts it smoothly
             // enough for the midpoint rule at this resolution.
             let brute = quadrature(&term, DVec3::Z, centre, half_angle);
             let peak = PI * half_angle.sin().powi(2);
-            assert!(
-                (exact - brute).abs() < 1e-5 * peak,
-                "α = {alpha_deg}°: {exact} vs {brute}"
-            );
+            assert!((exact - brute).abs() < 1e-5 * peak, "α = {alpha_deg}°: {exact} vs {brute}");
         }
     }
 
     #[test]
     fn cap_oracle_reduces_to_the_hemisphere_at_ninety_degrees() {
         for normal in fibonacci_normals(16) {
-            let cap = Term::Cap {
-                radiance: 1.0,
-                centre: DVec3::Z,
-                half_angle: FRAC_PI_2,
-            };
+            let cap = Term::Cap { radiance: 1.0, centre: DVec3::Z, half_angle: FRAC_PI_2 };
             let sky = AnalyticMap::sky().irradiance(normal);
             assert!((cap.irradiance(normal) - sky).abs() < 1e-12, "{normal}");
         }

@@ -148,11 +148,7 @@ impl Probe {
             if value.is_finite() && value.min_element() >= 0.0 {
                 Ok(value)
             } else {
-                Err(ProbeError::BadTexel {
-                    column,
-                    row,
-                    value: format!("{value}"),
-                })
+                Err(ProbeError::BadTexel { column, row, value: format!("{value}") })
             }
         };
         for row in 0..height {
@@ -181,15 +177,8 @@ impl Probe {
                     (direction_sum.normalize(), radiance_sum / weight_sum)
                 } else {
                     // A rim sliver that no subsample hits: use the rim point nearest its centre.
-                    let rim = if centre.length() > 0.0 {
-                        centre.normalize() * (1.0 - 1e-12)
-                    } else {
-                        centre
-                    };
-                    let world = world_from_probe
-                        * format
-                            .image_to_direction(rim)
-                            .unwrap_or(world_from_probe.col(2));
+                    let rim = if centre.length() > 0.0 { centre.normalize() * (1.0 - 1e-12) } else { centre };
+                    let world = world_from_probe * format.image_to_direction(rim).unwrap_or(world_from_probe.col(2));
                     (world, checked(world, column, row)?)
                 };
                 texels.push(Texel {
@@ -197,21 +186,11 @@ impl Probe {
                     solid_angle,
                     area,
                     centre_inside: format.image_to_direction(centre).is_some(),
-                    radiance: if solid_angle > 0.0 {
-                        value
-                    } else {
-                        DVec3::ZERO
-                    },
+                    radiance: if solid_angle > 0.0 { value } else { DVec3::ZERO },
                 });
             }
         }
-        let probe = Self {
-            format,
-            width,
-            height,
-            world_from_probe,
-            texels,
-        };
+        let probe = Self { format, width, height, world_from_probe, texels };
         probe.validate()?;
         Ok(probe)
     }
@@ -237,10 +216,7 @@ impl Probe {
         radiance: Vec<DVec3>,
     ) -> Result<Self, ProbeError> {
         if radiance.len() != width * height {
-            return Err(ProbeError::WrongLength {
-                expected: width * height,
-                got: radiance.len(),
-            });
+            return Err(ProbeError::WrongLength { expected: width * height, got: radiance.len() });
         }
         let mut probe = Self::from_fn(format, width, height, world_from_probe, |_| DVec3::ZERO)?;
         for (texel, value) in probe.texels.iter_mut().zip(radiance) {
@@ -276,21 +252,11 @@ impl Probe {
         size: usize,
         world_from_probe: DMat3,
     ) -> Result<Self, ProbeError> {
-        let (width, height) = if format == ProbeFormat::LatLong {
-            (2 * size, size)
-        } else {
-            (size, size)
-        };
-        let mut probe = Self::from_fn(format, width, height, world_from_probe, |omega| {
-            DVec3::splat(map.smooth_radiance(omega))
-        })?;
+        let (width, height) = if format == ProbeFormat::LatLong { (2 * size, size) } else { (size, size) };
+        let mut probe =
+            Self::from_fn(format, width, height, world_from_probe, |omega| DVec3::splat(map.smooth_radiance(omega)))?;
         for term in &map.terms {
-            if let Term::Cap {
-                radiance,
-                centre,
-                half_angle,
-            } = *term
-            {
+            if let Term::Cap { radiance, centre, half_angle } = *term {
                 probe.splat_cap(radiance, centre, half_angle, 256);
             }
         }
@@ -338,14 +304,10 @@ impl Probe {
             }
             let rect = source.texel_rect(index);
             let power = texel.radiance * (texel.solid_angle / (STRATA * STRATA) as f64);
-            let (z0, z1) = (
-                (std::f64::consts::PI * rect.min.y).cos(),
-                (std::f64::consts::PI * rect.max.y).cos(),
-            );
+            let (z0, z1) = ((std::f64::consts::PI * rect.min.y).cos(), (std::f64::consts::PI * rect.max.y).cos());
             for a in 0..STRATA {
                 for b in 0..STRATA {
-                    let u =
-                        rect.min.x + (rect.max.x - rect.min.x) * (a as f64 + 0.5) / STRATA as f64;
+                    let u = rect.min.x + (rect.max.x - rect.min.x) * (a as f64 + 0.5) / STRATA as f64;
                     let z = z0 + (z1 - z0) * (b as f64 + 0.5) / STRATA as f64;
                     let s = (1.0 - z * z).max(0.0).sqrt();
                     let (sin_p, cos_p) = (std::f64::consts::TAU * u).sin_cos();
@@ -408,10 +370,7 @@ impl Probe {
     /// ```
     pub fn read_lat_long(path: impl AsRef<Path>) -> Result<Self, ProbeError> {
         let path = path.as_ref();
-        let read_error = |message: String| ProbeError::Read {
-            path: path.display().to_string(),
-            message,
-        };
+        let read_error = |message: String| ProbeError::Read { path: path.display().to_string(), message };
         let image = image::ImageReader::open(path)
             .map_err(|e| read_error(e.to_string()))?
             .with_guessed_format()
@@ -420,17 +379,8 @@ impl Probe {
             .map_err(|e| read_error(e.to_string()))?
             .into_rgb32f();
         let (width, height) = (image.width() as usize, image.height() as usize);
-        let radiance = image
-            .pixels()
-            .map(|p| DVec3::new(p.0[0].into(), p.0[1].into(), p.0[2].into()))
-            .collect();
-        Self::from_radiance(
-            ProbeFormat::LatLong,
-            width,
-            height,
-            DMat3::IDENTITY,
-            radiance,
-        )
+        let radiance = image.pixels().map(|p| DVec3::new(p.0[0].into(), p.0[1].into(), p.0[2].into())).collect();
+        Self::from_radiance(ProbeFormat::LatLong, width, height, DMat3::IDENTITY, radiance)
     }
 
     /// The image format.
@@ -471,24 +421,14 @@ impl Probe {
         let rect = self.format.image_rect();
         let unit = (p - rect.min) / (rect.max - rect.min);
         let column = ((unit.x * self.width as f64) as usize).min(self.width - 1);
-        let from_top = if self.format == ProbeFormat::LatLong {
-            unit.y
-        } else {
-            1.0 - unit.y
-        };
+        let from_top = if self.format == ProbeFormat::LatLong { unit.y } else { 1.0 - unit.y };
         let row = ((from_top * self.height as f64).max(0.0) as usize).min(self.height - 1);
         row * self.width + column
     }
 
     /// The image rectangle of texel `index`.
     pub(crate) fn texel_rect(&self, index: usize) -> Rect {
-        texel_rect(
-            self.format,
-            self.width,
-            self.height,
-            index % self.width,
-            index / self.width,
-        )
+        texel_rect(self.format, self.width, self.height, index % self.width, index / self.width)
     }
 
     /// World direction of image point `p` and the Jacobian there, `None` outside the domain.
@@ -499,15 +439,13 @@ impl Probe {
 
     /// World to image: the image point seeing `omega`, `None` in a blind cone.
     pub(crate) fn world_to_image(&self, omega: DVec3) -> Option<DVec2> {
-        self.format
-            .direction_to_image(self.world_from_probe.transpose() * omega)
+        self.format.direction_to_image(self.world_from_probe.transpose() * omega)
     }
 
     /// The piecewise-constant radiance the probe records toward `omega` (zero in a blind cone).
     #[must_use]
     pub fn radiance_toward(&self, omega: DVec3) -> DVec3 {
-        self.texel_index_toward(omega)
-            .map_or(DVec3::ZERO, |i| self.texels[i].radiance)
+        self.texel_index_toward(omega).map_or(DVec3::ZERO, |i| self.texels[i].radiance)
     }
 }
 
@@ -523,10 +461,7 @@ fn texel_rect(format: ProbeFormat, width: usize, height: usize, column: usize, r
         let top = image.max.y - step.y * row as f64;
         (top - step.y, top)
     };
-    Rect {
-        min: DVec2::new(x0, y0),
-        max: DVec2::new(x0 + step.x, y1),
-    }
+    Rect { min: DVec2::new(x0, y0), max: DVec2::new(x0 + step.x, y1) }
 }
 
 #[cfg(test)]
@@ -542,19 +477,13 @@ mod tests {
             ProbeFormat::perspective_ball(4.0).unwrap(),
             ProbeFormat::LatLong,
         ] {
-            let probe =
-                Probe::from_fn(format, 16, 16, horizontal_camera(), |_| DVec3::ONE).unwrap();
+            let probe = Probe::from_fn(format, 16, 16, horizontal_camera(), |_| DVec3::ONE).unwrap();
             for (index, texel) in probe.texels().iter().enumerate() {
                 if texel.centre_inside {
                     let rect = probe.texel_rect(index);
                     let centre = 0.5 * (rect.min + rect.max);
                     let (omega, _) = probe.image_to_world(centre).unwrap();
-                    assert_eq!(
-                        probe.texel_index_toward(omega),
-                        Some(index),
-                        "{}",
-                        format.name()
-                    );
+                    assert_eq!(probe.texel_index_toward(omega), Some(index), "{}", format.name());
                 }
             }
         }
@@ -562,10 +491,7 @@ mod tests {
 
     #[test]
     fn one_by_one_probe_covers_the_sphere() {
-        let probe = Probe::from_fn(ProbeFormat::MirrorBall, 1, 1, DMat3::IDENTITY, |_| {
-            DVec3::ONE
-        })
-        .unwrap();
+        let probe = Probe::from_fn(ProbeFormat::MirrorBall, 1, 1, DMat3::IDENTITY, |_| DVec3::ONE).unwrap();
         assert_eq!(probe.texels().len(), 1);
         assert!((probe.texels()[0].solid_angle - 4.0 * PI).abs() < 1e-12);
     }
@@ -579,19 +505,9 @@ mod tests {
             .unwrap_err();
             assert!(matches!(error, ProbeError::BadTexel { .. }), "{error}");
         }
-        let error = Probe::from_fn(ProbeFormat::MirrorBall, 0, 3, DMat3::IDENTITY, |_| {
-            DVec3::ONE
-        })
-        .unwrap_err();
+        let error = Probe::from_fn(ProbeFormat::MirrorBall, 0, 3, DMat3::IDENTITY, |_| DVec3::ONE).unwrap_err();
         assert!(matches!(error, ProbeError::Empty { .. }));
-        let error = Probe::from_radiance(
-            ProbeFormat::LatLong,
-            2,
-            2,
-            DMat3::IDENTITY,
-            vec![DVec3::ONE],
-        )
-        .unwrap_err();
+        let error = Probe::from_radiance(ProbeFormat::LatLong, 2, 2, DMat3::IDENTITY, vec![DVec3::ONE]).unwrap_err();
         assert!(matches!(error, ProbeError::WrongLength { .. }));
     }
 
@@ -600,18 +516,10 @@ mod tests {
         let dir = std::env::temp_dir().join(format!("hw3-q4-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
         let truncated = dir.join("truncated.hdr");
-        std::fs::write(
-            &truncated,
-            b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 4 +X 8\n\x02\x02",
-        )
-        .unwrap();
+        std::fs::write(&truncated, b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 4 +X 8\n\x02\x02").unwrap();
         let garbage = dir.join("garbage.hdr");
         std::fs::write(&garbage, b"not an image at all").unwrap();
-        for path in [
-            truncated.as_path(),
-            garbage.as_path(),
-            Path::new("/no/such.hdr"),
-        ] {
+        for path in [truncated.as_path(), garbage.as_path(), Path::new("/no/such.hdr")] {
             let error = Probe::read_lat_long(path).unwrap_err();
             assert!(matches!(error, ProbeError::Read { .. }), "{error}");
         }
@@ -623,13 +531,9 @@ mod tests {
         let dir = std::env::temp_dir().join(format!("hw3-q4-rt-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
         let path = dir.join("map.hdr");
-        let pixels: Vec<image::Rgb<f32>> = (0..8 * 4)
-            .map(|i| image::Rgb([i as f32 * 0.25, 1.0, 2.0]))
-            .collect();
+        let pixels: Vec<image::Rgb<f32>> = (0..8 * 4).map(|i| image::Rgb([i as f32 * 0.25, 1.0, 2.0])).collect();
         let file = std::fs::File::create(&path).unwrap();
-        image::codecs::hdr::HdrEncoder::new(file)
-            .encode(&pixels, 8, 4)
-            .unwrap();
+        image::codecs::hdr::HdrEncoder::new(file).encode(&pixels, 8, 4).unwrap();
         let probe = Probe::read_lat_long(&path).unwrap();
         assert_eq!((probe.width(), probe.height()), (8, 4));
         // RGBE keeps 8 mantissa bits: 1.75 and 2.0 are exact.
@@ -640,19 +544,10 @@ mod tests {
     #[test]
     fn splatted_caps_keep_their_energy() {
         let map = AnalyticMap::sun();
-        let probe =
-            Probe::from_map(&map, ProbeFormat::MirrorBall, 32, horizontal_camera()).unwrap();
+        let probe = Probe::from_map(&map, ProbeFormat::MirrorBall, 32, horizontal_camera()).unwrap();
         let sky_power = 2.0 * PI; // the hemisphere step, radiance 1
-        let total: f64 = probe
-            .texels()
-            .iter()
-            .map(|t| t.radiance.x * t.solid_angle)
-            .sum();
-        let sun_power =
-            map.terms[1].cap_solid_angle().unwrap() * 10.0 / (0.2665f64.to_radians().sin().powi(2));
-        assert!(
-            (total - sky_power - sun_power).abs() < 2e-3 * (sky_power + sun_power),
-            "{total}"
-        );
+        let total: f64 = probe.texels().iter().map(|t| t.radiance.x * t.solid_angle).sum();
+        let sun_power = map.terms[1].cap_solid_angle().unwrap() * 10.0 / (0.2665f64.to_radians().sin().powi(2));
+        assert!((total - sky_power - sun_power).abs() < 2e-3 * (sky_power + sun_power), "{total}");
     }
 }

@@ -5,8 +5,6 @@ use super::irradiance::{Irradiance, Method, luminance};
 use super::maps::AnalyticMap;
 use super::{Probe, ProbeError, ProbeFormat, horizontal_camera};
 use glam::DVec3;
-use rand_core::SeedableRng;
-use rand_pcg::Pcg64;
 
 /// `n` unit normals spread evenly over the sphere (a Fibonacci spiral), deterministic.
 ///
@@ -71,11 +69,7 @@ pub fn method_error(
 ) -> ErrorSummary {
     assert!(!normals.is_empty() && !seeds.is_empty() && reference.len() == normals.len());
     let peak = reference.iter().copied().fold(0.0, f64::max);
-    let seeds = if method.is_monte_carlo() {
-        seeds
-    } else {
-        &seeds[..1]
-    };
+    let seeds = if method.is_monte_carlo() { seeds } else { &seeds[..1] };
     let errors: Vec<(f64, f64)> = normals
         .iter()
         .zip(reference)
@@ -83,10 +77,8 @@ pub fn method_error(
             let squared: f64 = seeds
                 .iter()
                 .map(|seed| {
-                    let mut rng = Pcg64::seed_from_u64(*seed);
-                    let got = prepared
-                        .estimate(*n, method, samples, &mut rng)
-                        .expect("unit normals and samples ≥ 1");
+                    let mut rng = crate::rng::seeded(*seed, 0);
+                    let got = prepared.estimate(*n, method, samples, &mut rng).expect("unit normals and samples ≥ 1");
                     (luminance(got) - e).powi(2)
                 })
                 .sum();
@@ -94,12 +86,8 @@ pub fn method_error(
             (rms / peak * 100.0, rms / e.abs() * 100.0)
         })
         .collect();
-    let relative: Vec<f64> = errors
-        .iter()
-        .zip(reference)
-        .filter(|(_, e)| e.abs() > 0.01 * peak)
-        .map(|((_, r), _)| *r)
-        .collect();
+    let relative: Vec<f64> =
+        errors.iter().zip(reference).filter(|(_, e)| e.abs() > 0.01 * peak).map(|((_, r), _)| *r).collect();
     ErrorSummary {
         mean_percent: errors.iter().map(|e| e.0).sum::<f64>() / errors.len() as f64,
         max_percent: errors.iter().map(|e| e.0).fold(0.0, f64::max),
@@ -160,9 +148,7 @@ impl StudyMap {
     /// [`ProbeError`] for a zero size.
     pub fn ball(&self, size: usize) -> Result<Probe, ProbeError> {
         match self {
-            Self::Analytic(map) => {
-                Probe::from_map(map, ProbeFormat::MirrorBall, size, horizontal_camera())
-            }
+            Self::Analytic(map) => Probe::from_map(map, ProbeFormat::MirrorBall, size, horizontal_camera()),
             Self::LatLong(source) => {
                 Probe::resample_lat_long(source, ProbeFormat::MirrorBall, size, horizontal_camera())
             }
@@ -176,10 +162,7 @@ impl StudyMap {
             Self::Analytic(map) => normals.iter().map(|n| map.irradiance(*n)).collect(),
             Self::LatLong(source) => {
                 let prepared = Irradiance::new(source);
-                normals
-                    .iter()
-                    .map(|n| luminance(prepared.weighted(*n)))
-                    .collect()
+                normals.iter().map(|n| luminance(prepared.weighted(*n))).collect()
             }
         }
     }
@@ -188,9 +171,7 @@ impl StudyMap {
 /// Path of a vendored real map (`"courtyard"` or `"sunrise"`, see `data/q4/README.md`).
 #[must_use]
 pub fn real_map_path(name: &str) -> std::path::PathBuf {
-    std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("data/q4")
-        .join(format!("{name}_256x128.hdr"))
+    std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("data/q4").join(format!("{name}_256x128.hdr"))
 }
 
 /// One configuration of the accuracy-versus-time study.
@@ -225,14 +206,8 @@ pub fn study_maps() -> Result<Vec<(&'static str, StudyMap)>, ProbeError> {
     Ok(vec![
         ("soft", StudyMap::Analytic(AnalyticMap::soft())),
         ("sun", StudyMap::Analytic(AnalyticMap::sun())),
-        (
-            "courtyard",
-            StudyMap::LatLong(Probe::read_lat_long(real_map_path("courtyard"))?),
-        ),
-        (
-            "sunrise",
-            StudyMap::LatLong(Probe::read_lat_long(real_map_path("sunrise"))?),
-        ),
+        ("courtyard", StudyMap::LatLong(Probe::read_lat_long(real_map_path("courtyard"))?)),
+        ("sunrise", StudyMap::LatLong(Probe::read_lat_long(real_map_path("sunrise"))?)),
     ])
 }
 
@@ -263,20 +238,12 @@ pub fn configurations() -> Vec<Config> {
     let mut configs = Vec::new();
     for size in [16, 32, 64, 128, 256] {
         for method in [Method::Unweighted, Method::Weighted, Method::Sh9] {
-            configs.push(Config {
-                method,
-                size,
-                samples: 0,
-            });
+            configs.push(Config { method, size, samples: 0 });
         }
     }
     for samples in [16, 64, 256, 1024, 4096] {
         for method in [Method::Uniform, Method::Cosine, Method::Map, Method::Mis] {
-            configs.push(Config {
-                method,
-                size: 256,
-                samples,
-            });
+            configs.push(Config { method, size: 256, samples });
         }
     }
     configs

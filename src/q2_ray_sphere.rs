@@ -1,0 +1,284 @@
+#![doc = include_str!(concat!(env!("OUT_DIR"), "/q2_ray_sphere.md"))]
+
+pub mod catalogue;
+pub mod closest_approach;
+mod figures;
+pub mod reflection;
+pub mod seed_solver;
+
+use crate::Answers;
+use crate::geometry::sphere::{closest_approach_t, first_hit_stable, surface_hit};
+use crate::geometry::{InputError, Ray, Sphere};
+use crate::real::Real;
+use catalogue::{Method, Precision};
+use glam::DVec3;
+use reflection::{Scenario, SpawnPolicy, reflect_at_hit, self_hit_rate};
+use seed_solver::seed_trace;
+use serde::Serialize;
+use std::fmt::Write as _;
+
+pub use figures::figures;
+
+/// The notes' worked example: eye `(−5, 1, 0)`, direction `(1, 0, 0)`, sphere of radius 2 at the
+/// origin. Its numbers are round enough to check by hand: `A = 1`, `B = −10`, `C = 22`.
+///
+/// # Examples
+/// ```
+/// let (ray, sphere) = hw3::q2_ray_sphere::worked_example();
+/// assert_eq!(sphere.radius, 2.0);
+/// assert_eq!(ray.dir, glam::DVec3::X);
+/// ```
+#[must_use]
+pub fn worked_example() -> (Ray<f64>, Sphere<f64>) {
+    (Ray { origin: DVec3::new(-5.0, 1.0, 0.0), dir: DVec3::X }, Sphere { center: DVec3::ZERO, radius: 2.0 })
+}
+
+/// Everything Q2 asks for one ray and sphere: the first hit, point, normal, reflection, and the
+/// closest-approach parameter. This is what `hw3 sphere --json` prints.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SphereAnswer {
+    /// Whether the ray hits (`t > 0`).
+    pub hit: bool,
+    /// The first intersection parameter `t_i`.
+    pub t: Option<f64>,
+    /// The hit point (reprojected onto the sphere for the stable method, `e + d t_i` for naive).
+    pub point: Option<[f64; 3]>,
+    /// Outward unit normal at the hit.
+    pub normal: Option<[f64; 3]>,
+    /// Unit reflected direction `d̂ − 2(n̂·d̂)n̂`.
+    pub reflected_dir: Option<[f64; 3]>,
+    /// The closest-approach parameter `−(e − o)·d/|d|²` (defined whether or not the ray hits).
+    pub closest_approach_t: f64,
+}
+
+/// Solves Q2 a–c for one ray and sphere with the chosen method and precision.
+///
+/// # Errors
+/// [`InputError`] for a non-finite origin, centre or radius, a negative radius, or a direction
+/// whose squared length is zero, subnormal or infinite *in the chosen precision*.
+///
+/// # Examples
+/// ```
+/// use hw3::q2_ray_sphere::{solve, worked_example, catalogue::{Method, Precision}};
+/// let (ray, sphere) = worked_example();
+/// let answer = solve(&ray, &sphere, Method::Stable, Precision::F64).unwrap();
+/// assert!((answer.t.unwrap() - (5.0 - 3f64.sqrt())).abs() < 1e-15);
+/// assert_eq!(answer.closest_approach_t, 5.0);
+/// ```
+pub fn solve(
+    ray: &Ray<f64>,
+    sphere: &Sphere<f64>,
+    method: Method,
+    precision: Precision,
+) -> Result<SphereAnswer, InputError> {
+    match precision {
+        Precision::F32 => solve_in::<f32>(ray, sphere, method),
+        Precision::F64 => solve_in::<f64>(ray, sphere, method),
+    }
+}
+
+fn solve_in<T: Real>(ray: &Ray<f64>, sphere: &Sphere<f64>, method: Method) -> Result<SphereAnswer, InputError> {
+    let ray = Ray::<T>::new(T::vec_from_f64(ray.origin), T::vec_from_f64(ray.dir))?;
+    let sphere = Sphere::<T>::new(T::vec_from_f64(sphere.center), T::from_f64(sphere.radius))?;
+    let array = |v: T::Vec3| T::vec_to_f64(v).to_array();
+    let (t, policy) = match method {
+        Method::Naive => (seed_trace(&ray, &sphere).chosen, SpawnPolicy::AtComputedPoint),
+        Method::Stable => (first_hit_stable(&ray, &sphere), SpawnPolicy::ReprojectAndOffset),
+    };
+    let closest_approach_t = closest_approach_t(&ray, sphere.center).to_f64();
+    let bounce = t.map(|t| reflect_at_hit(&ray, &sphere, t, policy));
+    Ok(SphereAnswer {
+        hit: t.is_some(),
+        t: t.map(Real::to_f64),
+        point: t.map(|t| array(bounce.map_or(ray.at(t), |b| b.point))),
+        normal: bounce.map(|b| array(b.normal)),
+        reflected_dir: bounce.map(|b| array(b.ray.dir)),
+        closest_approach_t,
+    })
+}
+
+/// A worked trace of one ray through every step of Q2 (the homework's algorithm, the stable
+/// solver, the surface frame, the reflection and the closest approach), as pinned by snapshots.
+///
+/// # Examples
+/// ```
+/// let (ray, sphere) = hw3::q2_ray_sphere::worked_example();
+/// let trace = hw3::q2_ray_sphere::worked_trace(&ray, &sphere);
+/// assert!(trace.contains("B = -1.000000e1"));
+/// ```
+#[must_use]
+pub fn worked_trace(ray: &Ray<f64>, sphere: &Sphere<f64>) -> String {
+    let g = |x: f64| format!("{x:.6e}");
+    let v = |v: DVec3| format!("({}, {}, {})", g(v.x), g(v.y), g(v.z));
+    let mut out = String::new();
+    let _ = writeln!(
+        out,
+        "ray e = {}, d = {}; sphere o = {}, r = {}",
+        v(ray.origin),
+        v(ray.dir),
+        v(sphere.center),
+        g(sphere.radius)
+    );
+    let _ = writeln!(out, "-- homework algorithm (f64) --\n{}", seed_trace(ray, sphere));
+    let stable = first_hit_stable(ray, sphere);
+    let _ = writeln!(out, "-- stable solver --\nfirst hit t = {}", stable.map_or("none".into(), g));
+    let _ = writeln!(out, "closest approach t = {}", g(closest_approach_t(ray, sphere.center)));
+    if let Some(t) = stable {
+        let hit = surface_hit(ray, sphere, t);
+        let bounce = reflect_at_hit(ray, sphere, t, SpawnPolicy::ReprojectAndOffset);
+        let _ = writeln!(
+            out,
+            "point = {}\nnormal = {}\nreflected direction = {}",
+            v(hit.point),
+            v(hit.normal),
+            v(bounce.ray.dir)
+        );
+    }
+    out
+}
+
+/// The rays the snapshot traces cover: the worked example and one per policy the notes state.
+#[must_use]
+pub fn trace_cases() -> Vec<(&'static str, Ray<f64>, Sphere<f64>)> {
+    let (ray, sphere) = worked_example();
+    let unit = Sphere { center: DVec3::ZERO, radius: 1.0 };
+    vec![
+        ("worked example", ray, sphere),
+        ("eye inside", Ray { origin: DVec3::ZERO, dir: DVec3::new(0.0, 0.0, 2.0) }, unit),
+        ("tangent", Ray { origin: DVec3::new(-3.0, 1.0, 0.0), dir: DVec3::X }, unit),
+        ("sphere behind", Ray { origin: DVec3::new(0.0, 0.0, 5.0), dir: DVec3::Z }, unit),
+        ("miss", Ray { origin: DVec3::new(0.0, 2.0, -5.0), dir: DVec3::Z }, unit),
+    ]
+}
+
+/// Q2's answers as `hw3 answers --question q2` prints them.
+///
+/// # Examples
+/// ```
+/// let answers = hw3::q2_ray_sphere::answers();
+/// assert_eq!(answers.question, "q2");
+/// assert!(answers.text.contains("t1 < t2"));
+/// ```
+#[must_use]
+pub fn answers() -> Answers {
+    let (ray, sphere) = worked_example();
+    let mut text = String::new();
+    let _ = writeln!(text, "(a) A = d.d, B = 2(e-o).d, C = |e-o|^2 - r^2; first hit = smallest root t > 0.");
+    let _ = writeln!(text, "    The homework's case analysis is right, with two errata:");
+    let _ = writeln!(text, "    - its 't1 < t2' branch is dead code: t1 takes +sqrt, so t1 >= t2 whenever A > 0;");
+    let _ =
+        writeln!(text, "    - the tangent case accepts t >= 0 but the two-root case t > 0 (inconsistent at t = 0).");
+    let _ = writeln!(text, "    Worked example:\n{}", indent(&worked_trace(&ray, &sphere)));
+    let rows = catalogue::score_catalogue();
+    let far = rows.iter().find(|r| r.case.name == "far: r = 1 at distance 1e5, offset 0.9 r");
+    if let Some(row) = far {
+        let _ = writeln!(
+            text,
+            "    In f32 the homework formula misses a unit sphere 1e5 away aimed 0.9 r off-centre \
+             ({:?}); the stable form's relative error is {:.1e}.",
+            row.outcomes[0],
+            row.outcomes[1].error()
+        );
+    }
+    let _ = writeln!(
+        text,
+        "(b) n = (p - o)/r, r = d^ - 2(n.d^)n; the reflected ray must not start at the raw hit point.\n    \
+         Reflected f32 rays that re-hit their own sphere (20000 random hits per scenario):"
+    );
+    for policy in SpawnPolicy::ALL {
+        let rate = |scenario| {
+            let count = self_hit_rate::<f32>(scenario, policy, 20_000, 11);
+            100.0 * count.self_hits as f64 / count.reflected as f64
+        };
+        let (near, moved) = (rate(Scenario::Near), rate(Scenario::Translated));
+        let _ = writeln!(text, "    {policy:?}: {near:.2} % near the origin, {moved:.2} % translated by 1e4");
+    }
+    let t_alg = closest_approach::closest_approach_algebraic(&ray, sphere.center);
+    let t_geo = closest_approach::closest_approach_geometric(&ray, sphere.center);
+    let _ =
+        writeln!(text, "(c) t = -(e-o).d/|d|^2: algebraically -B/2A = {t_alg}, geometrically (o-e).d^/|d| = {t_geo}.");
+    let stable = first_hit_stable(&ray, &sphere).map_or("none".to_string(), |t| format!("{t:.6}"));
+    let _ = write!(
+        text,
+        "    The stable solver starts from this t and steps back by the half-chord: first hit = {stable}."
+    );
+    Answers { question: "q2", title: "Ray/sphere intersection, reflection, closest approach", text }
+}
+
+fn indent(text: &str) -> String {
+    text.lines().map(|l| format!("      {l}")).collect::<Vec<_>>().join("\n")
+}
+
+/// Parses the CLI's `--origin`, `--dir`, `--center`, `--radius` into validated `f64` inputs.
+///
+/// # Errors
+/// A one-line message naming the bad argument.
+///
+/// # Examples
+/// ```
+/// let (ray, sphere) = hw3::q2_ray_sphere::parse_sphere_args("0,0,0", "0,0,1", "0,0,5", 1.0).unwrap();
+/// assert_eq!(sphere.center.z, 5.0);
+/// assert!(hw3::q2_ray_sphere::parse_sphere_args("0,0,0", "0,0,0", "0,0,5", 1.0).is_err());
+/// ```
+pub fn parse_sphere_args(
+    origin: &str,
+    dir: &str,
+    center: &str,
+    radius: f64,
+) -> Result<(Ray<f64>, Sphere<f64>), String> {
+    let origin = crate::geometry::parse_vec3("--origin", origin)?;
+    let dir = crate::geometry::parse_vec3("--dir", dir)?;
+    let center = crate::geometry::parse_vec3("--center", center)?;
+    let ray = Ray::new(origin, dir).map_err(|e| e.to_string())?;
+    let sphere = Sphere::new(center, radius).map_err(|e| e.to_string())?;
+    Ok((ray, sphere))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn worked_traces_snapshot() {
+        let text: String = trace_cases()
+            .into_iter()
+            .map(|(name, ray, sphere)| format!("## {name}\n{}\n", worked_trace(&ray, &sphere)))
+            .collect();
+        crate::test_support::insta_settings().bind(|| insta::assert_snapshot!("q2_worked_traces", text));
+    }
+
+    #[test]
+    fn worked_example_by_hand() {
+        let (ray, sphere) = worked_example();
+        let answer = solve(&ray, &sphere, Method::Naive, Precision::F64).unwrap();
+        let t = 5.0 - 3f64.sqrt();
+        approx::assert_relative_eq!(answer.t.unwrap(), t, max_relative = 1e-15);
+        let n = DVec3::new(-3f64.sqrt() / 2.0, 0.5, 0.0);
+        approx::assert_relative_eq!(DVec3::from(answer.normal.unwrap()), n, max_relative = 1e-15);
+        approx::assert_relative_eq!(
+            DVec3::from(answer.reflected_dir.unwrap()),
+            DVec3::new(-0.5, 3f64.sqrt() / 2.0, 0.0),
+            epsilon = 1e-15
+        );
+    }
+
+    #[test]
+    fn all_four_variants_agree_on_easy_rays() {
+        let (ray, sphere) = worked_example();
+        let answers: Vec<f64> =
+            catalogue::VARIANTS.iter().map(|&(m, p)| solve(&ray, &sphere, m, p).unwrap().t.unwrap()).collect();
+        for t in &answers {
+            approx::assert_relative_eq!(*t, answers[3], max_relative = 1e-6);
+        }
+    }
+
+    #[test]
+    fn zero_radius_is_refused() {
+        let ray = Ray { origin: DVec3::ZERO, dir: DVec3::Z };
+        let point = Sphere { center: DVec3::new(0.0, 0.0, 5.0), radius: 0.0 };
+        assert!(matches!(
+            solve(&ray, &point, Method::Stable, Precision::F64),
+            Err(InputError::OutOfRange { name: "radius", .. })
+        ));
+    }
+}

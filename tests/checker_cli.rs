@@ -1,0 +1,75 @@
+//! `hw3 check`, `hw3 template` and `hw3 variant` as a student or grader uses them.
+
+mod common;
+
+use std::process::{Command, Output};
+
+fn hw3(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_hw3")).args(args).output().expect("the hw3 binary runs")
+}
+
+fn answers(name: &str) -> String {
+    format!("{}/tests/answers/{name}", env!("CARGO_MANIFEST_DIR"))
+}
+
+#[test]
+fn wrong_answers_get_per_part_feedback_and_exit_1() {
+    let out = hw3(&["check", &answers("q2_wrong.toml")]);
+    assert_eq!(out.status.code(), Some(1));
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(text.contains("that is the larger root"), "{text}");
+    assert!(text.contains("sign error"), "{text}");
+    assert!(text.contains("did you mean `q2c.t_closest`"), "{text}");
+    common::insta_settings().bind(|| insta::assert_snapshot!("checker_feedback_wrong", text));
+}
+
+#[test]
+fn template_then_key_round_trip() {
+    let dir = std::env::temp_dir().join(format!("hw3-checker-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let blank = dir.join("blank.toml");
+    let out = hw3(&["template", "--seed", "9"]);
+    assert!(out.status.success());
+    std::fs::write(&blank, &out.stdout).unwrap();
+    let graded = hw3(&["check", blank.to_str().unwrap(), "--format", "json"]);
+    assert_eq!(graded.status.code(), Some(1), "a blank file is not all correct");
+    let report: serde_json::Value = serde_json::from_slice(&graded.stdout).unwrap();
+    assert_eq!(report["seed"], 9);
+    assert_eq!(report["score"], 0.0);
+    let key = dir.join("key.toml");
+    std::fs::write(&key, hw3::checker::answers_key(9).unwrap()).unwrap();
+    let perfect = hw3(&["check", key.to_str().unwrap(), "--format", "gradescope"]);
+    assert_eq!(perfect.status.code(), Some(0));
+    let results: serde_json::Value = serde_json::from_slice(&perfect.stdout).unwrap();
+    assert_eq!(results["score"], 8.0);
+    assert!(results["tests"].as_array().unwrap().iter().all(|t| t["status"] == "passed"));
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn unreadable_files_exit_2_with_one_line() {
+    let dir = std::env::temp_dir().join(format!("hw3-checker-bad-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for (name, text) in
+        [("syntax.toml", "[q2a\nt = 1"), ("type.toml", "[q2a]\nt = \"x\""), ("nan.toml", "[q2a]\nt = nan")]
+    {
+        let path = dir.join(name);
+        std::fs::write(&path, text).unwrap();
+        let out = hw3(&["check", path.to_str().unwrap()]);
+        assert_eq!(out.status.code(), Some(2), "{name}");
+        let stderr = String::from_utf8(out.stderr).unwrap();
+        assert_eq!(stderr.trim_end().lines().count(), 1, "{name}: {stderr}");
+        assert!(out.stdout.is_empty());
+    }
+    assert_eq!(hw3(&["check", "/no/such/file.toml"]).status.code(), Some(2));
+    assert_eq!(hw3(&["variant", "--question", "q9"]).status.code(), Some(2));
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn variant_prints_statement_and_solution() {
+    let out = hw3(&["variant", "--question", "q2", "--seed", "1"]);
+    assert!(out.status.success());
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(text.contains("e = (-5, -5, 2)") && text.contains("q2c.t_closest"), "{text}");
+}

@@ -1,0 +1,114 @@
+//! The command-line contract: output shapes other tools rely on, and exit status 2 with a one-line
+//! message (and no panic) for every kind of bad input.
+
+use std::process::{Command, Output};
+
+fn hw3(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_hw3")).args(args).output().expect("the hw3 binary runs")
+}
+
+fn json(output: &Output) -> serde_json::Value {
+    assert!(output.status.success(), "stderr: {}", String::from_utf8_lossy(&output.stderr));
+    serde_json::from_slice(&output.stdout).expect("stdout is one JSON value")
+}
+
+fn assert_usage_error(output: &Output) {
+    assert_eq!(output.status.code(), Some(2), "stderr: {}", String::from_utf8_lossy(&output.stderr));
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    assert!(output.stdout.is_empty(), "nothing on stdout for bad input");
+}
+
+#[test]
+fn sphere_json_has_the_contract_fields() {
+    let out = hw3(&["sphere", "--origin", "-5,1,0", "--dir", "1,0,0", "--center", "0,0,0", "--radius", "2", "--json"]);
+    let value = json(&out);
+    assert_eq!(value["hit"], true);
+    let t = value["t"].as_f64().unwrap();
+    assert!((t - (5.0 - 3f64.sqrt())).abs() < 1e-12);
+    assert_eq!(value["closest_approach_t"], 5.0);
+    for key in ["point", "normal", "reflected_dir"] {
+        assert_eq!(value[key].as_array().map(Vec::len), Some(3), "{key}");
+    }
+    let r = value["reflected_dir"].as_array().unwrap();
+    assert!((r[0].as_f64().unwrap() + 0.5).abs() < 1e-12);
+}
+
+#[test]
+fn sphere_json_miss_has_nulls_and_still_a_closest_approach() {
+    let out = hw3(&["sphere", "--origin", "0,2,-5", "--dir", "0,0,1", "--center", "0,0,0", "--radius", "1", "--json"]);
+    let value = json(&out);
+    assert_eq!(value["hit"], false);
+    for key in ["t", "point", "normal", "reflected_dir"] {
+        assert!(value[key].is_null(), "{key}");
+    }
+    assert_eq!(value["closest_approach_t"], 5.0);
+}
+
+#[test]
+fn sphere_naive_f32_misses_a_far_sphere_the_stable_one_hits() {
+    // A unit sphere 1e4 away, aimed 0.9 r off-centre; see the Q2 far-sphere sweep.
+    let args = |method: &'static str| {
+        hw3(&[
+            "sphere",
+            "--origin",
+            "0,0,0",
+            "--dir",
+            "0,0,1",
+            "--center",
+            "0.9,0,10000",
+            "--radius",
+            "1",
+            "--precision",
+            "f32",
+            "--method",
+            method,
+            "--json",
+        ])
+    };
+    let stable = json(&args("stable"));
+    assert_eq!(stable["hit"], true);
+    assert!((stable["t"].as_f64().unwrap() - (1e4 - 0.19f64.sqrt())).abs() < 1e-2);
+    let naive = json(&args("naive"));
+    let naive_t = naive["t"].as_f64();
+    // Either a miss or a hit point off by a large fraction of the radius.
+    assert!(naive_t.is_none_or(|t| (t - (1e4 - 0.19f64.sqrt())).abs() > 0.05), "{naive}");
+}
+
+#[test]
+fn sphere_rejects_bad_input_with_exit_2() {
+    for args in [
+        &["sphere", "--origin", "0,0", "--dir", "0,0,1", "--center", "0,0,5", "--radius", "1"][..],
+        &["sphere", "--origin", "0,0,0", "--dir", "0,0,0", "--center", "0,0,5", "--radius", "1"],
+        &["sphere", "--origin", "nan,0,0", "--dir", "0,0,1", "--center", "0,0,5", "--radius", "1"],
+        &["sphere", "--origin", "0,0,0", "--dir", "0,0,1", "--center", "0,0,5", "--radius", "-1"],
+        &["sphere", "--origin", "0,0,0", "--dir", "0,0,1", "--center", "0,0,5", "--radius", "inf"],
+        &[
+            "sphere",
+            "--origin",
+            "0,0,0",
+            "--dir",
+            "0,0,1e-30",
+            "--center",
+            "0,0,5",
+            "--radius",
+            "1",
+            "--precision",
+            "f32",
+        ],
+        &["sphere", "--origin", "0,0,0", "--dir", "0,0,1", "--center", "0,0,5"],
+        &["sphere", "--origin", "0,0,0", "--dir", "0,0,1", "--center", "0,0,5", "--radius", "1", "--method", "magic"],
+        &["no-such-command"],
+        &["answers", "--question", "q9"],
+    ] {
+        assert_usage_error(&hw3(args));
+    }
+}
+
+#[test]
+fn answers_for_one_question() {
+    let out = hw3(&["answers", "--question", "q2"]);
+    assert!(out.status.success());
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(text.starts_with("== Q2"), "{text}");
+}
