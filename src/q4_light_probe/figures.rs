@@ -1,7 +1,7 @@
 //! Q4's figures: the blind spot versus distance, the texel solid angle of each format, and the
 //! accuracy-versus-time Pareto plot drawn from the benchmark's committed CSV.
 
-use super::irradiance::Irradiance;
+use super::irradiance::{Irradiance, luminance};
 use super::maps::AnalyticMap;
 use super::{Probe, ProbeFormat, blind_spot, horizontal_camera};
 use crate::plot::{Figure, PALETTE, PlotError, err, png_bytes, svg_figure};
@@ -138,72 +138,111 @@ fn solid_angle_figure() -> Result<Figure, PlotError> {
     png_bytes("q4_texel_solid_angle.png", &image)
 }
 
-/// A diffuse white sphere lit by the sun map through a 128² mirror-ball probe, seen from the
-/// side (sun upper right): exact reference, SH9, MIS with 16 samples per pixel, and the two
-/// methods' errors as a fraction of the peak irradiance (white 0 → vermillion ≥ 10 %).
+/// Side length of a rendered sphere panel, in pixels.
+const RENDER_SIZE: usize = 128;
+
+/// One rendered row: per pixel (row-major, `None` outside the sphere) the reference, SH9 and
+/// 16-sample MIS irradiance (luminance), and the peak used for tone mapping.
+struct RenderRow {
+    title: &'static str,
+    reference: Vec<Option<f64>>,
+    sh9: Vec<Option<f64>>,
+    mis: Vec<Option<f64>>,
+    peak: f64,
+}
+
+/// Renders a white diffuse sphere (orthographic view, image up = world `+z`, the sun's azimuth to
+/// the right) lit through `probe`. Pixels are independent, each with its own generator stream,
+/// so the parallel loop gives the same bytes on any thread count.
+fn render_row(title: &'static str, probe: &Probe, reference: &(dyn Fn(DVec3) -> f64 + Sync), sun: DVec3) -> RenderRow {
+    use rayon::prelude::*;
+    let prepared = Irradiance::new(probe);
+    let right = DVec3::new(sun.x, sun.y, 0.0).normalize();
+    let up = DVec3::Z;
+    let toward_viewer = right.cross(up);
+    let pixels: Vec<Option<(f64, f64, f64)>> = (0..RENDER_SIZE * RENDER_SIZE)
+        .into_par_iter()
+        .map(|index| {
+            let a = ((index % RENDER_SIZE) as f64 + 0.5) / RENDER_SIZE as f64 * 2.0 - 1.0;
+            let b = 1.0 - ((index / RENDER_SIZE) as f64 + 0.5) / RENDER_SIZE as f64 * 2.0;
+            let r2 = a * a + b * b;
+            (r2 < 1.0).then(|| {
+                let n = right * a + up * b + toward_viewer * (1.0 - r2).sqrt();
+                let mut rng = crate::rng::seeded(0, index as u64);
+                (reference(n), luminance(prepared.sh9().irradiance(n)), luminance(prepared.mis(n, 16, &mut rng)))
+            })
+        })
+        .collect();
+    RenderRow {
+        title,
+        reference: pixels.iter().map(|p| p.map(|v| v.0)).collect(),
+        sh9: pixels.iter().map(|p| p.map(|v| v.1)).collect(),
+        mis: pixels.iter().map(|p| p.map(|v| v.2)).collect(),
+        peak: reference(sun),
+    }
+}
+
+/// A white diffuse sphere lit through a 128² mirror-ball probe by the analytic sun map (top row)
+/// and by the real sunrise map (bottom row): reference, SH9, MIS with 16 samples per pixel, and
+/// the two methods' errors as a fraction of the peak irradiance (white 0 → vermillion ≥ 10 %).
 fn sphere_render_figure() -> Result<Figure, PlotError> {
     let name = "q4_sphere_render.png";
-    let map = AnalyticMap::sun();
-    let probe = Probe::from_map(&map, ProbeFormat::MirrorBall, 128, horizontal_camera())
-        .map_err(|e| PlotError::Draw { figure: name.into(), message: e.to_string() })?;
-    let prepared = Irradiance::new(&probe);
-    let size = 128_usize;
+    let failed = |message: String| PlotError::Draw { figure: name.into(), message };
+    let sun_map = AnalyticMap::sun();
+    let sun_probe = Probe::from_map(&sun_map, ProbeFormat::MirrorBall, 128, horizontal_camera())
+        .map_err(|e| failed(e.to_string()))?;
+    let sunrise = Probe::read_lat_long(super::study::real_map_path("sunrise")).map_err(|e| failed(e.to_string()))?;
+    let sunrise_ball = Probe::resample_lat_long(&sunrise, ProbeFormat::MirrorBall, 128, horizontal_camera())
+        .map_err(|e| failed(e.to_string()))?;
+    let sunrise_reference = Irradiance::new(&sunrise);
+    let brightest = sunrise
+        .texels()
+        .iter()
+        .max_by(|a, b| luminance(a.radiance).total_cmp(&luminance(b.radiance)))
+        .map_or(DVec3::X, |t| t.direction);
+    let rows = [
+        render_row("analytic sun", &sun_probe, &|n| sun_map.irradiance(n), super::study::sun_direction()),
+        render_row("sunrise (CC0)", &sunrise_ball, &|n| luminance(sunrise_reference.weighted(n)), brightest),
+    ];
     let gap = 8_usize;
     let label_band = 22_usize;
-    // Camera at −y looking along +y: image right = +x (toward the sun), image up = +z.
-    let (right, up, toward_viewer) = (DVec3::X, DVec3::Z, -DVec3::Y);
-    let peak = map.irradiance(super::study::sun_direction());
-    let mut exact = Vec::new();
-    let mut sh9 = Vec::new();
-    let mut mis = Vec::new();
-    for row in 0..size {
-        for column in 0..size {
-            let a = (column as f64 + 0.5) / size as f64 * 2.0 - 1.0;
-            let b = 1.0 - (row as f64 + 0.5) / size as f64 * 2.0;
-            let r2 = a * a + b * b;
-            if r2 >= 1.0 {
-                exact.push(None);
-                sh9.push(None);
-                mis.push(None);
-                continue;
-            }
-            let n = right * a + up * b + toward_viewer * (1.0 - r2).sqrt();
-            let mut rng = crate::rng::seeded((row * size + column) as u64, 0);
-            exact.push(Some(map.irradiance(n)));
-            sh9.push(Some(prepared.sh9().irradiance(n).x));
-            mis.push(Some(prepared.mis(n, 16, &mut rng).x));
-        }
-    }
-    // Tone mapping: L_o = E/π for albedo 1, exposure so that the lit side is near white, sRGB-ish.
-    let tone = |e: f64| {
-        let v = (e / peak).clamp(0.0, 1.0).powf(1.0 / 2.2);
-        let byte = (255.0 * v).round() as u8;
-        RGBColor(byte, byte, byte)
-    };
-    let heat = |error: f64| {
-        let t = (error / (0.1 * peak)).clamp(0.0, 1.0);
-        let end = PALETTE[1];
-        let mix = |y: u8| (255.0 + (y as f64 - 255.0) * t).round() as u8;
-        RGBColor(mix(end.0), mix(end.1), mix(end.2))
-    };
-    type Panel<'a> = (&'a str, Box<dyn Fn(usize) -> Option<RGBColor> + 'a>);
-    let panels: [Panel<'_>; 5] = [
-        ("exact", Box::new(|i| exact[i].map(tone))),
-        ("SH9", Box::new(|i| sh9[i].map(tone))),
-        ("MIS, 16 samples", Box::new(|i| mis[i].map(tone))),
-        ("SH9 error", Box::new(|i| Some(heat((sh9[i]? - exact[i]?).abs())))),
-        ("MIS error", Box::new(|i| Some(heat((mis[i]? - exact[i]?).abs())))),
-    ];
-    let width = panels.len() * (size + gap) - gap;
-    crate::plot::png_figure(name, (width as u32, (size + label_band) as u32), |root| {
-        for (slot, (label, colour)) in panels.iter().enumerate() {
-            let x0 = slot * (size + gap);
-            root.draw(&Text::new(*label, (x0 as i32 + 4, 4), ("sans-serif", 13))).map_err(err)?;
-            for index in 0..size * size {
-                if let Some(c) = colour(index) {
-                    let x = (x0 + index % size) as i32;
-                    let y = (label_band + index / size) as i32;
-                    root.draw_pixel((x, y), &c).map_err(err)?;
+    let panels = 5;
+    let width = panels * (RENDER_SIZE + gap) - gap;
+    let height = rows.len() * (RENDER_SIZE + label_band);
+    crate::plot::png_figure(name, (width as u32, height as u32), |root| {
+        for (row_index, row) in rows.iter().enumerate() {
+            // Tone mapping: E / peak, gamma 2.2 (L_o = E/π for albedo 1, up to exposure).
+            let tone = |e: f64| {
+                let byte = (255.0 * (e / row.peak).clamp(0.0, 1.0).powf(1.0 / 2.2)).round() as u8;
+                RGBColor(byte, byte, byte)
+            };
+            let heat = |error: f64| {
+                let t = (error / (0.1 * row.peak)).clamp(0.0, 1.0);
+                let end = PALETTE[1];
+                let mix = |y: u8| (255.0 + (y as f64 - 255.0) * t).round() as u8;
+                RGBColor(mix(end.0), mix(end.1), mix(end.2))
+            };
+            let pixel = |panel: usize, i: usize| -> Option<RGBColor> {
+                let (reference, sh9, mis) = (row.reference[i]?, row.sh9[i]?, row.mis[i]?);
+                Some(match panel {
+                    0 => tone(reference),
+                    1 => tone(sh9),
+                    2 => tone(mis),
+                    3 => heat((sh9 - reference).abs()),
+                    _ => heat((mis - reference).abs()),
+                })
+            };
+            let labels = [row.title, "SH9", "MIS, 16 samples", "SH9 error", "MIS error"];
+            let y0 = row_index * (RENDER_SIZE + label_band);
+            for (panel, label) in labels.iter().enumerate() {
+                let x0 = panel * (RENDER_SIZE + gap);
+                root.draw(&Text::new(*label, (x0 as i32 + 4, y0 as i32 + 4), ("sans-serif", 13))).map_err(err)?;
+                for index in 0..RENDER_SIZE * RENDER_SIZE {
+                    if let Some(c) = pixel(panel, index) {
+                        let x = (x0 + index % RENDER_SIZE) as i32;
+                        let y = (y0 + label_band + index / RENDER_SIZE) as i32;
+                        root.draw_pixel((x, y), &c).map_err(err)?;
+                    }
                 }
             }
         }
