@@ -175,6 +175,14 @@ pub fn answers() -> Answers {
             100.0 * blind_spot::lost_fraction(d, 0.0).unwrap_or(f64::NAN)
         );
     }
+    let camera_cone = blind_spot::camera_half_angle(1.0, 10.0).unwrap_or(f64::NAN);
+    let _ = writeln!(
+        text,
+        "  The camera: one as wide as the ball (r_c = R) at D = 10R hides a {:.2}° cone around the direction back to it, \
+         {:.2} % of a uniform map's E at n = toward the camera; its reflection replaces that light.",
+        camera_cone.to_degrees(),
+        100.0 * maps::cap_irradiance_per_radiance(0.0, camera_cone) / std::f64::consts::PI
+    );
     let _ = writeln!(
         text,
         "  It omits: the camera's reflection is not missing light but wrong light (it replaces the scene behind the camera); \

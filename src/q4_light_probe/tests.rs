@@ -349,3 +349,26 @@ fn sh9_meets_the_target_on_the_soft_real_map_and_not_on_the_sunrise() {
     assert!(sun.mean_relative_percent > 3.0 * soft.mean_relative_percent, "{sun:?} vs {soft:?}");
     assert!(sun.max_percent > 5.0, "{sun:?}");
 }
+
+#[test]
+fn a_sun_inside_the_blind_cone_is_lost_entirely() {
+    // D/R = 3 hides 19.5° around the direction away from the camera. A sun 10° from it is never
+    // photographed: the probe holds the constant background minus the blind cap, and none of the
+    // sun's 10π of direct irradiance.
+    let d = 3.0;
+    let away = -horizontal_camera().col(2);
+    let sun = (away * 10f64.to_radians().cos() + DVec3::Z * 10f64.to_radians().sin()).normalize();
+    let half_angle = 0.5f64.to_radians();
+    let map = AnalyticMap::new(vec![
+        Term::Constant { radiance: 1.0 },
+        Term::Cap { radiance: 10.0 / half_angle.sin().powi(2), centre: sun, half_angle },
+    ]);
+    let probe = Probe::from_map(&map, ProbeFormat::perspective_ball(d).unwrap(), 96, horizontal_camera()).unwrap();
+    let prepared = Irradiance::new(&probe);
+    let gamma = blind_spot::half_angle(d).unwrap();
+    let blind = Term::Cap { radiance: 1.0, centre: away, half_angle: gamma }.irradiance(sun);
+    assert!(map.irradiance(sun) > 10.0 * PI);
+    let weighted = prepared.weighted(sun).x;
+    assert!((weighted - (PI - blind)).abs() < 3e-3 * PI, "{weighted} vs {}", PI - blind);
+    assert!(probe.texels().iter().all(|t| t.radiance.x < 1.0 + 1e-9), "no texel saw the sun");
+}
