@@ -1,6 +1,7 @@
 #![doc = include_str!(concat!(env!("OUT_DIR"), "/checker.md"))]
 
 mod q2;
+mod q3;
 
 use serde::Serialize;
 use std::fmt::Write as _;
@@ -33,6 +34,14 @@ pub enum Expected {
         /// Angular tolerance in radians.
         angle_tol: f64,
     },
+    /// A kd-tree traversal: the leaves reached, in order, graded leaf by leaf up to the first
+    /// divergence (numbers within 10⁻⁶, `inf` exactly).
+    Trace {
+        /// The key's leaves.
+        leaves: Vec<ExpectedLeaf>,
+        /// The plane crossings of the key's trace (`"y = 3"`, t), used to explain a wrong bound.
+        planes: Vec<(String, f64)>,
+    },
     /// Any vector pointing within `angle_tol` radians of `value`, whatever its length (for
     /// recognising wrong answers whose length is also off).
     Parallel {
@@ -41,6 +50,17 @@ pub enum Expected {
         /// Angular tolerance in radians.
         angle_tol: f64,
     },
+}
+
+/// One leaf of a traversal: its path from the root (`["x>=3", "y<3"]`) and its t-interval.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ExpectedLeaf {
+    /// Branch conditions from the root.
+    pub path: Vec<String>,
+    /// Where the ray enters the leaf.
+    pub t_min: f64,
+    /// Where it leaves (`+∞` for an unbounded cell).
+    pub t_max: f64,
 }
 
 /// A wrong answer we expect students to give, with its own message and partial credit.
@@ -85,7 +105,7 @@ pub struct Variant {
 }
 
 /// The questions the checker grades, in order.
-pub const QUESTIONS: [&str; 1] = ["q2"];
+pub const QUESTIONS: [&str; 2] = ["q2", "q3"];
 
 /// The variant of `question` for `seed`.
 ///
@@ -100,6 +120,7 @@ pub const QUESTIONS: [&str; 1] = ["q2"];
 pub fn variant(question: &str, seed: u64) -> Result<Variant, CheckError> {
     match question {
         "q2" => Ok(q2::variant(seed)),
+        "q3" => Ok(q3::variant(seed)),
         other => Err(CheckError::UnknownQuestion(other.to_string())),
     }
 }
@@ -122,7 +143,7 @@ pub enum CheckError {
     #[error("`meta.seed` must be an integer from 0 to 2^63, got {0}")]
     BadSeed(String),
     /// A question id the checker does not know.
-    #[error("unknown question `{0}`; known: q2")]
+    #[error("unknown question `{0}`; known: q2, q3")]
     UnknownQuestion(String),
 }
 
@@ -221,6 +242,95 @@ fn lookup<'a>(table: &'a toml::Table, key: &str) -> Option<&'a toml::Value> {
 enum Given {
     Number(f64),
     Vector([f64; 3]),
+    Trace(Vec<ExpectedLeaf>),
+}
+
+/// A t bound: a number, or the string `"inf"`.
+fn bound(key: &str, value: Option<&toml::Value>) -> Result<f64, CheckError> {
+    match value {
+        Some(toml::Value::String(s)) if s == "inf" => Ok(f64::INFINITY),
+        Some(other) => number(key, other),
+        None => Err(CheckError::BadValue { key: key.to_string(), problem: "each leaf needs tmin and tmax".into() }),
+    }
+}
+
+fn read_trace(key: &str, value: &toml::Value) -> Result<Vec<ExpectedLeaf>, CheckError> {
+    let bad = |problem: String| CheckError::BadValue { key: key.to_string(), problem };
+    let toml::Value::Array(items) = value else {
+        return Err(bad(format!("expected an array of leaves, got {} `{value}`", value.type_str())));
+    };
+    items
+        .iter()
+        .map(|item| {
+            let leaf = item.as_table().ok_or_else(|| bad("each leaf is a table { path, tmin, tmax }".into()))?;
+            let path = leaf
+                .get("path")
+                .and_then(toml::Value::as_array)
+                .ok_or_else(|| bad("each leaf needs path = [\"x>=3\", ...]".into()))?
+                .iter()
+                .map(|b| {
+                    b.as_str().map(str::to_owned).ok_or_else(|| bad("path entries are strings like \"y<1\"".into()))
+                })
+                .collect::<Result<Vec<_>, _>>()?;
+            Ok(ExpectedLeaf { path, t_min: bound(key, leaf.get("tmin"))?, t_max: bound(key, leaf.get("tmax"))? })
+        })
+        .collect()
+}
+
+fn same_bound(a: f64, b: f64) -> bool {
+    a == b || (a - b).abs() <= 1e-6 * (1.0 + b.abs())
+}
+
+fn show_bound(t: f64) -> String {
+    if t.is_infinite() { "inf".into() } else { format!("{t}") }
+}
+
+fn show_leaf(leaf: &ExpectedLeaf) -> String {
+    format!("[{}] t in [{}, {}]", leaf.path.join(", "), show_bound(leaf.t_min), show_bound(leaf.t_max))
+}
+
+/// Credit for a trace: the share of leaves right before the first divergence, and why it diverged.
+fn grade_trace(expected: &[ExpectedLeaf], planes: &[(String, f64)], given: &[ExpectedLeaf]) -> (f64, String) {
+    let agree = |e: &ExpectedLeaf, g: &ExpectedLeaf| {
+        e.path == g.path && same_bound(g.t_min, e.t_min) && same_bound(g.t_max, e.t_max)
+    };
+    let prefix = expected.iter().zip(given).take_while(|(e, g)| agree(e, g)).count();
+    let credit = prefix as f64 / expected.len().max(given.len()).max(1) as f64;
+    if prefix == expected.len() && prefix == given.len() {
+        return (1.0, format!("all {prefix} leaves right"));
+    }
+    let plane_at = |t: f64| planes.iter().find(|(_, pt)| same_bound(t, *pt)).map(|(name, _)| name.clone());
+    let reason = match (expected.get(prefix), given.get(prefix)) {
+        (Some(e), None) => format!("leaf {} missing: the ray goes on into {}", prefix + 1, show_leaf(e)),
+        (None, Some(g)) => {
+            format!("leaf {} is extra: the ray has left the tree's last cell ({})", prefix + 1, show_leaf(g))
+        }
+        (Some(e), Some(g)) if e.path != g.path => {
+            format!("leaf {}: wrong cell: the ray is in {}, not [{}]", prefix + 1, show_leaf(e), g.path.join(", "))
+        }
+        (Some(e), Some(g)) if !same_bound(g.t_min, e.t_min) => {
+            let why = if g.t_min == 0.0 {
+                "you kept tmin at 0 after crossing the plane".to_string()
+            } else if let Some(name) = plane_at(g.t_min) {
+                format!("t = {} is where the ray crosses {name}, not where it enters this cell", g.t_min)
+            } else {
+                "tmin is where the ray enters this cell".to_string()
+            };
+            format!("leaf {} [{}]: tmin should be {}: {why}", prefix + 1, e.path.join(", "), show_bound(e.t_min))
+        }
+        (Some(e), Some(g)) => {
+            let why = if g.t_max.is_infinite() {
+                "the interval was not clipped at the plane the ray leaves by".to_string()
+            } else if let Some(name) = plane_at(g.t_max) {
+                format!("t = {} is where the ray crosses {name}, not where it leaves this cell", g.t_max)
+            } else {
+                "tmax is where the ray leaves this cell".to_string()
+            };
+            format!("leaf {} [{}]: tmax should be {}: {why}", prefix + 1, e.path.join(", "), show_bound(e.t_max))
+        }
+        (None, None) => unreachable!("a divergence exists when the lengths or a leaf differ"),
+    };
+    (credit, format!("first {prefix} leaves right; {reason}"))
 }
 
 fn number(key: &str, value: &toml::Value) -> Result<f64, CheckError> {
@@ -242,6 +352,7 @@ fn number(key: &str, value: &toml::Value) -> Result<f64, CheckError> {
 fn read_value(key: &str, value: &toml::Value, expected: &Expected) -> Result<Given, CheckError> {
     match expected {
         Expected::Number { .. } => number(key, value).map(Given::Number),
+        Expected::Trace { .. } => read_trace(key, value).map(Given::Trace),
         Expected::Vector { .. } | Expected::Direction { .. } | Expected::Parallel { .. } => {
             let bad = |problem: String| CheckError::BadValue { key: key.to_string(), problem };
             let toml::Value::Array(items) = value else {
@@ -295,6 +406,10 @@ fn compare(expected: &Expected, given: &Given) -> (bool, String) {
             let words = format!("angle {angle:.2e} rad (accepted ≤ {angle_tol:.0e}), length {length:.4}");
             (angle <= *angle_tol && unit, words)
         }
+        (Expected::Trace { leaves, planes }, Given::Trace(given)) => {
+            let (credit, words) = grade_trace(leaves, planes, given);
+            (credit == 1.0, words)
+        }
         _ => (false, "answer has the wrong shape".into()),
     }
 }
@@ -305,6 +420,7 @@ fn show_expected(expected: &Expected) -> String {
         Expected::Vector { value, .. } | Expected::Direction { value, .. } | Expected::Parallel { value, .. } => {
             show_vector(*value)
         }
+        Expected::Trace { leaves, .. } => leaves.iter().map(show_leaf).collect::<Vec<_>>().join("; "),
     }
 }
 
@@ -329,10 +445,17 @@ fn grade(part: &Part, given: Option<&Given>) -> PartResult {
     let shown = match given {
         Given::Number(x) => format!("{x}"),
         Given::Vector(v) => show_vector(*v),
+        Given::Trace(leaves) => leaves.iter().map(show_leaf).collect::<Vec<_>>().join("; "),
     };
     let (ok, words) = compare(&part.expected, given);
+    let trace_credit = match (&part.expected, given) {
+        (Expected::Trace { leaves, planes }, Given::Trace(g)) => Some(grade_trace(leaves, planes, g).0),
+        _ => None,
+    };
     let (score, status, feedback) = if ok {
         (part.points, "correct", words)
+    } else if let Some(credit) = trace_credit.filter(|&c| c > 0.0) {
+        (part.points * credit, "partial", words)
     } else if let Some(rule) = part.mal_rules.iter().find(|rule| compare(&rule.value, given).0) {
         let status = if rule.credit > 0.0 { "partial" } else { "wrong" };
         (part.points * rule.credit, status, format!("{} ({words})", rule.message))
@@ -432,6 +555,7 @@ pub fn template(seed: u64) -> Result<String, CheckError> {
                 Expected::Direction { angle_tol, .. } | Expected::Parallel { angle_tol, .. } => {
                     format!("[x, y, z], unit length, within {angle_tol:.0e} rad")
                 }
+                Expected::Trace { .. } => "[{ path = [...], tmin = N, tmax = N or \"inf\" }, ...]".to_string(),
             };
             let _ = writeln!(out, "# {} ({shape}, {} points)\n# {name} = ", part.prompt, part.points);
         }
@@ -451,23 +575,52 @@ pub fn template(seed: u64) -> Result<String, CheckError> {
 pub fn answers_key(seed: u64) -> Result<String, CheckError> {
     let mut out = format!("[meta]\nseed = {seed}\n");
     for question in QUESTIONS {
-        let mut section = "";
-        for part in variant(question, seed)?.parts {
-            let (table, name) = part.key.split_once('.').unwrap_or((part.key, ""));
-            if table != section {
-                let _ = writeln!(out, "\n[{table}]");
-                section = table;
-            }
-            let value = match part.expected {
-                Expected::Number { value, .. } => format!("{value:?}"),
-                Expected::Vector { value, .. }
-                | Expected::Direction { value, .. }
-                | Expected::Parallel { value, .. } => {
-                    format!("[{:?}, {:?}, {:?}]", value[0], value[1], value[2])
-                }
-            };
-            let _ = writeln!(out, "{name} = {value}");
+        out.push_str(&answers_key_for(question, seed)?);
+    }
+    Ok(out)
+}
+
+/// The key's tables for one question (no `[meta]`).
+///
+/// # Errors
+/// [`CheckError::UnknownQuestion`] for an unknown question id.
+///
+/// # Examples
+/// ```
+/// assert!(hw3::checker::answers_key_for("q3", 0).unwrap().contains("[q3d]"));
+/// ```
+pub fn answers_key_for(question: &str, seed: u64) -> Result<String, CheckError> {
+    let mut out = String::new();
+    let mut section = "";
+    for part in variant(question, seed)?.parts {
+        let (table, name) = part.key.split_once('.').unwrap_or((part.key, ""));
+        if table != section {
+            let _ = writeln!(out, "\n[{table}]");
+            section = table;
         }
+        let value = match part.expected {
+            Expected::Number { value, .. } => format!("{value:?}"),
+            Expected::Vector { value, .. } | Expected::Direction { value, .. } | Expected::Parallel { value, .. } => {
+                format!("[{:?}, {:?}, {:?}]", value[0], value[1], value[2])
+            }
+            Expected::Trace { leaves, .. } => {
+                let bound = |t: f64| if t.is_infinite() { "\"inf\"".to_string() } else { format!("{t:?}") };
+                let rows: Vec<String> = leaves
+                    .iter()
+                    .map(|l| {
+                        let path: Vec<String> = l.path.iter().map(|p| format!("{p:?}")).collect();
+                        format!(
+                            "  {{ path = [{}], tmin = {}, tmax = {} }},",
+                            path.join(", "),
+                            bound(l.t_min),
+                            bound(l.t_max)
+                        )
+                    })
+                    .collect();
+                format!("[\n{}\n]", rows.join("\n"))
+            }
+        };
+        let _ = writeln!(out, "{name} = {value}");
     }
     Ok(out)
 }
@@ -572,6 +725,40 @@ mod tests {
                 "`q2c.whatever`".to_string(),
             ]
         );
+    }
+
+    #[test]
+    fn trace_feedback_names_the_first_divergence() {
+        let key = answers_key(0).unwrap();
+        // Case (d) with tmin kept at 0 in the second leaf.
+        let wrong = key.replacen("tmin = 2.0", "tmin = 0.0", 1);
+        let report = check(&wrong, None).unwrap();
+        let d = report.parts.iter().find(|p| p.key == "q3d.leaves").unwrap();
+        assert_eq!((d.status, d.score), ("partial", 1.5));
+        assert!(d.feedback.contains("you kept tmin at 0 after crossing the plane"), "{}", d.feedback);
+        // An unclipped interval.
+        let unclipped = key.replacen("tmax = 2.0", "tmax = \"inf\"", 1);
+        let d = check(&unclipped, None).unwrap().parts.into_iter().find(|p| p.key == "q3d.leaves").unwrap();
+        assert_eq!(d.score, 0.0);
+        assert!(d.feedback.contains("not clipped"), "{}", d.feedback);
+        // A missing leaf.
+        let short = "[q3d]\nleaves = [{ path = [\"x>=3\", \"y<3\"], tmin = 0, tmax = 2 }]";
+        let d = check(short, None).unwrap().parts.into_iter().find(|p| p.key == "q3d.leaves").unwrap();
+        assert_eq!(d.score, 1.5);
+        assert!(d.feedback.contains("leaf 2 missing"), "{}", d.feedback);
+    }
+
+    #[test]
+    fn malformed_traces_are_errors() {
+        for text in [
+            "[q3d]\nleaves = 3",
+            "[q3d]\nleaves = [1, 2]",
+            "[q3d]\nleaves = [{ path = \"x>=3\", tmin = 0, tmax = 1 }]",
+            "[q3d]\nleaves = [{ path = [\"x>=3\"], tmin = 0 }]",
+            "[q3d]\nleaves = [{ path = [\"x>=3\"], tmin = \"zero\", tmax = 1 }]",
+        ] {
+            assert!(check(text, None).is_err(), "{text}");
+        }
     }
 
     #[test]

@@ -6,11 +6,15 @@
 )]
 
 pub mod geometry;
+pub mod kdtree;
 pub mod plot;
 pub mod real;
+pub mod render;
 pub mod rng;
 
+pub mod q1_hard_scenes;
 pub mod q2_ray_sphere;
+pub mod q3_kd_traversal;
 pub mod q4_light_probe;
 
 pub mod checker;
@@ -35,7 +39,7 @@ pub struct Answers {
 /// ```
 #[must_use]
 pub fn all_answers() -> Vec<Answers> {
-    vec![q2_ray_sphere::answers(), q4_light_probe::answers()]
+    vec![q1_hard_scenes::answers(), q2_ray_sphere::answers(), q3_kd_traversal::answers(), q4_light_probe::answers()]
 }
 
 /// Every figure of the course notes, in homework order (deterministic bytes).
@@ -44,7 +48,9 @@ pub fn all_answers() -> Vec<Answers> {
 /// [`plot::PlotError`] if a figure cannot be drawn.
 pub fn all_figures() -> Result<Vec<plot::Figure>, plot::PlotError> {
     let mut figures: Vec<plot::Figure> = Vec::new();
+    figures.extend(q1_hard_scenes::figures()?);
     figures.extend(q2_ray_sphere::figures()?);
+    figures.extend(q3_kd_traversal::figures()?);
     figures.extend(q4_light_probe::figures()?);
     Ok(figures)
 }

@@ -81,6 +81,45 @@ enum Command {
         #[arg(long, default_value = "docs/figures")]
         out: PathBuf,
     },
+    /// Q3: traverse the homework's 2-D kd-tree with one ray and print the trace.
+    KdTrace {
+        /// The ray's origin `e`, as `X,Y`.
+        #[arg(long, allow_hyphen_values = true)]
+        origin: String,
+        /// The ray's direction `d`, as `X,Y` (non-zero).
+        #[arg(long, allow_hyphen_values = true)]
+        dir: String,
+        /// Print JSON (`leaves` and `steps`) instead of text.
+        #[arg(long)]
+        json: bool,
+    },
+    /// List the built-in scenes of the renderer.
+    Scenes,
+    /// Print which light-path classes a built-in scene carries and the passes the renderer plans.
+    Effects {
+        /// A built-in scene (see `hw3 scenes`).
+        scene: String,
+        /// Print JSON instead of text.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Render a built-in scene to a PNG (Whitted ray tracing).
+    Render {
+        /// A built-in scene (see `hw3 scenes`).
+        scene: String,
+        /// Samples per pixel.
+        #[arg(long, default_value_t = 4)]
+        spp: u32,
+        /// Image size, WIDTHxHEIGHT.
+        #[arg(long, default_value = "320x240")]
+        size: String,
+        /// Output PNG file.
+        #[arg(long, default_value = "render.png")]
+        out: PathBuf,
+        /// `auto` runs the planned passes, `all` every pass.
+        #[arg(long, default_value = "auto")]
+        effects: String,
+    },
 }
 
 #[derive(Clone, Copy, clap::ValueEnum)]
@@ -208,6 +247,12 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             }
             if report.all_correct() { Ok(()) } else { Err(SomeWrong.into()) }
         }
+        Some(Command::KdTrace { origin, dir, json }) => {
+            let out =
+                hw3::q3_kd_traversal::kd_trace_command(&origin, &dir, json).map_err(|e| UsageError(e.to_string()))?;
+            println!("{out}");
+            Ok(())
+        }
         Some(Command::Sphere { origin, dir, center, radius, precision, method, json }) => {
             use hw3::q2_ray_sphere::catalogue::{Method, Precision};
             let (ray, sphere) =
@@ -229,6 +274,16 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             }
             Ok(())
         }
+        Some(Command::Scenes) => {
+            print!("{}", hw3::render::command::scenes_text());
+            Ok(())
+        }
+        Some(Command::Effects { scene, json }) => {
+            let text = hw3::render::command::effects_text(&scene, json).map_err(|e| UsageError(e.to_string()))?;
+            print!("{text}");
+            Ok(())
+        }
+        Some(Command::Render { scene, spp, size, out, effects }) => render_to_file(&scene, spp, &size, &out, &effects),
         Some(Command::Irradiance(args)) => {
             let normal = hw3::geometry::parse_vec3("--normal", &args.normal).map_err(UsageError)?;
             let request = hw3::q4_light_probe::IrradianceRequest {
@@ -245,6 +300,16 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             Ok(())
         }
     }
+}
+
+fn render_to_file(scene: &str, spp: u32, size: &str, out: &PathBuf, effects: &str) -> anyhow::Result<()> {
+    use hw3::render::command::{parse_size, render_scene};
+    let size = parse_size(size).map_err(UsageError)?;
+    let mode = effects.parse().map_err(UsageError)?;
+    let output = render_scene(scene, spp, size, mode).map_err(|e| UsageError(e.to_string()))?;
+    std::fs::write(out, &output.png).with_context(|| format!("writing {}", out.display()))?;
+    eprintln!("{} → {}", output.summary, out.display());
+    Ok(())
 }
 
 fn print_answers(question: Option<&str>) -> anyhow::Result<()> {

@@ -41,7 +41,7 @@ fn template_then_key_round_trip() {
     let perfect = hw3(&["check", key.to_str().unwrap(), "--format", "gradescope"]);
     assert_eq!(perfect.status.code(), Some(0));
     let results: serde_json::Value = serde_json::from_slice(&perfect.stdout).unwrap();
-    assert_eq!(results["score"], 8.0);
+    assert_eq!(results["score"], 13.0);
     assert!(results["tests"].as_array().unwrap().iter().all(|t| t["status"] == "passed"));
     std::fs::remove_dir_all(&dir).ok();
 }
@@ -72,4 +72,18 @@ fn variant_prints_statement_and_solution() {
     assert!(out.status.success());
     let text = String::from_utf8(out.stdout).unwrap();
     assert!(text.contains("e = (-5, -5, 2)") && text.contains("q2c.t_closest"), "{text}");
+}
+
+#[test]
+fn the_seeds_own_answers_graded() {
+    let out = hw3(&["check", &answers("seed_hw3.toml")]);
+    assert_eq!(out.status.code(), Some(1));
+    let text = String::from_utf8(out.stdout).unwrap();
+    // Q3 (d): the second leaf's tmin is the y = 3 crossing (t = 3), not the x = 3 crossing (t = 2).
+    assert!(text.contains("t = 3 is where the ray crosses y = 3, not where it enters this cell"), "{text}");
+    let line =
+        |key: &str| text.lines().find(|l| l.contains(key)).unwrap_or_default().split_whitespace().collect::<Vec<_>>();
+    assert_eq!(line("q3d.leaves")[2..], ["1.50/3", "partial"], "{text}");
+    assert_eq!(line("q3e.leaves")[2..], ["2.00/2", "correct"], "{text}");
+    common::insta_settings().bind(|| insta::assert_snapshot!("checker_seed_graded", text));
 }

@@ -112,3 +112,30 @@ fn answers_for_one_question() {
     let text = String::from_utf8(out.stdout).unwrap();
     assert!(text.starts_with("== Q2"), "{text}");
 }
+
+#[test]
+fn kd_trace_json_has_the_contract_fields() {
+    let value = json(&hw3(&["kd-trace", "--origin", "5,0", "--dir", "-1,1", "--json"]));
+    assert_eq!(
+        value["leaves"],
+        serde_json::json!([
+            {"path": ["x>=3", "y<3"], "tmin": 0.0, "tmax": 2.0},
+            {"path": ["x<3", "y>=1"], "tmin": 2.0, "tmax": "inf"},
+        ])
+    );
+    assert_eq!(value["steps"].as_array().map(Vec::len), Some(9));
+}
+
+#[test]
+fn kd_trace_bad_input_exits_2() {
+    for args in [
+        ["--origin", "nan,0", "--dir", "1,1"],
+        ["--origin", "0,0", "--dir", "0,-0"],
+        ["--origin", "1", "--dir", "1,1"],
+        ["--origin", "0,inf", "--dir", "1,1"],
+    ] {
+        let mut all = vec!["kd-trace", "--json"];
+        all.extend(args);
+        assert_usage_error(&hw3(&all));
+    }
+}

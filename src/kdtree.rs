@@ -1,0 +1,192 @@
+//! kd-trees: the interval rule every traversal in the crate shares, and a 3-D SAH kd-tree over
+//! spheres (closest hit with early exit) for the renderers.
+//!
+//! # The interval rule ([`split_interval`])
+//! A traversal keeps the part `[t_min, t_max]` of the ray `e + d t` that lies inside the current
+//! node. At a node split by the plane `p_a = s` (axis `a`), the ray meets the plane at
+//! `t = (s − e_a) / d_a`, and the interval divides into at most two pieces: the **near** child
+//! (where the ray is just after `t_min`) over `[t_min, t]` and the **far** child over `[t, t_max]`.
+//! Cells are half-open: the lower child holds `p_a < s`, the upper child `p_a ≥ s` (the homework
+//! writes them `x < 3` and `x ≥ 3`). The rule, with every tie stated:
+//!
+//! | situation | decision | why |
+//! |---|---|---|
+//! | `d_a = ±0` (parallel) | one child, by the origin: lower if `e_a < s`, else upper; **no division** | the ray's coordinate never changes; `e_a = s` lies in the upper cell by the half-open convention, so the `0/0` of the naive formula never arises |
+//! | `d_a > 0` | near = lower, far = upper | the coordinate grows with `t` |
+//! | `d_a < 0` | near = upper, far = lower | it shrinks |
+//! | `t ≤ t_min` | far child only, whole interval | the near piece `[t_min, t]` is empty or a point |
+//! | `t ≥ t_max` | near child only, whole interval | the far piece is empty or a point |
+//! | otherwise | near over `[t_min, t]`, then far over `[t, t_max]` | a genuine crossing |
+//!
+//! So no zero-length interval is ever produced, each child interval is a sub-interval of its
+//! parent's, and the near/far choice is by the *sign* of `d_a` (`−0.0` counts as zero, because the
+//! test is `d_a == 0`, never a sign-bit or `1/d_a` test). Overflow is harmless: `t = ±∞` compares
+//! correctly with any finite bound. The rule never reads `t_min ≥ 0`; it is correct for any
+//! `t_min < t_max`.
+//!
+//! The Q3 chapter ([`crate::q3_kd_traversal`]) traces this rule on the homework's 2-D tree; the
+//! 3-D [`KdTree`] uses the same function at every interior node.
+
+mod build;
+mod tree;
+pub mod workload;
+
+pub use build::{BuildError, SahCosts};
+pub use tree::{HitStats, KdTree, brute_force_closest_hit};
+
+/// Which child of a split a piece of the ray lies in: `Lower` holds `p_a < s`, `Upper` holds
+/// `p_a ≥ s`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, serde::Serialize)]
+pub enum Side {
+    /// The half-space `p_a < s`.
+    Lower,
+    /// The half-space `p_a ≥ s` (it contains the plane itself).
+    Upper,
+}
+
+impl Side {
+    /// The other side.
+    #[must_use]
+    pub fn opposite(self) -> Self {
+        match self {
+            Self::Lower => Self::Upper,
+            Self::Upper => Self::Lower,
+        }
+    }
+
+    /// The side of the split value `split` that the coordinate `p` lies on (half-open cells).
+    ///
+    /// # Examples
+    /// ```
+    /// use hw3::kdtree::Side;
+    /// assert_eq!(Side::of(2.9, 3.0), Side::Lower);
+    /// assert_eq!(Side::of(3.0, 3.0), Side::Upper);
+    /// ```
+    #[must_use]
+    pub fn of(p: f64, split: f64) -> Self {
+        if p < split { Self::Lower } else { Self::Upper }
+    }
+}
+
+/// Which children a ray's interval visits at one split (see the module docs for the rule).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Visit {
+    /// One child over the whole interval `[t_min, t_max]`.
+    Only(Side),
+    /// `near` over `[t_min, t_plane]`, then its opposite over `[t_plane, t_max]`, with
+    /// `t_min < t_plane < t_max`.
+    NearThenFar {
+        /// The child visited first.
+        near: Side,
+        /// Where the ray crosses the plane.
+        t_plane: f64,
+    },
+}
+
+/// The outcome of [`split_interval`]: the plane parameter, if one was computed, and the visit.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SplitDecision {
+    /// `t = (s − e_a)/d_a`, or `None` when `d_a = ±0` (the ray is parallel and nothing is divided).
+    /// It may be `±∞` when the quotient overflows; it is never NaN for finite input.
+    pub t_plane: Option<f64>,
+    /// The children visited, near first.
+    pub visit: Visit,
+}
+
+impl SplitDecision {
+    /// The visited children with their intervals, in visiting order (one or two entries).
+    ///
+    /// # Examples
+    /// ```
+    /// use hw3::kdtree::{split_interval, Side};
+    /// // e_x = 5, d_x = −1, plane x = 3: the ray crosses at t = 2, upper side first.
+    /// let decision = split_interval(5.0, -1.0, 3.0, 0.0, f64::INFINITY);
+    /// assert_eq!(decision.t_plane, Some(2.0));
+    /// let pieces: Vec<_> = decision.pieces(0.0, f64::INFINITY).collect();
+    /// assert_eq!(pieces, [(Side::Upper, 0.0, 2.0), (Side::Lower, 2.0, f64::INFINITY)]);
+    /// ```
+    pub fn pieces(self, t_min: f64, t_max: f64) -> impl Iterator<Item = (Side, f64, f64)> {
+        let pair = match self.visit {
+            Visit::Only(side) => [Some((side, t_min, t_max)), None],
+            Visit::NearThenFar { near, t_plane } => {
+                [Some((near, t_min, t_plane)), Some((near.opposite(), t_plane, t_max))]
+            }
+        };
+        pair.into_iter().flatten()
+    }
+}
+
+/// Divides the ray interval `[t_min, t_max]` at the plane `p_a = split`, for a ray whose
+/// coordinate on that axis is `origin + dir·t`. The one implementation of the interval rule.
+///
+/// Preconditions: finite `origin`, `dir`, `split`; `t_min < t_max` (either may be infinite).
+/// Numerics: one subtraction and one division, correctly rounded; a zero `dir` (either sign) is
+/// decided by the origin alone, so no `0/0` or `x/0` is ever evaluated.
+///
+/// # Examples
+/// ```
+/// use hw3::kdtree::{split_interval, Side, Visit};
+/// // Parallel ray lying exactly in the plane: the upper (≥) cell, no 0/0.
+/// let d = split_interval(3.0, -0.0, 3.0, 0.0, f64::INFINITY);
+/// assert_eq!((d.t_plane, d.visit), (None, Visit::Only(Side::Upper)));
+/// ```
+#[must_use]
+#[inline]
+pub fn split_interval(origin: f64, dir: f64, split: f64, t_min: f64, t_max: f64) -> SplitDecision {
+    if dir == 0.0 {
+        return SplitDecision { t_plane: None, visit: Visit::Only(Side::of(origin, split)) };
+    }
+    let t_plane = (split - origin) / dir;
+    let near = if dir > 0.0 { Side::Lower } else { Side::Upper };
+    let visit = if t_plane <= t_min {
+        Visit::Only(near.opposite())
+    } else if t_plane >= t_max {
+        Visit::Only(near)
+    } else {
+        Visit::NearThenFar { near, t_plane }
+    };
+    SplitDecision { t_plane: Some(t_plane), visit }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const INF: f64 = f64::INFINITY;
+
+    #[test]
+    fn crossing_gives_near_then_far() {
+        let d = split_interval(0.0, 1.0, 1.0, 0.0, INF);
+        assert_eq!(d.visit, Visit::NearThenFar { near: Side::Lower, t_plane: 1.0 });
+    }
+
+    #[test]
+    fn parallel_ray_goes_by_origin_for_both_signs_of_zero() {
+        for dir in [0.0, -0.0] {
+            assert_eq!(split_interval(2.0, dir, 3.0, 0.0, INF).visit, Visit::Only(Side::Lower));
+            assert_eq!(split_interval(3.0, dir, 3.0, 0.0, INF).visit, Visit::Only(Side::Upper));
+            assert_eq!(split_interval(3.0, dir, 3.0, 0.0, INF).t_plane, None);
+        }
+    }
+
+    #[test]
+    fn origin_on_plane_goes_where_the_ray_goes() {
+        assert_eq!(split_interval(3.0, -1.0, 3.0, 0.0, INF).visit, Visit::Only(Side::Lower));
+        assert_eq!(split_interval(3.0, 1.0, 3.0, 0.0, INF).visit, Visit::Only(Side::Upper));
+    }
+
+    #[test]
+    fn crossing_exactly_at_an_end_of_the_interval_visits_one_child() {
+        // t = 2 = t_max: the far piece [2, 2] is a point, skipped.
+        assert_eq!(split_interval(0.0, 1.0, 2.0, 0.0, 2.0).visit, Visit::Only(Side::Lower));
+        // t = 2 = t_min: the near piece is a point, skipped.
+        assert_eq!(split_interval(0.0, 1.0, 2.0, 2.0, 5.0).visit, Visit::Only(Side::Upper));
+    }
+
+    #[test]
+    fn overflowing_plane_parameter_is_infinite_not_nan() {
+        let d = split_interval(-1e308, 1e-300, 1e308, 0.0, INF);
+        assert_eq!(d.t_plane, Some(INF));
+        assert_eq!(d.visit, Visit::Only(Side::Lower));
+    }
+}

@@ -1,0 +1,249 @@
+//! Diagrams of the homework's tree: cells and split lines, the ray, and each visited leaf's piece
+//! of the ray, coloured and labelled with its parameter interval.
+
+use super::{Axis2, Interval, Node2, Ray2, seed, traverse, write_path};
+use crate::kdtree::Side;
+use crate::plot::{Figure, PALETTE, PlotError, err, svg_figure};
+use plotters::coord::Shift;
+use plotters::prelude::*;
+use std::fmt;
+
+/// The window drawn: `x ∈ [−2, 8]`, `y ∈ [−3, 7]`.
+const WINDOW: [(f64, f64); 2] = [(-2.0, 8.0), (-3.0, 7.0)];
+
+/// The general case drawn next to (d) and (e): it visits all four leaves.
+pub(super) const GENERAL_RAY: Ray2 = Ray2 { origin: [0.0, 0.0], dir: [1.0, 0.5] };
+
+pub(super) fn figures() -> Result<Vec<Figure>, PlotError> {
+    let mut figures = Vec::new();
+    for case in seed::cases() {
+        let title = format!("case ({}): {}", case.label, RayText(&case.ray));
+        figures.push(diagram(&format!("q3_case_{}.svg", case.label), &title, &case.ray)?);
+    }
+    let title = format!("general case: {}", RayText(&GENERAL_RAY));
+    figures.push(diagram("q3_general.svg", &title, &GENERAL_RAY)?);
+    Ok(figures)
+}
+
+/// The part `[0, t_exit]` of the ray inside the drawing window (the window holds every origin).
+fn window_exit(ray: &Ray2) -> f64 {
+    [Axis2::X, Axis2::Y]
+        .into_iter()
+        .filter(|axis| ray.dir[axis.index()] != 0.0)
+        .map(|axis| {
+            let (lo, hi) = WINDOW[axis.index()];
+            let (e, d) = (ray.origin[axis.index()], ray.dir[axis.index()]);
+            ((lo - e) / d).max((hi - e) / d)
+        })
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// Every split line of `node`, clipped to `bounds` (the node's cell within the window).
+fn split_lines(node: &Node2, bounds: [(f64, f64); 2], out: &mut Vec<[(f64, f64); 2]>) {
+    let Node2::Split { axis, split, lower, upper } = node else {
+        return;
+    };
+    let a = axis.index();
+    let (lo, hi) = bounds[1 - a];
+    out.push(match axis {
+        Axis2::X => [(*split, lo), (*split, hi)],
+        Axis2::Y => [(lo, *split), (hi, *split)],
+    });
+    for (side, child) in [(Side::Lower, lower), (Side::Upper, upper)] {
+        let mut child_bounds = bounds;
+        match side {
+            Side::Lower => child_bounds[a].1 = split.min(bounds[a].1),
+            Side::Upper => child_bounds[a].0 = split.max(bounds[a].0),
+        }
+        split_lines(child, child_bounds, out);
+    }
+}
+
+/// A ray printed as `e = (5, 0), d = (-1, 1)`.
+struct RayText<'a>(&'a Ray2);
+
+impl fmt::Display for RayText<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let ([ex, ey], [dx, dy]) = (self.0.origin, self.0.dir);
+        write!(f, "e = ({ex}, {ey}), d = ({dx}, {dy})")
+    }
+}
+
+/// Approximate size of a 13 px cell label in plot units (10 units span about 480 px): 0.14 per
+/// character wide, 0.3 high.
+fn label_size(text: &str) -> (f64, f64) {
+    (0.14 * text.chars().count() as f64, 0.3)
+}
+
+/// Distance from the point `p` to the segment `a`–`b`.
+fn distance_to_segment(p: (f64, f64), a: (f64, f64), b: (f64, f64)) -> f64 {
+    let (ux, uy) = (b.0 - a.0, b.1 - a.1);
+    let length2 = ux * ux + uy * uy;
+    let s = if length2 > 0.0 { (((p.0 - a.0) * ux + (p.1 - a.1) * uy) / length2).clamp(0.0, 1.0) } else { 0.0 };
+    (p.0 - a.0 - s * ux).hypot(p.1 - a.1 - s * uy)
+}
+
+/// Where to anchor (top-left) a cell's label: the inner corner of the cell's visible box whose
+/// label box lies farthest from the drawn ray (ties: the first of top-left, top-right,
+/// bottom-left, bottom-right).
+fn label_anchor(text: &str, bounds: [(f64, f64); 2], ray: [(f64, f64); 2]) -> (f64, f64) {
+    let (w, h) = label_size(text);
+    let margin = 0.15;
+    let [(x0, x1), (y0, y1)] = bounds;
+    let corners = [
+        (x0 + margin, y1 - margin),
+        (x1 - margin - w, y1 - margin),
+        (x0 + margin, y0 + margin + h),
+        (x1 - margin - w, y0 + margin + h),
+    ];
+    let clearance = |(x, y): (f64, f64)| {
+        [(x, y), (x + w, y), (x, y - h), (x + w, y - h), (x + w / 2.0, y - h / 2.0)]
+            .into_iter()
+            .map(|p| distance_to_segment(p, ray[0], ray[1]))
+            .fold(f64::INFINITY, f64::min)
+    };
+    corners
+        .into_iter()
+        .fold((corners[0], f64::NEG_INFINITY), |best, c| {
+            let d = clearance(c);
+            if d > best.1 { (c, d) } else { best }
+        })
+        .0
+}
+
+/// A path printed as in the trace (`x>=3, y<3`).
+struct PathText<'a>(&'a [super::Branch]);
+
+impl fmt::Display for PathText<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write_path(f, self.0)
+    }
+}
+
+fn diagram(file_name: &str, title: &str, ray: &Ray2) -> Result<Figure, PlotError> {
+    svg_figure(file_name, (560, 640), |root| draw(root, title, ray))
+}
+
+fn draw(root: &DrawingArea<SVGBackend<'_>, Shift>, title: &str, ray: &Ray2) -> Result<(), String> {
+    let tree = Node2::homework();
+    let [(x0, x1), (y0, y1)] = WINDOW;
+    let (plot_area, legend_area) = root.split_vertically(560);
+    let mut chart = ChartBuilder::on(&plot_area)
+        .caption(title, ("sans-serif", 17))
+        .margin(12)
+        .x_label_area_size(36)
+        .y_label_area_size(40)
+        .build_cartesian_2d(x0..x1, y0..y1)
+        .map_err(err)?;
+    chart
+        .configure_mesh()
+        .max_light_lines(0)
+        .bold_line_style(RGBColor(230, 230, 230))
+        .x_desc("x")
+        .y_desc("y")
+        .label_style(("sans-serif", 12))
+        .x_label_formatter(&|v| format!("{v}"))
+        .y_label_formatter(&|v| format!("{v}"))
+        .draw()
+        .map_err(err)?;
+
+    let grey = RGBColor(110, 110, 110);
+    let mut lines = Vec::new();
+    split_lines(&tree, WINDOW, &mut lines);
+    for line in lines {
+        chart.draw_series(std::iter::once(PathElement::new(line, grey.stroke_width(2)))).map_err(err)?;
+    }
+    let t_exit = window_exit(ray);
+    let drawn_ray = [tuple(ray.at(0.0)), tuple(ray.at(t_exit))];
+    for cell in tree.cells() {
+        let visible = [Axis2::X, Axis2::Y].map(|axis| {
+            let (lo, hi) = cell.bounds(axis);
+            let (wlo, whi) = WINDOW[axis.index()];
+            (lo.max(wlo), hi.min(whi))
+        });
+        let text = PathText(&cell.path).to_string();
+        let anchor = label_anchor(&text, visible, drawn_ray);
+        chart
+            .draw_series(std::iter::once(Text::new(text, anchor, ("sans-serif", 13).into_font().color(&grey))))
+            .map_err(err)?;
+    }
+
+    chart.draw_series(std::iter::once(PathElement::new(drawn_ray.to_vec(), BLACK.stroke_width(1)))).map_err(err)?;
+    let leaves = traverse(&tree, ray).leaves();
+    for (i, leaf) in leaves.iter().enumerate() {
+        let colour = PALETTE[i % PALETTE.len()];
+        let Interval { t_min, t_max } = leaf.interval;
+        let (from, to) = (t_min.min(t_exit), t_max.min(t_exit));
+        chart
+            .draw_series(std::iter::once(PathElement::new(
+                vec![tuple(ray.at(from)), tuple(ray.at(to))],
+                colour.stroke_width(5),
+            )))
+            .map_err(err)?;
+        chart
+            .draw_series(std::iter::once(Text::new(
+                leaf.interval.to_string(),
+                beside(ray, (from + to) / 2.0),
+                ("sans-serif", 14).into_font().color(&colour),
+            )))
+            .map_err(err)?;
+    }
+    chart.draw_series(std::iter::once(Circle::new(tuple(ray.origin), 4, BLACK.filled()))).map_err(err)?;
+    chart
+        .draw_series(std::iter::once(Text::new("e", (ray.origin[0] + 0.12, ray.origin[1] + 0.35), ("sans-serif", 15))))
+        .map_err(err)?;
+    // The legend sits below the chart, two entries per row, so it never hides a cell.
+    for (i, leaf) in leaves.iter().enumerate() {
+        let colour = PALETTE[i % PALETTE.len()];
+        let (x, y) = (60 + 250 * (i as i32 % 2), 12 + 26 * (i as i32 / 2));
+        legend_area.draw(&PathElement::new(vec![(x, y + 7), (x + 22, y + 7)], colour.stroke_width(5))).map_err(err)?;
+        let text = format!("leaf {}: t in {}", PathText(&leaf.path), leaf.interval);
+        legend_area.draw(&Text::new(text, (x + 30, y), ("sans-serif", 13))).map_err(err)?;
+    }
+    Ok(())
+}
+
+/// A text anchor (top-left) beside the ray at `t`: 0.3 units off the line on its right-hand
+/// side (normal with positive x), raised by a text height when that side is above the line.
+fn beside(ray: &Ray2, t: f64) -> (f64, f64) {
+    let [dx, dy] = ray.dir;
+    let length = dx.hypot(dy);
+    let (mut nx, mut ny) = (dy / length, -dx / length);
+    if nx < 0.0 || (nx == 0.0 && ny < 0.0) {
+        (nx, ny) = (-nx, -ny);
+    }
+    let p = ray.at(t);
+    let raise = if ny > 0.0 { 0.3 } else { 0.0 };
+    (p[0] + 0.3 * nx, p[1] + 0.3 * ny + raise)
+}
+
+fn tuple(p: [f64; 2]) -> (f64, f64) {
+    (p[0], p[1])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn diagrams_are_pinned() {
+        let _guard = crate::test_support::insta_settings().bind_to_scope();
+        for figure in figures().unwrap() {
+            let name = figure.file_name.trim_end_matches(".svg").to_owned();
+            insta::assert_snapshot!(name, String::from_utf8(figure.bytes).unwrap());
+        }
+    }
+
+    #[test]
+    fn split_lines_stop_at_their_cells() {
+        let mut lines = Vec::new();
+        split_lines(&Node2::homework(), WINDOW, &mut lines);
+        assert_eq!(lines, [[(3.0, -3.0), (3.0, 7.0)], [(-2.0, 1.0), (3.0, 1.0)], [(3.0, 3.0), (8.0, 3.0)]]);
+    }
+
+    #[test]
+    fn window_exit_is_where_the_ray_leaves_the_drawing() {
+        // Case (d): from (5, 0) along (−1, 1), the top edge y = 7 is reached at t = 7.
+        assert_eq!(window_exit(&seed::cases()[0].ray), 7.0);
+    }
+}

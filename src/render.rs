@@ -1,0 +1,357 @@
+#![doc = include_str!(concat!(env!("OUT_DIR"), "/render.md"))]
+
+pub mod analysis;
+pub mod command;
+pub mod integrator;
+pub mod scene;
+pub mod scenes;
+
+use crate::geometry::InputError;
+use analysis::Passes;
+use glam::DVec3;
+use integrator::{Integrator, Sampler, Tracer};
+use rayon::prelude::*;
+use scene::{CameraFrame, Scene};
+
+/// Largest accepted image side, in pixels.
+pub const MAX_SIDE: u32 = 8192;
+/// Largest accepted pixel count (a 4096² image).
+pub const MAX_PIXELS: u64 = 1 << 24;
+/// Largest accepted number of samples per pixel.
+pub const MAX_SPP: u32 = 1 << 16;
+
+/// Why a render was refused. Nothing is rendered or written when one is returned.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum RenderError {
+    /// The scene or a camera setting is invalid.
+    #[error(transparent)]
+    Input(#[from] InputError),
+    /// The image is empty or too large.
+    #[error("image size {width}×{height} refused: each side must be 1…{MAX_SIDE} and the pixel count ≤ {MAX_PIXELS}")]
+    ImageSize {
+        /// Requested width.
+        width: u32,
+        /// Requested height.
+        height: u32,
+    },
+    /// Zero or too many samples per pixel.
+    #[error("samples per pixel must be 1…{MAX_SPP}, got {0}")]
+    SamplesPerPixel(u32),
+    /// A scene name that is not built in.
+    #[error("unknown scene `{name}`; known: {known}")]
+    UnknownScene {
+        /// The name given.
+        name: String,
+        /// The built-in names, comma-separated.
+        known: String,
+    },
+}
+
+/// How to render: size, samples, integrator, passes and seed.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Settings {
+    /// Image width in pixels.
+    pub width: u32,
+    /// Image height in pixels.
+    pub height: u32,
+    /// Samples per pixel.
+    pub spp: u32,
+    /// The light transport algorithm.
+    pub integrator: Integrator,
+    /// Which passes run (usually [`analysis::analyze`]'s plan).
+    pub passes: Passes,
+    /// Seed of every pixel's random streams.
+    pub seed: u64,
+}
+
+impl Settings {
+    /// Whitted ray tracing (up to 8 mirror reflections), seed 1, with the given plan.
+    #[must_use]
+    pub fn whitted(width: u32, height: u32, spp: u32, passes: Passes) -> Self {
+        Self { width, height, spp, integrator: Integrator::Whitted { max_depth: 8 }, passes, seed: 1 }
+    }
+}
+
+/// A rendered image: linear radiance per pixel, row-major, top row first.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Image {
+    /// Width in pixels.
+    pub width: u32,
+    /// Height in pixels.
+    pub height: u32,
+    /// `width × height` linear RGB radiances.
+    pub pixels: Vec<DVec3>,
+}
+
+impl Image {
+    /// 8-bit sRGB (radiance clamped to `[0, 1]`, then the sRGB transfer curve).
+    #[must_use]
+    pub fn to_rgb8(&self) -> image::RgbImage {
+        let encode = |c: f64| {
+            let c = c.clamp(0.0, 1.0);
+            let s = if c <= 0.003_130_8 { 12.92 * c } else { 1.055 * c.powf(1.0 / 2.4) - 0.055 };
+            (s * 255.0).round() as u8
+        };
+        let bytes = self.pixels.iter().flat_map(|p| [encode(p.x), encode(p.y), encode(p.z)]).collect();
+        image::RgbImage::from_raw(self.width, self.height, bytes).expect("width × height × 3 bytes")
+    }
+
+    /// Per-pixel luminance (Rec. 709 weights) of the linear radiance.
+    #[must_use]
+    pub fn luminance(&self) -> Vec<f64> {
+        self.pixels.iter().map(|p| p.dot(DVec3::new(0.2126, 0.7152, 0.0722))).collect()
+    }
+
+    /// Mean absolute luminance difference to `other` (same size), the image-change measure of Q1.
+    ///
+    /// # Panics
+    /// If the sizes differ (a programming error: both renders use one [`Settings`]).
+    #[must_use]
+    pub fn mean_abs_difference(&self, other: &Image) -> f64 {
+        assert_eq!((self.width, self.height), (other.width, other.height), "images of one experiment share a size");
+        let (a, b) = (self.luminance(), other.luminance());
+        a.iter().zip(&b).map(|(x, y)| (x - y).abs()).sum::<f64>() / a.len() as f64
+    }
+
+    /// Root-mean-square luminance difference to `other` (same size).
+    ///
+    /// # Panics
+    /// If the sizes differ.
+    #[must_use]
+    pub fn rms_difference(&self, other: &Image) -> f64 {
+        assert_eq!((self.width, self.height), (other.width, other.height));
+        let (a, b) = (self.luminance(), other.luminance());
+        (a.iter().zip(&b).map(|(x, y)| (x - y).powi(2)).sum::<f64>() / a.len() as f64).sqrt()
+    }
+
+    /// A coarse `columns × rows` grid of block-mean luminances printed with two decimals: a
+    /// snapshot of a render that survives last-bit differences between platforms' `exp`/`powf`.
+    #[must_use]
+    pub fn thumbnail_text(&self, columns: u32, rows: u32) -> String {
+        let luminance = self.luminance();
+        let mut text = String::new();
+        for row in 0..rows {
+            let line: Vec<String> = (0..columns)
+                .map(|column| {
+                    let xs = (column * self.width / columns)..((column + 1) * self.width / columns);
+                    let ys = (row * self.height / rows)..((row + 1) * self.height / rows);
+                    let count = (xs.len() * ys.len()).max(1) as f64;
+                    let sum: f64 = ys
+                        .flat_map(|y| xs.clone().map(move |x| (x, y)))
+                        .map(|(x, y)| luminance[(y * self.width + x) as usize])
+                        .sum();
+                    format!("{:.2}", sum / count)
+                })
+                .collect();
+            text.push_str(&line.join(" "));
+            text.push('\n');
+        }
+        text
+    }
+}
+
+/// Checks the image size and sample count against the limits.
+///
+/// # Errors
+/// [`RenderError::ImageSize`] or [`RenderError::SamplesPerPixel`].
+pub fn check_settings(settings: &Settings) -> Result<(), RenderError> {
+    let (width, height) = (settings.width, settings.height);
+    let pixels = u64::from(width) * u64::from(height);
+    if width == 0 || height == 0 || width > MAX_SIDE || height > MAX_SIDE || pixels > MAX_PIXELS {
+        return Err(RenderError::ImageSize { width, height });
+    }
+    if settings.spp == 0 || settings.spp > MAX_SPP {
+        return Err(RenderError::SamplesPerPixel(settings.spp));
+    }
+    Ok(())
+}
+
+/// Renders `scene` in parallel (rayon, one task per row). Each pixel draws from its own random
+/// streams seeded by `settings.seed` and its index, so the result is bit-identical for any
+/// thread count. `progress` is called with the number of finished rows after each row.
+///
+/// # Errors
+/// [`RenderError`] when the settings are out of range (nothing is rendered).
+///
+/// # Examples
+/// ```
+/// use hw3::render::{analysis::analyze, render, scenes, Settings};
+/// let scene = scenes::mirror_spheres(true).unwrap();
+/// let settings = Settings::whitted(16, 12, 1, analyze(&scene).plan);
+/// let image = render(&scene, &settings, &|_| {}).unwrap();
+/// assert_eq!(image.pixels.len(), 16 * 12);
+/// assert!(render(&scene, &Settings { width: 0, ..settings }, &|_| {}).is_err());
+/// ```
+pub fn render(scene: &Scene, settings: &Settings, progress: &(dyn Fn(u32) + Sync)) -> Result<Image, RenderError> {
+    check_settings(settings)?;
+    let frame = CameraFrame::new(scene.camera());
+    let tracer = Tracer::new(scene, settings.passes);
+    let (open, close) = scene.camera().shutter;
+    let (width, height) = (settings.width, settings.height);
+    let aspect = f64::from(width) / f64::from(height);
+    let rows_done = std::sync::atomic::AtomicU32::new(0);
+    let rows: Vec<Vec<DVec3>> = (0..height)
+        .into_par_iter()
+        .map(|y| {
+            let row = (0..width)
+                .map(|x| {
+                    let pixel = u64::from(y) * u64::from(width) + u64::from(x);
+                    let mut sampler = Sampler::new(settings.seed, pixel, 0);
+                    let mut clock = Sampler::new(settings.seed, pixel, 1);
+                    let mut sum = DVec3::ZERO;
+                    for _ in 0..settings.spp {
+                        let u = (f64::from(x) + sampler.uniform()) / f64::from(width);
+                        let v = (f64::from(y) + sampler.uniform()) / f64::from(height);
+                        let time =
+                            if settings.passes.time_sampling { open + (close - open) * clock.uniform() } else { open };
+                        let ray = frame.ray(u, v, aspect);
+                        sum += tracer.radiance(settings.integrator, &ray, time, &mut sampler);
+                    }
+                    sum / f64::from(settings.spp)
+                })
+                .collect();
+            let done = rows_done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
+            progress(done);
+            row
+        })
+        .collect();
+    Ok(Image { width, height, pixels: rows.into_iter().flatten().collect() })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::analysis::{Pass, analyze};
+    use super::*;
+
+    fn small(scene: &Scene, passes: Passes, spp: u32) -> Image {
+        render(scene, &Settings::whitted(48, 36, spp, passes), &|_| {}).unwrap()
+    }
+
+    fn in_pool(threads: usize, f: impl FnOnce() -> Image + Send) -> Image {
+        rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap().install(f)
+    }
+
+    #[test]
+    fn image_bytes_are_identical_for_one_and_two_threads() {
+        for scene in [scenes::moving_ball(2.0).unwrap(), scenes::fog_street(0.1).unwrap()] {
+            let plan = analyze(&scene).plan;
+            let one = in_pool(1, || small(&scene, plan, 3));
+            let two = in_pool(2, || small(&scene, plan, 3));
+            assert_eq!(one.to_rgb8().into_raw(), two.to_rgb8().into_raw());
+            assert_eq!(one, two, "linear radiances identical too");
+        }
+    }
+
+    #[test]
+    fn path_tracer_is_deterministic_across_thread_counts() {
+        let scene = scenes::cornell_mirror().unwrap();
+        let settings = Settings {
+            integrator: Integrator::PathTracer { max_depth: 4 },
+            ..Settings::whitted(24, 18, 2, analyze(&scene).plan)
+        };
+        let run = |threads| in_pool(threads, || render(&scene, &settings, &|_| {}).unwrap());
+        assert_eq!(run(1), run(2));
+    }
+
+    /// For every scene and every pass the plan skips, forcing it on gives the same image bit for
+    /// bit (Whitted, and the path tracer); for every pass the plan runs, forcing it off changes
+    /// the mean luminance by more than 1 % of the image's mean.
+    #[test]
+    fn the_plan_skips_only_passes_that_change_nothing_and_keeps_those_that_matter() {
+        let scenes = [
+            scenes::mirror_spheres(true).unwrap(),
+            scenes::mirror_spheres(false).unwrap(),
+            scenes::fog_street(0.15).unwrap(),
+            scenes::fog_street(0.0).unwrap(),
+            scenes::moving_ball(2.0).unwrap(),
+            scenes::moving_ball(0.0).unwrap(),
+            scenes::cornell_mirror().unwrap(),
+        ];
+        let mut skipped_checked = 0;
+        let mut needed_checked = 0;
+        for scene in &scenes {
+            for integrator in [Integrator::Whitted { max_depth: 8 }, Integrator::PathTracer { max_depth: 3 }] {
+                let plan = analyze(scene).plan.for_integrator(integrator);
+                let run = |passes| {
+                    let settings = Settings { integrator, ..Settings::whitted(32, 24, 2, passes) };
+                    render(scene, &settings, &|_| {}).unwrap()
+                };
+                let planned = run(plan);
+                let mean = planned.luminance().iter().sum::<f64>() / planned.pixels.len() as f64;
+                for pass in Pass::ALL {
+                    if plan.get(pass) {
+                        let without = run(plan.with(pass, false));
+                        let change = planned.mean_abs_difference(&without);
+                        assert!(
+                            change > 0.01 * mean,
+                            "{pass:?} is planned but removing it changes only {change:e} (mean {mean:e})"
+                        );
+                        needed_checked += 1;
+                    } else {
+                        assert_eq!(run(plan.with(pass, true)), planned, "{pass:?} forced on");
+                        skipped_checked += 1;
+                    }
+                }
+            }
+        }
+        assert!(skipped_checked >= 30 && needed_checked >= 8);
+    }
+
+    #[test]
+    fn bad_sizes_and_sample_counts_are_refused() {
+        let scene = scenes::moving_ball(0.0).unwrap();
+        let plan = analyze(&scene).plan;
+        for (w, h) in [(0, 10), (10, 0), (MAX_SIDE + 1, 1), (5000, 5000)] {
+            assert_eq!(
+                render(&scene, &Settings::whitted(w, h, 1, plan), &|_| {}),
+                Err(RenderError::ImageSize { width: w, height: h })
+            );
+        }
+        for spp in [0, MAX_SPP + 1] {
+            assert_eq!(
+                render(&scene, &Settings::whitted(4, 4, spp, plan), &|_| {}),
+                Err(RenderError::SamplesPerPixel(spp))
+            );
+        }
+    }
+
+    /// A point light inside a closed sphere lights nothing outside it, and a camera inside a
+    /// mirror sphere sees a finite, black image (light cannot get in; recursion stops at depth 8).
+    #[test]
+    fn enclosed_lights_and_cameras_stay_dark_and_finite() {
+        use crate::geometry::Sphere;
+        use scene::{Camera, Material, Object, PointLight};
+        let camera = Camera::looking_at(DVec3::new(0.0, 0.0, 4.0), DVec3::ZERO, 40.0);
+        let shell = |material| Object::sphere(Sphere::new(DVec3::ZERO, 1.0).unwrap(), material);
+        let lamp = PointLight { position: DVec3::ZERO, intensity: DVec3::splat(100.0) };
+        let diffuse = Material::Diffuse { albedo: DVec3::splat(0.8) };
+        let enclosed = Scene::new(camera, vec![shell(diffuse)], vec![lamp], None, DVec3::ZERO).unwrap();
+        let outside = small(&enclosed, analyze(&enclosed).plan, 1);
+        assert!(outside.pixels.iter().all(|p| *p == DVec3::ZERO));
+        let mirror = Material::Mirror { reflectance: DVec3::splat(0.9) };
+        let inside_camera = Camera::looking_at(DVec3::new(0.0, 0.0, 0.5), DVec3::ZERO, 40.0);
+        let outside_lamp = PointLight { position: DVec3::new(0.0, 5.0, 0.0), ..lamp };
+        let trapped = Scene::new(inside_camera, vec![shell(mirror)], vec![outside_lamp], None, DVec3::ONE).unwrap();
+        let image = small(&trapped, analyze(&trapped).plan, 1);
+        assert!(image.pixels.iter().all(|p| *p == DVec3::ZERO));
+    }
+
+    #[test]
+    fn thumbnail_averages_blocks() {
+        let image = Image {
+            width: 4,
+            height: 2,
+            pixels: vec![
+                DVec3::ONE,
+                DVec3::ONE,
+                DVec3::ZERO,
+                DVec3::ZERO,
+                DVec3::ONE,
+                DVec3::ONE,
+                DVec3::ZERO,
+                DVec3::ZERO,
+            ],
+        };
+        assert_eq!(image.thumbnail_text(2, 1), "1.00 0.00\n");
+    }
+}

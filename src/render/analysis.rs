@@ -1,0 +1,392 @@
+//! Light-path analysis: which of Heckbert's path classes can carry energy to the eye in a scene,
+//! derived from its materials, lights, medium and motion, and the render passes that follow.
+//!
+//! The analysis is *conservative where it is coarse*: a class is dropped only when a letter it
+//! needs is absent from the scene (no mirror, no medium, nothing moving, no two diffuse surfaces),
+//! or, for caustics, when no light sees any specular surface (checked by shadow rays to sample
+//! points on each mirror). A coarse "present" can keep a pass that turns out to add nothing; a
+//! "skipped" is always safe, which is what the plan tests check.
+
+use super::integrator::Integrator;
+use super::scene::{Material, Scene, Shape};
+use crate::geometry::Ray;
+use crate::geometry::sphere::spawn_origin;
+use glam::DVec3;
+use serde::Serialize;
+
+/// A render pass that the planner can switch on or off.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Pass {
+    /// Recursion through perfect mirrors and glass (`…S+E`).
+    SpecularRecursion,
+    /// Beer–Lambert attenuation `e^(−σ_t d)` of every ray segment in a medium.
+    Transmittance,
+    /// Single scattering from point lights along every ray segment (`…V…E`).
+    InScattering,
+    /// A random time in the shutter interval for every camera sample (motion blur).
+    TimeSampling,
+    /// Diffuse/glossy bounces after the first (`L(D|G)(D|G)+…E`; path tracer only).
+    IndirectBounces,
+}
+
+impl Pass {
+    /// Every pass, in a fixed order.
+    pub const ALL: [Pass; 5] =
+        [Pass::SpecularRecursion, Pass::Transmittance, Pass::InScattering, Pass::TimeSampling, Pass::IndirectBounces];
+
+    /// The pass's name as the CLI and JSON print it.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Pass::SpecularRecursion => "specular_recursion",
+            Pass::Transmittance => "transmittance",
+            Pass::InScattering => "in_scattering",
+            Pass::TimeSampling => "time_sampling",
+            Pass::IndirectBounces => "indirect_bounces",
+        }
+    }
+}
+
+/// Which passes a render runs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
+pub struct Passes {
+    /// See [`Pass::SpecularRecursion`].
+    pub specular_recursion: bool,
+    /// See [`Pass::Transmittance`].
+    pub transmittance: bool,
+    /// See [`Pass::InScattering`].
+    pub in_scattering: bool,
+    /// See [`Pass::TimeSampling`].
+    pub time_sampling: bool,
+    /// See [`Pass::IndirectBounces`].
+    pub indirect_bounces: bool,
+}
+
+impl Passes {
+    /// Every pass on (`--effects all`): the brute-force render the plan is tested against.
+    #[must_use]
+    pub fn all() -> Self {
+        Pass::ALL.iter().fold(Self::default(), |p, &pass| p.with(pass, true))
+    }
+
+    /// Whether `pass` is on.
+    #[must_use]
+    pub fn get(&self, pass: Pass) -> bool {
+        match pass {
+            Pass::SpecularRecursion => self.specular_recursion,
+            Pass::Transmittance => self.transmittance,
+            Pass::InScattering => self.in_scattering,
+            Pass::TimeSampling => self.time_sampling,
+            Pass::IndirectBounces => self.indirect_bounces,
+        }
+    }
+
+    /// The passes `integrator` can run: Whitted tracing has no indirect bounces, so the plan
+    /// drops [`Pass::IndirectBounces`] for it (the class is then reported, not rendered).
+    #[must_use]
+    pub fn for_integrator(self, integrator: Integrator) -> Self {
+        match integrator {
+            Integrator::Whitted { .. } => self.with(Pass::IndirectBounces, false),
+            Integrator::PathTracer { .. } => self,
+        }
+    }
+
+    /// A copy with `pass` set to `on`.
+    #[must_use]
+    pub fn with(mut self, pass: Pass, on: bool) -> Self {
+        let flag = match pass {
+            Pass::SpecularRecursion => &mut self.specular_recursion,
+            Pass::Transmittance => &mut self.transmittance,
+            Pass::InScattering => &mut self.in_scattering,
+            Pass::TimeSampling => &mut self.time_sampling,
+            Pass::IndirectBounces => &mut self.indirect_bounces,
+        };
+        *flag = on;
+        self
+    }
+}
+
+/// One light-path class in Heckbert's notation and whether it can carry energy in the scene.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize)]
+pub struct PathClass {
+    /// The regular expression, light first: `LDE`, `L(D|G)?S+E`, …
+    pub notation: &'static str,
+    /// What the class looks like in an image.
+    pub effect: &'static str,
+    /// Whether the scene has everything the class needs.
+    pub carries_energy: bool,
+    /// Why (or what is missing), derived from the scene.
+    pub reason: String,
+    /// The pass that renders the class, if it needs one beyond plain eye rays with direct light.
+    pub pass: Option<Pass>,
+}
+
+/// The analysis of a scene: letters present, path classes, and the pass plan.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize)]
+pub struct Analysis {
+    /// Path classes in a fixed order.
+    pub classes: Vec<PathClass>,
+    /// Whether every segment is attenuated by a medium with `σ_t > 0` (not a letter of its own:
+    /// it multiplies every class).
+    pub extinction: bool,
+    /// Whether some object moves during an open shutter (every class then varies over time).
+    pub moving: bool,
+    /// The passes the renderer runs.
+    pub plan: Passes,
+    /// Classes that carry energy but that no pass of this renderer renders (for example caustics
+    /// from point lights), as notation strings.
+    pub not_rendered: Vec<&'static str>,
+}
+
+/// Letters and facts of a scene that the path classes depend on.
+#[derive(Debug, Clone, Copy, Default)]
+struct Letters {
+    point_light: bool,
+    area_light: bool,
+    diffuse: bool,
+    glossy: bool,
+    specular: bool,
+    diffuse_like_objects: usize,
+    lit_specular: bool,
+    scattering: bool,
+    extinction: bool,
+    moving: bool,
+}
+
+/// Analyses `scene`: which path classes carry energy, and which passes to run.
+///
+/// # Examples
+/// ```
+/// use hw3::render::{analysis::{analyze, Pass}, scenes};
+/// let fog = analyze(&scenes::fog_street(0.1).unwrap());
+/// assert!(fog.plan.get(Pass::InScattering));
+/// assert!(!fog.plan.get(Pass::SpecularRecursion)); // no mirror in the street
+/// ```
+#[must_use]
+pub fn analyze(scene: &Scene) -> Analysis {
+    let letters = letters(scene);
+    let light = letters.point_light || letters.area_light;
+    let diffuse_like = letters.diffuse || letters.glossy;
+    let yes_no = |ok: bool, yes: &str, no: &str| {
+        if ok { yes.to_string() } else { no.to_string() }
+    };
+    let classes = vec![
+        PathClass {
+            notation: "LE",
+            effect: "an area light seen directly",
+            carries_energy: letters.area_light,
+            reason: yes_no(letters.area_light, "an emitter quad", "no area light"),
+            pass: None,
+        },
+        PathClass {
+            notation: "LDE",
+            effect: "diffuse shading and shadows",
+            carries_energy: light && letters.diffuse,
+            reason: yes_no(
+                light && letters.diffuse,
+                "a light and a diffuse surface",
+                "needs a light and a diffuse surface",
+            ),
+            pass: None,
+        },
+        PathClass {
+            notation: "LGE",
+            effect: "glossy highlights",
+            carries_energy: light && letters.glossy,
+            reason: yes_no(light && letters.glossy, "a light and a glossy surface", "no glossy surface"),
+            pass: None,
+        },
+        PathClass {
+            notation: "L(D|G)?S+E",
+            effect: "reflections and refractions (mirrors, glass)",
+            carries_energy: letters.specular && (letters.area_light || (light && diffuse_like)),
+            reason: yes_no(letters.specular, "a mirror or glass", "no mirror or glass"),
+            pass: Some(Pass::SpecularRecursion),
+        },
+        PathClass {
+            notation: "L(D|G)(D|G)+S*E",
+            effect: "indirect light, colour bleeding",
+            carries_energy: light && letters.diffuse_like_objects >= 2,
+            reason: format!(
+                "{} diffuse or glossy objects; two or more can exchange light",
+                letters.diffuse_like_objects
+            ),
+            pass: Some(Pass::IndirectBounces),
+        },
+        PathClass {
+            notation: "LS+(D|G)…E",
+            effect: "caustics",
+            carries_energy: letters.lit_specular && diffuse_like,
+            reason: yes_no(letters.lit_specular, "a light sees a mirror or glass", "no light sees a mirror or glass"),
+            pass: None,
+        },
+        PathClass {
+            notation: "LV(D|G|S)*E",
+            effect: "glow of lights in fog (single scattering)",
+            carries_energy: letters.scattering && letters.point_light,
+            reason: yes_no(
+                letters.scattering && letters.point_light,
+                "a scattering medium and a point light",
+                "needs a scattering medium (σ_s > 0) and a point light",
+            ),
+            pass: Some(Pass::InScattering),
+        },
+    ];
+    let mut plan = Passes { transmittance: letters.extinction, time_sampling: letters.moving, ..Passes::default() };
+    for class in &classes {
+        if let (true, Some(pass)) = (class.carries_energy, class.pass) {
+            plan = plan.with(pass, true);
+        }
+    }
+    // A mirror that only reflects the background or fog still needs recursion.
+    plan.specular_recursion |= letters.specular;
+    let caustic_from_point = letters.lit_specular && diffuse_like && letters.point_light && !letters.area_light;
+    let not_rendered = if caustic_from_point { vec!["LS+(D|G)…E"] } else { vec![] };
+    Analysis { classes, extinction: letters.extinction, moving: letters.moving, plan, not_rendered }
+}
+
+fn letters(scene: &Scene) -> Letters {
+    let mut letters = Letters {
+        point_light: scene.point_lights().iter().any(|l| l.intensity.max_element() > 0.0),
+        ..Letters::default()
+    };
+    let (open, close) = scene.camera().shutter;
+    for object in scene.objects() {
+        match object.material {
+            Material::Diffuse { albedo } => letters.diffuse |= albedo.max_element() > 0.0,
+            Material::Glossy { diffuse, specular, .. } => {
+                letters.diffuse |= diffuse.max_element() > 0.0;
+                letters.glossy |= specular.max_element() > 0.0;
+            }
+            Material::Mirror { reflectance } => letters.specular |= reflectance.max_element() > 0.0,
+            Material::Glass { .. } => letters.specular = true,
+            Material::Emitter { radiance } => letters.area_light |= radiance.max_element() > 0.0,
+        }
+        letters.diffuse_like_objects += usize::from(reflects_diffusely(&object.material));
+        if let Shape::Sphere { velocity, .. } = object.shape {
+            letters.moving |= velocity != DVec3::ZERO && close > open;
+        }
+    }
+    if let Some(fog) = scene.fog() {
+        letters.scattering = fog.sigma_s > 0.0;
+        letters.extinction = fog.sigma_t() > 0.0;
+    }
+    letters.lit_specular = letters.specular && light_sees_a_mirror(scene);
+    letters
+}
+
+fn reflects_diffusely(material: &Material) -> bool {
+    match *material {
+        Material::Diffuse { albedo } => albedo.max_element() > 0.0,
+        Material::Glossy { diffuse, specular, .. } => (diffuse + specular).max_element() > 0.0,
+        Material::Mirror { .. } | Material::Glass { .. } | Material::Emitter { .. } => false,
+    }
+}
+
+/// Whether any light position (point lights, area-light corners and centres) has an unoccluded
+/// line of sight to a front-facing sample point of any mirror, at shutter open.
+fn light_sees_a_mirror(scene: &Scene) -> bool {
+    let mut light_points: Vec<DVec3> = scene.point_lights().iter().map(|l| l.position).collect();
+    for object in scene.objects() {
+        if let (Material::Emitter { .. }, Shape::Quad { corner, edge_u, edge_v }) = (object.material, object.shape) {
+            light_points.extend(quad_samples(corner, edge_u, edge_v).map(|(p, _)| p));
+        }
+    }
+    let time = scene.camera().shutter.0;
+    scene
+        .objects()
+        .iter()
+        .filter(|o| matches!(o.material, Material::Mirror { .. } | Material::Glass { .. }))
+        .flat_map(|o| surface_samples(&o.shape, time))
+        .any(|(point, normal)| {
+            light_points.iter().any(|&light| {
+                let to_light = light - point;
+                let distance = to_light.length();
+                if normal.dot(to_light) <= 0.0 {
+                    return false;
+                }
+                let dir = to_light / distance;
+                let ray = Ray { origin: spawn_origin::<f64>(point, normal, dir), dir };
+                !scene.occluded(&ray, time, distance * (1.0 - 1e-9))
+            })
+        })
+}
+
+/// Sample points with normals on a shape: 3×3 grid on quads (corners, edge midpoints and centre),
+/// 200 Fibonacci-lattice points on spheres.
+fn surface_samples(shape: &Shape, time: f64) -> Vec<(DVec3, DVec3)> {
+    match *shape {
+        Shape::Quad { corner, edge_u, edge_v } => quad_samples(corner, edge_u, edge_v).collect(),
+        Shape::Sphere { sphere, velocity } => {
+            const COUNT: usize = 200;
+            let golden_angle = std::f64::consts::PI * (3.0 - 5f64.sqrt());
+            let center = sphere.center + velocity * time;
+            (0..COUNT)
+                .map(|i| {
+                    let z = 1.0 - 2.0 * (i as f64 + 0.5) / COUNT as f64;
+                    let ring = (1.0 - z * z).sqrt();
+                    let phi = golden_angle * i as f64;
+                    let normal = DVec3::new(ring * phi.cos(), ring * phi.sin(), z);
+                    (center + normal * sphere.radius, normal)
+                })
+                .collect()
+        }
+    }
+}
+
+fn quad_samples(corner: DVec3, edge_u: DVec3, edge_v: DVec3) -> impl Iterator<Item = (DVec3, DVec3)> {
+    let normal = edge_u.cross(edge_v).normalize();
+    (0..9).map(move |k| {
+        let (a, b) = ((k % 3) as f64 / 2.0, (k / 3) as f64 / 2.0);
+        (corner + edge_u * a + edge_v * b, normal)
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::render::scenes;
+
+    fn carried(analysis: &Analysis) -> Vec<&'static str> {
+        analysis.classes.iter().filter(|c| c.carries_energy).map(|c| c.notation).collect()
+    }
+
+    #[test]
+    fn each_built_in_scene_gets_the_classes_its_contents_imply() {
+        let mirrors = analyze(&scenes::mirror_spheres(true).unwrap());
+        assert!(carried(&mirrors).contains(&"L(D|G)?S+E"));
+        assert!(carried(&mirrors).contains(&"LS+(D|G)…E"));
+        assert_eq!(mirrors.not_rendered, vec!["LS+(D|G)…E"]);
+        let diffuse = analyze(&scenes::mirror_spheres(false).unwrap());
+        assert!(!carried(&diffuse).contains(&"L(D|G)?S+E"));
+        assert!(!diffuse.plan.specular_recursion);
+        let fog = analyze(&scenes::fog_street(0.1).unwrap());
+        assert!(fog.extinction && fog.plan.in_scattering && fog.plan.transmittance);
+        let clear = analyze(&scenes::fog_street(0.0).unwrap());
+        assert!(!clear.extinction && !clear.plan.in_scattering && !clear.plan.transmittance);
+        let moving = analyze(&scenes::moving_ball(2.0).unwrap());
+        assert!(moving.moving && moving.plan.time_sampling);
+        let still = analyze(&scenes::moving_ball(0.0).unwrap());
+        assert!(!still.moving && !still.plan.time_sampling);
+    }
+
+    #[test]
+    fn a_mirror_hidden_from_every_light_carries_no_caustic() {
+        let scene = scenes::mirror_behind_wall().unwrap();
+        let analysis = analyze(&scene);
+        assert!(analysis.plan.specular_recursion, "the eye still sees it");
+        assert!(!carried(&analysis).contains(&"LS+(D|G)…E"));
+    }
+
+    #[test]
+    fn passes_all_sets_every_flag_and_with_clears_one() {
+        let all = Passes::all();
+        assert!(Pass::ALL.iter().all(|&p| all.get(p)));
+        for pass in Pass::ALL {
+            let off = all.with(pass, false);
+            assert!(!off.get(pass));
+            assert_eq!(Pass::ALL.iter().filter(|&&p| off.get(p)).count(), 4);
+        }
+    }
+}

@@ -1,0 +1,202 @@
+//! The logic of `hw3 scenes`, `hw3 effects` and `hw3 render`, kept out of `main.rs` so that it can
+//! be tested without spawning the binary.
+
+use super::analysis::{Analysis, Pass, Passes, analyze};
+use super::{RenderError, Settings, render, scenes};
+use std::fmt::Write as _;
+use std::io::IsTerminal as _;
+use std::time::Instant;
+
+/// `hw3 scenes`: one line per built-in scene.
+///
+/// # Examples
+/// ```
+/// assert!(hw3::render::command::scenes_text().contains("mirrors"));
+/// ```
+#[must_use]
+pub fn scenes_text() -> String {
+    scenes::CATALOGUE.iter().map(|(name, description)| format!("{name:16} {description}\n")).collect()
+}
+
+/// `hw3 effects SCENE [--json]`: the path classes that carry energy and the pass plan.
+///
+/// # Errors
+/// [`RenderError::UnknownScene`].
+///
+/// # Examples
+/// ```
+/// let text = hw3::render::command::effects_text("fog", false).unwrap();
+/// assert!(text.contains("in_scattering      run"));
+/// let json = hw3::render::command::effects_text("fog", true).unwrap();
+/// assert!(json.contains("\"in_scattering\": true"));
+/// ```
+pub fn effects_text(scene_name: &str, json: bool) -> Result<String, RenderError> {
+    let analysis = analyze(&scenes::by_name(scene_name)?);
+    if json {
+        return Ok(serde_json::to_string_pretty(&analysis).expect("plain data serialises") + "\n");
+    }
+    Ok(describe(scene_name, &analysis))
+}
+
+fn describe(scene_name: &str, analysis: &Analysis) -> String {
+    let mut text = format!("scene {scene_name}\npath classes (Heckbert, light first):\n");
+    for class in &analysis.classes {
+        let mark = if class.carries_energy { "yes" } else { "no " };
+        let _ = writeln!(text, "  {mark} {:18} {:44} ({})", class.notation, class.effect, class.reason);
+    }
+    let _ = writeln!(
+        text,
+        "medium extinction on every segment: {}\nobjects move during the shutter: {}\nplan:",
+        yes_no(analysis.extinction),
+        yes_no(analysis.moving)
+    );
+    for pass in Pass::ALL {
+        let state = if analysis.plan.get(pass) { "run" } else { "skip" };
+        let note =
+            if pass == Pass::IndirectBounces { " (path tracer only; hw3 render traces Whitted-style)" } else { "" };
+        let _ = writeln!(text, "  {:18} {state}{note}", pass.name());
+    }
+    if !analysis.not_rendered.is_empty() {
+        let _ = writeln!(text, "carried but not rendered (no pass for it): {}", analysis.not_rendered.join(", "));
+    }
+    text
+}
+
+fn yes_no(flag: bool) -> &'static str {
+    if flag { "yes" } else { "no" }
+}
+
+/// Parses `--size WxH` (`64x48`).
+///
+/// # Errors
+/// A one-line message when the text is not two positive integers joined by `x`.
+///
+/// # Examples
+/// ```
+/// assert_eq!(hw3::render::command::parse_size("64x48"), Ok((64, 48)));
+/// assert!(hw3::render::command::parse_size("64").is_err());
+/// ```
+pub fn parse_size(text: &str) -> Result<(u32, u32), String> {
+    let parsed = text.split_once(['x', 'X']).and_then(|(w, h)| Some((w.trim().parse().ok()?, h.trim().parse().ok()?)));
+    parsed.ok_or_else(|| format!("--size: expected WIDTHxHEIGHT like 320x240, got `{text}`"))
+}
+
+/// Which passes `hw3 render` runs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum EffectsMode {
+    /// The analysis' plan.
+    Auto,
+    /// Every pass (the brute-force render).
+    All,
+}
+
+impl std::str::FromStr for EffectsMode {
+    type Err = String;
+
+    fn from_str(text: &str) -> Result<Self, String> {
+        match text {
+            "auto" => Ok(Self::Auto),
+            "all" => Ok(Self::All),
+            _ => Err(format!("--effects: expected auto or all, got `{text}`")),
+        }
+    }
+}
+
+/// A finished `hw3 render`: the PNG bytes and a one-line summary for stderr.
+#[derive(Debug, Clone)]
+pub struct RenderOutput {
+    /// The encoded PNG.
+    pub png: Vec<u8>,
+    /// Scene, size, spp, passes run and wall time.
+    pub summary: String,
+}
+
+/// `hw3 render`: renders a built-in scene with Whitted tracing. Shows a row counter on stderr when
+/// stderr is a terminal, nothing otherwise.
+///
+/// # Errors
+/// [`RenderError`] for an unknown scene or an out-of-range size or sample count (checked before
+/// any work is done).
+pub fn render_scene(
+    scene_name: &str,
+    spp: u32,
+    size: (u32, u32),
+    mode: EffectsMode,
+) -> Result<RenderOutput, RenderError> {
+    let scene = scenes::by_name(scene_name)?;
+    let mut settings = Settings::whitted(size.0, size.1, spp, Passes::all());
+    if mode == EffectsMode::Auto {
+        settings.passes = analyze(&scene).plan.for_integrator(settings.integrator);
+    }
+    let passes = settings.passes;
+    super::check_settings(&settings)?;
+    let height = size.1;
+    let show_progress =
+        std::io::stderr().is_terminal() && u64::from(size.0) * u64::from(height) * u64::from(spp) > 1 << 20;
+    let progress = |rows: u32| {
+        if show_progress && (rows.is_multiple_of(8) || rows == height) {
+            eprint!("\rrendering: {rows}/{height} rows");
+        }
+    };
+    let start = Instant::now();
+    let image = render(&scene, &settings, &progress)?;
+    let seconds = start.elapsed().as_secs_f64();
+    if show_progress {
+        eprintln!();
+    }
+    let run: Vec<&str> = Pass::ALL.iter().filter(|&&p| passes.get(p)).map(|p| p.name()).collect();
+    let png = crate::plot::png_bytes("render.png", &image.to_rgb8())
+        .expect("encoding an in-memory RGB image cannot fail")
+        .bytes;
+    Ok(RenderOutput {
+        png,
+        summary: format!(
+            "{scene_name}: {}x{} at {spp} spp, passes [{}], {seconds:.3} s",
+            size.0,
+            size.1,
+            run.join(", ")
+        ),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn effects_text_shows_classes_and_plan() {
+        let text = effects_text("mirrors", false).unwrap();
+        assert!(text.contains("yes L(D|G)?S+E"));
+        assert!(text.contains("specular_recursion run"));
+        assert!(text.contains("time_sampling      skip"));
+        assert!(text.contains("carried but not rendered (no pass for it): LS+(D|G)…E"));
+        assert!(matches!(effects_text("nope", true), Err(RenderError::UnknownScene { .. })));
+    }
+
+    /// The analysis of every built-in scene, as `hw3 effects` prints it.
+    #[test]
+    fn effects_of_every_built_in_scene() {
+        let text: String =
+            scenes::CATALOGUE.iter().map(|(name, _)| effects_text(name, false).unwrap() + "\n").collect();
+        crate::test_support::insta_settings()
+            .bind(|| insta::assert_snapshot!("render_effects_of_built_in_scenes", text));
+    }
+
+    #[test]
+    fn render_scene_refuses_bad_input_before_working() {
+        assert!(matches!(render_scene("still", 1, (0, 4), EffectsMode::Auto), Err(RenderError::ImageSize { .. })));
+        assert!(matches!(render_scene("still", 0, (4, 4), EffectsMode::Auto), Err(RenderError::SamplesPerPixel(0))));
+        let out = render_scene("still", 1, (8, 6), EffectsMode::All).unwrap();
+        assert!(out.png.starts_with(b"\x89PNG"));
+        assert!(out.summary.contains("time_sampling"));
+    }
+
+    #[test]
+    fn sizes_and_modes_parse_or_explain() {
+        assert_eq!(parse_size("8X6"), Ok((8, 6)));
+        assert!(parse_size("8x").is_err());
+        assert!(parse_size("-1x5").is_err());
+        assert_eq!("all".parse::<EffectsMode>(), Ok(EffectsMode::All));
+        assert!("some".parse::<EffectsMode>().is_err());
+    }
+}

@@ -1,0 +1,531 @@
+//! Scene description: camera, shapes, materials, lights, fog and motion, validated on construction.
+//!
+//! Everything is `f64`. A [`Scene`] can only be built through [`Scene::new`], which rejects NaN or
+//! infinite numbers, negative albedos or densities, degenerate quads and cameras, and an inverted
+//! shutter, so the integrators never see input that could turn into a silent NaN.
+
+use crate::geometry::sphere::{first_hit_stable, surface_hit};
+use crate::geometry::{InputError, Ray, Sphere, require_finite};
+use glam::DVec3;
+
+/// A pinhole camera with a shutter interval (distribution ray tracing samples times inside it).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Camera {
+    /// The pinhole.
+    pub eye: DVec3,
+    /// A point the camera looks at (the image centre).
+    pub look_at: DVec3,
+    /// Approximate up direction (must not be parallel to the view direction).
+    pub up: DVec3,
+    /// Vertical field of view in degrees, in `(0, 180)`.
+    pub vfov_degrees: f64,
+    /// Shutter open and close times, `open ≤ close`. Equal times give an instantaneous exposure.
+    pub shutter: (f64, f64),
+}
+
+impl Camera {
+    /// A camera at `eye` looking at `look_at` with `+y` up, a vertical field of view of
+    /// `vfov_degrees`, and an instantaneous shutter at time 0 (validated by [`Scene::new`]).
+    ///
+    /// # Examples
+    /// ```
+    /// use glam::DVec3;
+    /// let camera = hw3::render::scene::Camera::looking_at(DVec3::Z, DVec3::ZERO, 40.0);
+    /// assert_eq!(camera.shutter, (0.0, 0.0));
+    /// ```
+    #[must_use]
+    pub fn looking_at(eye: DVec3, look_at: DVec3, vfov_degrees: f64) -> Self {
+        Self { eye, look_at, up: DVec3::Y, vfov_degrees, shutter: (0.0, 0.0) }
+    }
+}
+
+/// The camera's orthonormal frame and image-plane extents, precomputed once per render.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct CameraFrame {
+    eye: DVec3,
+    forward: DVec3,
+    right: DVec3,
+    up: DVec3,
+    half_height: f64,
+}
+
+impl CameraFrame {
+    /// The frame of `camera`; assumes `camera` was validated by [`Scene::new`].
+    pub(crate) fn new(camera: &Camera) -> Self {
+        let forward = (camera.look_at - camera.eye).normalize();
+        let right = forward.cross(camera.up).normalize();
+        let up = right.cross(forward);
+        let half_height = (camera.vfov_degrees.to_radians() / 2.0).tan();
+        Self { eye: camera.eye, forward, right, up, half_height }
+    }
+
+    /// Whether `point` projects inside the image of aspect ratio `aspect` (and lies in front).
+    pub(crate) fn sees(&self, point: DVec3, aspect: f64) -> bool {
+        let offset = point - self.eye;
+        let depth = offset.dot(self.forward);
+        depth > 0.0
+            && (offset.dot(self.right) / depth).abs() <= self.half_height * aspect
+            && (offset.dot(self.up) / depth).abs() <= self.half_height
+    }
+
+    /// The primary ray through image-plane point `(u, v)` in `[0, 1]²` (`v = 0` is the top row)
+    /// for an image of aspect ratio `aspect = width / height`. The direction is unit length.
+    pub(crate) fn ray(&self, u: f64, v: f64, aspect: f64) -> Ray<f64> {
+        let x = (2.0 * u - 1.0) * self.half_height * aspect;
+        let y = (1.0 - 2.0 * v) * self.half_height;
+        let dir = (self.forward + self.right * x + self.up * y).normalize();
+        Ray { origin: self.eye, dir }
+    }
+}
+
+/// The surface's reflection model. Each material is one letter of Heckbert's path notation.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Material {
+    /// Lambertian, `f = albedo/π` (letter `D`). Albedo components in `[0, 1]`.
+    Diffuse {
+        /// Reflectance per RGB channel.
+        albedo: DVec3,
+    },
+    /// Modified Phong (energy-normalised): `f = kd/π + ks (n+2)/(2π) cosⁿα`, with `α` the angle
+    /// between the mirror direction and the light (letter `G` when `ks > 0`, plus `D` when
+    /// `kd > 0`). Requires `kd + ks ≤ 1` per channel so that the albedo stays ≤ 1.
+    Glossy {
+        /// Diffuse reflectance.
+        diffuse: DVec3,
+        /// Specular reflectance.
+        specular: DVec3,
+        /// Phong exponent `n ≥ 0`.
+        exponent: f64,
+    },
+    /// Perfect mirror, `L_o = reflectance · L_i(reflected)` (letter `S`).
+    Mirror {
+        /// Reflectance per channel, in `[0, 1]`.
+        reflectance: DVec3,
+    },
+    /// Clear dielectric (glass, water) of refractive index `index` in air: Fresnel reflection
+    /// plus Snell refraction, no absorption (letter `S`, like a mirror).
+    Glass {
+        /// Refractive index, in `[1, 4]`.
+        index: f64,
+    },
+    /// A one-sided emitter that reflects nothing (letter `L`). Only on quads, which are then area
+    /// lights sampled by next-event estimation; the emitting side is the one the normal points to.
+    Emitter {
+        /// Emitted radiance.
+        radiance: DVec3,
+    },
+}
+
+/// A geometric primitive.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Shape {
+    /// A sphere whose centre moves linearly: `c(t) = center + velocity · t`.
+    Sphere {
+        /// Position at time 0.
+        sphere: Sphere<f64>,
+        /// Velocity (zero for a static sphere).
+        velocity: DVec3,
+    },
+    /// The parallelogram `corner + a·edge_u + b·edge_v`, `a, b ∈ [0, 1]`, normal `edge_u × edge_v`.
+    Quad {
+        /// One corner.
+        corner: DVec3,
+        /// First edge.
+        edge_u: DVec3,
+        /// Second edge.
+        edge_v: DVec3,
+    },
+}
+
+/// A shape with its material.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Object {
+    /// Geometry.
+    pub shape: Shape,
+    /// Reflection model.
+    pub material: Material,
+}
+
+impl Object {
+    /// The quad `corner + a·edge_u + b·edge_v` with `material` (validated by [`Scene::new`]).
+    #[must_use]
+    pub fn quad(corner: DVec3, edge_u: DVec3, edge_v: DVec3, material: Material) -> Self {
+        Self { shape: Shape::Quad { corner, edge_u, edge_v }, material }
+    }
+
+    /// A static sphere with `material`.
+    #[must_use]
+    pub fn sphere(sphere: Sphere<f64>, material: Material) -> Self {
+        Self { shape: Shape::Sphere { sphere, velocity: DVec3::ZERO }, material }
+    }
+}
+
+/// An isotropic point light: intensity `I` (W/sr per channel), irradiance `I cosθ / r²`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PointLight {
+    /// Position.
+    pub position: DVec3,
+    /// Radiant intensity per channel (≥ 0).
+    pub intensity: DVec3,
+}
+
+/// A homogeneous medium filling all space (the camera is always inside it), with an isotropic
+/// phase function `1/(4π)`. Extinction `σ_t = σ_a + σ_s`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Fog {
+    /// Absorption coefficient `σ_a ≥ 0` (per unit length).
+    pub sigma_a: f64,
+    /// Scattering coefficient `σ_s ≥ 0`.
+    pub sigma_s: f64,
+}
+
+impl Fog {
+    /// Extinction coefficient `σ_t = σ_a + σ_s`.
+    #[must_use]
+    pub fn sigma_t(&self) -> f64 {
+        self.sigma_a + self.sigma_s
+    }
+}
+
+/// A complete, validated scene. Build it with [`Scene::new`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct Scene {
+    camera: Camera,
+    objects: Vec<Object>,
+    point_lights: Vec<PointLight>,
+    fog: Option<Fog>,
+    background: DVec3,
+}
+
+/// The closest intersection found along a ray.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Hit {
+    /// Ray parameter (the direction is unit length, so this is a distance).
+    pub t: f64,
+    /// The point on the surface (reprojected onto it).
+    pub point: DVec3,
+    /// Unit geometric normal: outward for spheres, `edge_u × edge_v` for quads (not flipped).
+    pub normal: DVec3,
+    /// Index of the object in [`Scene::objects`].
+    pub object: usize,
+}
+
+impl Scene {
+    /// A validated scene.
+    ///
+    /// # Errors
+    /// [`InputError`] naming the first offending value: non-finite numbers anywhere; a camera
+    /// whose view direction is zero or parallel to `up`, a field of view outside `(0°, 180°)`, or a
+    /// shutter that closes before it opens; a quad with parallel edges; reflectances outside
+    /// `[0, 1]` (or `kd + ks > 1`), negative emission, intensity or fog densities; an emitter on
+    /// a sphere.
+    ///
+    /// # Examples
+    /// ```
+    /// use glam::DVec3;
+    /// use hw3::geometry::Sphere;
+    /// use hw3::render::scene::*;
+    /// let camera = Camera { eye: DVec3::new(0.0, 0.0, 5.0), look_at: DVec3::ZERO, up: DVec3::Y,
+    ///     vfov_degrees: 40.0, shutter: (0.0, 0.0) };
+    /// let ball = Object { shape: Shape::Sphere { sphere: Sphere::new(DVec3::ZERO, 1.0).unwrap(),
+    ///     velocity: DVec3::ZERO }, material: Material::Diffuse { albedo: DVec3::splat(0.5) } };
+    /// let light = PointLight { position: DVec3::new(0.0, 5.0, 5.0), intensity: DVec3::splat(10.0) };
+    /// assert!(Scene::new(camera, vec![ball], vec![light], None, DVec3::ZERO).is_ok());
+    /// let bad = Camera { vfov_degrees: f64::NAN, ..camera };
+    /// assert!(Scene::new(bad, vec![ball], vec![light], None, DVec3::ZERO).is_err());
+    /// ```
+    pub fn new(
+        camera: Camera,
+        objects: Vec<Object>,
+        point_lights: Vec<PointLight>,
+        fog: Option<Fog>,
+        background: DVec3,
+    ) -> Result<Self, InputError> {
+        validate_camera(&camera)?;
+        for object in &objects {
+            validate_object(object)?;
+        }
+        for light in &point_lights {
+            require_finite::<f64>("light position", light.position)?;
+            require_non_negative("light intensity", light.intensity)?;
+        }
+        if let Some(fog) = fog {
+            require_scalar_range("fog sigma_a", fog.sigma_a, 0.0, f64::MAX, "finite and ≥ 0")?;
+            require_scalar_range("fog sigma_s", fog.sigma_s, 0.0, f64::MAX, "finite and ≥ 0")?;
+        }
+        require_non_negative("background", background)?;
+        Ok(Self { camera, objects, point_lights, fog, background })
+    }
+
+    /// The camera.
+    #[must_use]
+    pub fn camera(&self) -> &Camera {
+        &self.camera
+    }
+
+    /// The objects, in the order given.
+    #[must_use]
+    pub fn objects(&self) -> &[Object] {
+        &self.objects
+    }
+
+    /// The point lights.
+    #[must_use]
+    pub fn point_lights(&self) -> &[PointLight] {
+        &self.point_lights
+    }
+
+    /// The medium, if any.
+    #[must_use]
+    pub fn fog(&self) -> Option<Fog> {
+        self.fog
+    }
+
+    /// Radiance of rays that leave the scene.
+    #[must_use]
+    pub fn background(&self) -> DVec3 {
+        self.background
+    }
+
+    /// The same scene seen from another camera.
+    ///
+    /// # Errors
+    /// [`InputError`] when `camera` is invalid (see [`Scene::new`]).
+    pub fn with_camera(&self, camera: Camera) -> Result<Self, InputError> {
+        validate_camera(&camera)?;
+        Ok(Self { camera, ..self.clone() })
+    }
+
+    /// The closest hit with `t` in `(0, t_max)` at time `time`, by testing every object (brute
+    /// force; the kd-tree of Q3 replaces this function's body, not its callers).
+    #[must_use]
+    pub fn closest_hit(&self, ray: &Ray<f64>, time: f64, t_max: f64) -> Option<Hit> {
+        let mut best: Option<(f64, usize)> = None;
+        for (index, object) in self.objects.iter().enumerate() {
+            let limit = best.map_or(t_max, |(t, _)| t);
+            if let Some(t) = intersect(&object.shape, ray, time).filter(|&t| t < limit) {
+                best = Some((t, index));
+            }
+        }
+        best.map(|(t, object)| self.hit_record(ray, time, t, object))
+    }
+
+    /// Whether anything blocks the open segment `(0, t_max)` of `ray` at `time` (shadow rays).
+    #[must_use]
+    pub fn occluded(&self, ray: &Ray<f64>, time: f64, t_max: f64) -> bool {
+        self.objects.iter().any(|o| intersect(&o.shape, ray, time).is_some_and(|t| t < t_max))
+    }
+
+    /// Every object whose surface the ray crosses in `(0, t_max)`, counted once per crossing
+    /// surface (a sphere pierced through counts once): the depth complexity of the ray.
+    #[must_use]
+    pub fn objects_pierced(&self, ray: &Ray<f64>, time: f64, t_max: f64) -> usize {
+        self.objects.iter().filter(|o| intersect(&o.shape, ray, time).is_some_and(|t| t < t_max)).count()
+    }
+
+    fn hit_record(&self, ray: &Ray<f64>, time: f64, t: f64, object: usize) -> Hit {
+        match self.objects[object].shape {
+            Shape::Sphere { sphere, velocity } => {
+                let moved = Sphere { center: sphere.center + velocity * time, radius: sphere.radius };
+                let frame = surface_hit(ray, &moved, t);
+                Hit { t, point: frame.point, normal: frame.normal, object }
+            }
+            Shape::Quad { corner, edge_u, edge_v } => {
+                let normal = edge_u.cross(edge_v).normalize();
+                let raw = ray.at(t);
+                // Reprojection onto the plane removes the error of `t`, as for spheres.
+                let point = raw - normal * (raw - corner).dot(normal);
+                Hit { t, point, normal, object }
+            }
+        }
+    }
+}
+
+/// The first hit `t > 0` of `ray` with `shape` at time `time`, or `None`.
+///
+/// A quad is missed by rays parallel to its plane (including rays lying in it: a grazing ray
+/// sees a quad edge-on, which has zero area).
+#[must_use]
+pub fn intersect(shape: &Shape, ray: &Ray<f64>, time: f64) -> Option<f64> {
+    match *shape {
+        Shape::Sphere { sphere, velocity } => {
+            let moved = Sphere { center: sphere.center + velocity * time, radius: sphere.radius };
+            first_hit_stable(ray, &moved)
+        }
+        Shape::Quad { corner, edge_u, edge_v } => {
+            let n = edge_u.cross(edge_v);
+            let denominator = ray.dir.dot(n);
+            // Relative test: parallel (or NaN) within rounding is a miss, never a huge `t`.
+            if denominator.is_nan() || denominator.abs() <= 1e-12 * n.length() * ray.dir.length() {
+                return None;
+            }
+            let t = (corner - ray.origin).dot(n) / denominator;
+            if t.is_nan() || t <= 0.0 {
+                return None;
+            }
+            let offset = ray.at(t) - corner;
+            // Barycentric-style coordinates from the dual basis of (edge_u, edge_v).
+            let w = n / n.dot(n);
+            let a = offset.cross(edge_v).dot(w);
+            let b = edge_u.cross(offset).dot(w);
+            ((0.0..=1.0).contains(&a) && (0.0..=1.0).contains(&b)).then_some(t)
+        }
+    }
+}
+
+fn validate_camera(camera: &Camera) -> Result<(), InputError> {
+    require_finite::<f64>("camera eye", camera.eye)?;
+    require_finite::<f64>("camera look_at", camera.look_at)?;
+    require_finite::<f64>("camera up", camera.up)?;
+    let forward = camera.look_at - camera.eye;
+    let side = forward.cross(camera.up);
+    if !(forward.length_squared() > f64::MIN_POSITIVE && side.length_squared() > 1e-20) {
+        return Err(InputError::DegenerateDirection {
+            name: "camera view direction",
+            value: format!("look_at − eye = {forward:?} with up = {:?}", camera.up),
+        });
+    }
+    require_scalar_range("camera vfov_degrees", camera.vfov_degrees, f64::MIN_POSITIVE, 179.0, "in (0°, 179°]")?;
+    let (open, close) = camera.shutter;
+    require_scalar_range("shutter open", open, f64::MIN, f64::MAX, "finite")?;
+    require_scalar_range("shutter close", close, open, f64::MAX, "finite and ≥ open")?;
+    Ok(())
+}
+
+fn validate_object(object: &Object) -> Result<(), InputError> {
+    match object.shape {
+        Shape::Sphere { sphere, velocity } => {
+            Sphere::new(sphere.center, sphere.radius)?;
+            require_finite::<f64>("sphere velocity", velocity)?;
+            if matches!(object.material, Material::Emitter { .. }) {
+                return Err(InputError::OutOfRange {
+                    name: "sphere material",
+                    value: "Emitter".into(),
+                    expected: "not an emitter (area lights are quads)",
+                });
+            }
+        }
+        Shape::Quad { corner, edge_u, edge_v } => {
+            require_finite::<f64>("quad corner", corner)?;
+            require_finite::<f64>("quad edge_u", edge_u)?;
+            require_finite::<f64>("quad edge_v", edge_v)?;
+            let area = edge_u.cross(edge_v).length();
+            if !(area > 1e-12 * edge_u.length() * edge_v.length() && area.is_finite()) {
+                return Err(InputError::DegenerateDirection {
+                    name: "quad edges",
+                    value: format!("{edge_u:?} × {edge_v:?}"),
+                });
+            }
+        }
+    }
+    match object.material {
+        Material::Diffuse { albedo } => require_unit_interval("diffuse albedo", albedo),
+        Material::Mirror { reflectance } => require_unit_interval("mirror reflectance", reflectance),
+        Material::Glossy { diffuse, specular, exponent } => {
+            require_unit_interval("glossy diffuse", diffuse)?;
+            require_unit_interval("glossy specular", specular)?;
+            require_unit_interval("glossy diffuse + specular", diffuse + specular)?;
+            require_scalar_range("glossy exponent", exponent, 0.0, 1e6, "in [0, 10⁶]")
+        }
+        Material::Glass { index } => require_scalar_range("glass index", index, 1.0, 4.0, "in [1, 4]"),
+        Material::Emitter { radiance } => require_non_negative("emitter radiance", radiance),
+    }
+}
+
+fn require_scalar_range(
+    name: &'static str,
+    value: f64,
+    low: f64,
+    high: f64,
+    expected: &'static str,
+) -> Result<(), InputError> {
+    if !value.is_finite() {
+        return Err(InputError::NonFinite { name, value: format!("{value}") });
+    }
+    if value < low || value > high {
+        return Err(InputError::OutOfRange { name, value: format!("{value}"), expected });
+    }
+    Ok(())
+}
+
+fn require_non_negative(name: &'static str, v: DVec3) -> Result<(), InputError> {
+    require_finite::<f64>(name, v)?;
+    if v.min_element() < 0.0 {
+        return Err(InputError::OutOfRange { name, value: format!("{v:?}"), expected: "≥ 0 in every channel" });
+    }
+    Ok(())
+}
+
+fn require_unit_interval(name: &'static str, v: DVec3) -> Result<(), InputError> {
+    require_non_negative(name, v)?;
+    if v.max_element() > 1.0 {
+        return Err(InputError::OutOfRange { name, value: format!("{v:?}"), expected: "in [0, 1] in every channel" });
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn unit_quad() -> Shape {
+        Shape::Quad {
+            corner: DVec3::new(-1.0, -1.0, 0.0),
+            edge_u: DVec3::new(2.0, 0.0, 0.0),
+            edge_v: DVec3::new(0.0, 2.0, 0.0),
+        }
+    }
+
+    fn ray(origin: [f64; 3], dir: [f64; 3]) -> Ray<f64> {
+        Ray::new(DVec3::from(origin), DVec3::from(dir)).unwrap()
+    }
+
+    #[test]
+    fn quad_is_hit_inside_and_missed_outside_and_behind() {
+        let quad = unit_quad();
+        assert_eq!(intersect(&quad, &ray([0.5, 0.5, 3.0], [0.0, 0.0, -1.0]), 0.0), Some(3.0));
+        assert_eq!(intersect(&quad, &ray([1.5, 0.0, 3.0], [0.0, 0.0, -1.0]), 0.0), None);
+        assert_eq!(intersect(&quad, &ray([0.0, 0.0, 3.0], [0.0, 0.0, 1.0]), 0.0), None);
+    }
+
+    #[test]
+    fn grazing_ray_in_the_plane_of_a_quad_is_a_miss_not_a_nan() {
+        let quad = unit_quad();
+        assert_eq!(intersect(&quad, &ray([-5.0, 0.0, 0.0], [1.0, 0.0, 0.0]), 0.0), None);
+        let nearly = ray([-5.0, 0.0, 1e-300], [1.0, 0.0, -1e-300]);
+        assert_eq!(intersect(&quad, &nearly, 0.0), None);
+    }
+
+    #[test]
+    fn moving_sphere_is_where_its_velocity_puts_it() {
+        let shape =
+            Shape::Sphere { sphere: Sphere::new(DVec3::ZERO, 1.0).unwrap(), velocity: DVec3::new(2.0, 0.0, 0.0) };
+        let probe = ray([2.0, 0.0, 5.0], [0.0, 0.0, -1.0]);
+        assert_eq!(intersect(&shape, &probe, 0.0), None);
+        assert_eq!(intersect(&shape, &probe, 1.0), Some(4.0));
+    }
+
+    #[test]
+    fn invalid_scenes_are_typed_errors_naming_the_value() {
+        let camera = Camera { shutter: (0.0, 1.0), ..Camera::looking_at(DVec3::new(0.0, 0.0, 5.0), DVec3::ZERO, 40.0) };
+        let name = |r: Result<Scene, InputError>| match r.unwrap_err() {
+            InputError::NonFinite { name, .. }
+            | InputError::DegenerateDirection { name, .. }
+            | InputError::OutOfRange { name, .. } => name,
+        };
+        let scene = |camera, objects, fog| Scene::new(camera, objects, vec![], fog, DVec3::ZERO);
+        let parallel_up = Camera { up: DVec3::Z, ..camera };
+        assert_eq!(name(scene(parallel_up, vec![], None)), "camera view direction");
+        let inverted = Camera { shutter: (1.0, 0.0), ..camera };
+        assert_eq!(name(scene(inverted, vec![], None)), "shutter close");
+        let flat = Object {
+            shape: Shape::Quad { corner: DVec3::ZERO, edge_u: DVec3::X, edge_v: DVec3::X * 2.0 },
+            material: Material::Diffuse { albedo: DVec3::ONE },
+        };
+        assert_eq!(name(scene(camera, vec![flat], None)), "quad edges");
+        let bright = Object { shape: unit_quad(), material: Material::Diffuse { albedo: DVec3::splat(1.5) } };
+        assert_eq!(name(scene(camera, vec![bright], None)), "diffuse albedo");
+        let fog = Fog { sigma_a: 0.0, sigma_s: f64::NAN };
+        assert_eq!(name(scene(camera, vec![], Some(fog))), "fog sigma_s");
+    }
+}

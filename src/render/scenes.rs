@@ -1,0 +1,296 @@
+//! Built-in scenes: Q1's four hard scenes (and their easy twins), plus a small box for the path
+//! tracer. `hw3 scenes` lists them; `hw3 render NAME` and `hw3 effects NAME` take their names.
+
+use super::RenderError;
+use super::scene::{Camera, Fog, Material, Object, PointLight, Scene, Shape};
+use crate::geometry::{InputError, Sphere};
+use glam::DVec3;
+use rand_core::Rng as _;
+
+/// Every built-in scene: CLI name and a one-line description.
+pub const CATALOGUE: [(&str, &str); 8] = [
+    ("clutter", "Q1a: 1500 spheres in a 41×41×10 slab, seen from the front"),
+    ("fog", "Q1b: a street with two lamps in fog (σ_s = 0.08, no absorption)"),
+    ("clear-street", "Q1b's street without the medium"),
+    ("mirrors", "Q1c: four mirror spheres over a checker floor"),
+    ("diffuse-spheres", "Q1c's scene with the spheres made diffuse"),
+    ("motion", "Q1d: a ball moving 2 units during the shutter (motion blur)"),
+    ("still", "Q1d's scene with the ball at rest"),
+    ("cornell", "a closed box, area light, mirror, glossy and glass spheres (indirect light, caustics)"),
+];
+
+/// The built-in scene called `name` (see [`CATALOGUE`]).
+///
+/// # Errors
+/// [`RenderError::UnknownScene`] listing the known names.
+///
+/// # Examples
+/// ```
+/// assert!(hw3::render::scenes::by_name("mirrors").is_ok());
+/// assert!(hw3::render::scenes::by_name("nope").is_err());
+/// ```
+pub fn by_name(name: &str) -> Result<Scene, RenderError> {
+    let scene = match name {
+        "clutter" => clutter_forest(1500, 1),
+        "fog" => fog_street(0.08),
+        "clear-street" => fog_street(0.0),
+        "mirrors" => mirror_spheres(true),
+        "diffuse-spheres" => mirror_spheres(false),
+        "motion" => moving_ball(2.0),
+        "still" => moving_ball(0.0),
+        "cornell" => cornell_mirror(),
+        _ => {
+            return Err(RenderError::UnknownScene { name: name.into(), known: CATALOGUE.map(|(n, _)| n).join(", ") });
+        }
+    };
+    Ok(scene?)
+}
+
+/// Half-width `W/2` of the clutter slab's square front face.
+pub const CLUTTER_HALF_WIDTH: f64 = 20.0;
+/// Depth `Z` of the clutter slab (it spans `z ∈ [−Z, 0]`).
+pub const CLUTTER_DEPTH: f64 = 10.0;
+/// Radius `a` of every clutter sphere.
+pub const CLUTTER_RADIUS: f64 = 0.5;
+
+/// `count` diffuse spheres of radius [`CLUTTER_RADIUS`] with centres uniform in
+/// `[−W/2 − a, W/2 + a]² × [−Z, 0]` (a Boolean model), seeded by `seed`; camera 12 units in
+/// front of the slab looking in, a point light above it, sky-blue background.
+///
+/// # Errors
+/// Never for the built-in numbers; the `Result` carries [`Scene::new`]'s validation.
+pub fn clutter_forest(count: usize, seed: u64) -> Result<Scene, InputError> {
+    let mut random = rand_pcg::Pcg32::new(seed, 0xC1u64);
+    let mut uniform = move || (random.next_u64() >> 11) as f64 / (1u64 << 53) as f64;
+    let half = CLUTTER_HALF_WIDTH + CLUTTER_RADIUS;
+    let objects = (0..count)
+        .map(|_| {
+            let center =
+                DVec3::new(-half + 2.0 * half * uniform(), -half + 2.0 * half * uniform(), -CLUTTER_DEPTH * uniform());
+            let shade = 0.35 + 0.4 * uniform();
+            Ok(Object {
+                shape: Shape::Sphere { sphere: Sphere::new(center, CLUTTER_RADIUS)?, velocity: DVec3::ZERO },
+                material: Material::Diffuse { albedo: DVec3::new(0.3 * shade, shade, 0.35 * shade) },
+            })
+        })
+        .collect::<Result<Vec<_>, InputError>>()?;
+    let camera = Camera::looking_at(DVec3::new(0.0, 0.0, 12.0), DVec3::new(0.0, 0.0, -CLUTTER_DEPTH), 40.0);
+    let sun = PointLight { position: DVec3::new(10.0, 40.0, 25.0), intensity: DVec3::splat(2500.0) };
+    Scene::new(camera, objects, vec![sun], None, DVec3::new(0.55, 0.7, 0.9))
+}
+
+/// A night street: ground, two rows of pale posts (spheres) every 5 units, two lamps, and a
+/// non-absorbing fog with `σ_s = σ_t = sigma_t` (no medium at all when `sigma_t = 0`).
+///
+/// # Errors
+/// [`InputError`] for a negative or non-finite `sigma_t`.
+pub fn fog_street(sigma_t: f64) -> Result<Scene, InputError> {
+    let ground = Object::quad(
+        DVec3::new(-6.0, 0.0, 5.0),
+        DVec3::new(12.0, 0.0, 0.0),
+        DVec3::new(0.0, 0.0, -70.0),
+        Material::Diffuse { albedo: DVec3::splat(0.4) },
+    );
+    let mut objects = vec![ground];
+    for k in 1..=8 {
+        for side in [-2.5, 2.5] {
+            objects.push(Object {
+                shape: Shape::Sphere {
+                    sphere: Sphere::new(DVec3::new(side, 0.6, -5.0 * f64::from(k)), 0.6)?,
+                    velocity: DVec3::ZERO,
+                },
+                material: Material::Diffuse { albedo: DVec3::new(0.9, 0.85, 0.7) },
+            });
+        }
+    }
+    let lamps = [-6.0, -22.0]
+        .map(|z| PointLight { position: DVec3::new(0.0, 3.5, z), intensity: DVec3::new(40.0, 34.0, 24.0) });
+    let camera = Camera::looking_at(DVec3::new(0.0, 1.6, 4.0), DVec3::new(0.0, 1.2, -20.0), 45.0);
+    let fog = (sigma_t != 0.0).then_some(Fog { sigma_a: 0.0, sigma_s: sigma_t });
+    Scene::new(camera, objects, lamps.to_vec(), fog, DVec3::ZERO)
+}
+
+/// An `n × n` checker of unit-square diffuse tiles on `y = 0`, centred on `(0, 0, center_z)`.
+fn checker_floor(n: u32, center_z: f64) -> Vec<Object> {
+    let half = f64::from(n) / 2.0;
+    (0..n * n)
+        .map(|k| {
+            let (i, j) = (k % n, k / n);
+            let albedo = if (i + j) % 2 == 0 { 0.8 } else { 0.15 };
+            Object {
+                shape: Shape::Quad {
+                    corner: DVec3::new(f64::from(i) - half, 0.0, center_z - half + f64::from(j)),
+                    edge_u: DVec3::X,
+                    edge_v: DVec3::Z,
+                },
+                material: Material::Diffuse { albedo: DVec3::splat(albedo) },
+            }
+        })
+        .collect()
+}
+
+/// The camera of [`mirror_spheres`], moved by `offset` (Q1c displaces it).
+#[must_use]
+pub fn mirror_camera(offset: DVec3) -> Camera {
+    Camera::looking_at(DVec3::new(0.0, 2.2, 3.0) + offset, DVec3::new(0.0, 0.6, -3.0) + offset, 40.0)
+}
+
+/// Four spheres of radius 0.7 in a 2×2 block over an 8×8 checker floor, mirrors (reflectance
+/// 0.9) or, for `mirror = false`, diffuse grey (albedo 0.8): Q1c's scene and its easy twin.
+///
+/// # Errors
+/// Never for the built-in numbers.
+pub fn mirror_spheres(mirror: bool) -> Result<Scene, InputError> {
+    let mut objects = checker_floor(8, -3.0);
+    for (x, z) in [(-0.75, -2.25), (0.75, -2.25), (-0.75, -3.75), (0.75, -3.75)] {
+        objects.push(Object {
+            shape: Shape::Sphere { sphere: Sphere::new(DVec3::new(x, 0.7, z), 0.7)?, velocity: DVec3::ZERO },
+            material: if mirror {
+                Material::Mirror { reflectance: DVec3::splat(0.9) }
+            } else {
+                Material::Diffuse { albedo: DVec3::splat(0.8) }
+            },
+        });
+    }
+    seen_by_mirror_camera(objects, DVec3::new(3.0, 6.0, 1.0), DVec3::new(0.25, 0.35, 0.55))
+}
+
+/// `objects` lit by one point light of intensity 50 at `light`, seen by [`mirror_camera`].
+fn seen_by_mirror_camera(objects: Vec<Object>, light: DVec3, background: DVec3) -> Result<Scene, InputError> {
+    let light = PointLight { position: light, intensity: DVec3::splat(50.0) };
+    Scene::new(mirror_camera(DVec3::ZERO), objects, vec![light], None, background)
+}
+
+/// A mirror sphere under an opaque roof that hides it from the only light (for the caustic test).
+///
+/// # Errors
+/// Never for the built-in numbers.
+pub fn mirror_behind_wall() -> Result<Scene, InputError> {
+    let mirror = Object {
+        shape: Shape::Sphere { sphere: Sphere::new(DVec3::new(0.0, 1.0, -3.0), 0.7)?, velocity: DVec3::ZERO },
+        material: Material::Mirror { reflectance: DVec3::ONE },
+    };
+    let roof = Object::quad(
+        DVec3::new(-10.0, 2.5, 7.0),
+        DVec3::new(20.0, 0.0, 0.0),
+        DVec3::new(0.0, 0.0, -20.0),
+        Material::Diffuse { albedo: DVec3::splat(0.5) },
+    );
+    let mut objects = checker_floor(4, -3.0);
+    objects.extend([mirror, roof]);
+    seen_by_mirror_camera(objects, DVec3::new(0.0, 6.0, -3.0), DVec3::ZERO)
+}
+
+/// A camera at the origin looking along `−z` at a 2000×2000 wall of `wall` material facing it at
+/// distance `distance`, one `lamp`, and a non-absorbing fog of scattering coefficient `sigma_s`:
+/// the set-up of the fog measurements (transmittance and airlight).
+///
+/// # Errors
+/// [`InputError`] for an invalid distance, lamp, material or density.
+pub fn wall_in_fog(distance: f64, wall: Material, lamp: PointLight, sigma_s: f64) -> Result<Scene, InputError> {
+    let wall =
+        Object::quad(DVec3::new(-1e3, -1e3, -distance), DVec3::new(2e3, 0.0, 0.0), DVec3::new(0.0, 2e3, 0.0), wall);
+    let camera = Camera::looking_at(DVec3::ZERO, DVec3::NEG_Z, 40.0);
+    let fog = Fog { sigma_a: 0.0, sigma_s };
+    Scene::new(camera, vec![wall], vec![lamp], Some(fog), DVec3::ZERO)
+}
+
+/// Shutter of [`moving_ball`]: open at 0, close at 1.
+pub const MOTION_SHUTTER: (f64, f64) = (0.0, 1.0);
+
+/// A red ball of radius 0.5 moving along `+x` at `speed` units per unit time across a 6×6
+/// checker floor, shutter [`MOTION_SHUTTER`]: Q1d's scene (at rest for `speed = 0`).
+///
+/// # Errors
+/// [`InputError`] for a non-finite `speed`.
+pub fn moving_ball(speed: f64) -> Result<Scene, InputError> {
+    moving_ball_with_shutter(speed, MOTION_SHUTTER)
+}
+
+/// [`moving_ball`] with another shutter interval (Q1d renders instantaneous frames).
+///
+/// # Errors
+/// [`InputError`] for a non-finite `speed` or an invalid shutter.
+pub fn moving_ball_with_shutter(speed: f64, shutter: (f64, f64)) -> Result<Scene, InputError> {
+    let mut objects = checker_floor(6, -3.0);
+    objects.push(Object {
+        shape: Shape::Sphere {
+            sphere: Sphere::new(DVec3::new(-1.0, 0.5, -3.0), 0.5)?,
+            velocity: DVec3::new(speed, 0.0, 0.0),
+        },
+        material: Material::Diffuse { albedo: DVec3::new(0.8, 0.15, 0.1) },
+    });
+    let camera = Camera {
+        eye: DVec3::new(0.0, 2.0, 1.5),
+        look_at: DVec3::new(0.0, 0.4, -3.0),
+        up: DVec3::Y,
+        vfov_degrees: 45.0,
+        shutter,
+    };
+    let light = PointLight { position: DVec3::new(1.5, 5.0, 0.0), intensity: DVec3::splat(40.0) };
+    Scene::new(camera, objects, vec![light], None, DVec3::splat(0.2))
+}
+
+/// A closed box `[−1, 1]³` (red left wall, green right wall, white elsewhere) lit by a 0.5×0.5
+/// area light under the ceiling, with a mirror, a glossy and a glass sphere on the floor.
+///
+/// # Errors
+/// Never for the built-in numbers.
+pub fn cornell_mirror() -> Result<Scene, InputError> {
+    let white = DVec3::splat(0.7);
+    let wall = |corner: DVec3, edge_u: DVec3, edge_v: DVec3, albedo: DVec3| Object {
+        shape: Shape::Quad { corner, edge_u, edge_v },
+        material: Material::Diffuse { albedo },
+    };
+    let two = 2.0;
+    let mut objects = vec![
+        wall(DVec3::splat(-1.0), DVec3::X * two, DVec3::Z * two, white),
+        wall(DVec3::new(-1.0, 1.0, -1.0), DVec3::X * two, DVec3::Z * two, white),
+        wall(DVec3::splat(-1.0), DVec3::X * two, DVec3::Y * two, white),
+        wall(DVec3::splat(-1.0), DVec3::Y * two, DVec3::Z * two, DVec3::new(0.63, 0.065, 0.05)),
+        wall(DVec3::new(1.0, -1.0, -1.0), DVec3::Y * two, DVec3::Z * two, DVec3::new(0.14, 0.45, 0.091)),
+        Object {
+            shape: Shape::Quad {
+                corner: DVec3::new(-0.25, 0.99, -0.25),
+                edge_u: DVec3::X * 0.5,
+                edge_v: DVec3::Z * 0.5,
+            },
+            material: Material::Emitter { radiance: DVec3::splat(12.0) },
+        },
+    ];
+    objects.push(Object {
+        shape: Shape::Sphere { sphere: Sphere::new(DVec3::new(-0.4, -0.6, -0.3), 0.4)?, velocity: DVec3::ZERO },
+        material: Material::Mirror { reflectance: DVec3::splat(0.95) },
+    });
+    objects.push(Object {
+        shape: Shape::Sphere { sphere: Sphere::new(DVec3::new(0.45, -0.65, 0.2), 0.35)?, velocity: DVec3::ZERO },
+        material: Material::Glossy { diffuse: DVec3::splat(0.5), specular: DVec3::splat(0.3), exponent: 40.0 },
+    });
+    objects.push(Object::sphere(Sphere::new(DVec3::new(0.1, -0.75, 0.6), 0.25)?, Material::Glass { index: 1.5 }));
+    let camera = Camera::looking_at(DVec3::new(0.0, 0.0, 3.4), DVec3::ZERO, 40.0);
+    Scene::new(camera, objects, vec![], None, DVec3::ZERO)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_catalogued_name_builds_and_unknown_names_list_them() {
+        for (name, _) in CATALOGUE {
+            assert!(by_name(name).is_ok(), "{name}");
+        }
+        let Err(RenderError::UnknownScene { known, .. }) = by_name("fgo") else {
+            panic!("an unknown name is an error")
+        };
+        assert!(known.starts_with("clutter, fog"));
+    }
+
+    #[test]
+    fn bad_parameters_are_typed_errors() {
+        assert!(fog_street(-0.1).is_err());
+        assert!(fog_street(f64::NAN).is_err());
+        assert!(moving_ball(f64::INFINITY).is_err());
+        assert!(moving_ball_with_shutter(1.0, (1.0, 0.0)).is_err());
+    }
+}

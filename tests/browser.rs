@@ -1,0 +1,158 @@
+//! The course notes as a reader sees them, in a real browser (headless Chromium).
+//!
+//! Ignored by default because it needs Chromium and a docs build:
+//!
+//! ```text
+//! cargo doc --no-deps && cargo test --test browser -- --ignored
+//! ```
+//!
+//! It installs Debian's `chromium` package when it is missing and the test runs as root; otherwise
+//! it fails with the command to install it. For every page of the notes (the crate root and every
+//! module) it asserts that math rendered (MathML present, no TeX left in the prose), every image
+//! loaded, no figure placeholder is left, and no relative link points at a missing file; it saves
+//! a screenshot of each page under `target/browser/` for review.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn doc_root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("target/doc")
+}
+
+fn chromium() -> PathBuf {
+    for candidate in ["/usr/bin/chromium", "/usr/bin/chromium-browser", "/usr/bin/google-chrome"] {
+        if Path::new(candidate).exists() {
+            return PathBuf::from(candidate);
+        }
+    }
+    let is_root = Command::new("id").arg("-u").output().is_ok_and(|o| o.stdout.starts_with(b"0"));
+    assert!(is_root, "Chromium is missing: install it with `apt-get install chromium` and rerun");
+    let _ = Command::new("apt-get").args(["update", "-qq"]).status();
+    let status = Command::new("apt-get").args(["install", "-y", "-qq", "chromium"]).status().expect("apt-get runs");
+    assert!(status.success(), "apt-get install chromium failed");
+    PathBuf::from("/usr/bin/chromium")
+}
+
+fn headless(browser: &Path) -> Command {
+    let mut command = Command::new(browser);
+    command.args([
+        "--headless",
+        "--no-sandbox",
+        "--disable-gpu",
+        "--disable-quic",
+        "--no-first-run",
+        "--disable-background-networking",
+        "--disable-component-update",
+        "--disable-sync",
+        "--hide-scrollbars",
+    ]);
+    command
+}
+
+/// Every page of the notes: the crate root and each module's page.
+fn pages() -> Vec<PathBuf> {
+    let crate_dir = doc_root().join("hw3");
+    assert!(crate_dir.join("index.html").exists(), "build the docs first: cargo doc --no-deps");
+    let mut pages = vec![crate_dir.join("index.html")];
+    let mut stack = vec![crate_dir];
+    while let Some(dir) = stack.pop() {
+        for entry in std::fs::read_dir(&dir).unwrap() {
+            let path = entry.unwrap().path();
+            if path.is_dir() && path.join("index.html").exists() {
+                pages.push(path.join("index.html"));
+                stack.push(path);
+            }
+        }
+    }
+    pages.sort();
+    pages
+}
+
+/// Relative `href`s of a page that point at files that do not exist.
+fn broken_links(page: &Path) -> Vec<String> {
+    let html = std::fs::read_to_string(page).unwrap();
+    let mut broken = Vec::new();
+    for piece in html.split("href=\"").skip(1) {
+        let target = piece.split('"').next().unwrap_or("");
+        let file = target.split('#').next().unwrap_or("");
+        if file.is_empty()
+            || file.contains("${")
+            || file.contains("://")
+            || file.starts_with("mailto:")
+            || file.starts_with("data:")
+        {
+            continue;
+        }
+        let resolved = page.parent().unwrap().join(file);
+        if !resolved.exists() {
+            broken.push(target.to_string());
+        }
+    }
+    broken
+}
+
+#[test]
+#[ignore = "needs Chromium and `cargo doc`; run: cargo doc --no-deps && cargo test --test browser -- --ignored"]
+fn notes_render_in_a_real_browser() {
+    let pages = pages();
+    let browser = chromium();
+    let out_dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("target/browser");
+    std::fs::create_dir_all(&out_dir).unwrap();
+
+    let urls: Vec<String> = pages.iter().map(|p| format!("file://{}", p.display())).collect();
+    let harness = include_str!("browser/harness.html").replace("/*PAGES*/[]", &serde_json::to_string(&urls).unwrap());
+    let harness_path = out_dir.join("harness.html");
+    std::fs::write(&harness_path, harness).unwrap();
+    let dump = headless(&browser)
+        .args(["--allow-file-access-from-files", "--virtual-time-budget=60000", "--dump-dom"])
+        .arg(format!("file://{}", harness_path.display()))
+        .output()
+        .expect("chromium runs");
+    let dom = String::from_utf8_lossy(&dump.stdout);
+    let json = dom
+        .split("<pre id=\"out\">")
+        .nth(1)
+        .and_then(|rest| rest.split("</pre>").next())
+        .expect("the harness wrote its results")
+        .replace("&lt;", "<")
+        .replace("&gt;", ">")
+        .replace("&amp;", "&");
+    let results: Vec<serde_json::Value> = serde_json::from_str(&json).unwrap_or_else(|e| panic!("{e}: {json:.300}"));
+    assert_eq!(results.len(), pages.len());
+    std::fs::write(out_dir.join("results.json"), serde_json::to_string_pretty(&results).unwrap()).unwrap();
+
+    let mut problems = Vec::new();
+    for (page, result) in pages.iter().zip(&results) {
+        let name = page.strip_prefix(doc_root()).unwrap().display().to_string();
+        let shot = out_dir.join(name.replace('/', "_").replace(".html", ".png"));
+        let _ = headless(&browser)
+            .args(["--window-size=1280,5000", "--virtual-time-budget=5000"])
+            .arg(format!("--screenshot={}", shot.display()))
+            .arg(format!("file://{}", page.display()))
+            .output();
+        if result.get("error").is_some() {
+            problems.push(format!("{name}: {}", result["error"]));
+            continue;
+        }
+        let is_chapter = std::fs::read_to_string(page).unwrap().contains("class=\"math-display\"");
+        if is_chapter && result["math"].as_u64() == Some(0) {
+            problems.push(format!("{name}: chapter has no rendered math"));
+        }
+        if result["math_zero_width"].as_u64() != Some(0) {
+            problems.push(format!("{name}: {} math elements rendered with zero width", result["math_zero_width"]));
+        }
+        if !result["raw_tex"].is_null() {
+            problems.push(format!("{name}: TeX left in the prose: {}", result["raw_tex"]));
+        }
+        if result["broken_images"].as_array().is_some_and(|a| !a.is_empty()) {
+            problems.push(format!("{name}: images that did not load: {}", result["broken_images"]));
+        }
+        if result["missing_assets"].as_u64() != Some(0) {
+            problems.push(format!("{name}: figure placeholders left: rerun cargo run --release"));
+        }
+        for link in broken_links(page) {
+            problems.push(format!("{name}: broken link {link}"));
+        }
+    }
+    assert!(problems.is_empty(), "{}", problems.join("\n"));
+}
