@@ -73,6 +73,8 @@ enum Command {
         #[arg(long, default_value_t = 0)]
         seed: u64,
     },
+    /// Q4: irradiance E(n) of an environment map through a light probe.
+    Irradiance(Q4IrradianceArgs),
     /// Regenerate every figure of the course notes.
     Figures {
         /// Output folder.
@@ -137,6 +139,31 @@ enum FormatArg {
     Text,
     Json,
     Gradescope,
+}
+
+#[derive(clap::Args)]
+struct Q4IrradianceArgs {
+    /// `constant:L`, `sky` (hemisphere step, +z up), `linear:A,B` (L = A + B ω_z), or a lat-long .hdr file.
+    #[arg(long)]
+    env: String,
+    /// Surface normal `X,Y,Z` (any non-zero length).
+    #[arg(long, allow_hyphen_values = true)]
+    normal: String,
+    /// unweighted|weighted|uniform|cosine|map|mis|sh9
+    #[arg(long)]
+    method: String,
+    /// Monte Carlo samples.
+    #[arg(long, default_value_t = 256)]
+    samples: usize,
+    /// Monte Carlo seed.
+    #[arg(long, default_value_t = 0)]
+    seed: u64,
+    /// Texels across the mirror-ball probe analytic maps are rasterised into.
+    #[arg(long, default_value_t = 256)]
+    size: usize,
+    /// Print `{"irradiance":[r,g,b]}`.
+    #[arg(long)]
+    json: bool,
 }
 
 /// An error the user caused: reported on one line, exit status 2, nothing written.
@@ -257,6 +284,21 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             Ok(())
         }
         Some(Command::Render { scene, spp, size, out, effects }) => render_to_file(&scene, spp, &size, &out, &effects),
+        Some(Command::Irradiance(args)) => {
+            let normal = hw3::geometry::parse_vec3("--normal", &args.normal).map_err(UsageError)?;
+            let request = hw3::q4_light_probe::IrradianceRequest {
+                env: args.env,
+                normal,
+                method: args.method,
+                samples: args.samples,
+                seed: args.seed,
+                size: args.size,
+                json: args.json,
+            };
+            let out = hw3::q4_light_probe::irradiance_command(&request).map_err(|e| UsageError(e.to_string()))?;
+            println!("{out}");
+            Ok(())
+        }
     }
 }
 

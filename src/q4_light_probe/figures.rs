@@ -1,0 +1,351 @@
+//! Q4's figures: the blind spot versus distance, the texel solid angle of each format, and the
+//! accuracy-versus-time Pareto plot drawn from the benchmark's committed CSV.
+
+use super::irradiance::{Irradiance, luminance};
+use super::maps::AnalyticMap;
+use super::{Probe, ProbeFormat, blind_spot, horizontal_camera};
+use crate::plot::{Figure, PALETTE, PlotError, err, png_bytes, svg_figure};
+use glam::DMat3;
+use glam::DVec3;
+use plotters::prelude::*;
+
+/// The benchmark's committed results (written by `cargo bench --bench q4_irradiance`).
+const ACCURACY_CSV: &str = include_str!("../../docs/data/q4_accuracy_time.csv");
+
+/// Every Q4 figure, deterministic bytes.
+///
+/// # Errors
+/// [`PlotError`] if a figure cannot be drawn.
+///
+/// # Examples
+/// ```
+/// let figures = hw3::q4_light_probe::figures().unwrap();
+/// assert!(figures.iter().any(|f| f.file_name == "q4_blind_spot.svg"));
+/// ```
+pub fn figures() -> Result<Vec<Figure>, PlotError> {
+    Ok(vec![
+        blind_spot_figure()?,
+        solid_angle_figure()?,
+        pareto_figure("soft")?,
+        pareto_figure("sun")?,
+        pareto_figure("courtyard")?,
+        pareto_figure("sunrise")?,
+        sphere_render_figure()?,
+    ])
+}
+
+/// A labelled function of D/R.
+type Curve = Box<dyn Fn(f64) -> f64>;
+
+fn blind_spot_figure() -> Result<Figure, PlotError> {
+    svg_figure("q4_blind_spot.svg", (640, 400), |root| {
+        let distances: Vec<f64> = (0..=200).map(|k| 1.2 * (50.0_f64 / 1.2).powf(k as f64 / 200.0)).collect();
+        let mut chart = ChartBuilder::on(root)
+            .caption("What a mirrored ball misses, vs camera distance D/R", ("sans-serif", 17))
+            .margin(10)
+            .x_label_area_size(40)
+            .y_label_area_size(55)
+            .build_cartesian_2d((1.2_f64..50.0).log_scale(), (0.01_f64..100.0).log_scale())
+            .map_err(err)?;
+        chart
+            .configure_mesh()
+            .x_desc("D/R (camera distance in ball radii)")
+            .y_desc("degrees  /  percent")
+            .label_style(("sans-serif", 12))
+            .draw()
+            .map_err(err)?;
+        let series: [(&str, Curve); 3] = [
+            (
+                "blind half-angle arcsin(R/D), degrees",
+                Box::new(|d| blind_spot::half_angle(d).map_or(f64::NAN, f64::to_degrees)),
+            ),
+            (
+                "blind solid angle, % of 4π",
+                Box::new(|d| blind_spot::solid_angle(d).map_or(f64::NAN, |s| 100.0 * s / (4.0 * std::f64::consts::PI))),
+            ),
+            (
+                "irradiance lost at n = away (uniform map), %",
+                Box::new(|d| 100.0 * blind_spot::lost_fraction(d, 0.0).unwrap_or(f64::NAN)),
+            ),
+        ];
+        for (index, (label, f)) in series.iter().enumerate() {
+            let colour = PALETTE[index];
+            chart
+                .draw_series(LineSeries::new(distances.iter().map(|&d| (d, f(d))), colour.stroke_width(2)))
+                .map_err(err)?
+                .label(*label)
+                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], colour.stroke_width(2)));
+        }
+        draw_legend(&mut chart, SeriesLabelPosition::LowerLeft)
+    })
+}
+
+/// The legend box every Q4 chart uses.
+fn draw_legend<'a, DB, CT>(chart: &mut ChartContext<'a, DB, CT>, position: SeriesLabelPosition) -> Result<(), String>
+where
+    DB: DrawingBackend + 'a,
+    CT: plotters::coord::CoordTranslate,
+{
+    chart
+        .configure_series_labels()
+        .position(position)
+        .label_font(("sans-serif", 12))
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK)
+        .draw()
+        .map_err(err)
+}
+
+/// A false-colour image of `Δω / (mean Δω)` per texel for each disk format and lat-long, on a
+/// shared logarithmic scale: where the format spends its resolution.
+fn solid_angle_figure() -> Result<Figure, PlotError> {
+    let size = 128_usize;
+    let formats = [
+        ProbeFormat::MirrorBall,
+        ProbeFormat::PerspectiveBall { distance_over_radius: 3.0 },
+        ProbeFormat::AngularMap,
+        ProbeFormat::LatLong,
+    ];
+    let gap = 8;
+    let mut image = image::RgbImage::from_pixel(
+        (formats.len() * (size + gap) - gap) as u32,
+        size as u32,
+        image::Rgb([255, 255, 255]),
+    );
+    for (slot, format) in formats.iter().enumerate() {
+        let (w, h) = if *format == ProbeFormat::LatLong { (size, size / 2) } else { (size, size) };
+        let probe = Probe::from_fn(*format, w, h, DMat3::IDENTITY, |_| glam::DVec3::ZERO)
+            .map_err(|e| PlotError::Draw { figure: "q4_texel_solid_angle.png".into(), message: e.to_string() })?;
+        let mean = 4.0 * std::f64::consts::PI / (w * h) as f64;
+        let y_offset = (size - h) / 2;
+        for (index, texel) in probe.texels().iter().enumerate() {
+            if texel.solid_angle <= 0.0 {
+                continue;
+            }
+            // log10 of the ratio on a diverging ramp: blue (10× smaller) → pale grey (the mean)
+            // → vermillion (10× larger).
+            let t = (texel.solid_angle / mean).log10().clamp(-1.0, 1.0);
+            let end = if t < 0.0 { PALETTE[0] } else { PALETTE[1] };
+            let mid = 235.0;
+            let mix = |y: u8| (mid + (y as f64 - mid) * t.abs()).round() as u8;
+            image.put_pixel(
+                (slot * (size + gap) + index % w) as u32,
+                (y_offset + index / w) as u32,
+                image::Rgb([mix(end.0), mix(end.1), mix(end.2)]),
+            );
+        }
+    }
+    png_bytes("q4_texel_solid_angle.png", &image)
+}
+
+/// Side length of a rendered sphere panel, in pixels.
+const RENDER_SIZE: usize = 128;
+
+/// One rendered row: per pixel (row-major, `None` outside the sphere) the reference, SH9 and
+/// 16-sample MIS irradiance (luminance), and the peak used for tone mapping.
+struct RenderRow {
+    title: &'static str,
+    reference: Vec<Option<f64>>,
+    sh9: Vec<Option<f64>>,
+    mis: Vec<Option<f64>>,
+    peak: f64,
+}
+
+/// Renders a white diffuse sphere (orthographic view, image up = world `+z`, the sun's azimuth to
+/// the right) lit through `probe`. Pixels are independent, each with its own generator stream,
+/// so the parallel loop gives the same bytes on any thread count.
+fn render_row(title: &'static str, probe: &Probe, reference: &(dyn Fn(DVec3) -> f64 + Sync), sun: DVec3) -> RenderRow {
+    use rayon::prelude::*;
+    let prepared = Irradiance::new(probe);
+    let right = DVec3::new(sun.x, sun.y, 0.0).normalize();
+    let up = DVec3::Z;
+    let toward_viewer = right.cross(up);
+    let pixels: Vec<Option<(f64, f64, f64)>> = (0..RENDER_SIZE * RENDER_SIZE)
+        .into_par_iter()
+        .map(|index| {
+            let a = ((index % RENDER_SIZE) as f64 + 0.5) / RENDER_SIZE as f64 * 2.0 - 1.0;
+            let b = 1.0 - ((index / RENDER_SIZE) as f64 + 0.5) / RENDER_SIZE as f64 * 2.0;
+            let r2 = a * a + b * b;
+            (r2 < 1.0).then(|| {
+                let n = right * a + up * b + toward_viewer * (1.0 - r2).sqrt();
+                let mut rng = crate::rng::seeded(0, index as u64);
+                (reference(n), luminance(prepared.sh9().irradiance(n)), luminance(prepared.mis(n, 16, &mut rng)))
+            })
+        })
+        .collect();
+    RenderRow {
+        title,
+        reference: pixels.iter().map(|p| p.map(|v| v.0)).collect(),
+        sh9: pixels.iter().map(|p| p.map(|v| v.1)).collect(),
+        mis: pixels.iter().map(|p| p.map(|v| v.2)).collect(),
+        peak: reference(sun),
+    }
+}
+
+/// A white diffuse sphere lit through a 128² mirror-ball probe by the analytic sun map (top row)
+/// and by the real sunrise map (bottom row): reference, SH9, MIS with 16 samples per pixel, and
+/// the two methods' errors as a fraction of the peak irradiance (white 0 → vermillion ≥ 10 %).
+fn sphere_render_figure() -> Result<Figure, PlotError> {
+    let name = "q4_sphere_render.png";
+    let failed = |message: String| PlotError::Draw { figure: name.into(), message };
+    let sun_map = AnalyticMap::sun();
+    let sun_probe = Probe::from_map(&sun_map, ProbeFormat::MirrorBall, 128, horizontal_camera())
+        .map_err(|e| failed(e.to_string()))?;
+    let sunrise = Probe::read_lat_long(super::study::real_map_path("sunrise")).map_err(|e| failed(e.to_string()))?;
+    let sunrise_ball = Probe::resample_lat_long(&sunrise, ProbeFormat::MirrorBall, 128, horizontal_camera())
+        .map_err(|e| failed(e.to_string()))?;
+    let sunrise_reference = Irradiance::new(&sunrise);
+    let brightest = sunrise
+        .texels()
+        .iter()
+        .max_by(|a, b| luminance(a.radiance).total_cmp(&luminance(b.radiance)))
+        .map_or(DVec3::X, |t| t.direction);
+    let rows = [
+        render_row("analytic sun", &sun_probe, &|n| sun_map.irradiance(n), super::study::sun_direction()),
+        render_row("sunrise (CC0)", &sunrise_ball, &|n| luminance(sunrise_reference.weighted(n)), brightest),
+    ];
+    let gap = 8_usize;
+    let label_band = 22_usize;
+    let panels = 5;
+    let width = panels * (RENDER_SIZE + gap) - gap;
+    let height = rows.len() * (RENDER_SIZE + label_band);
+    crate::plot::png_figure(name, (width as u32, height as u32), |root| {
+        for (row_index, row) in rows.iter().enumerate() {
+            // Tone mapping: E / peak, gamma 2.2 (L_o = E/π for albedo 1, up to exposure).
+            let tone = |e: f64| {
+                let byte = (255.0 * (e / row.peak).clamp(0.0, 1.0).powf(1.0 / 2.2)).round() as u8;
+                RGBColor(byte, byte, byte)
+            };
+            let heat = |error: f64| {
+                let t = (error / (0.1 * row.peak)).clamp(0.0, 1.0);
+                let end = PALETTE[1];
+                let mix = |y: u8| (255.0 + (y as f64 - 255.0) * t).round() as u8;
+                RGBColor(mix(end.0), mix(end.1), mix(end.2))
+            };
+            let pixel = |panel: usize, i: usize| -> Option<RGBColor> {
+                let (reference, sh9, mis) = (row.reference[i]?, row.sh9[i]?, row.mis[i]?);
+                Some(match panel {
+                    0 => tone(reference),
+                    1 => tone(sh9),
+                    2 => tone(mis),
+                    3 => heat((sh9 - reference).abs()),
+                    _ => heat((mis - reference).abs()),
+                })
+            };
+            let labels = [row.title, "SH9", "MIS, 16 samples", "SH9 error", "MIS error"];
+            let y0 = row_index * (RENDER_SIZE + label_band);
+            for (panel, label) in labels.iter().enumerate() {
+                let x0 = panel * (RENDER_SIZE + gap);
+                root.draw(&Text::new(*label, (x0 as i32 + 4, y0 as i32 + 4), ("sans-serif", 13))).map_err(err)?;
+                for index in 0..RENDER_SIZE * RENDER_SIZE {
+                    if let Some(c) = pixel(panel, index) {
+                        let x = (x0 + index % RENDER_SIZE) as i32;
+                        let y = (y0 + label_band + index / RENDER_SIZE) as i32;
+                        root.draw_pixel((x, y), &c).map_err(err)?;
+                    }
+                }
+            }
+        }
+        Ok(())
+    })
+}
+
+/// One row of the benchmark CSV.
+struct Row {
+    map: String,
+    method: String,
+    label: String,
+    mean_percent: f64,
+    nanoseconds: f64,
+}
+
+fn parse_csv(text: &str) -> Vec<Row> {
+    text.lines()
+        .skip(1)
+        .filter_map(|line| {
+            let f: Vec<&str> = line.split(',').collect();
+            Some(Row {
+                map: f.first()?.to_string(),
+                method: f.get(1)?.to_string(),
+                label: f.get(2)?.to_string(),
+                mean_percent: f.get(5)?.parse().ok()?,
+                nanoseconds: f.get(7)?.parse().ok()?,
+            })
+        })
+        .collect()
+}
+
+fn pareto_figure(map: &str) -> Result<Figure, PlotError> {
+    let rows: Vec<Row> = parse_csv(ACCURACY_CSV)
+        .into_iter()
+        .filter(|r| r.map == map && r.mean_percent > 0.0 && r.nanoseconds > 0.0)
+        .collect();
+    let name = format!("q4_pareto_{map}.svg");
+    svg_figure(&name, (680, 440), |root| {
+        let (t_min, t_max) =
+            rows.iter().fold((f64::INFINITY, 0.0_f64), |(lo, hi), r| (lo.min(r.nanoseconds), hi.max(r.nanoseconds)));
+        let (e_min, e_max) =
+            rows.iter().fold((f64::INFINITY, 0.0_f64), |(lo, hi), r| (lo.min(r.mean_percent), hi.max(r.mean_percent)));
+        let mut chart = ChartBuilder::on(root)
+            .caption(format!("Error vs time per normal, {map} map (benchmark data)"), ("sans-serif", 17))
+            .margin(10)
+            .x_label_area_size(40)
+            .y_label_area_size(60)
+            .build_cartesian_2d(
+                (t_min.min(1.0) * 0.5..t_max.max(10.0) * 2.0).log_scale(),
+                (e_min.min(1e-3) * 0.5..e_max.max(1.0) * 2.0).log_scale(),
+            )
+            .map_err(err)?;
+        chart
+            .configure_mesh()
+            .x_desc("time per normal, ns (log)")
+            .y_desc("mean error, % of peak E (log)")
+            .label_style(("sans-serif", 12))
+            .draw()
+            .map_err(err)?;
+        let methods = ["unweighted", "weighted", "sh9", "uniform", "cosine", "map", "mis"];
+        for (index, method) in methods.iter().enumerate() {
+            let points: Vec<(f64, f64)> =
+                rows.iter().filter(|r| r.method == *method).map(|r| (r.nanoseconds, r.mean_percent)).collect();
+            let colour = PALETTE[index % PALETTE.len()];
+            chart.draw_series(LineSeries::new(points.clone(), colour.stroke_width(1))).map_err(err)?;
+            chart
+                .draw_series(points.iter().map(|&p| Circle::new(p, 4, colour.filled())))
+                .map_err(err)?
+                .label(*method)
+                .legend(move |(x, y)| Circle::new((x + 8, y), 4, colour.filled()));
+        }
+        // Name the SH9 and 256² weighted points, the issue's target pair.
+        for r in rows.iter().filter(|r| r.label == "sh9 256²" || r.label == "weighted 256²") {
+            chart
+                .draw_series(std::iter::once(Text::new(
+                    r.label.clone(),
+                    (r.nanoseconds * 1.15, r.mean_percent),
+                    ("sans-serif", 11),
+                )))
+                .map_err(err)?;
+        }
+        draw_legend(&mut chart, SeriesLabelPosition::LowerLeft)
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn figures_are_deterministic() {
+        let a = figures().unwrap();
+        let b = figures().unwrap();
+        assert_eq!(a, b);
+    }
+
+    #[test]
+    fn the_committed_csv_parses() {
+        let rows = parse_csv(ACCURACY_CSV);
+        assert!(!rows.is_empty(), "run cargo bench --bench q4_irradiance");
+        for map in ["soft", "sun", "courtyard", "sunrise"] {
+            assert!(rows.iter().any(|r| r.map == map && r.method == "sh9"));
+        }
+    }
+}

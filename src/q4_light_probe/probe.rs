@@ -1,0 +1,553 @@
+//! A light probe: an image in one [`ProbeFormat`], the direction and solid angle of every texel,
+//! and the radiance it recorded.
+
+use super::format::{GaussLegendre, ProbeFormat, Rect};
+use super::maps::{AnalyticMap, Term};
+use crate::geometry::InputError;
+use glam::{DMat3, DVec2, DVec3};
+use std::path::Path;
+
+/// Why a probe could not be built or read.
+///
+/// # Examples
+/// ```
+/// use hw3::q4_light_probe::{probe_from_spec, ProbeError};
+/// assert!(matches!(probe_from_spec("sky", 0), Err(ProbeError::Empty { .. })));
+/// assert!(matches!(probe_from_spec("missing.hdr", 8), Err(ProbeError::Read { .. })));
+/// ```
+#[derive(Debug, thiserror::Error)]
+pub enum ProbeError {
+    /// An argument is invalid (a non-finite normal, a bad `D/R`, …).
+    #[error(transparent)]
+    Input(#[from] InputError),
+    /// A probe needs at least one texel.
+    #[error("probe size must be at least 1×1, got {width}×{height}")]
+    Empty {
+        /// Requested width.
+        width: usize,
+        /// Requested height.
+        height: usize,
+    },
+    /// A texel holds a NaN, an infinity or a negative radiance.
+    #[error("texel ({column}, {row}) has radiance {value}: every channel must be finite and ≥ 0")]
+    BadTexel {
+        /// Column of the texel.
+        column: usize,
+        /// Row of the texel (0 = top).
+        row: usize,
+        /// The offending radiance, as printed.
+        value: String,
+    },
+    /// The radiance buffer does not have `width × height` entries.
+    #[error("expected {expected} texels, got {got}")]
+    WrongLength {
+        /// `width × height`.
+        expected: usize,
+        /// The buffer's length.
+        got: usize,
+    },
+    /// An environment spec (the CLI's `--env`) is not understood.
+    #[error("--env: {0}")]
+    Spec(String),
+    /// An image file could not be read or decoded.
+    #[error("cannot read {path}: {message}")]
+    Read {
+        /// The file.
+        path: String,
+        /// The decoder's message.
+        message: String,
+    },
+}
+
+/// One texel: where it looks, how much of the sphere it covers, and what it saw.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Texel {
+    /// Unit direction (world frame): the solid-angle-weighted mean over the texel's footprint.
+    pub direction: DVec3,
+    /// Solid angle `Δω` in steradians (0 for texels wholly outside the image disk).
+    pub solid_angle: f64,
+    /// Image area of the texel inside the format's domain (for sampling within the texel).
+    pub area: f64,
+    /// Whether the texel's centre lies inside the domain (what a mask drawn on a photo keeps).
+    pub centre_inside: bool,
+    /// Recorded radiance (RGB), the average over the texel's solid angle.
+    pub radiance: DVec3,
+}
+
+/// A light probe image with per-texel geometry.
+///
+/// # Examples
+/// ```
+/// use glam::DVec3;
+/// use hw3::q4_light_probe::{horizontal_camera, maps::AnalyticMap, Probe, ProbeFormat};
+/// let probe = Probe::from_map(&AnalyticMap::sky(), ProbeFormat::LatLong, 8, horizontal_camera()).unwrap();
+/// assert_eq!((probe.width(), probe.height(), probe.format()), (16, 8, ProbeFormat::LatLong));
+/// let up = probe.texel_index_toward(DVec3::Z).unwrap();
+/// assert_eq!(probe.radiance_toward(DVec3::Z), probe.texels()[up].radiance);
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct Probe {
+    format: ProbeFormat,
+    width: usize,
+    height: usize,
+    world_from_probe: DMat3,
+    texels: Vec<Texel>,
+}
+
+/// Subsamples per texel side used to find texel directions and to rasterise smooth maps.
+const SUBSAMPLES: usize = 4;
+
+/// Rotation that puts a ball's camera on the `+x` horizon with the image's up along world `+z`:
+/// probe `x` (image right) → world `+y`, probe `y` (image up) → world `+z`, probe `z` (toward the
+/// camera) → world `+x`. Lat-long images use the identity (`+z` up already).
+///
+/// # Examples
+/// ```
+/// use glam::DVec3;
+/// let m = hw3::q4_light_probe::horizontal_camera();
+/// assert_eq!(m * DVec3::Z, DVec3::X); // the camera sits on the +x horizon
+/// assert_eq!(m * DVec3::Y, DVec3::Z); // image up is world up
+/// ```
+#[must_use]
+pub fn horizontal_camera() -> DMat3 {
+    DMat3::from_cols(DVec3::Y, DVec3::Z, DVec3::X)
+}
+
+impl Probe {
+    /// A probe whose texels sample `radiance(ω)` (world direction → RGB radiance), each texel the
+    /// solid-angle-weighted mean of a 4×4 grid of subsamples inside the domain.
+    ///
+    /// `world_from_probe` must be a rotation (see [`horizontal_camera`]).
+    ///
+    /// # Errors
+    /// [`ProbeError::Empty`] for a zero size; [`ProbeError::BadTexel`] if `radiance` returns a
+    /// non-finite or negative value anywhere it is sampled.
+    ///
+    /// # Examples
+    /// ```
+    /// use glam::{DMat3, DVec3};
+    /// use hw3::q4_light_probe::{Probe, ProbeFormat};
+    /// let probe = Probe::from_fn(ProbeFormat::MirrorBall, 8, 8, DMat3::IDENTITY, |_| DVec3::ONE).unwrap();
+    /// let total: f64 = probe.texels().iter().map(|t| t.solid_angle).sum();
+    /// assert!((total - 4.0 * std::f64::consts::PI).abs() < 1e-12);
+    /// ```
+    pub fn from_fn(
+        format: ProbeFormat,
+        width: usize,
+        height: usize,
+        world_from_probe: DMat3,
+        radiance: impl Fn(DVec3) -> DVec3,
+    ) -> Result<Self, ProbeError> {
+        if width == 0 || height == 0 {
+            return Err(ProbeError::Empty { width, height });
+        }
+        let rule = GaussLegendre::new(16);
+        let mut texels = Vec::with_capacity(width * height);
+        let checked = |world: DVec3, column: usize, row: usize| {
+            let value = radiance(world);
+            if value.is_finite() && value.min_element() >= 0.0 {
+                Ok(value)
+            } else {
+                Err(ProbeError::BadTexel { column, row, value: format!("{value}") })
+            }
+        };
+        for row in 0..height {
+            for column in 0..width {
+                let rect = texel_rect(format, width, height, column, row);
+                let solid_angle = format.solid_angle(rect, &rule);
+                let area = format.area_inside(rect);
+                let centre = 0.5 * (rect.min + rect.max);
+                let mut direction_sum = DVec3::ZERO;
+                let mut radiance_sum = DVec3::ZERO;
+                let mut weight_sum = 0.0;
+                let step = (rect.max - rect.min) / SUBSAMPLES as f64;
+                for b in 0..SUBSAMPLES {
+                    for a in 0..SUBSAMPLES {
+                        let p = rect.min + step * DVec2::new(a as f64 + 0.5, b as f64 + 0.5);
+                        if let Some(omega) = format.image_to_direction(p) {
+                            let world = world_from_probe * omega;
+                            let weight = format.jacobian(p);
+                            direction_sum += world * weight;
+                            radiance_sum += checked(world, column, row)? * weight;
+                            weight_sum += weight;
+                        }
+                    }
+                }
+                let (direction, value) = if weight_sum > 0.0 {
+                    (direction_sum.normalize(), radiance_sum / weight_sum)
+                } else {
+                    // A rim sliver that no subsample hits: use the rim point nearest its centre.
+                    let rim = if centre.length() > 0.0 { centre.normalize() * (1.0 - 1e-12) } else { centre };
+                    let world = world_from_probe * format.image_to_direction(rim).unwrap_or(world_from_probe.col(2));
+                    (world, checked(world, column, row)?)
+                };
+                texels.push(Texel {
+                    direction,
+                    solid_angle,
+                    area,
+                    centre_inside: format.image_to_direction(centre).is_some(),
+                    radiance: if solid_angle > 0.0 { value } else { DVec3::ZERO },
+                });
+            }
+        }
+        let probe = Self { format, width, height, world_from_probe, texels };
+        probe.validate()?;
+        Ok(probe)
+    }
+
+    /// A probe holding the given radiance buffer (row-major, top row first), as read from a file.
+    ///
+    /// # Errors
+    /// [`ProbeError::WrongLength`], [`ProbeError::Empty`], or [`ProbeError::BadTexel`] for the
+    /// first NaN, infinite or negative channel.
+    ///
+    /// # Examples
+    /// ```
+    /// use glam::{DMat3, DVec3};
+    /// use hw3::q4_light_probe::{Probe, ProbeFormat};
+    /// let bad = vec![DVec3::ONE, DVec3::new(0.0, f64::NAN, 0.0)];
+    /// assert!(Probe::from_radiance(ProbeFormat::LatLong, 2, 1, DMat3::IDENTITY, bad).is_err());
+    /// ```
+    pub fn from_radiance(
+        format: ProbeFormat,
+        width: usize,
+        height: usize,
+        world_from_probe: DMat3,
+        radiance: Vec<DVec3>,
+    ) -> Result<Self, ProbeError> {
+        if radiance.len() != width * height {
+            return Err(ProbeError::WrongLength { expected: width * height, got: radiance.len() });
+        }
+        let mut probe = Self::from_fn(format, width, height, world_from_probe, |_| DVec3::ZERO)?;
+        for (texel, value) in probe.texels.iter_mut().zip(radiance) {
+            // Validated before masking: garbage outside the disk is still a broken file.
+            texel.radiance = value;
+        }
+        probe.validate()?;
+        for texel in &mut probe.texels {
+            if texel.solid_angle == 0.0 {
+                texel.radiance = DVec3::ZERO;
+            }
+        }
+        Ok(probe)
+    }
+
+    /// Rasterises an analytic map: smooth terms by subsampling, caps by splatting `m²` stratified
+    /// points per cap (each carrying its share of the cap's power `L_s Ω_cap`) into the texel that
+    /// sees it, so a sub-texel sun keeps its exact energy. Cap points in a blind cone are lost,
+    /// as they are in a real photo.
+    ///
+    /// # Errors
+    /// As [`Probe::from_fn`].
+    ///
+    /// # Examples
+    /// ```
+    /// use hw3::q4_light_probe::{horizontal_camera, maps::AnalyticMap, Probe, ProbeFormat};
+    /// let probe = Probe::from_map(&AnalyticMap::sun(), ProbeFormat::MirrorBall, 32, horizontal_camera()).unwrap();
+    /// assert_eq!(probe.texels().len(), 32 * 32);
+    /// ```
+    pub fn from_map(
+        map: &AnalyticMap,
+        format: ProbeFormat,
+        size: usize,
+        world_from_probe: DMat3,
+    ) -> Result<Self, ProbeError> {
+        let (width, height) = if format == ProbeFormat::LatLong { (2 * size, size) } else { (size, size) };
+        let mut probe =
+            Self::from_fn(format, width, height, world_from_probe, |omega| DVec3::splat(map.smooth_radiance(omega)))?;
+        for term in &map.terms {
+            if let Term::Cap { radiance, centre, half_angle } = *term {
+                probe.splat_cap(radiance, centre, half_angle, 256);
+            }
+        }
+        probe.validate()?;
+        Ok(probe)
+    }
+
+    /// A probe in `format` synthesised from a lat-long `source` by splatting: each source texel
+    /// sends its power `L Δω` as 4×4 stratified points (uniform in solid angle over the texel) to
+    /// the texels that see them, so energy is conserved whatever the two resolutions (a sun
+    /// smaller than a texel is neither lost nor duplicated). Points in a blind cone are lost, as in
+    /// a photograph.
+    ///
+    /// # Errors
+    /// [`InputError::OutOfRange`] if `source` is not lat-long; [`ProbeError::Empty`] for size 0.
+    ///
+    /// # Examples
+    /// ```
+    /// use glam::{DMat3, DVec3};
+    /// use hw3::q4_light_probe::{horizontal_camera, Probe, ProbeFormat};
+    /// let sky = Probe::from_fn(ProbeFormat::LatLong, 16, 8, DMat3::IDENTITY, |w| DVec3::splat(w.z.max(0.0))).unwrap();
+    /// let ball = Probe::resample_lat_long(&sky, ProbeFormat::MirrorBall, 16, horizontal_camera()).unwrap();
+    /// let power = |p: &Probe| p.texels().iter().map(|t| t.radiance.x * t.solid_angle).sum::<f64>();
+    /// assert!((power(&ball) / power(&sky) - 1.0).abs() < 1e-12);
+    /// ```
+    pub fn resample_lat_long(
+        source: &Probe,
+        format: ProbeFormat,
+        size: usize,
+        world_from_probe: DMat3,
+    ) -> Result<Self, ProbeError> {
+        if source.format != ProbeFormat::LatLong {
+            return Err(InputError::OutOfRange {
+                name: "source format",
+                value: source.format.name(),
+                expected: "lat-long",
+            }
+            .into());
+        }
+        let mut probe = Self::from_fn(format, size, size, world_from_probe, |_| DVec3::ZERO)?;
+        const STRATA: usize = 4;
+        for (index, texel) in source.texels.iter().enumerate() {
+            if texel.solid_angle <= 0.0 || texel.radiance == DVec3::ZERO {
+                continue;
+            }
+            let rect = source.texel_rect(index);
+            let power = texel.radiance * (texel.solid_angle / (STRATA * STRATA) as f64);
+            let (z0, z1) = ((std::f64::consts::PI * rect.min.y).cos(), (std::f64::consts::PI * rect.max.y).cos());
+            for a in 0..STRATA {
+                for b in 0..STRATA {
+                    let u = rect.min.x + (rect.max.x - rect.min.x) * (a as f64 + 0.5) / STRATA as f64;
+                    let z = z0 + (z1 - z0) * (b as f64 + 0.5) / STRATA as f64;
+                    let s = (1.0 - z * z).max(0.0).sqrt();
+                    let (sin_p, cos_p) = (std::f64::consts::TAU * u).sin_cos();
+                    let omega = source.world_from_probe * DVec3::new(s * cos_p, s * sin_p, z);
+                    if let Some(target) = probe.texel_index_toward(omega) {
+                        let t = &mut probe.texels[target];
+                        t.radiance += power / t.solid_angle;
+                    }
+                }
+            }
+        }
+        probe.validate()?;
+        Ok(probe)
+    }
+
+    fn splat_cap(&mut self, radiance: f64, centre: DVec3, half_angle: f64, m: usize) {
+        let cap_solid_angle = std::f64::consts::TAU * 2.0 * (0.5 * half_angle).sin().powi(2);
+        let power = radiance * cap_solid_angle / (m * m) as f64;
+        let (t1, t2) = centre.any_orthonormal_pair();
+        let one_minus_cos = 1.0 - half_angle.cos();
+        for a in 0..m {
+            for b in 0..m {
+                // Stratified, uniform in solid angle over the cap.
+                let z = 1.0 - (a as f64 + 0.5) / m as f64 * one_minus_cos;
+                let phi = std::f64::consts::TAU * (b as f64 + 0.5) / m as f64;
+                let s = (1.0 - z * z).max(0.0).sqrt();
+                let omega = centre * z + t1 * (s * phi.cos()) + t2 * (s * phi.sin());
+                if let Some(index) = self.texel_index_toward(omega) {
+                    let texel = &mut self.texels[index];
+                    texel.radiance += DVec3::splat(power / texel.solid_angle);
+                }
+            }
+        }
+    }
+
+    fn validate(&self) -> Result<(), ProbeError> {
+        for (index, texel) in self.texels.iter().enumerate() {
+            let v = texel.radiance;
+            if !(v.is_finite() && v.min_element() >= 0.0) {
+                return Err(ProbeError::BadTexel {
+                    column: index % self.width,
+                    row: index / self.width,
+                    value: format!("{v}"),
+                });
+            }
+        }
+        Ok(())
+    }
+
+    /// Reads a latitude-longitude Radiance `.hdr` file (top row = `+z`, the zenith).
+    ///
+    /// # Errors
+    /// [`ProbeError::Read`] if the file is missing, truncated or not a decodable image;
+    /// [`ProbeError::BadTexel`] for negative or non-finite texels.
+    ///
+    /// # Examples
+    /// ```
+    /// use hw3::q4_light_probe::Probe;
+    /// assert!(Probe::read_lat_long("no/such/file.hdr").is_err());
+    /// ```
+    pub fn read_lat_long(path: impl AsRef<Path>) -> Result<Self, ProbeError> {
+        let path = path.as_ref();
+        let read_error = |message: String| ProbeError::Read { path: path.display().to_string(), message };
+        let image = image::ImageReader::open(path)
+            .map_err(|e| read_error(e.to_string()))?
+            .with_guessed_format()
+            .map_err(|e| read_error(e.to_string()))?
+            .decode()
+            .map_err(|e| read_error(e.to_string()))?
+            .into_rgb32f();
+        let (width, height) = (image.width() as usize, image.height() as usize);
+        let radiance = image.pixels().map(|p| DVec3::new(p.0[0].into(), p.0[1].into(), p.0[2].into())).collect();
+        Self::from_radiance(ProbeFormat::LatLong, width, height, DMat3::IDENTITY, radiance)
+    }
+
+    /// The image format.
+    #[must_use]
+    pub fn format(&self) -> ProbeFormat {
+        self.format
+    }
+
+    /// Width in texels.
+    #[must_use]
+    pub fn width(&self) -> usize {
+        self.width
+    }
+
+    /// Height in texels.
+    #[must_use]
+    pub fn height(&self) -> usize {
+        self.height
+    }
+
+    /// Every texel, row-major from the top row.
+    #[must_use]
+    pub fn texels(&self) -> &[Texel] {
+        &self.texels
+    }
+
+    /// The index of the texel that sees world direction `omega` (unit), `None` in a blind cone.
+    #[must_use]
+    pub fn texel_index_toward(&self, omega: DVec3) -> Option<usize> {
+        let local = self.world_from_probe.transpose() * omega;
+        let p = self.format.direction_to_image(local)?;
+        let index = self.texel_index_at(p);
+        (self.texels[index].solid_angle > 0.0).then_some(index)
+    }
+
+    /// The texel containing image point `p` (clamped to the image).
+    pub(crate) fn texel_index_at(&self, p: DVec2) -> usize {
+        let rect = self.format.image_rect();
+        let unit = (p - rect.min) / (rect.max - rect.min);
+        let column = ((unit.x * self.width as f64) as usize).min(self.width - 1);
+        let from_top = if self.format == ProbeFormat::LatLong { unit.y } else { 1.0 - unit.y };
+        let row = ((from_top * self.height as f64).max(0.0) as usize).min(self.height - 1);
+        row * self.width + column
+    }
+
+    /// The image rectangle of texel `index`.
+    pub(crate) fn texel_rect(&self, index: usize) -> Rect {
+        texel_rect(self.format, self.width, self.height, index % self.width, index / self.width)
+    }
+
+    /// World direction of image point `p` and the Jacobian there, `None` outside the domain.
+    pub(crate) fn image_to_world(&self, p: DVec2) -> Option<(DVec3, f64)> {
+        let local = self.format.image_to_direction(p)?;
+        Some((self.world_from_probe * local, self.format.jacobian(p)))
+    }
+
+    /// World to image: the image point seeing `omega`, `None` in a blind cone.
+    pub(crate) fn world_to_image(&self, omega: DVec3) -> Option<DVec2> {
+        self.format.direction_to_image(self.world_from_probe.transpose() * omega)
+    }
+
+    /// The piecewise-constant radiance the probe records toward `omega` (zero in a blind cone).
+    #[must_use]
+    pub fn radiance_toward(&self, omega: DVec3) -> DVec3 {
+        self.texel_index_toward(omega).map_or(DVec3::ZERO, |i| self.texels[i].radiance)
+    }
+}
+
+/// The image rectangle of texel (`column`, `row`), row 0 at the top of the image.
+fn texel_rect(format: ProbeFormat, width: usize, height: usize, column: usize, row: usize) -> Rect {
+    let image = format.image_rect();
+    let step = (image.max - image.min) / DVec2::new(width as f64, height as f64);
+    let x0 = image.min.x + step.x * column as f64;
+    let (y0, y1) = if format == ProbeFormat::LatLong {
+        let v0 = image.min.y + step.y * row as f64;
+        (v0, v0 + step.y)
+    } else {
+        let top = image.max.y - step.y * row as f64;
+        (top - step.y, top)
+    };
+    Rect { min: DVec2::new(x0, y0), max: DVec2::new(x0 + step.x, y1) }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::f64::consts::PI;
+
+    #[test]
+    fn every_texel_is_found_by_its_own_direction() {
+        for format in [
+            ProbeFormat::MirrorBall,
+            ProbeFormat::AngularMap,
+            ProbeFormat::perspective_ball(4.0).unwrap(),
+            ProbeFormat::LatLong,
+        ] {
+            let probe = Probe::from_fn(format, 16, 16, horizontal_camera(), |_| DVec3::ONE).unwrap();
+            for (index, texel) in probe.texels().iter().enumerate() {
+                if texel.centre_inside {
+                    let rect = probe.texel_rect(index);
+                    let centre = 0.5 * (rect.min + rect.max);
+                    let (omega, _) = probe.image_to_world(centre).unwrap();
+                    assert_eq!(probe.texel_index_toward(omega), Some(index), "{}", format.name());
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn one_by_one_probe_covers_the_sphere() {
+        let probe = Probe::from_fn(ProbeFormat::MirrorBall, 1, 1, DMat3::IDENTITY, |_| DVec3::ONE).unwrap();
+        assert_eq!(probe.texels().len(), 1);
+        assert!((probe.texels()[0].solid_angle - 4.0 * PI).abs() < 1e-12);
+    }
+
+    #[test]
+    fn bad_texels_are_typed_errors() {
+        for bad in [f64::NAN, f64::INFINITY, -1.0] {
+            let error = Probe::from_fn(ProbeFormat::LatLong, 4, 2, DMat3::IDENTITY, |omega| {
+                DVec3::splat(if omega.z > 0.9 { bad } else { 1.0 })
+            })
+            .unwrap_err();
+            assert!(matches!(error, ProbeError::BadTexel { .. }), "{error}");
+        }
+        let error = Probe::from_fn(ProbeFormat::MirrorBall, 0, 3, DMat3::IDENTITY, |_| DVec3::ONE).unwrap_err();
+        assert!(matches!(error, ProbeError::Empty { .. }));
+        let error = Probe::from_radiance(ProbeFormat::LatLong, 2, 2, DMat3::IDENTITY, vec![DVec3::ONE]).unwrap_err();
+        assert!(matches!(error, ProbeError::WrongLength { .. }));
+    }
+
+    #[test]
+    fn unreadable_and_truncated_files_are_typed_errors() {
+        let dir = std::env::temp_dir().join(format!("hw3-q4-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let truncated = dir.join("truncated.hdr");
+        std::fs::write(&truncated, b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 4 +X 8\n\x02\x02").unwrap();
+        let garbage = dir.join("garbage.hdr");
+        std::fs::write(&garbage, b"not an image at all").unwrap();
+        for path in [truncated.as_path(), garbage.as_path(), Path::new("/no/such.hdr")] {
+            let error = Probe::read_lat_long(path).unwrap_err();
+            assert!(matches!(error, ProbeError::Read { .. }), "{error}");
+        }
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn an_hdr_file_round_trips_through_the_reader() {
+        let dir = std::env::temp_dir().join(format!("hw3-q4-rt-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("map.hdr");
+        let pixels: Vec<image::Rgb<f32>> = (0..8 * 4).map(|i| image::Rgb([i as f32 * 0.25, 1.0, 2.0])).collect();
+        let file = std::fs::File::create(&path).unwrap();
+        image::codecs::hdr::HdrEncoder::new(file).encode(&pixels, 8, 4).unwrap();
+        let probe = Probe::read_lat_long(&path).unwrap();
+        assert_eq!((probe.width(), probe.height()), (8, 4));
+        // RGBE keeps 8 mantissa bits: 1.75 and 2.0 are exact.
+        assert_eq!(probe.texels()[7].radiance, DVec3::new(1.75, 1.0, 2.0));
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn splatted_caps_keep_their_energy() {
+        let map = AnalyticMap::sun();
+        let probe = Probe::from_map(&map, ProbeFormat::MirrorBall, 32, horizontal_camera()).unwrap();
+        let sky_power = 2.0 * PI; // the hemisphere step, radiance 1
+        let total: f64 = probe.texels().iter().map(|t| t.radiance.x * t.solid_angle).sum();
+        let sun_power = map.terms[1].cap_solid_angle().unwrap() * 10.0 / (0.2665f64.to_radians().sin().powi(2));
+        assert!((total - sky_power - sun_power).abs() < 2e-3 * (sky_power + sun_power), "{total}");
+    }
+}
