@@ -2,6 +2,7 @@
 
 mod q2;
 mod q3;
+mod q4;
 
 use serde::Serialize;
 use std::fmt::Write as _;
@@ -105,7 +106,7 @@ pub struct Variant {
 }
 
 /// The questions the checker grades, in order.
-pub const QUESTIONS: [&str; 2] = ["q2", "q3"];
+pub const QUESTIONS: [&str; 3] = ["q2", "q3", "q4"];
 
 /// The variant of `question` for `seed`.
 ///
@@ -121,6 +122,7 @@ pub fn variant(question: &str, seed: u64) -> Result<Variant, CheckError> {
     match question {
         "q2" => Ok(q2::variant(seed)),
         "q3" => Ok(q3::variant(seed)),
+        "q4" => Ok(q4::variant(seed)),
         other => Err(CheckError::UnknownQuestion(other.to_string())),
     }
 }
@@ -143,7 +145,7 @@ pub enum CheckError {
     #[error("`meta.seed` must be an integer from 0 to 2^63, got {0}")]
     BadSeed(String),
     /// A question id the checker does not know.
-    #[error("unknown question `{0}`; known: q2, q3")]
+    #[error("unknown question `{0}`; known: q2, q3, q4")]
     UnknownQuestion(String),
 }
 
@@ -641,7 +643,7 @@ pub fn report_text(report: &Report) -> String {
             "partial" => "~",
             _ => "✗",
         };
-        let _ = writeln!(out, "{mark} {:<18} {:>5.2}/{:<4} {}", part.key, part.score, part.max_score, part.status);
+        let _ = writeln!(out, "{mark} {:<26} {:>5.2}/{:<4} {}", part.key, part.score, part.max_score, part.status);
         if part.status != "correct" {
             let given = part.given.as_deref().unwrap_or("—");
             let _ = writeln!(out, "    given {given}, expected {}\n    {}", part.expected, part.feedback);

@@ -1,0 +1,131 @@
+//! Q4 variants: irradiance from an analytic sky with a closed form, and the mirror ball's blind spot.
+
+use super::{Expected, MalRule, Part, Variant};
+use crate::q4_light_probe::blind_spot;
+use crate::q4_light_probe::maps::{AnalyticMap, Term};
+use crate::rng;
+use glam::DVec3;
+use rand_core::Rng;
+use std::f64::consts::PI;
+
+/// The RNG stream of Q4 variants.
+const STREAM: u64 = 4;
+
+const NOTES: &str = "hw3/q4_light_probe/index.html";
+
+fn number(value: f64) -> Expected {
+    Expected::Number { value, rtol: 1e-3, atol: 1e-9 }
+}
+
+pub(super) fn variant(seed: u64) -> Variant {
+    // Seed 0: a sky of radiance 1 + 1·ω_z, a normal tilted 60° from up, a ball seen from 3 radii.
+    let (a, b, tilt_deg, distance_over_radius) = if seed == 0 {
+        (1.0, 1.0, 60.0, 3.0)
+    } else {
+        let mut g = rng::seeded(seed, STREAM);
+        let mut pick = |n: u64| g.next_u64() % n;
+        let a = 1.0 + pick(4) as f64;
+        let b = [-1.0, 1.0, 2.0][pick(3) as usize];
+        let tilt = [0.0, 30.0, 45.0, 60.0, 90.0, 120.0][pick(6) as usize];
+        let d = [2.0, 3.0, 4.0, 5.0, 10.0][pick(5) as usize];
+        (a, b, tilt, d)
+    };
+    let tilt = f64::to_radians(tilt_deg);
+    let normal = DVec3::new(tilt.sin(), 0.0, tilt.cos());
+    let map = AnalyticMap::new(vec![Term::Linear { a, b, axis: DVec3::Z }]);
+    let irradiance = map.irradiance(normal);
+    let gamma = blind_spot::half_angle(distance_over_radius).expect("variant distances exceed one radius");
+    let lost = blind_spot::lost_fraction(distance_over_radius, 0.0).expect("variant distances exceed one radius");
+    let (sign, b_abs) = if b < 0.0 { ('-', -b) } else { ('+', b) };
+    let statement = format!(
+        "Q4 (variant {seed}). An environment of radiance L(w) = {a} {sign} {b_abs} w_z (z up) lights a diffuse surface.\n\
+         (a) the irradiance E(n) = integral of L(w) max(0, n . w) dw for the unit normal n tilted {tilt_deg} degrees \
+         from up towards +x;\n\
+         (b) a mirrored ball of radius R photographed from distance D = {distance_over_radius} R: the half-angle, \
+         in degrees, of the cone of directions the ball cannot show, and the fraction of a uniform environment's \
+         irradiance lost for a normal pointing straight into that cone."
+    );
+    // Without the cosine: ∫ over the hemisphere of L alone, 2πA + πB n_z.
+    let no_cosine = 2.0 * PI * a + PI * b * normal.z;
+    let parts = vec![
+        Part {
+            key: "q4a.irradiance",
+            prompt: "irradiance E(n)",
+            points: 3.0,
+            expected: number(irradiance),
+            mal_rules: vec![
+                MalRule {
+                    value: number(no_cosine),
+                    message: "the cosine factor max(0, n . w) is missing: that is the integral of L alone",
+                    credit: 0.0,
+                },
+                MalRule {
+                    value: number(irradiance / PI),
+                    message: "that is E/π, the outgoing radiance of a white diffuse surface, not the irradiance",
+                    credit: 0.5,
+                },
+            ],
+            explained_in: NOTES,
+        },
+        Part {
+            key: "q4b.blind_half_angle_deg",
+            prompt: "blind cone half-angle arcsin(R/D), in degrees",
+            points: 2.0,
+            expected: number(gamma.to_degrees()),
+            mal_rules: vec![
+                MalRule {
+                    value: number(gamma),
+                    message: "that is the angle in radians; degrees are asked",
+                    credit: 0.5,
+                },
+                MalRule {
+                    value: number(2.0 * gamma.to_degrees()),
+                    message: "that is the full cone angle; the half-angle is arcsin(R/D)",
+                    credit: 0.0,
+                },
+            ],
+            explained_in: NOTES,
+        },
+        Part {
+            key: "q4b.lost_fraction",
+            prompt: "fraction of a uniform map's irradiance lost, normal into the cone",
+            points: 2.0,
+            expected: number(lost),
+            mal_rules: vec![MalRule {
+                value: number(blind_spot::solid_angle(distance_over_radius).expect("D > R") / (4.0 * PI)),
+                message: "that is the cone's share of the sphere of directions; irradiance weights by the cosine",
+                credit: 0.0,
+            }],
+            explained_in: NOTES,
+        },
+    ];
+    Variant { question: "q4", seed, statement, parts }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn seed_zero_by_hand() {
+        // E = πA + (2π/3) B cos 60° = π + π/3; γ = arcsin(1/3) = 19.47°; lost = (R/D)² = 1/9.
+        let v = variant(0);
+        let value = |key| match v.parts.iter().find(|p| p.key == key).unwrap().expected {
+            Expected::Number { value, .. } => value,
+            _ => unreachable!(),
+        };
+        assert!((value("q4a.irradiance") - 4.0 * PI / 3.0).abs() < 1e-12);
+        assert!((value("q4b.blind_half_angle_deg") - 19.471_220_634_490_69).abs() < 1e-9);
+        assert!((value("q4b.lost_fraction") - 1.0 / 9.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn variants_are_pinned_for_seeds_1_to_5() {
+        let text: String = (1..=5)
+            .map(|s| {
+                format!("{}\n-- key --\n{}\n", variant(s).statement, super::super::answers_key_for("q4", s).unwrap())
+            })
+            .collect();
+        crate::test_support::insta_settings().bind(|| insta::assert_snapshot!("checker_q4_variants", text));
+    }
+}
