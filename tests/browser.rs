@@ -9,7 +9,8 @@
 //! It installs Debian's `chromium` package when it is missing and the test runs as root; otherwise
 //! it fails with the command to install it. For every page of the notes (the crate root and every
 //! module) it asserts that math rendered (MathML present, no TeX left in the prose), every image
-//! loaded, no figure placeholder is left, and no relative link points at a missing file; it saves
+//! loaded, no figure placeholder is left, and no relative link points at a missing file or anchor;
+//! it saves
 //! a screenshot of each page under `target/browser/` for review.
 
 use std::path::{Path, PathBuf};
@@ -68,23 +69,24 @@ fn pages() -> Vec<PathBuf> {
     pages
 }
 
-/// Relative `href`s of a page that point at files that do not exist.
+/// Relative `href`s of a page that point at files, or `#anchors`, that do not exist.
 fn broken_links(page: &Path) -> Vec<String> {
     let html = std::fs::read_to_string(page).unwrap();
     let mut broken = Vec::new();
     for piece in html.split("href=\"").skip(1) {
         let target = piece.split('"').next().unwrap_or("");
-        let file = target.split('#').next().unwrap_or("");
-        if file.is_empty()
-            || file.contains("${")
-            || file.contains("://")
-            || file.starts_with("mailto:")
-            || file.starts_with("data:")
-        {
+        let (file, anchor) = target.split_once('#').unwrap_or((target, ""));
+        if target.contains("${") || file.contains("://") || file.starts_with("mailto:") || file.starts_with("data:") {
             continue;
         }
-        let resolved = page.parent().unwrap().join(file);
-        if !resolved.exists() {
+        let resolved = if file.is_empty() { page.to_path_buf() } else { page.parent().unwrap().join(file) };
+        let exists = resolved.exists();
+        let line_range = anchor.chars().all(|c| c.is_ascii_digit() || c == '-');
+        let anchored = anchor.is_empty()
+            || line_range
+            || !resolved.extension().is_some_and(|e| e == "html")
+            || std::fs::read_to_string(&resolved).is_ok_and(|t| t.contains(&format!("id=\"{anchor}\"")));
+        if !exists || !anchored {
             broken.push(target.to_string());
         }
     }
@@ -124,18 +126,22 @@ fn notes_render_in_a_real_browser() {
     let mut problems = Vec::new();
     for (page, result) in pages.iter().zip(&results) {
         let name = page.strip_prefix(doc_root()).unwrap().display().to_string();
-        let shot = out_dir.join(name.replace('/', "_").replace(".html", ".png"));
-        let _ = headless(&browser)
-            .args(["--window-size=1280,5000", "--virtual-time-budget=5000"])
-            .arg(format!("--screenshot={}", shot.display()))
-            .arg(format!("file://{}", page.display()))
-            .output();
+        let html = std::fs::read_to_string(page).unwrap();
+        let is_chapter = html.contains("class=\"math-display\"") || html.contains("<figure>");
+        if is_chapter || page.ends_with("hw3/index.html") {
+            // A screenshot of every chapter (and the table of contents) for review by eye.
+            let shot = out_dir.join(name.replace('/', "_").replace(".html", ".png"));
+            let _ = headless(&browser)
+                .args(["--window-size=1280,5000", "--virtual-time-budget=5000"])
+                .arg(format!("--screenshot={}", shot.display()))
+                .arg(format!("file://{}", page.display()))
+                .output();
+        }
         if result.get("error").is_some() {
             problems.push(format!("{name}: {}", result["error"]));
             continue;
         }
-        let is_chapter = std::fs::read_to_string(page).unwrap().contains("class=\"math-display\"");
-        if is_chapter && result["math"].as_u64() == Some(0) {
+        if html.contains("class=\"math-display\"") && result["math"].as_u64() == Some(0) {
             problems.push(format!("{name}: chapter has no rendered math"));
         }
         if result["math_zero_width"].as_u64() != Some(0) {
