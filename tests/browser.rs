@@ -84,7 +84,7 @@ fn broken_links(page: &Path) -> Vec<String> {
         let line_range = anchor.chars().all(|c| c.is_ascii_digit() || c == '-');
         let anchored = anchor.is_empty()
             || line_range
-            || !resolved.extension().is_some_and(|e| e == "html")
+            || resolved.extension().is_none_or(|e| e != "html")
             || std::fs::read_to_string(&resolved).is_ok_and(|t| t.contains(&format!("id=\"{anchor}\"")));
         if !exists || !anchored {
             broken.push(target.to_string());
