@@ -227,10 +227,8 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         }
         Some(Command::Variant { question, seed }) => {
             let variant = hw3::checker::variant(&question, seed).map_err(|e| UsageError(e.to_string()))?;
-            println!("{}\n\nSolution:", variant.statement);
-            for part in &variant.parts {
-                println!("  {} = {:?}", part.key, part.expected);
-            }
+            let key = hw3::checker::answers_key_for(&question, seed).map_err(|e| UsageError(e.to_string()))?;
+            println!("{}\n\nSolution, as an answers file:\n[meta]\nseed = {seed}\n{key}", variant.statement);
             Ok(())
         }
         Some(Command::Check { file, seed, format }) => {

@@ -71,7 +71,7 @@ fn variant_prints_statement_and_solution() {
     let out = hw3(&["variant", "--question", "q2", "--seed", "1"]);
     assert!(out.status.success());
     let text = String::from_utf8(out.stdout).unwrap();
-    assert!(text.contains("e = (-5, -5, 2)") && text.contains("q2c.t_closest"), "{text}");
+    assert!(text.contains("e = (-5, -5, 2)") && text.contains("t_closest = 0.5555"), "{text}");
 }
 
 #[test]

@@ -139,3 +139,42 @@ fn kd_trace_bad_input_exits_2() {
         assert_usage_error(&hw3(&all));
     }
 }
+
+/// `(name, description)` pairs of a `Commands:` listing, with wrapped lines joined.
+fn command_listing(text: &str) -> Vec<(String, String)> {
+    let mut commands: Vec<(String, String)> = Vec::new();
+    let block = text.split("Commands:").nth(1).unwrap_or_default();
+    for line in block.lines().skip(1) {
+        if line.trim().is_empty() || line.starts_with("Options") || line.starts_with("```") {
+            break;
+        }
+        let trimmed = line.trim();
+        let indent = line.len() - line.trim_start().len();
+        match (indent, commands.last_mut()) {
+            (i, Some(last)) if i > 4 => {
+                last.1.push(' ');
+                last.1.push_str(trimmed);
+            }
+            _ => {
+                let (name, description) = trimmed.split_once(char::is_whitespace).unwrap_or((trimmed, ""));
+                commands.push((name.to_string(), description.trim().to_string()));
+            }
+        }
+    }
+    commands.retain(|(name, _)| name != "help");
+    commands
+}
+
+#[test]
+fn readme_lists_exactly_the_commands_and_descriptions_of_hw3_help() {
+    let help = String::from_utf8(hw3(&["--help"]).stdout).unwrap();
+    let readme = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md")).unwrap();
+    let from_help = command_listing(&help);
+    assert!(from_help.len() >= 10, "{from_help:?}");
+    assert_eq!(command_listing(&readme), from_help);
+    for (name, _) in &from_help {
+        let sub = hw3(&[name, "--help"]);
+        assert!(sub.status.success(), "{name} --help");
+        assert!(readme.contains(&format!("$ hw3 {name}")), "README has no example of `hw3 {name}`");
+    }
+}
