@@ -266,8 +266,7 @@ mod tests {
             let terminal = RecordingTerminal::default();
             let target = ProgressDrawTarget::term_like(Box::new(terminal.clone()));
             render_scene_to("still", 1, size, EffectsMode::Auto, target).unwrap();
-            let text = terminal.0.lock().unwrap().clone();
-            text
+            terminal.0.lock().unwrap().clone()
         };
         let long = (520, 510);
         assert!(u64::from(long.0 * long.1) > PROGRESS_MIN_SAMPLES);
