@@ -1,11 +1,16 @@
 //! Renderer benchmarks.
 //!
-//! - divan: camera samples per second of Whitted tracing on the mirror scene, with 1 and 2 rayon
-//!   threads (the scaling the issue asks for).
+//! - divan: camera samples per second of Whitted tracing on the mirror scene and on the
+//!   1500-sphere clutter forest, with 1 and 2 rayon threads (the scaling the issue asks for), and
+//!   on the clutter forest with and without the kd-tree on one thread (the speed-up of
+//!   acceleration; both renders are bit-identical, see `render::tests`).
 //! - `cargo bench --bench render` also measures accuracy against time for each Q1 scene and writes
 //!   `docs/data/q1_accuracy.csv` and `docs/data/q1_accuracy.md` (the chapter's table; the CSV is
 //!   plotted by `hw3::q1_hard_scenes::figures`). `cargo test --benches` runs each divan bench once
 //!   and skips that measurement.
+//! - `cargo bench --bench render` also writes `docs/data/render_speed.md`: the kd-tree's speed-up
+//!   and the 1→2 thread scaling on the clutter scene, with the CPU time the process actually got
+//!   and the machine's load average, so that a shared machine's contention is visible.
 
 use hw3::render::analysis::{Passes, analyze};
 use hw3::render::integrator::Integrator;
@@ -16,6 +21,7 @@ use std::time::Instant;
 
 fn main() {
     if std::env::args().any(|a| a == "--bench") {
+        write_speed_tables();
         write_accuracy_tables();
     }
     divan::main();
@@ -26,13 +32,104 @@ const SPP: u32 = 4;
 
 #[divan::bench(args = [1, 2])]
 fn whitted_mirrors_camera_samples(bencher: divan::Bencher, threads: usize) {
-    let scene = scenes::mirror_spheres(true).expect("built-in scene");
-    let settings = Settings::whitted(SIZE.0, SIZE.1, SPP, analyze(&scene).plan);
+    bench_whitted(bencher, &scenes::mirror_spheres(true).expect("built-in scene"), threads);
+}
+
+/// Whitted tracing of one scene at [`SIZE`] and [`SPP`] on a pool of `threads` rayon threads.
+fn bench_whitted(bencher: divan::Bencher, scene: &Scene, threads: usize) {
+    let settings = Settings::whitted(SIZE.0, SIZE.1, SPP, analyze(scene).plan);
     let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().expect("a rayon pool");
     let samples = (SIZE.0 * SIZE.1 * SPP) as usize;
     bencher
         .counter(divan::counter::ItemsCount::new(samples))
-        .bench(|| pool.install(|| render(&scene, &settings, &|_| {}).expect("valid settings")));
+        .bench(|| pool.install(|| render(scene, &settings, &|_| {}).expect("valid settings")));
+}
+
+#[divan::bench(args = [1, 2])]
+fn whitted_clutter_camera_samples(bencher: divan::Bencher, threads: usize) {
+    bench_whitted(bencher, &scenes::by_name("clutter").expect("built-in scene"), threads);
+}
+
+/// The 1500-sphere forest on one thread, its static spheres through the kd-tree or tested one
+/// by one.
+#[divan::bench(args = ["kd-tree", "brute force"])]
+fn whitted_clutter_acceleration(bencher: divan::Bencher, queries: &str) {
+    let scene = scenes::by_name("clutter").expect("built-in scene");
+    let scene = if queries == "kd-tree" { scene } else { scene.without_kd_tree() };
+    bench_whitted(bencher, &scene, 1);
+}
+
+/// Rounds of the speed table; each round times every configuration once, interleaved, so that a
+/// change in the machine's load hits all configurations alike.
+const SPEED_ROUNDS: usize = 9;
+/// Image of the speed table (160×120 at 4 spp, 76 800 camera samples).
+const SPEED_SIZE: (u32, u32, u32) = (160, 120, 4);
+
+/// CPU time (user + system) this process has used so far, from `/proc/self/stat` (Linux), in
+/// seconds; `None` where that file is absent.
+fn process_cpu_seconds() -> Option<f64> {
+    let stat = std::fs::read_to_string("/proc/self/stat").ok()?;
+    // Fields after the parenthesised command name; utime and stime are fields 14 and 15.
+    let fields: Vec<&str> = stat.rsplit_once(')')?.1.split_whitespace().collect();
+    let ticks: f64 = fields.get(11)?.parse::<f64>().ok()? + fields.get(12)?.parse::<f64>().ok()?;
+    Some(ticks / 100.0) // USER_HZ is 100 on Linux
+}
+
+/// The 1-minute load average (`/proc/loadavg`), or NaN where it is absent.
+fn load_average() -> f64 {
+    std::fs::read_to_string("/proc/loadavg")
+        .ok()
+        .and_then(|text| text.split_whitespace().next()?.parse().ok())
+        .unwrap_or(f64::NAN)
+}
+
+fn median(values: &mut [f64]) -> f64 {
+    values.sort_by(f64::total_cmp);
+    values[values.len() / 2]
+}
+
+/// Times Whitted renders of the 1500-sphere clutter scene: with the kd-tree on 1 and 2 threads
+/// and by brute force on 1 thread, interleaved over [`SPEED_ROUNDS`] rounds; writes the medians
+/// of wall time and of the cores the process got (CPU time / wall time) to
+/// `docs/data/render_speed.md`.
+fn write_speed_tables() {
+    let scene = scenes::by_name("clutter").expect("built-in scene");
+    let brute = scene.without_kd_tree();
+    let (width, height, spp) = SPEED_SIZE;
+    let settings = Settings::whitted(width, height, spp, analyze(&scene).plan);
+    let configurations = [("kd-tree", &scene, 1), ("kd-tree", &scene, 2), ("brute force", &brute, 1)];
+    let pools: Vec<rayon::ThreadPool> = configurations
+        .iter()
+        .map(|&(_, _, threads)| rayon::ThreadPoolBuilder::new().num_threads(threads).build().expect("a pool"))
+        .collect();
+    let mut walls = vec![Vec::new(); configurations.len()];
+    let mut cores = vec![Vec::new(); configurations.len()];
+    let load_before = load_average();
+    for _ in 0..SPEED_ROUNDS {
+        for (k, &(_, scene, _)) in configurations.iter().enumerate() {
+            let (cpu_start, start) = (process_cpu_seconds(), Instant::now());
+            pools[k].install(|| render(scene, &settings, &|_| {}).expect("valid settings"));
+            let wall = start.elapsed().as_secs_f64();
+            walls[k].push(wall);
+            if let (Some(a), Some(b)) = (cpu_start, process_cpu_seconds()) {
+                cores[k].push((b - a) / wall);
+            }
+        }
+    }
+    let load_after = load_average();
+    let samples = f64::from(width * height * spp);
+    let mut table = format!(
+        "Whitted tracing of the clutter scene (1500 spheres), {width}×{height} pixels at {spp} spp, median of {SPEED_ROUNDS} interleaved runs; load average {load_before:.2} before, {load_after:.2} after, on a machine with {} logical CPUs.\n\n| queries | threads | wall time (s) | camera samples/s | cores used (CPU time / wall) |\n|---|---|---|---|---|\n",
+        std::thread::available_parallelism().map_or(0, std::num::NonZero::get)
+    );
+    for (k, &(queries, _, threads)) in configurations.iter().enumerate() {
+        let wall = median(&mut walls[k]);
+        let used = if cores[k].is_empty() { "n/a".to_string() } else { format!("{:.2}", median(&mut cores[k])) };
+        let _ = writeln!(table, "| {queries} | {threads} | {wall:.3e} | {:.3e} | {used} |", samples / wall);
+    }
+    let data = concat!(env!("CARGO_MANIFEST_DIR"), "/docs/data");
+    std::fs::create_dir_all(data).expect("docs/data is writable");
+    std::fs::write(format!("{data}/render_speed.md"), table).expect("write the table");
 }
 
 /// Image size, samples per pixel and seed of the converged path-traced references.
@@ -54,7 +151,7 @@ fn timed_render(scene: &Scene, integrator: Integrator, spp: u32, seed: u64) -> (
 /// tracing at 1…64 spp, with wall times; writes the CSV and a Markdown table.
 fn write_accuracy_tables() {
     let cases = [
-        ("clutter", scenes::clutter_forest(300, 1)),
+        ("clutter", scenes::clutter_forest(scenes::CLUTTER_COUNT, 1)),
         ("fog", scenes::fog_street(0.08)),
         ("mirrors", scenes::mirror_spheres(true)),
         ("motion", scenes::moving_ball(2.0)),

@@ -297,6 +297,24 @@ mod tests {
         assert!(skipped_checked >= 30 && needed_checked >= 8);
     }
 
+    /// Every built-in scene renders to the same linear radiances with the kd-tree and with the
+    /// brute-force loop, for both integrators (so every closest-hit and shadow query agreed).
+    #[test]
+    fn kd_tree_renders_are_identical_to_brute_force_on_every_built_in_scene() {
+        for (name, _) in scenes::CATALOGUE {
+            let scene = scenes::by_name(name).unwrap();
+            let brute = scene.without_kd_tree();
+            assert_eq!(brute.kd_tree_spheres(), 0);
+            for integrator in [Integrator::Whitted { max_depth: 8 }, Integrator::PathTracer { max_depth: 3 }] {
+                let plan = analyze(&scene).plan.for_integrator(integrator);
+                let settings = Settings { integrator, ..Settings::whitted(24, 18, 2, plan) };
+                let fast = render(&scene, &settings, &|_| {}).unwrap();
+                let slow = render(&brute, &settings, &|_| {}).unwrap();
+                assert_eq!(fast, slow, "{name} with {integrator:?}");
+            }
+        }
+    }
+
     #[test]
     fn bad_sizes_and_sample_counts_are_refused() {
         let scene = scenes::moving_ball(0.0).unwrap();

@@ -63,3 +63,17 @@ fn bad_input_exits_2_with_one_line_and_writes_nothing() {
         assert!(!path.exists(), "{args:?} wrote a file");
     }
 }
+
+/// Off a terminal (stderr is a pipe here) a render long enough for a progress bar writes only
+/// the one-line summary to stderr: no bar, no carriage returns, no escape sequences.
+#[test]
+fn render_off_a_terminal_writes_no_progress() {
+    let path = scratch("long.png");
+    let out = hw3(&["render", "still", "--spp", "1", "--size", "520x510", "--out", path.to_str().unwrap()]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let stderr = String::from_utf8(out.stderr).unwrap();
+    assert_eq!(stderr.lines().count(), 1, "{stderr}");
+    assert!(stderr.starts_with("still: 520x510 at 1 spp"), "{stderr}");
+    assert!(!stderr.contains(['\r', '\u{1b}']) && !stderr.contains("rendering"), "{stderr:?}");
+    assert!(out.stdout.is_empty());
+}

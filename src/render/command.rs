@@ -3,6 +3,7 @@
 
 use super::analysis::{Analysis, Pass, Passes, analyze};
 use super::{RenderError, Settings, render, scenes};
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::fmt::Write as _;
 use std::io::IsTerminal as _;
 use std::time::Instant;
@@ -111,17 +112,47 @@ pub struct RenderOutput {
     pub summary: String,
 }
 
-/// `hw3 render`: renders a built-in scene with Whitted tracing. Shows a row counter on stderr when
-/// stderr is a terminal, nothing otherwise.
+/// Renders of more camera samples than this show a progress bar (on a terminal): smaller ones
+/// finish before a bar would be worth drawing.
+pub const PROGRESS_MIN_SAMPLES: u64 = 1 << 18;
+
+/// `hw3 render`: renders a built-in scene with Whitted tracing. Draws a progress bar on stderr
+/// when stderr is a terminal and the render is long ([`PROGRESS_MIN_SAMPLES`]); writes nothing
+/// to stderr otherwise (a pipe or a file gets only the summary `main` prints).
 ///
 /// # Errors
 /// [`RenderError`] for an unknown scene or an out-of-range size or sample count (checked before
 /// any work is done).
+///
+/// # Examples
+/// ```
+/// use hw3::render::command::{render_scene, EffectsMode};
+/// let out = render_scene("still", 1, (8, 6), EffectsMode::Auto).unwrap();
+/// assert!(out.summary.starts_with("still: 8x6 at 1 spp"));
+/// ```
 pub fn render_scene(
     scene_name: &str,
     spp: u32,
     size: (u32, u32),
     mode: EffectsMode,
+) -> Result<RenderOutput, RenderError> {
+    let target =
+        if std::io::stderr().is_terminal() { ProgressDrawTarget::stderr() } else { ProgressDrawTarget::hidden() };
+    render_scene_to(scene_name, spp, size, mode, target)
+}
+
+/// [`render_scene`] drawing its progress bar (rows done, elapsed time, estimated time left) to
+/// `target` instead of stderr. The bar is drawn only for renders of more than
+/// [`PROGRESS_MIN_SAMPLES`] camera samples, and cleared when the render ends.
+///
+/// # Errors
+/// As [`render_scene`]; nothing is drawn when an error is returned.
+pub fn render_scene_to(
+    scene_name: &str,
+    spp: u32,
+    size: (u32, u32),
+    mode: EffectsMode,
+    target: ProgressDrawTarget,
 ) -> Result<RenderOutput, RenderError> {
     let scene = scenes::by_name(scene_name)?;
     let mut settings = Settings::whitted(size.0, size.1, spp, Passes::all());
@@ -130,20 +161,16 @@ pub fn render_scene(
     }
     let passes = settings.passes;
     super::check_settings(&settings)?;
-    let height = size.1;
-    let show_progress =
-        std::io::stderr().is_terminal() && u64::from(size.0) * u64::from(height) * u64::from(spp) > 1 << 20;
-    let progress = |rows: u32| {
-        if show_progress && (rows.is_multiple_of(8) || rows == height) {
-            eprint!("\rrendering: {rows}/{height} rows");
-        }
-    };
+    let samples = u64::from(size.0) * u64::from(size.1) * u64::from(spp);
+    let target = if samples > PROGRESS_MIN_SAMPLES { target } else { ProgressDrawTarget::hidden() };
+    let bar = ProgressBar::with_draw_target(Some(u64::from(size.1)), target).with_style(
+        ProgressStyle::with_template("rendering {bar:40} {pos}/{len} rows, {elapsed} elapsed, ~{eta} left")
+            .expect("a fixed, valid template"),
+    );
     let start = Instant::now();
-    let image = render(&scene, &settings, &progress)?;
+    let image = render(&scene, &settings, &|rows| bar.set_position(u64::from(rows)))?;
     let seconds = start.elapsed().as_secs_f64();
-    if show_progress {
-        eprintln!();
-    }
+    bar.finish_and_clear();
     let run: Vec<&str> = Pass::ALL.iter().filter(|&&p| passes.get(p)).map(|p| p.name()).collect();
     let png = crate::plot::png_bytes("render.png", &image.to_rgb8())
         .expect("encoding an in-memory RGB image cannot fail")
@@ -189,6 +216,63 @@ mod tests {
         let out = render_scene("still", 1, (8, 6), EffectsMode::All).unwrap();
         assert!(out.png.starts_with(b"\x89PNG"));
         assert!(out.summary.contains("time_sampling"));
+    }
+
+    /// A terminal stand-in that records what indicatif draws.
+    #[derive(Debug, Clone, Default)]
+    struct RecordingTerminal(std::sync::Arc<std::sync::Mutex<String>>);
+
+    impl RecordingTerminal {
+        fn record(&self, text: &str) -> std::io::Result<()> {
+            self.0.lock().expect("no test thread panicked while drawing").push_str(text);
+            Ok(())
+        }
+    }
+
+    impl indicatif::TermLike for RecordingTerminal {
+        fn width(&self) -> u16 {
+            100
+        }
+        fn move_cursor_up(&self, _: usize) -> std::io::Result<()> {
+            Ok(())
+        }
+        fn move_cursor_down(&self, _: usize) -> std::io::Result<()> {
+            Ok(())
+        }
+        fn move_cursor_right(&self, _: usize) -> std::io::Result<()> {
+            Ok(())
+        }
+        fn move_cursor_left(&self, _: usize) -> std::io::Result<()> {
+            Ok(())
+        }
+        fn write_line(&self, text: &str) -> std::io::Result<()> {
+            self.record(&format!("{text}\n"))
+        }
+        fn write_str(&self, text: &str) -> std::io::Result<()> {
+            self.record(text)
+        }
+        fn clear_line(&self) -> std::io::Result<()> {
+            self.record("<clear>")
+        }
+        fn flush(&self) -> std::io::Result<()> {
+            Ok(())
+        }
+    }
+
+    /// On a terminal a long render draws the bar (with its row count); a short one draws nothing.
+    #[test]
+    fn long_renders_draw_a_progress_bar_on_a_terminal_and_short_ones_do_not() {
+        let draw = |size: (u32, u32)| {
+            let terminal = RecordingTerminal::default();
+            let target = ProgressDrawTarget::term_like(Box::new(terminal.clone()));
+            render_scene_to("still", 1, size, EffectsMode::Auto, target).unwrap();
+            terminal.0.lock().unwrap().clone()
+        };
+        let long = (520, 510);
+        assert!(u64::from(long.0 * long.1) > PROGRESS_MIN_SAMPLES);
+        let drawn = draw(long);
+        assert!(drawn.contains("rendering") && drawn.contains("/510 rows"), "{drawn}");
+        assert_eq!(draw((64, 48)), "");
     }
 
     #[test]

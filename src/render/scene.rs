@@ -6,7 +6,9 @@
 
 use crate::geometry::sphere::{first_hit_stable, surface_hit};
 use crate::geometry::{InputError, Ray, Sphere, require_finite};
+use crate::kdtree::{BuildError, KdTree};
 use glam::DVec3;
+use std::sync::Arc;
 
 /// A pinhole camera with a shutter interval (distribution ray tracing samples times inside it).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -188,13 +190,66 @@ impl Fog {
 }
 
 /// A complete, validated scene. Build it with [`Scene::new`].
-#[derive(Debug, Clone, PartialEq)]
+///
+/// Equality compares the scene description only (camera, objects, lights, medium, background),
+/// not whether ray queries go through a kd-tree: [`Scene::without_kd_tree`] is the same scene.
+#[derive(Debug, Clone)]
 pub struct Scene {
     camera: Camera,
     objects: Vec<Object>,
     point_lights: Vec<PointLight>,
     fog: Option<Fog>,
     background: DVec3,
+    /// The kd-tree over the static spheres, shared by the clones [`Scene::with_camera`] makes;
+    /// `None` when the scene has no static sphere or acceleration was switched off.
+    acceleration: Option<Arc<Acceleration>>,
+}
+
+impl PartialEq for Scene {
+    fn eq(&self, other: &Self) -> bool {
+        (self.camera, &self.objects, &self.point_lights, self.fog, self.background)
+            == (other.camera, &other.objects, &other.point_lights, other.fog, other.background)
+    }
+}
+
+/// The static spheres of a scene in a kd-tree ([`crate::kdtree`]), and the objects that stay
+/// outside it because a tree built once cannot hold them: moving spheres (their bounds depend on
+/// the ray's time) and quads (the tree holds spheres only).
+#[derive(Debug, Clone)]
+struct Acceleration {
+    tree: KdTree,
+    /// Object index of each sphere in the tree, increasing (tree index `k` is object `tree_objects[k]`).
+    tree_objects: Vec<usize>,
+    /// Indices of the objects tested one by one, increasing.
+    others: Vec<usize>,
+}
+
+impl Acceleration {
+    /// The tree over the static spheres of `objects`, or `None` when there is none.
+    fn build(objects: &[Object]) -> Result<Option<Self>, InputError> {
+        let (mut tree_objects, mut spheres, mut others) = (Vec::new(), Vec::new(), Vec::new());
+        for (index, object) in objects.iter().enumerate() {
+            match object.shape {
+                Shape::Sphere { sphere, velocity } if velocity == DVec3::ZERO => {
+                    tree_objects.push(index);
+                    spheres.push(sphere);
+                }
+                _ => others.push(index),
+            }
+        }
+        if spheres.is_empty() {
+            return Ok(None);
+        }
+        let tree = KdTree::build(&spheres).map_err(|error| match error {
+            BuildError::InvalidSphere { source, .. } => source,
+            other => InputError::OutOfRange {
+                name: "static spheres",
+                value: other.to_string(),
+                expected: "a set the kd-tree can index",
+            },
+        })?;
+        Ok(Some(Self { tree, tree_objects, others }))
+    }
 }
 
 /// The closest intersection found along a ray.
@@ -254,7 +309,30 @@ impl Scene {
             require_scalar_range("fog sigma_s", fog.sigma_s, 0.0, f64::MAX, "finite and ≥ 0")?;
         }
         require_non_negative("background", background)?;
-        Ok(Self { camera, objects, point_lights, fog, background })
+        let acceleration = Acceleration::build(&objects)?.map(Arc::new);
+        Ok(Self { camera, objects, point_lights, fog, background, acceleration })
+    }
+
+    /// The same scene with every ray query answered by testing every object (the brute-force
+    /// reference that the kd-tree must reproduce bit for bit).
+    ///
+    /// # Examples
+    /// ```
+    /// let scene = hw3::render::scenes::clutter_forest(50, 1).unwrap();
+    /// assert_eq!(scene.kd_tree_spheres(), 50);
+    /// let brute = scene.without_kd_tree();
+    /// assert_eq!((brute.kd_tree_spheres(), &brute), (0, &scene));
+    /// ```
+    #[must_use]
+    pub fn without_kd_tree(&self) -> Self {
+        Self { acceleration: None, ..self.clone() }
+    }
+
+    /// How many spheres the scene's kd-tree holds: every static sphere, or 0 after
+    /// [`Scene::without_kd_tree`]. Moving spheres and quads are never in it.
+    #[must_use]
+    pub fn kd_tree_spheres(&self) -> usize {
+        self.acceleration.as_ref().map_or(0, |a| a.tree_objects.len())
     }
 
     /// The camera.
@@ -296,15 +374,34 @@ impl Scene {
         Ok(Self { camera, ..self.clone() })
     }
 
-    /// The closest hit with `t` in `(0, t_max)` at time `time`, by testing every object (brute
-    /// force; the kd-tree of Q3 replaces this function's body, not its callers).
+    /// The closest hit with `t` in `(0, t_max)` at time `time` (ties go to the lowest object
+    /// index). Static spheres are found through the kd-tree, the other objects by testing each;
+    /// the answer is the brute-force one bit for bit (same solver, same tie rule).
     #[must_use]
     pub fn closest_hit(&self, ray: &Ray<f64>, time: f64, t_max: f64) -> Option<Hit> {
         let mut best: Option<(f64, usize)> = None;
-        for (index, object) in self.objects.iter().enumerate() {
-            let limit = best.map_or(t_max, |(t, _)| t);
-            if let Some(t) = intersect(&object.shape, ray, time).filter(|&t| t < limit) {
+        let mut consider = |index: usize, t: f64| {
+            if best.is_none_or(|(u, j)| t < u || (t == u && index < j)) {
                 best = Some((t, index));
+            }
+        };
+        match &self.acceleration {
+            Some(accel) => {
+                if let Some((k, t)) = accel.tree.closest_hit(ray, 0.0, t_max) {
+                    consider(accel.tree_objects[k], t);
+                }
+                for &index in &accel.others {
+                    if let Some(t) = intersect(&self.objects[index].shape, ray, time).filter(|&t| t < t_max) {
+                        consider(index, t);
+                    }
+                }
+            }
+            None => {
+                for (index, object) in self.objects.iter().enumerate() {
+                    if let Some(t) = intersect(&object.shape, ray, time).filter(|&t| t < t_max) {
+                        consider(index, t);
+                    }
+                }
             }
         }
         best.map(|(t, object)| self.hit_record(ray, time, t, object))
@@ -313,21 +410,43 @@ impl Scene {
     /// Whether anything blocks the open segment `(0, t_max)` of `ray` at `time` (shadow rays).
     #[must_use]
     pub fn occluded(&self, ray: &Ray<f64>, time: f64, t_max: f64) -> bool {
-        self.objects.iter().any(|o| intersect(&o.shape, ray, time).is_some_and(|t| t < t_max))
+        let blocks = |index: usize| intersect(&self.objects[index].shape, ray, time).is_some_and(|t| t < t_max);
+        match &self.acceleration {
+            Some(accel) => {
+                accel.tree.closest_hit(ray, 0.0, t_max).is_some() || accel.others.iter().copied().any(blocks)
+            }
+            None => (0..self.objects.len()).any(blocks),
+        }
     }
 
     /// Every object whose surface the ray crosses in `(0, t_max)`, counted once per crossing
     /// surface (a sphere pierced through counts once): the depth complexity of the ray.
+    ///
+    /// With the kd-tree, the static spheres are walked hit by hit (each query starts where the
+    /// last hit was), so the cost grows with the number of crossings, not with the scene. Two
+    /// spheres whose crossings coincide bit for bit (a duplicated sphere) are then counted once:
+    /// the tree reports one sphere per `t`.
     #[must_use]
     pub fn objects_pierced(&self, ray: &Ray<f64>, time: f64, t_max: f64) -> usize {
-        self.objects.iter().filter(|o| intersect(&o.shape, ray, time).is_some_and(|t| t < t_max)).count()
+        let crosses = |index: usize| intersect(&self.objects[index].shape, ray, time).is_some_and(|t| t < t_max);
+        let Some(accel) = &self.acceleration else {
+            return (0..self.objects.len()).filter(|&index| crosses(index)).count();
+        };
+        let mut pierced: Vec<usize> = Vec::new();
+        let mut t_min = 0.0;
+        while let Some((k, t)) = accel.tree.closest_hit(ray, t_min, t_max) {
+            if !pierced.contains(&k) {
+                pierced.push(k);
+            }
+            t_min = t;
+        }
+        pierced.len() + accel.others.iter().filter(|&&index| crosses(index)).count()
     }
 
     fn hit_record(&self, ray: &Ray<f64>, time: f64, t: f64, object: usize) -> Hit {
         match self.objects[object].shape {
             Shape::Sphere { sphere, velocity } => {
-                let moved = Sphere { center: sphere.center + velocity * time, radius: sphere.radius };
-                let frame = surface_hit(ray, &moved, t);
+                let frame = surface_hit(ray, &position_at(sphere, velocity, time), t);
                 Hit { t, point: frame.point, normal: frame.normal, object }
             }
             Shape::Quad { corner, edge_u, edge_v } => {
@@ -348,10 +467,7 @@ impl Scene {
 #[must_use]
 pub fn intersect(shape: &Shape, ray: &Ray<f64>, time: f64) -> Option<f64> {
     match *shape {
-        Shape::Sphere { sphere, velocity } => {
-            let moved = Sphere { center: sphere.center + velocity * time, radius: sphere.radius };
-            first_hit_stable(ray, &moved)
-        }
+        Shape::Sphere { sphere, velocity } => first_hit_stable(ray, &position_at(sphere, velocity, time)),
         Shape::Quad { corner, edge_u, edge_v } => {
             let n = edge_u.cross(edge_v);
             let denominator = ray.dir.dot(n);
@@ -370,6 +486,16 @@ pub fn intersect(shape: &Shape, ray: &Ray<f64>, time: f64) -> Option<f64> {
             let b = edge_u.cross(offset).dot(w);
             ((0.0..=1.0).contains(&a) && (0.0..=1.0).contains(&b)).then_some(t)
         }
+    }
+}
+
+/// The sphere at `time`. A static sphere is returned untouched (no `+ 0·t`, which would turn a
+/// `−0.0` coordinate into `+0.0`), so the kd-tree and the brute-force loop test the same numbers.
+fn position_at(sphere: Sphere<f64>, velocity: DVec3, time: f64) -> Sphere<f64> {
+    if velocity == DVec3::ZERO {
+        sphere
+    } else {
+        Sphere { center: sphere.center + velocity * time, radius: sphere.radius }
     }
 }
 
@@ -503,6 +629,55 @@ mod tests {
         let probe = ray([2.0, 0.0, 5.0], [0.0, 0.0, -1.0]);
         assert_eq!(intersect(&shape, &probe, 0.0), None);
         assert_eq!(intersect(&shape, &probe, 1.0), Some(4.0));
+    }
+
+    /// Random rays from inside and outside a 400-sphere forest with a moving sphere and a quad
+    /// added: closest hits, shadow tests and pierce counts agree with the brute-force loop.
+    #[test]
+    fn kd_tree_queries_equal_brute_force_on_a_mixed_scene() {
+        let forest = crate::render::scenes::clutter_forest(400, 3).unwrap();
+        let mut objects = forest.objects().to_vec();
+        let material = Material::Diffuse { albedo: DVec3::splat(0.5) };
+        let mover = Sphere::new(DVec3::new(0.0, 0.0, -5.0), 2.0).unwrap();
+        objects.insert(7, Object { shape: Shape::Sphere { sphere: mover, velocity: DVec3::X }, material });
+        objects.push(Object::quad(DVec3::new(-30.0, -3.0, -12.0), DVec3::X * 60.0, DVec3::Y * 6.0, material));
+        let scene = Scene::new(*forest.camera(), objects, vec![], None, DVec3::ZERO).unwrap();
+        assert_eq!(scene.kd_tree_spheres(), 400, "the moving sphere and the quad stay outside the tree");
+        let brute = scene.without_kd_tree();
+        let mut rng = crate::rng::seeded(11, 0);
+        let mut point = |half: f64| {
+            let mut coordinate = || crate::rng::uniform_in(&mut rng, -half, half);
+            DVec3::new(coordinate(), coordinate(), coordinate() - 5.0)
+        };
+        let mut hits = 0;
+        for case in 0..2000 {
+            let origin = if case % 2 == 0 { point(8.0) } else { point(30.0) };
+            let ray = Ray::<f64>::new(origin, (point(25.0) - origin).normalize()).unwrap();
+            let (time, t_max) = (f64::from(case % 5) * 0.5, if case % 3 == 0 { 6.0 } else { f64::INFINITY });
+            let hit = scene.closest_hit(&ray, time, t_max);
+            assert_eq!(hit, brute.closest_hit(&ray, time, t_max), "ray {case}");
+            assert_eq!(scene.occluded(&ray, time, t_max), brute.occluded(&ray, time, t_max), "ray {case}");
+            assert_eq!(
+                scene.objects_pierced(&ray, time, t_max),
+                brute.objects_pierced(&ray, time, t_max),
+                "ray {case}"
+            );
+            hits += usize::from(hit.is_some());
+        }
+        assert!((300..1700).contains(&hits), "the rays both hit and miss: {hits} hits of 2000");
+    }
+
+    /// The documented exception of the hit-by-hit walk: a sphere duplicated bit for bit is crossed
+    /// at the same `t` as its twin, and the tree reports one sphere per `t`.
+    #[test]
+    fn duplicated_sphere_is_pierced_once_through_the_tree_and_twice_by_brute_force() {
+        let ball = Object::sphere(Sphere::new(DVec3::ZERO, 1.0).unwrap(), Material::Diffuse { albedo: DVec3::ONE });
+        let camera = Camera::looking_at(DVec3::new(0.0, 0.0, 5.0), DVec3::ZERO, 40.0);
+        let scene = Scene::new(camera, vec![ball, ball], vec![], None, DVec3::ZERO).unwrap();
+        let probe = ray([0.0, 0.0, 5.0], [0.0, 0.0, -1.0]);
+        assert_eq!(scene.objects_pierced(&probe, 0.0, f64::INFINITY), 1);
+        assert_eq!(scene.without_kd_tree().objects_pierced(&probe, 0.0, f64::INFINITY), 2);
+        assert_eq!(scene.closest_hit(&probe, 0.0, 9.0).map(|h| h.object), Some(0), "ties go to the lower index");
     }
 
     #[test]

@@ -31,7 +31,7 @@ pub const CATALOGUE: [(&str, &str); 8] = [
 /// ```
 pub fn by_name(name: &str) -> Result<Scene, RenderError> {
     let scene = match name {
-        "clutter" => clutter_forest(1500, 1),
+        "clutter" => clutter_forest(CLUTTER_COUNT, 1),
         "fog" => fog_street(0.08),
         "clear-street" => fog_street(0.0),
         "mirrors" => mirror_spheres(true),
@@ -46,6 +46,8 @@ pub fn by_name(name: &str) -> Result<Scene, RenderError> {
     Ok(scene?)
 }
 
+/// Number of spheres of the built-in `clutter` scene.
+pub const CLUTTER_COUNT: usize = 1500;
 /// Half-width `W/2` of the clutter slab's square front face.
 pub const CLUTTER_HALF_WIDTH: f64 = 20.0;
 /// Depth `Z` of the clutter slab (it spans `z ∈ [−Z, 0]`).
