@@ -763,6 +763,25 @@ mod tests {
         }
     }
 
+    /// Value stability: seeds 1–5 of every question, statement and key, pinned (a change here
+    /// changes every student's variant).
+    #[test]
+    fn variants_are_pinned_for_seeds_1_to_5() {
+        for question in QUESTIONS {
+            let text: String = (1..=5)
+                .map(|s| {
+                    format!(
+                        "{}\n-- key --\n{}\n",
+                        variant(question, s).unwrap().statement,
+                        answers_key_for(question, s).unwrap()
+                    )
+                })
+                .collect();
+            let name = format!("checker_{question}_variants");
+            crate::test_support::insta_settings().bind(|| insta::assert_snapshot!(name, text));
+        }
+    }
+
     #[test]
     fn edit_distance_basics() {
         assert_eq!(edit_distance("kitten", "sitting"), 3);

@@ -118,14 +118,4 @@ mod tests {
         assert!((value("q4b.blind_half_angle_deg") - 19.471_220_634_490_69).abs() < 1e-9);
         assert!((value("q4b.lost_fraction") - 1.0 / 9.0).abs() < 1e-12);
     }
-
-    #[test]
-    fn variants_are_pinned_for_seeds_1_to_5() {
-        let text: String = (1..=5)
-            .map(|s| {
-                format!("{}\n-- key --\n{}\n", variant(s).statement, super::super::answers_key_for("q4", s).unwrap())
-            })
-            .collect();
-        crate::test_support::insta_settings().bind(|| insta::assert_snapshot!("checker_q4_variants", text));
-    }
 }
