@@ -43,6 +43,13 @@ pub enum Expected {
         /// The plane crossings of the key's trace (`"y = 3"`, t), used to explain a wrong bound.
         planes: Vec<(String, f64)>,
     },
+    /// One word out of a few (`"yes"`, `"no"`, `"impractical"`), compared case-insensitively.
+    /// The file may give it as `a = "no"` or `a = { answer = "no", why = "..." }`; the `why` is
+    /// echoed in the feedback, never graded.
+    Choice {
+        /// The key's word.
+        value: &'static str,
+    },
     /// Any vector pointing within `angle_tol` radians of `value`, whatever its length (for
     /// recognising wrong answers whose length is also off).
     Parallel {
@@ -245,6 +252,26 @@ enum Given {
     Number(f64),
     Vector([f64; 3]),
     Trace(Vec<ExpectedLeaf>),
+    Choice { answer: String, why: Option<String> },
+}
+
+fn read_choice(key: &str, value: &toml::Value) -> Result<Given, CheckError> {
+    let bad = |problem: String| CheckError::BadValue { key: key.to_string(), problem };
+    let text = |v: &toml::Value| v.as_str().map(|s| s.trim().to_lowercase());
+    match value {
+        toml::Value::String(_) => Ok(Given::Choice { answer: text(value).unwrap_or_default(), why: None }),
+        toml::Value::Table(table) => {
+            let answer =
+                table.get("answer").and_then(text).ok_or_else(|| bad("needs answer = \"yes\" or \"no\"".into()))?;
+            let why = match table.get("why") {
+                None => None,
+                Some(toml::Value::String(why)) => Some(why.clone()),
+                Some(other) => return Err(bad(format!("`why` must be a string, got {}", other.type_str()))),
+            };
+            Ok(Given::Choice { answer, why })
+        }
+        other => Err(bad(format!("expected \"yes\", \"no\" or \"impractical\", got {} `{other}`", other.type_str()))),
+    }
 }
 
 /// A t bound: a number, or the string `"inf"`.
@@ -355,6 +382,7 @@ fn read_value(key: &str, value: &toml::Value, expected: &Expected) -> Result<Giv
     match expected {
         Expected::Number { .. } => number(key, value).map(Given::Number),
         Expected::Trace { .. } => read_trace(key, value).map(Given::Trace),
+        Expected::Choice { .. } => read_choice(key, value),
         Expected::Vector { .. } | Expected::Direction { .. } | Expected::Parallel { .. } => {
             let bad = |problem: String| CheckError::BadValue { key: key.to_string(), problem };
             let toml::Value::Array(items) = value else {
@@ -412,6 +440,10 @@ fn compare(expected: &Expected, given: &Given) -> (bool, String) {
             let (credit, words) = grade_trace(leaves, planes, given);
             (credit == 1.0, words)
         }
+        (Expected::Choice { value }, Given::Choice { answer, why }) => {
+            let echo = why.as_ref().map_or(String::new(), |w| format!(" (your reason, not graded: {w})"));
+            (answer == value, format!("the key says {value}{echo}"))
+        }
         _ => (false, "answer has the wrong shape".into()),
     }
 }
@@ -423,6 +455,7 @@ fn show_expected(expected: &Expected) -> String {
             show_vector(*value)
         }
         Expected::Trace { leaves, .. } => leaves.iter().map(show_leaf).collect::<Vec<_>>().join("; "),
+        Expected::Choice { value } => (*value).to_string(),
     }
 }
 
@@ -448,6 +481,7 @@ fn grade(part: &Part, given: Option<&Given>) -> PartResult {
         Given::Number(x) => format!("{x}"),
         Given::Vector(v) => show_vector(*v),
         Given::Trace(leaves) => leaves.iter().map(show_leaf).collect::<Vec<_>>().join("; "),
+        Given::Choice { answer, .. } => answer.clone(),
     };
     let (ok, words) = compare(&part.expected, given);
     let trace_credit = match (&part.expected, given) {
@@ -558,6 +592,9 @@ pub fn template(seed: u64) -> Result<String, CheckError> {
                     format!("[x, y, z], unit length, within {angle_tol:.0e} rad")
                 }
                 Expected::Trace { .. } => "[{ path = [...], tmin = N, tmax = N or \"inf\" }, ...]".to_string(),
+                Expected::Choice { .. } => {
+                    "\"yes\", \"no\" or \"impractical\"; or { answer = ..., why = \"...\" }".to_string()
+                }
             };
             let _ = writeln!(out, "# {} ({shape}, {} points)\n# {name} = ", part.prompt, part.points);
         }
@@ -605,6 +642,7 @@ pub fn answers_key_for(question: &str, seed: u64) -> Result<String, CheckError> 
             Expected::Vector { value, .. } | Expected::Direction { value, .. } | Expected::Parallel { value, .. } => {
                 format!("[{:?}, {:?}, {:?}]", value[0], value[1], value[2])
             }
+            Expected::Choice { value } => format!("{value:?}"),
             Expected::Trace { leaves, .. } => {
                 let bound = |t: f64| if t.is_infinite() { "\"inf\"".to_string() } else { format!("{t:?}") };
                 let rows: Vec<String> = leaves
