@@ -15,6 +15,7 @@ pub mod rng;
 pub mod q1_hard_scenes;
 pub mod q2_ray_sphere;
 pub mod q3_kd_traversal;
+pub mod q5_effect_tables;
 
 pub mod checker;
 
@@ -38,7 +39,7 @@ pub struct Answers {
 /// ```
 #[must_use]
 pub fn all_answers() -> Vec<Answers> {
-    vec![q1_hard_scenes::answers(), q2_ray_sphere::answers(), q3_kd_traversal::answers()]
+    vec![q1_hard_scenes::answers(), q2_ray_sphere::answers(), q3_kd_traversal::answers(), q5_effect_tables::answers()]
 }
 
 /// Every figure of the course notes, in homework order (deterministic bytes).
@@ -50,6 +51,7 @@ pub fn all_figures() -> Result<Vec<plot::Figure>, plot::PlotError> {
     figures.extend(q1_hard_scenes::figures()?);
     figures.extend(q2_ray_sphere::figures()?);
     figures.extend(q3_kd_traversal::figures()?);
+    figures.extend(q5_effect_tables::figures()?);
     Ok(figures)
 }
 

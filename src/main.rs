@@ -64,6 +64,12 @@ enum Command {
         #[arg(long, value_enum, default_value_t = FormatArg::Text)]
         format: FormatArg,
     },
+    /// Q5: the effect tables (light-path grammar, seed's answers, measured cells).
+    EffectsTable {
+        /// Print one JSON object instead of markdown tables.
+        #[arg(long)]
+        json: bool,
+    },
     /// Print a randomised variant of a question with its solution.
     Variant {
         /// The question (q2).
@@ -257,6 +263,10 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             Ok(())
         }
         Some(Command::Render { scene, spp, size, out, effects }) => render_to_file(&scene, spp, &size, &out, &effects),
+        Some(Command::EffectsTable { json }) => {
+            println!("{}", hw3::q5_effect_tables::effects_table_command(json).map_err(anyhow::Error::msg)?);
+            Ok(())
+        }
     }
 }
 
