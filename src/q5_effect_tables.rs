@@ -469,6 +469,19 @@ mod tests {
     }
 
     #[test]
+    fn effects_table_json_has_every_cell_with_its_seed_answer() {
+        let value: serde_json::Value = serde_json::from_str(&effects_table_command(true).unwrap()).unwrap();
+        let grammar = value["grammar"].as_array().unwrap();
+        assert_eq!(grammar.len(), 2 * EFFECTS.len() * METHODS.len());
+        let first = &grammar[0];
+        assert_eq!((first["effect"].as_str(), first["method"].as_str()), (Some("a"), Some("radiosity")));
+        assert_eq!((first["verdict"].as_str(), first["seed"].as_str()), (Some("no"), Some("no")));
+        assert_eq!(value["measured"].as_array().unwrap().len(), 4);
+        let text = effects_table_command(false).unwrap();
+        assert!(text.contains("No [LGE] (seed: No)") && text.contains("measured verdict"));
+    }
+
+    #[test]
     fn grammar_tables_snapshot() {
         crate::test_support::insta_settings().bind(|| {
             insta::assert_snapshot!("q5_grammar_tables", grammar_table_markdown().unwrap());

@@ -110,16 +110,27 @@ fn glow_region() -> Vec<(DVec3, DVec3)> {
 
 /// A method that the experiments run.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Measured {
-    Radiosity,
+pub enum Measured {
+    /// Radiosity with `subdivisions²` patches per quad and `samples²` form-factor samples per patch.
+    Radiosity {
+        /// Patches per quad edge.
+        subdivisions: usize,
+        /// Form-factor samples per patch edge.
+        samples: usize,
+    },
+    /// The renderer's Whitted tracer (16 samples per point).
     Whitted,
+    /// The renderer's path tracer, the reference ([`REFERENCE_SPP`] samples per point).
     PathTracing,
 }
+
+/// Radiosity at the measured table's mesh ([`TABLE_MESH`]).
+const TABLE_RADIOSITY: Measured = Measured::Radiosity { subdivisions: TABLE_MESH.0, samples: TABLE_MESH.1 };
 
 impl Measured {
     fn id(self) -> &'static str {
         match self {
-            Measured::Radiosity => "radiosity",
+            Measured::Radiosity { .. } => "radiosity",
             Measured::Whitted => "whitted",
             Measured::PathTracing => "path_tracing",
         }
@@ -130,8 +141,8 @@ impl Measured {
 /// direction will do; the eye ray comes straight down the normal).
 fn mean_radiance(scene: &Scene, method: Measured, points: &[(DVec3, DVec3)]) -> Result<DVec3, RadiosityError> {
     let sum: DVec3 = match method {
-        Measured::Radiosity => {
-            let system = System::new(scene, Mesh::new(scene, TABLE_MESH.0)?, TABLE_MESH.1)?;
+        Measured::Radiosity { subdivisions, samples } => {
+            let system = System::new(scene, Mesh::new(scene, subdivisions)?, samples)?;
             let solution = system.solve(Solver::GaussSeidel, 60).pop().unwrap_or_default();
             points
                 .iter()
@@ -184,7 +195,10 @@ pub struct MeasuredCell {
 
 /// Colour bleeding: the red-to-green ratio on the floor strip beside the left wall, red wall over
 /// white wall, minus 1 (0 = no red tint).
-fn bleeding(method: Measured) -> Result<f64, RadiosityError> {
+///
+/// # Errors
+/// [`RadiosityError`] for a zero mesh count.
+pub fn bleeding(method: Measured) -> Result<f64, RadiosityError> {
     let ratio = |red: bool| -> Result<f64, RadiosityError> {
         let scene = cornell_box(red).map_err(|_| RadiosityError::NoPatches)?;
         let l = mean_radiance(&scene, method, &bleeding_region())?;
@@ -193,8 +207,11 @@ fn bleeding(method: Measured) -> Result<f64, RadiosityError> {
     Ok(ratio(true)? / ratio(false)? - 1.0)
 }
 
-/// Ambient glow: mean luminance-like (channel mean) radiance on the ceiling away from the light.
-fn glow(method: Measured) -> Result<f64, RadiosityError> {
+/// Ambient glow: the channel-mean radiance on the ceiling away from the light.
+///
+/// # Errors
+/// [`RadiosityError`] for a zero mesh count.
+pub fn glow(method: Measured) -> Result<f64, RadiosityError> {
     let scene = cornell_box(true).map_err(|_| RadiosityError::NoPatches)?;
     Ok(mean_radiance(&scene, method, &glow_region())?.element_sum() / 3.0)
 }
@@ -210,7 +227,7 @@ pub fn measured_table() -> Result<Vec<MeasuredCell>, RadiosityError> {
     let experiments: [(&str, Experiment); 2] = [("b", bleeding), ("e", glow)];
     for (effect, measure) in experiments {
         let reference = measure(Measured::PathTracing)?;
-        for method in [Measured::Radiosity, Measured::Whitted] {
+        for method in [TABLE_RADIOSITY, Measured::Whitted] {
             let value = measure(method)?;
             let fraction = value / reference;
             let verdict = if fraction >= YES_FRACTION {
@@ -232,8 +249,8 @@ pub fn measured_table() -> Result<Vec<MeasuredCell>, RadiosityError> {
 /// The measured table as markdown.
 #[must_use]
 pub fn measured_table_markdown(cells: &[MeasuredCell]) -> String {
-    let mut out = format!(
-        "| effect | method | measured | path-traced reference | fraction | measured verdict | grammar |\n|---|---|---|---|---|---|---|\n"
+    let mut out = String::from(
+        "| effect | method | measured | path-traced reference | fraction | measured verdict | grammar |\n|---|---|---|---|---|---|---|\n",
     );
     for c in cells {
         out.push_str(&format!(

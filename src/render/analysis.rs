@@ -1,6 +1,9 @@
 //! Light-path analysis: which of Heckbert's path classes can carry energy to the eye in a scene,
 //! derived from its materials, lights, medium and motion, and the render passes that follow.
 //!
+//! Which letters a class needs is a question about regular languages, answered by [`grammar`]
+//! (shared with the Q5 effect tables): a class is kept only when its language meets the scene's.
+//!
 //! The analysis is *conservative where it is coarse*: a class is dropped only when a letter it
 //! needs is absent from the scene (no mirror, no medium, nothing moving, no two diffuse surfaces),
 //! or, for caustics, when no light sees any specular surface (checked by shadow rays to sample
