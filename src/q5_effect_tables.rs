@@ -303,14 +303,14 @@ fn cell_text(cell: &Cell) -> String {
         SeedAnswer::NotAsked => "",
     };
     match &cell.witness {
-        Some(w) => format!("{} [{w}]{seed}", cell.verdict.text()),
+        Some(w) => format!("{} `{w}`{seed}", cell.verdict.text()),
         None => format!("{}{seed}", cell.verdict.text()),
     }
 }
 
 /// The grammar table as markdown, one table per light kind; a No or Impractical cell prints the
-/// shortest path the method misses (or samples only by chance) in brackets, and the seed's
-/// answer beside it.
+/// shortest path the method misses (or samples only by chance) as code, and the seed's answer
+/// beside it.
 ///
 /// # Errors
 /// As [`decide`].
@@ -478,7 +478,7 @@ mod tests {
         assert_eq!((first["verdict"].as_str(), first["seed"].as_str()), (Some("no"), Some("no")));
         assert_eq!(value["measured"].as_array().unwrap().len(), 4);
         let text = effects_table_command(false).unwrap();
-        assert!(text.contains("No [LGE] (seed: No)") && text.contains("measured verdict"));
+        assert!(text.contains("No `LGE` (seed: No)") && text.contains("measured verdict"));
     }
 
     #[test]
