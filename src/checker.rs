@@ -3,6 +3,7 @@
 mod q2;
 mod q3;
 mod q4;
+mod q5;
 
 use serde::Serialize;
 use std::fmt::Write as _;
@@ -113,7 +114,7 @@ pub struct Variant {
 }
 
 /// The questions the checker grades, in order.
-pub const QUESTIONS: [&str; 3] = ["q2", "q3", "q4"];
+pub const QUESTIONS: [&str; 4] = ["q2", "q3", "q4", "q5"];
 
 /// The variant of `question` for `seed`.
 ///
@@ -130,6 +131,7 @@ pub fn variant(question: &str, seed: u64) -> Result<Variant, CheckError> {
         "q2" => Ok(q2::variant(seed)),
         "q3" => Ok(q3::variant(seed)),
         "q4" => Ok(q4::variant(seed)),
+        "q5" => Ok(q5::variant(seed)),
         other => Err(CheckError::UnknownQuestion(other.to_string())),
     }
 }
@@ -152,7 +154,7 @@ pub enum CheckError {
     #[error("`meta.seed` must be an integer from 0 to 2^63, got {0}")]
     BadSeed(String),
     /// A question id the checker does not know.
-    #[error("unknown question `{0}`; known: q2, q3, q4")]
+    #[error("unknown question `{0}`; known: q2, q3, q4, q5")]
     UnknownQuestion(String),
 }
 

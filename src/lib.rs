@@ -16,6 +16,7 @@ pub mod q1_hard_scenes;
 pub mod q2_ray_sphere;
 pub mod q3_kd_traversal;
 pub mod q4_light_probe;
+pub mod q5_effect_tables;
 
 pub mod checker;
 
@@ -39,7 +40,13 @@ pub struct Answers {
 /// ```
 #[must_use]
 pub fn all_answers() -> Vec<Answers> {
-    vec![q1_hard_scenes::answers(), q2_ray_sphere::answers(), q3_kd_traversal::answers(), q4_light_probe::answers()]
+    vec![
+        q1_hard_scenes::answers(),
+        q2_ray_sphere::answers(),
+        q3_kd_traversal::answers(),
+        q4_light_probe::answers(),
+        q5_effect_tables::answers(),
+    ]
 }
 
 /// Every figure of the course notes, in homework order (deterministic bytes).
@@ -52,6 +59,7 @@ pub fn all_figures() -> Result<Vec<plot::Figure>, plot::PlotError> {
     figures.extend(q2_ray_sphere::figures()?);
     figures.extend(q3_kd_traversal::figures()?);
     figures.extend(q4_light_probe::figures()?);
+    figures.extend(q5_effect_tables::figures()?);
     Ok(figures)
 }
 

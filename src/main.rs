@@ -64,6 +64,12 @@ enum Command {
         #[arg(long, value_enum, default_value_t = FormatArg::Text)]
         format: FormatArg,
     },
+    /// Q5: the effect tables (light-path grammar, seed's answers, measured cells).
+    EffectsTable {
+        /// Print one JSON object instead of markdown tables.
+        #[arg(long)]
+        json: bool,
+    },
     /// Print a randomised variant of a question with its solution.
     Variant {
         /// The question (q2).
@@ -190,7 +196,19 @@ impl std::fmt::Display for SomeWrong {
 
 impl std::error::Error for SomeWrong {}
 
+/// Lets `hw3 … | head` end quietly: with SIGPIPE at its default, a closed pipe ends the process
+/// like any Unix filter, instead of making `println!` panic on a broken pipe.
+fn restore_default_sigpipe() {
+    #[cfg(unix)]
+    // SAFETY: called first thing in main, before any thread exists; it only resets the
+    // disposition of one signal to its default.
+    unsafe {
+        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
+    }
+}
+
 fn main() -> ExitCode {
+    restore_default_sigpipe();
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
         Err(e) => {
@@ -295,6 +313,10 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             };
             let out = hw3::q4_light_probe::irradiance_command(&request).map_err(|e| UsageError(e.to_string()))?;
             println!("{out}");
+            Ok(())
+        }
+        Some(Command::EffectsTable { json }) => {
+            println!("{}", hw3::q5_effect_tables::effects_table_command(json).map_err(anyhow::Error::msg)?);
             Ok(())
         }
     }

@@ -41,7 +41,7 @@ fn template_then_key_round_trip() {
     let perfect = hw3(&["check", key.to_str().unwrap(), "--format", "gradescope"]);
     assert_eq!(perfect.status.code(), Some(0));
     let results: serde_json::Value = serde_json::from_slice(&perfect.stdout).unwrap();
-    assert_eq!(results["score"], 20.0);
+    assert_eq!(results["score"], 32.0);
     assert!(results["tests"].as_array().unwrap().iter().all(|t| t["status"] == "passed"));
     std::fs::remove_dir_all(&dir).ok();
 }

@@ -1,17 +1,23 @@
 //! Light-path analysis: which of Heckbert's path classes can carry energy to the eye in a scene,
 //! derived from its materials, lights, medium and motion, and the render passes that follow.
 //!
+//! Which letters a class needs is a question about regular languages, answered by [`grammar`]
+//! (shared with the Q5 effect tables): a class is kept only when its language meets the scene's.
+//!
 //! The analysis is *conservative where it is coarse*: a class is dropped only when a letter it
 //! needs is absent from the scene (no mirror, no medium, nothing moving, no two diffuse surfaces),
 //! or, for caustics, when no light sees any specular surface (checked by shadow rays to sample
 //! points on each mirror). A coarse "present" can keep a pass that turns out to add nothing; a
 //! "skipped" is always safe, which is what the plan tests check.
 
+pub mod grammar;
+
 use super::integrator::Integrator;
 use super::scene::{Material, Scene, Shape};
 use crate::geometry::Ray;
 use crate::geometry::sphere::spawn_origin;
 use glam::DVec3;
+use grammar::{Lang, Letter, common_word};
 use serde::Serialize;
 
 /// A render pass that the planner can switch on or off.
@@ -171,18 +177,18 @@ pub fn analyze(scene: &Scene) -> Analysis {
     let yes_no = |ok: bool, yes: &str, no: &str| {
         if ok { yes.to_string() } else { no.to_string() }
     };
-    let classes = vec![
+    let mut classes = vec![
         PathClass {
             notation: "LE",
             effect: "an area light seen directly",
-            carries_energy: letters.area_light,
+            carries_energy: true,
             reason: yes_no(letters.area_light, "an emitter quad", "no area light"),
             pass: None,
         },
         PathClass {
             notation: "LDE",
             effect: "diffuse shading and shadows",
-            carries_energy: light && letters.diffuse,
+            carries_energy: true,
             reason: yes_no(
                 light && letters.diffuse,
                 "a light and a diffuse surface",
@@ -193,21 +199,21 @@ pub fn analyze(scene: &Scene) -> Analysis {
         PathClass {
             notation: "LGE",
             effect: "glossy highlights",
-            carries_energy: light && letters.glossy,
+            carries_energy: true,
             reason: yes_no(light && letters.glossy, "a light and a glossy surface", "no glossy surface"),
             pass: None,
         },
         PathClass {
             notation: "L(D|G)?S+E",
             effect: "reflections and refractions (mirrors, glass)",
-            carries_energy: letters.specular && (letters.area_light || (light && diffuse_like)),
+            carries_energy: true,
             reason: yes_no(letters.specular, "a mirror or glass", "no mirror or glass"),
             pass: Some(Pass::SpecularRecursion),
         },
         PathClass {
             notation: "L(D|G)(D|G)+S*E",
             effect: "indirect light, colour bleeding",
-            carries_energy: light && letters.diffuse_like_objects >= 2,
+            carries_energy: letters.diffuse_like_objects >= 2,
             reason: format!(
                 "{} diffuse or glossy objects; two or more can exchange light",
                 letters.diffuse_like_objects
@@ -217,14 +223,14 @@ pub fn analyze(scene: &Scene) -> Analysis {
         PathClass {
             notation: "LS+(D|G)…E",
             effect: "caustics",
-            carries_energy: letters.lit_specular && diffuse_like,
+            carries_energy: letters.lit_specular,
             reason: yes_no(letters.lit_specular, "a light sees a mirror or glass", "no light sees a mirror or glass"),
             pass: None,
         },
         PathClass {
             notation: "LV(D|G|S)*E",
             effect: "glow of lights in fog (single scattering)",
-            carries_energy: letters.scattering && letters.point_light,
+            carries_energy: letters.point_light,
             reason: yes_no(
                 letters.scattering && letters.point_light,
                 "a scattering medium and a point light",
@@ -233,6 +239,14 @@ pub fn analyze(scene: &Scene) -> Analysis {
             pass: Some(Pass::InScattering),
         },
     ];
+    // The letter test is one language intersection per class: the class must share a path with
+    // the scene's language. The flags left above are what letters cannot say (two objects to
+    // exchange light, a light that sees the mirror, in-scattering only from point lights).
+    let scene_language = scene_language(&letters);
+    for class in &mut classes {
+        let class_language = Lang::parse(class.notation).expect("built-in notation parses");
+        class.carries_energy &= common_word(&class_language, &scene_language).expect("small languages").is_some();
+    }
     let mut plan = Passes { transmittance: letters.extinction, time_sampling: letters.moving, ..Passes::default() };
     for class in &classes {
         if let (true, Some(pass)) = (class.carries_energy, class.pass) {
@@ -244,6 +258,33 @@ pub fn analyze(scene: &Scene) -> Analysis {
     let caustic_from_point = letters.lit_specular && diffuse_like && letters.point_light && !letters.area_light;
     let not_rendered = if caustic_from_point { vec!["LS+(D|G)…E"] } else { vec![] };
     Analysis { classes, extinction: letters.extinction, moving: letters.moving, plan, not_rendered }
+}
+
+/// The paths a scene can carry, as a language over the letters its materials provide:
+/// `L M* E` for area lights (M = the letters present) and `L M* [DGV] M* E` for point lights,
+/// whose paths need one non-delta vertex (a point light seen directly or through mirrors only,
+/// `LS*E`, has measure zero). ∅ without a light.
+#[must_use]
+fn scene_language(letters: &Letters) -> Lang {
+    let present: Vec<Letter> = [
+        (Letter::D, letters.diffuse),
+        (Letter::G, letters.glossy),
+        (Letter::S, letters.specular),
+        (Letter::V, letters.scattering),
+    ]
+    .into_iter()
+    .filter_map(|(l, on)| on.then_some(l))
+    .collect();
+    let any = || Lang::star(Lang::any_of(&present));
+    let light_to = |middle: Lang| Lang::concat(Lang::letter(Letter::L), Lang::concat(middle, Lang::letter(Letter::E)));
+    let area = if letters.area_light { light_to(any()) } else { Lang::Empty };
+    let non_delta: Vec<Letter> = present.iter().copied().filter(|&l| l != Letter::S).collect();
+    let point = if letters.point_light {
+        light_to(Lang::concat(any(), Lang::concat(Lang::any_of(&non_delta), any())))
+    } else {
+        Lang::Empty
+    };
+    Lang::union(area, point)
 }
 
 fn letters(scene: &Scene) -> Letters {

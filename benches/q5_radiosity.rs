@@ -1,0 +1,61 @@
+//! Q5 benchmarks.
+//!
+//! - divan: the grammar table (all cells, both light kinds) and the radiosity form factors of the
+//!   Cornell-like box at 2 × 2 and 4 × 4 patches per quad.
+//! - `cargo bench --bench q5_radiosity` also measures radiosity's accuracy against time: the
+//!   colour-bleeding and ambient-glow values for 1…8 patches per quad edge, against the path-traced
+//!   reference, with the wall time of form factors plus solve; writes
+//!   `docs/data/q5_radiosity_accuracy.md` and `.csv`. `cargo test --benches` runs each divan bench
+//!   once and skips that measurement.
+
+use hw3::q5_effect_tables::experiments::{Measured, bleeding, cornell_system, glow};
+use hw3::q5_effect_tables::grammar_table;
+use hw3::q5_effect_tables::radiosity::Solver;
+use std::fmt::Write as _;
+use std::time::Instant;
+
+fn main() {
+    if std::env::args().any(|a| a == "--bench") {
+        write_accuracy_table();
+    }
+    divan::main();
+}
+
+#[divan::bench]
+fn grammar_table_all_cells() -> usize {
+    grammar_table().expect("built-in languages").len()
+}
+
+#[divan::bench(args = [2, 4])]
+fn radiosity_form_factors_and_solve(subdivisions: usize) -> usize {
+    let (_, system) = cornell_system(subdivisions, 2).expect("built-in scene");
+    system.solve(Solver::GaussSeidel, 40).len()
+}
+
+const LEVELS: [usize; 5] = [1, 2, 4, 6, 8];
+
+fn write_accuracy_table() {
+    let reference =
+        (bleeding(Measured::PathTracing).expect("reference"), glow(Measured::PathTracing).expect("reference"));
+    let mut csv = String::from("subdivisions,patches,seconds,bleeding,glow,bleeding_error,glow_error\n");
+    let mut table = format!(
+        "Reference (path tracing): bleeding {:.4}, glow {:.4}. Radiosity with 2 × 2 form-factor samples per patch; seconds = form factors + 60 Gauss–Seidel sweeps for one scene.\n\n| patches per edge | patches | seconds | bleeding | error | glow | error |\n|---|---|---|---|---|---|---|\n",
+        reference.0, reference.1
+    );
+    for n in LEVELS {
+        let method = Measured::Radiosity { subdivisions: n, samples: 2 };
+        let start = Instant::now();
+        let (_, system) = cornell_system(n, 2).expect("built-in scene");
+        let _ = system.solve(Solver::GaussSeidel, 60);
+        let seconds = start.elapsed().as_secs_f64();
+        let patches = system.mesh.patches.len();
+        let (b, g) = (bleeding(method).expect("mesh"), glow(method).expect("mesh"));
+        let (eb, eg) = ((b / reference.0 - 1.0).abs(), (g / reference.1 - 1.0).abs());
+        let _ = writeln!(csv, "{n},{patches},{seconds:.4e},{b:.4e},{g:.4e},{eb:.4e},{eg:.4e}");
+        let _ = writeln!(table, "| {n} | {patches} | {seconds:.3e} | {b:.4} | {eb:.3} | {g:.4} | {eg:.3} |");
+    }
+    let data = concat!(env!("CARGO_MANIFEST_DIR"), "/docs/data");
+    std::fs::create_dir_all(data).expect("docs/data is writable");
+    std::fs::write(format!("{data}/q5_radiosity_accuracy.csv"), csv).expect("write the CSV");
+    std::fs::write(format!("{data}/q5_radiosity_accuracy.md"), table).expect("write the table");
+}
