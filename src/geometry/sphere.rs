@@ -210,8 +210,25 @@ pub fn surface_hit<T: Real>(ray: &Ray<T>, sphere: &Sphere<T>, t: T) -> SurfaceHi
 /// ```
 #[must_use]
 pub fn reflect<T: Real>(d: T::Vec3, n: T::Vec3) -> T::Vec3 {
+    reflect_with_cosine::<T>(d, n).0
+}
+
+/// [`reflect`], also returning `n̂·d̂`, whose sign tells which side of the surface the reflected
+/// ray leaves by (the side `n` points to when `n̂·d̂ < 0`), so a caller can spawn it with
+/// [`offset_along`] without another dot product.
+///
+/// # Examples
+/// ```
+/// use glam::DVec3;
+/// use hw3::geometry::sphere::reflect_with_cosine;
+/// let (r, cos) = reflect_with_cosine::<f64>(DVec3::new(0.0, -2.0, 0.0), DVec3::Y);
+/// assert_eq!((r, cos), (DVec3::Y, -1.0));
+/// ```
+#[must_use]
+pub fn reflect_with_cosine<T: Real>(d: T::Vec3, n: T::Vec3) -> (T::Vec3, T) {
     let d_hat = d * (T::ONE / T::dot(d, d).sqrt());
-    d_hat - n * (T::TWO * T::dot(n, d_hat))
+    let cos = T::dot(n, d_hat);
+    (d_hat - n * (T::TWO * cos), cos)
 }
 
 /// A secondary-ray origin that cannot re-hit the surface it leaves: the (reprojected) hit point
@@ -239,11 +256,24 @@ pub fn reflect<T: Real>(d: T::Vec3, n: T::Vec3) -> T::Vec3 {
 /// ```
 #[must_use]
 pub fn spawn_origin<T: Real>(point: T::Vec3, normal: T::Vec3, new_dir: T::Vec3) -> T::Vec3 {
+    offset_along::<T>(point, normal, T::dot(normal, new_dir) >= T::ZERO)
+}
+
+/// The push of [`spawn_origin`] along the unit `normal`: to the side it points to when
+/// `with_normal`, else to the other side.
+///
+/// # Examples
+/// ```
+/// use glam::DVec3;
+/// use hw3::geometry::sphere::offset_along;
+/// assert!(offset_along::<f64>(DVec3::new(0.0, 0.0, 1.0), DVec3::Z, true).z > 1.0);
+/// assert!(offset_along::<f64>(DVec3::new(0.0, 0.0, 1.0), DVec3::Z, false).z < 1.0);
+/// ```
+#[must_use]
+pub fn offset_along<T: Real>(point: T::Vec3, normal: T::Vec3, with_normal: bool) -> T::Vec3 {
     let [x, y, z] = T::components(point);
-    let scale = x.abs().max(y.abs()).max(z.abs()).max(T::from_f64(0.5));
-    let push = T::from_f64(256.0) * T::EPSILON * scale;
-    let push = if T::dot(normal, new_dir) < T::ZERO { -push } else { push };
-    point + normal * push
+    let push = T::from_f64(256.0) * T::EPSILON * x.abs().max(y.abs()).max(z.abs()).max(T::from_f64(0.5));
+    point + normal * if with_normal { push } else { -push }
 }
 
 #[cfg(test)]

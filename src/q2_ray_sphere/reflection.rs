@@ -6,7 +6,9 @@
 //! ray that starts inside re-hits the sphere at `t ≈ 0`. [`SpawnPolicy`] names the three fixes the
 //! notes compare, and [`self_hit_rate`] measures each over many random hits.
 
-use crate::geometry::sphere::{first_hit_stable, reflect, roots_stable, spawn_origin, surface_hit};
+use crate::geometry::sphere::{
+    first_hit_stable, offset_along, reflect, reflect_with_cosine, roots_stable, surface_hit,
+};
 use crate::geometry::{Ray, Sphere};
 use crate::real::Real;
 use crate::rng::{self, Generator};
@@ -20,7 +22,7 @@ pub enum SpawnPolicy {
     /// Origin `e + d t_i`, accept `t > 10⁻⁴` (Ray Tracing in One Weekend's fix; scale-dependent).
     FixedEpsilon,
     /// Reproject the point onto the sphere, then push it off along the normal by a scaled number
-    /// of ulps ([`spawn_origin`]); accept `t > 0`.
+    /// of ulps ([`crate::geometry::sphere::offset_along`]); accept `t > 0`.
     ReprojectAndOffset,
 }
 
@@ -72,8 +74,9 @@ pub fn reflect_at_hit<T: Real>(ray: &Ray<T>, sphere: &Sphere<T>, t: T, policy: S
         }
         SpawnPolicy::ReprojectAndOffset => {
             let hit = surface_hit(ray, sphere, t);
-            let dir = reflect::<T>(ray.dir, hit.normal);
-            let origin = spawn_origin::<T>(hit.point, hit.normal, dir);
+            let (dir, cos) = reflect_with_cosine::<T>(ray.dir, hit.normal);
+            // The reflection leaves on the side the ray came from: along n when n·d < 0.
+            let origin = offset_along::<T>(hit.point, hit.normal, cos < T::ZERO);
             Reflection { point: hit.point, normal: hit.normal, ray: Ray { origin, dir }, t_min: T::ZERO }
         }
     }
