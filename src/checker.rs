@@ -842,8 +842,8 @@ mod tests {
 
         /// Perturbing one answer beyond its tolerance loses exactly that part's points.
         #[test]
-        fn perturbing_one_part_loses_exactly_its_points(seed in 0u64..1_000_000, which in 0usize..5) {
-            let variant = variant("q2", seed).unwrap();
+        fn perturbing_one_part_loses_exactly_its_points(seed in 0u64..1_000_000, question in 0usize..4, which in 0usize..12) {
+            let variant = variant(QUESTIONS[question], seed).unwrap();
             let part = &variant.parts[which % variant.parts.len()];
             let key = answers_key(seed).unwrap();
             let (table, name) = part.key.split_once('.').unwrap();
@@ -851,6 +851,14 @@ mod tests {
             let entry = doc.get_mut(table).unwrap().as_table_mut().unwrap().get_mut(name).unwrap();
             *entry = match entry.clone() {
                 toml::Value::Float(x) => toml::Value::Float(x * 1.5 + 1.0),
+                toml::Value::String(word) => toml::Value::String(if word == "yes" { "no" } else { "yes" }.into()),
+                toml::Value::Array(mut items) if items[0].is_table() => {
+                    // A trace: move where the ray enters its last leaf.
+                    let last = items.last_mut().unwrap().as_table_mut().unwrap();
+                    let t_min = last["tmin"].as_float().unwrap();
+                    last.insert("tmin".into(), toml::Value::Float(t_min + 0.25));
+                    toml::Value::Array(items)
+                }
                 toml::Value::Array(mut items) => {
                     // Rotate the components: a different vector of the same length.
                     items.rotate_left(1);
@@ -861,11 +869,11 @@ mod tests {
                 other => other,
             };
             let report = check(&toml::to_string(&doc).unwrap(), None).unwrap();
-            let full = report.max_score;
-            let lost = full - report.score;
+            let lost = report.max_score - report.score;
             let wrong: Vec<_> = report.parts.iter().filter(|p| p.status != "correct").collect();
             prop_assert_eq!(wrong.len(), 1, "{}", report_text(&report));
             prop_assert_eq!(wrong[0].key, part.key);
+            prop_assert!(wrong[0].score < part.points);
             prop_assert!((lost - (part.points - wrong[0].score)).abs() < 1e-9);
         }
 
