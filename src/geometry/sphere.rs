@@ -165,9 +165,13 @@ pub struct SurfaceHit<T: Real> {
 /// taken from one Newton step starting at `1/r` (error `O(δ²)` for `|p' − o|² = r²(1 + δ)`), which
 /// avoids a square root; larger errors fall back to the exact square root.
 ///
+/// # Preconditions
+/// `t` is a hit of `ray` on `sphere` from a solver, and `r > 0` (guaranteed by [`Sphere::new`]).
+/// A `t` far from the true hit still gives a unit normal and a point on the sphere (through the
+/// square-root branch), just not the right one.
+///
 /// # Panics
-/// Never; a zero radius gives a NaN-free normal only if `t` actually hits, so callers pass a `t`
-/// returned by a solver for a sphere with `r > 0`.
+/// Never.
 ///
 /// # Examples
 /// ```
