@@ -45,9 +45,15 @@ fn intersect<T: Real>(pairs: &[(Ray<T>, Sphere<T>)], solver: fn(&Ray<T>, &Sphere
         .fold(0.0, |acc, (ray, sphere)| acc + solver(black_box(ray), black_box(sphere)).map_or(0.0, Real::to_f64))
 }
 
+/// Intersects and builds the whole reflected ray. Every component of origin and direction feeds
+/// the sum: a policy whose origin does not depend on the direction (the naive one) would otherwise
+/// have its reflection removed as dead code and look cheaper than it is.
 fn spawn(pairs: &[(Ray<f32>, Sphere<f32>)], policy: SpawnPolicy) -> f64 {
     pairs.iter().fold(0.0, |acc, (ray, sphere)| match first_hit_stable(black_box(ray), sphere) {
-        Some(t) => acc + f64::from(reflect_at_hit(ray, sphere, t, black_box(policy)).ray.origin.x),
+        Some(t) => {
+            let reflected = reflect_at_hit(ray, sphere, t, black_box(policy)).ray;
+            acc + f64::from((reflected.origin + reflected.dir).element_sum())
+        }
         None => acc,
     })
 }
