@@ -5,8 +5,17 @@
 //! as a peer where it is affordable (and checks the tree against it ray by ray there), and writes
 //! `docs/data/q3_kdtree_perf.csv` and `.md`, from which the notes' plot is drawn.
 //!
-//! `cargo bench --bench q3_kdtree` measures and writes (`HW3_Q3_MAX_N=1000000` adds N = 10⁶);
+//! Peers in the same run, on the same rays (`q3_kdtree/peers.rs`): the `bvh` crate and `obvhs`
+//! BVH2 and CWBVH, each on the `f32` scene; every peer answer is checked against the kd-tree ray by
+//! ray (a mismatch is a different sphere, or hit versus miss), and the note's ray #839 669 with
+//! direction (−0, −0, −1) is a named probe in every configuration.
+//!
+//! `cargo bench --bench q3_kdtree` measures and writes (`HW3_Q3_MAX_N=1000000` adds N = 10⁶;
+//! `HW3_Q3_KI`, `HW3_Q3_EMPTY_BONUS`, `HW3_Q3_BINS`, `HW3_Q3_MIN_N` make a tuning run that only prints);
 //! under `cargo test --benches` it runs one small smoke round and writes nothing.
+
+#[path = "q3_kdtree/peers.rs"]
+mod peers;
 
 use hw3::geometry::{Ray, Sphere};
 use hw3::kdtree::workload::{Density, T_MIN, camera_rays, checksum, random_rays, scene};
@@ -16,6 +25,9 @@ use std::hint::black_box;
 use std::time::Instant;
 
 type Hit = Option<(usize, f64)>;
+
+/// The note's ray with direction exactly (−0, −0, −1), on which obvhs 0.4's CWBVH can miss.
+const PROBE: usize = 839_669;
 
 /// Seconds of the fastest of `repeats` runs of `work`, and its last result.
 fn best_of<R>(repeats: usize, mut work: impl FnMut() -> R) -> (f64, R) {
@@ -85,28 +97,101 @@ fn mrays(count: usize, secs: f64) -> f64 {
     count as f64 / secs / 1e6
 }
 
+/// Rays on which a peer names a different sphere than the tree (or hits where it misses).
+fn mismatches(peer: &[peers::HitF32], tree: &[Hit]) -> usize {
+    peer.iter().zip(tree).filter(|(p, t)| p.map(|h| h.0) != t.map(|h| h.0)).count()
+}
+
+/// The peers' CSV fields for one scene (build ms, camera and random Mrays/s, mismatches against the
+/// tree per peer), and the probe's verdict per peer.
+struct PeerRun {
+    fields: String,
+    probe: Vec<String>,
+}
+
+fn run_peers(
+    spheres: &[Sphere<f64>],
+    rays: (&[peers::RayF32], &[peers::RayF32], &peers::RayF32),
+    tree_answers: (&[Hit], &[Hit], Hit),
+    repeats: (usize, usize),
+) -> PeerRun {
+    let (camera, random, probe) = rays;
+    let t_min = T_MIN as f32;
+    let mut run = PeerRun { fields: String::new(), probe: Vec::new() };
+    for (index, name) in peers::NAMES.iter().enumerate() {
+        let mut shapes = peers::spheres_f32(spheres);
+        let (build_secs, peer) = best_of(repeats.0, || peers::Peer::build(index, &mut shapes));
+        let trace = |rays: &[peers::RayF32]| -> Vec<peers::HitF32> {
+            rays.iter().map(|r| peer.closest_hit(&shapes, black_box(r), t_min)).collect()
+        };
+        let (camera_secs, camera_hits) = best_of(repeats.1, || trace(camera));
+        let (random_secs, random_hits) = best_of(repeats.1.min(2), || trace(random));
+        let wrong = mismatches(&camera_hits, tree_answers.0) + mismatches(&random_hits, tree_answers.1);
+        let _ = write!(
+            run.fields,
+            ",{:.3},{:.3},{:.3},{wrong}",
+            build_secs * 1e3,
+            mrays(camera.len(), camera_secs),
+            mrays(random.len(), random_secs)
+        );
+        let answer = peer.closest_hit(&shapes, probe, t_min);
+        let verdict = match (answer, tree_answers.2) {
+            (a, b) if a.map(|h| h.0) == b.map(|h| h.0) => "ok".to_string(),
+            (None, Some((i, _))) => format!("MISSES sphere {i}"),
+            (Some((i, _)), _) => format!("differs (sphere {i})"),
+            (None, None) => unreachable!("equal answers are matched first"),
+        };
+        run.probe.push(format!("{name} {verdict}"));
+    }
+    run
+}
+
+/// A setting read from the environment variable `name`, if set and parseable.
+fn env_override<T: std::str::FromStr>(name: &str) -> Option<T> {
+    std::env::var(name).ok().and_then(|v| v.parse().ok())
+}
+
 fn main() {
     let measuring = std::env::args().any(|a| a == "--bench");
-    let max_n: usize = std::env::var("HW3_Q3_MAX_N").ok().and_then(|v| v.parse().ok()).unwrap_or(100_000);
-    // `HW3_Q3_KI` overrides K_I (to tune the cost model); the default is the crate's.
+    let max_n: usize = env_override("HW3_Q3_MAX_N").unwrap_or(100_000);
+    // Tuning knobs: override K_I, the empty bonus, the bin count, or skip small N. A tuning run
+    // prints its rows but writes nothing (the committed data are the crate's defaults).
+    let defaults = SahCosts::default();
+    let (ki, bonus, bins, min_n) = (
+        env_override("HW3_Q3_KI"),
+        env_override("HW3_Q3_EMPTY_BONUS"),
+        env_override("HW3_Q3_BINS"),
+        env_override::<usize>("HW3_Q3_MIN_N"),
+    );
+    let tuning = ki.is_some() || bonus.is_some() || bins.is_some() || min_n.is_some();
     let costs = SahCosts {
-        intersection: std::env::var("HW3_Q3_KI")
-            .ok()
-            .and_then(|v| v.parse().ok())
-            .unwrap_or(SahCosts::default().intersection),
-        ..SahCosts::default()
+        intersection: ki.unwrap_or(defaults.intersection),
+        empty_bonus: bonus.unwrap_or(defaults.empty_bonus),
+        bins: bins.unwrap_or(defaults.bins),
+        ..defaults
     };
+    let min_n = min_n.unwrap_or(0);
     let (sizes, camera, random, repeats): (Vec<usize>, _, _, usize) = if measuring {
-        let sizes = [100, 1_000, 10_000, 100_000, 1_000_000].into_iter().filter(|&n| n <= max_n).collect();
+        let sizes =
+            [100, 1_000, 10_000, 100_000, 1_000_000].into_iter().filter(|&n| (min_n..=max_n).contains(&n)).collect();
         (sizes, camera_rays(512, 512), random_rays(1_000_000, 0xBEEF), 3)
     } else {
         (vec![100], camera_rays(64, 64), random_rays(4_096, 0xBEEF), 1)
     };
+    let (camera32, random32) = (peers::rays_f32(&camera), peers::rays_f32(&random));
+    let probe_ray = random_rays(PROBE + 1, 0xBEEF)[PROBE];
+    let probe32 = peers::rays_f32(&[probe_ray])[0];
+    let mut peer_header = String::new();
+    for name in peers::NAMES {
+        let _ = write!(peer_header, ",{name}_build_ms,{name}_camera_mrays,{name}_random_mrays,{name}_mismatches");
+    }
     let mut csv = String::from(
         "density,n,build_ms,nodes,references,camera_mrays,camera_nodes_per_ray,camera_tests_per_ray,\
          camera_hits,camera_sum_t,random_mrays,random_nodes_per_ray,random_tests_per_ray,random_hits,\
-         random_sum_t,brute_camera_mrays,brute_random_mrays,brute_mismatches,versus_note\n",
+         random_sum_t,brute_camera_mrays,brute_random_mrays,brute_mismatches,versus_note",
     );
+    csv.push_str(&peer_header);
+    csv.push_str(",probe_839669\n");
     for density in [Density::FixedMeanFreePath, Density::FixedVolumeFraction] {
         let label = match density {
             Density::FixedMeanFreePath => "fixed_k",
@@ -140,10 +225,21 @@ fn main() {
             };
             let (ch, ct) = checksum(&camera_hits);
             let (rh, rt) = checksum(&random_hits);
+            let tree_probe = tree.closest_hit(&probe_ray, T_MIN, f64::INFINITY);
+            let peer_run = run_peers(
+                &spheres,
+                (&camera32, &random32, &probe32),
+                (&camera_hits, &random_hits, tree_probe),
+                (build_repeats, repeats),
+            );
+            let probe = match tree_probe {
+                Some((i, t)) => format!("kd hits sphere {i} at t={t:.6}; {}", peer_run.probe.join("; ")),
+                None => format!("kd misses; {}", peer_run.probe.join("; ")),
+            };
             let note = if measuring { versus_note(n, density, (ch, ct), (rh, rt)) } else { "-".into() };
             let line = format!(
                 "{label},{n},{:.3},{},{},{:.3},{:.2},{:.2},{ch},{ct:.2},{:.3},{:.2},{:.2},{rh},{rt:.2},\
-                 {brute_camera},{brute_random},{mismatches},{note}\n",
+                 {brute_camera},{brute_random},{mismatches},{note}{},{probe}\n",
                 build_secs * 1e3,
                 tree.node_count(),
                 tree.reference_count(),
@@ -153,6 +249,7 @@ fn main() {
                 mrays(random.len(), random_secs),
                 random_work.0,
                 random_work.1,
+                peer_run.fields,
             );
             eprint!("{line}");
             csv.push_str(&line);
@@ -162,7 +259,7 @@ fn main() {
             );
         }
     }
-    if measuring {
+    if measuring && !tuning {
         let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/docs/data");
         std::fs::write(format!("{dir}/q3_kdtree_perf.csv"), &csv).expect("docs/data is writable");
         std::fs::write(format!("{dir}/q3_kdtree_perf.md"), markdown(&csv)).expect("docs/data is writable");
@@ -170,7 +267,16 @@ fn main() {
     }
 }
 
-/// The CSV as the chapter's table.
+/// One table row's cells: each cell joins the CSV fields of its columns with " / " (underscores of
+/// the density labels read as spaces).
+fn cells(fields: &[&str], columns: &[&[usize]]) -> Vec<String> {
+    columns
+        .iter()
+        .map(|cell| cell.iter().map(|&c| fields[c].replace('_', " ")).collect::<Vec<_>>().join(" / "))
+        .collect()
+}
+
+/// The CSV as the chapter's tables.
 fn markdown(csv: &str) -> String {
     let mut md = String::from(
         "| density | N | build ms | nodes | camera Mrays/s | nodes/ray | tests/ray | random Mrays/s | nodes/ray | tests/ray | brute camera / random Mrays/s | vs note checksums |\n\
@@ -178,23 +284,48 @@ fn markdown(csv: &str) -> String {
     );
     for line in csv.lines().skip(1) {
         let f: Vec<&str> = line.split(',').collect();
-        let _ = writeln!(
-            md,
-            "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} / {} | {} |",
-            f[0].replace('_', " "),
-            f[1],
-            f[2],
-            f[3],
-            f[5],
-            f[6],
-            f[7],
-            f[10],
-            f[11],
-            f[12],
-            f[15],
-            f[16],
-            f[18]
-        );
+        let columns: [&[usize]; 12] = [&[0], &[1], &[2], &[3], &[5], &[6], &[7], &[10], &[11], &[12], &[15, 16], &[18]];
+        let _ = writeln!(md, "| {} |", cells(&f, &columns).join(" | "));
+    }
+    md.push_str(
+        "\nPeers in the same run, on the same rays (f32 scene; kd = the crate's f64 tree; Mrays/s, 1 thread; \
+         mismatches = rays, camera + random, where the peer names another sphere than the kd-tree):\n\n\
+         | density | N | kd build ms | kd camera | kd random | bvh build ms | bvh camera | bvh random | \
+         BVH2 build ms | BVH2 camera | BVH2 random | CWBVH build ms | CWBVH camera | CWBVH random | \
+         kd / CWBVH camera | mismatches bvh / BVH2 / CWBVH |\n\
+         |---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
+    );
+    for line in csv.lines().skip(1) {
+        let f: Vec<&str> = line.split(',').collect();
+        let ratio = match (f[5].parse::<f64>(), f[28].parse::<f64>()) {
+            (Ok(kd), Ok(cw)) => format!("{:.2}", kd / cw),
+            _ => "-".into(),
+        };
+        let columns: [&[usize]; 15] = [
+            &[0],
+            &[1],
+            &[2],
+            &[5],
+            &[10],
+            &[19],
+            &[20],
+            &[21],
+            &[23],
+            &[24],
+            &[25],
+            &[27],
+            &[28],
+            &[29],
+            &[22, 26, 30],
+        ];
+        let mut row = cells(&f, &columns);
+        row.insert(row.len() - 1, ratio);
+        let _ = writeln!(md, "| {} |", row.join(" | "));
+    }
+    md.push_str("\nProbe, the note's random ray #839 669 with direction (−0, −0, −1), per scene:\n\n");
+    for line in csv.lines().skip(1) {
+        let f: Vec<&str> = line.split(',').collect();
+        let _ = writeln!(md, "- {} N = {}: {}", f[0].replace('_', " "), f[1], f[31]);
     }
     md
 }

@@ -16,7 +16,7 @@
 //! Spheres whose box touches or crosses the plane go to both children (closed test on both
 //! sides), so every cell whose closure contains a sphere's point lists that sphere.
 
-use super::tree::{Aabb, Node};
+use super::tree::{Aabb, MAX_PACKED, Node};
 use crate::geometry::{InputError, Sphere};
 
 /// Constants of the SAH cost model and the binning.
@@ -56,7 +56,7 @@ pub enum BuildError {
         source: InputError,
     },
     /// More spheres than a `u32` index can address.
-    #[error("{count} spheres exceed the kd-tree's limit of 2^32 − 1")]
+    #[error("{count} spheres exceed the kd-tree's limit of 2^30 − 1 (30-bit counts in 8-byte nodes)")]
     TooManySpheres {
         /// The number given.
         count: usize,
@@ -68,7 +68,7 @@ pub enum BuildError {
 
 /// Validated bounding boxes of the input spheres.
 pub(super) fn sphere_boxes(spheres: &[Sphere<f64>]) -> Result<Vec<Aabb>, BuildError> {
-    if u32::try_from(spheres.len()).is_err() {
+    if spheres.len() >= MAX_PACKED as usize {
         return Err(BuildError::TooManySpheres { count: spheres.len() });
     }
     spheres
@@ -142,7 +142,7 @@ impl Builder<'_> {
             let first = u32::try_from(self.indices.len()).expect("index count fits u32");
             let count = u32::try_from(prims.len()).expect("sphere count fits u32");
             self.indices.extend_from_slice(&prims);
-            self.nodes.push(Node::Leaf { first, count });
+            self.nodes.push(Node::leaf(first, count));
             return;
         };
         let (lower, upper): (Vec<u32>, Vec<u32>) = (
@@ -151,14 +151,14 @@ impl Builder<'_> {
         );
         drop(prims);
         let here = self.nodes.len();
-        self.nodes.push(Node::Leaf { first: 0, count: 0 });
+        self.nodes.push(Node::leaf(0, 0));
         let (mut lower_cell, mut upper_cell) = (cell, cell);
         lower_cell.max[axis] = split;
         upper_cell.min[axis] = split;
         self.build(lower_cell, lower, depth + 1);
         let upper_index = u32::try_from(self.nodes.len()).expect("node count fits u32");
         self.build(upper_cell, upper, depth + 1);
-        self.nodes[here] = Node::Interior { split, upper: upper_index, axis: axis as u8 };
+        self.nodes[here] = Node::interior(split as f32, axis, upper_index);
     }
 
     /// The cheapest binned plane over the three axes, if any axis has extent.
@@ -189,7 +189,12 @@ impl Builder<'_> {
                 n_lower += f64::from(starts[k - 1]);
                 n_ended += f64::from(ends[k - 1]);
                 let n_upper = n - n_ended;
-                let split = lo + extent * k as f64 / bins as f64;
+                // Only planes representable in `f32` (the node stores the split as `f32`), strictly
+                // inside the cell; rounding may push a plane of a tiny or far-away cell out.
+                let split = f64::from((lo + extent * k as f64 / bins as f64) as f32);
+                if !(lo < split && split < hi) {
+                    continue;
+                }
                 let (mut lower_cell, mut upper_cell) = (*cell, *cell);
                 lower_cell.max[axis] = split;
                 upper_cell.min[axis] = split;

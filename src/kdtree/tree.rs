@@ -44,12 +44,57 @@ impl Aabb {
     }
 }
 
-/// A node of the flat array. An interior node's lower child is the next node; its upper child is
-/// at `upper`.
+/// A node of the flat array, packed into 8 bytes (pbrt-v3's layout): `payload` holds the split
+/// value's `f32` bits (interior) or the first index (leaf); `tag`'s low two bits hold the split axis,
+/// or 3 for a leaf, and its upper 30 bits the upper child's index (interior) or the sphere count
+/// (leaf). An interior node's lower child is the next node. Split values are `f32` by construction
+/// (the builder only picks `f32`-representable planes), so widening them back to `f64` is exact and
+/// the traversal still works in `f64` throughout.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct Node {
+    payload: u32,
+    tag: u32,
+}
+
+/// The decoded view of a [`Node`].
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) enum Node {
-    Interior { split: f64, upper: u32, axis: u8 },
+pub(crate) enum NodeKind {
+    Interior { split: f64, upper: u32, axis: usize },
     Leaf { first: u32, count: u32 },
+}
+
+/// The tag value marking a leaf; also the largest index or count the upper 30 bits can hold + 1.
+const LEAF_TAG: u32 = 3;
+pub(crate) const MAX_PACKED: u32 = 1 << 30;
+
+impl Node {
+    /// # Panics
+    /// If `upper ≥ 2³⁰` or `axis > 2` (the builder's invariants).
+    pub fn interior(split: f32, axis: usize, upper: u32) -> Self {
+        assert!(upper < MAX_PACKED && axis < 3, "kd-tree node index {upper} or axis {axis} out of range");
+        Self { payload: split.to_bits(), tag: (upper << 2) | axis as u32 }
+    }
+
+    /// # Panics
+    /// If `count ≥ 2³⁰` (the builder rejects such scenes first).
+    pub fn leaf(first: u32, count: u32) -> Self {
+        assert!(count < MAX_PACKED, "kd-tree leaf of {count} spheres out of range");
+        Self { payload: first, tag: (count << 2) | LEAF_TAG }
+    }
+
+    #[inline]
+    pub fn kind(self) -> NodeKind {
+        let axis = self.tag & 3;
+        if axis == LEAF_TAG {
+            NodeKind::Leaf { first: self.payload, count: self.tag >> 2 }
+        } else {
+            NodeKind::Interior {
+                split: f64::from(f32::from_bits(self.payload)),
+                upper: self.tag >> 2,
+                axis: axis as usize,
+            }
+        }
+    }
 }
 
 /// Work counters of one or more closest-hit queries.
@@ -104,7 +149,8 @@ impl KdTree {
     ///
     /// # Errors
     /// [`BuildError::InvalidSphere`] for a sphere with a NaN/infinite centre or radius, a negative
-    /// radius, or an overflowing bounding box; [`BuildError::TooManySpheres`] beyond `u32` indices.
+    /// radius, or an overflowing bounding box; [`BuildError::TooManySpheres`] from 2³⁰ spheres on
+    /// (30-bit counts in the 8-byte nodes).
     ///
     /// # Examples
     /// ```
@@ -141,7 +187,7 @@ impl KdTree {
         };
         let all: Vec<u32> = (0..spheres.len() as u32).collect();
         if spheres.is_empty() {
-            builder.nodes.push(Node::Leaf { first: 0, count: 0 });
+            builder.nodes.push(Node::leaf(0, 0));
         } else {
             builder.build(bounds, all, 0);
         }
@@ -222,12 +268,14 @@ impl KdTree {
         let mut stack = [(0u32, 0.0f64, 0.0f64); STACK];
         let mut depth = 0;
         let mut node = 0u32;
+        // Plain arrays: indexing a glam vector by a run-time axis is a three-way branch, which the
+        // varying split axes make unpredictable.
+        let (origin, dir) = (ray.origin.to_array(), ray.dir.to_array());
         loop {
             counter.node();
-            match self.nodes[node as usize] {
-                Node::Interior { split, upper, axis } => {
-                    let a = usize::from(axis);
-                    let decision = split_interval(ray.origin[a], ray.dir[a], split, cell_min, cell_max);
+            match self.nodes[node as usize].kind() {
+                NodeKind::Interior { split, upper, axis: a } => {
+                    let decision = split_interval(origin[a], dir[a], split, cell_min, cell_max);
                     let child = |side| match side {
                         Side::Lower => node + 1,
                         Side::Upper => upper,
@@ -243,7 +291,7 @@ impl KdTree {
                     }
                     continue;
                 }
-                Node::Leaf { first, count } => {
+                NodeKind::Leaf { first, count } => {
                     let range = first as usize..(first + count) as usize;
                     for &i in &self.indices[range] {
                         counter.sphere_test();
@@ -431,10 +479,13 @@ mod tests {
         );
     }
 
-    /// The chapter's memory figures assume 16-byte nodes.
+    /// The chapter's memory figures assume 8-byte nodes.
     #[test]
-    fn nodes_are_16_bytes() {
-        assert_eq!(std::mem::size_of::<Node>(), 16);
+    fn nodes_are_8_bytes_and_round_trip() {
+        assert_eq!(std::mem::size_of::<Node>(), 8);
+        let interior = Node::interior(0.375, 2, MAX_PACKED - 1);
+        assert_eq!(interior.kind(), NodeKind::Interior { split: 0.375, upper: MAX_PACKED - 1, axis: 2 });
+        assert_eq!(Node::leaf(u32::MAX, 7).kind(), NodeKind::Leaf { first: u32::MAX, count: 7 });
     }
 
     #[test]

@@ -8,36 +8,53 @@ use plotters::prelude::*;
 /// The committed measurements.
 const CSV: &str = include_str!("../../docs/data/q3_kdtree_perf.csv");
 
-/// One measured row: density label, N, and microseconds per ray (camera, random; kd-tree, then
-/// brute force where measured).
+/// Which ray set a panel shows.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Rays {
+    Camera,
+    Random,
+}
+
+/// One measured row: density label, N, and the CSV's Mrays/s fields per method.
 #[derive(Debug, Clone, PartialEq)]
 struct Row {
     density: String,
     n: f64,
-    kd_camera_us: f64,
-    kd_random_us: f64,
-    brute_camera_us: Option<f64>,
-    brute_random_us: Option<f64>,
+    fields: Vec<String>,
 }
 
-/// Microseconds per ray from a Mrays/s field (`-` means not measured).
-fn us_per_ray(field: &str) -> Option<f64> {
-    field.parse::<f64>().ok().filter(|m| *m > 0.0).map(|m| 1.0 / m)
+/// A plotted method: legend label, the CSV columns of its camera and random Mrays/s, and its colour
+/// index in [`PALETTE`].
+struct Method {
+    label: &'static str,
+    camera_column: usize,
+    random_column: usize,
+    colour: usize,
+}
+
+/// The methods of the plot. The peers (`bvh` crate with the bench's own front-to-back loop,
+/// `obvhs` BVH2 and CWBVH) are measured in the same run as the kd-tree, on an `f32` scene.
+const METHODS: [Method; 5] = [
+    Method { label: "kd-tree (this crate, f64)", camera_column: 5, random_column: 10, colour: 0 },
+    Method { label: "brute force", camera_column: 15, random_column: 16, colour: 7 },
+    Method { label: "bvh 0.13 + own loop", camera_column: 20, random_column: 21, colour: 4 },
+    Method { label: "obvhs BVH2", camera_column: 24, random_column: 25, colour: 2 },
+    Method { label: "obvhs CWBVH", camera_column: 28, random_column: 29, colour: 1 },
+];
+
+impl Row {
+    /// Microseconds per ray from a Mrays/s field (`-`, absent or zero: not measured).
+    fn us_per_ray(&self, column: usize) -> Option<f64> {
+        self.fields.get(column)?.parse::<f64>().ok().filter(|m| *m > 0.0).map(|m| 1.0 / m)
+    }
 }
 
 fn rows(csv: &str) -> Vec<Row> {
     csv.lines()
         .skip(1)
         .filter_map(|line| {
-            let f: Vec<&str> = line.split(',').collect();
-            Some(Row {
-                density: f.first()?.to_string(),
-                n: f.get(1)?.parse().ok()?,
-                kd_camera_us: us_per_ray(f.get(5)?)?,
-                kd_random_us: us_per_ray(f.get(10)?)?,
-                brute_camera_us: us_per_ray(f.get(15)?),
-                brute_random_us: us_per_ray(f.get(16)?),
-            })
+            let fields: Vec<String> = line.split(',').map(str::to_string).collect();
+            Some(Row { density: fields.first()?.clone(), n: fields.get(1)?.parse().ok()?, fields })
         })
         .collect()
 }
@@ -45,52 +62,69 @@ fn rows(csv: &str) -> Vec<Row> {
 pub(super) fn figure() -> Result<Figure, PlotError> {
     let rows = rows(CSV);
     let n_max = rows.iter().map(|r| r.n).fold(100.0, f64::max);
-    svg_figure("q3_kdtree_cost.svg", (640, 440), |root| {
-        let mut chart = ChartBuilder::on(root)
-            .caption("kd-tree closest hit: time per ray vs N (1 thread)", ("sans-serif", 17))
-            .margin(12)
-            .x_label_area_size(36)
-            .y_label_area_size(52)
-            .build_cartesian_2d((50.0..2.0 * n_max).log_scale(), (0.05..300.0).log_scale())
-            .map_err(err)?;
-        chart
-            .configure_mesh()
-            .x_desc("N spheres")
-            .y_desc("µs per ray")
-            .label_style(("sans-serif", 12))
-            .x_label_formatter(&|v| format!("{v:.0e}"))
-            .y_label_formatter(&|v| format!("{v}"))
-            .draw()
-            .map_err(err)?;
-        type Pick = fn(&Row) -> Option<f64>;
-        let series: [(&str, &str, Pick, usize); 6] = [
-            ("fixed_k", "kd camera, fixed k", |r| Some(r.kd_camera_us), 0),
-            ("fixed_k", "kd random, fixed k", |r| Some(r.kd_random_us), 1),
-            ("fixed_volume", "kd camera, fixed volume", |r| Some(r.kd_camera_us), 2),
-            ("fixed_volume", "kd random, fixed volume", |r| Some(r.kd_random_us), 3),
-            ("fixed_k", "brute camera, fixed k", |r| r.brute_camera_us, 4),
-            ("fixed_k", "brute random, fixed k", |r| r.brute_random_us, 7),
-        ];
-        for (density, label, pick, colour) in series {
-            let colour = PALETTE[colour];
-            let points: Vec<(f64, f64)> =
-                rows.iter().filter(|r| r.density == density).filter_map(|r| Some((r.n, pick(r)?))).collect();
-            chart
-                .draw_series(LineSeries::new(points.clone(), colour.stroke_width(2)))
-                .map_err(err)?
-                .label(label)
-                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], colour.stroke_width(2)));
-            chart.draw_series(points.into_iter().map(|p| Circle::new(p, 3, colour.filled()))).map_err(err)?;
-        }
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperLeft)
-            .label_font(("sans-serif", 12))
-            .background_style(WHITE.mix(0.9))
-            .border_style(BLACK)
-            .draw()
-            .map_err(err)
+    svg_figure("q3_kdtree_cost.svg", (1000, 460), |root| {
+        let (left, right) = root.split_horizontally(500);
+        panel(&left, &rows, n_max, Rays::Camera)?;
+        panel(&right, &rows, n_max, Rays::Random)
     })
+}
+
+/// One log-log panel: µs per ray against N for every method.
+fn panel<DB: DrawingBackend>(
+    area: &DrawingArea<DB, plotters::coord::Shift>,
+    rows: &[Row],
+    n_max: f64,
+    rays: Rays,
+) -> Result<(), String> {
+    let title = match rays {
+        Rays::Camera => "camera rays 512×512: µs per ray vs N (1 thread)",
+        Rays::Random => "10⁶ random rays: µs per ray vs N (1 thread)",
+    };
+    let mut chart = ChartBuilder::on(area)
+        .caption(title, ("sans-serif", 15))
+        .margin(12)
+        .x_label_area_size(36)
+        .y_label_area_size(52)
+        .build_cartesian_2d((50.0..2.0 * n_max).log_scale(), (0.05..5000.0).log_scale())
+        .map_err(err)?;
+    chart
+        .configure_mesh()
+        .x_desc("N spheres")
+        .y_desc("µs per ray")
+        .label_style(("sans-serif", 12))
+        .x_label_formatter(&|v| format!("{v:.0e}"))
+        .y_label_formatter(&|v| format!("{v}"))
+        .draw()
+        .map_err(err)?;
+    // Every method at fixed k (the note's main workload); the kd-tree also at fixed volume
+    // fraction, thinner and in sky blue, to show the density scaling.
+    let series = METHODS.iter().map(|m| (m, "fixed_k")).chain(std::iter::once((&METHODS[0], "fixed_volume")));
+    for (method, density) in series {
+        let column = match rays {
+            Rays::Camera => method.camera_column,
+            Rays::Random => method.random_column,
+        };
+        let (colour, width, scaling) = match density {
+            "fixed_k" => (PALETTE[method.colour], 2, "fixed k"),
+            _ => (PALETTE[5], 1, "fixed volume"),
+        };
+        let points: Vec<(f64, f64)> =
+            rows.iter().filter(|r| r.density == density).filter_map(|r| Some((r.n, r.us_per_ray(column)?))).collect();
+        chart
+            .draw_series(LineSeries::new(points.clone(), colour.stroke_width(width)))
+            .map_err(err)?
+            .label(format!("{}, {scaling}", method.label))
+            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], colour.stroke_width(2)));
+        chart.draw_series(points.into_iter().map(|p| Circle::new(p, 3, colour.filled()))).map_err(err)?;
+    }
+    chart
+        .configure_series_labels()
+        .position(SeriesLabelPosition::UpperRight)
+        .label_font(("sans-serif", 11))
+        .background_style(WHITE.mix(0.9))
+        .border_style(BLACK)
+        .draw()
+        .map_err(err)
 }
 
 #[cfg(test)]
@@ -104,6 +138,18 @@ mod tests {
             let ns: Vec<f64> = rows.iter().filter(|r| r.density == density).map(|r| r.n).collect();
             assert!(ns.len() >= 4, "{density}: {ns:?}");
             assert!(ns.windows(2).all(|w| w[0] < w[1]));
+        }
+    }
+
+    /// Every peer's camera and random rates are present for every committed row (they are measured
+    /// in the same run as the kd-tree), so the plot shows no silently missing series.
+    #[test]
+    fn committed_csv_has_every_peer_for_every_row() {
+        for row in rows(CSV) {
+            for method in METHODS.iter().filter(|m| m.label != "brute force") {
+                assert!(row.us_per_ray(method.camera_column).is_some(), "{} N={} {}", row.density, row.n, method.label);
+                assert!(row.us_per_ray(method.random_column).is_some(), "{} N={} {}", row.density, row.n, method.label);
+            }
         }
     }
 
