@@ -2,6 +2,7 @@
 
 pub mod analysis;
 pub mod command;
+pub mod environment;
 pub mod integrator;
 pub mod scene;
 pub mod scenes;
@@ -37,6 +38,9 @@ pub enum RenderError {
     /// Zero or too many samples per pixel.
     #[error("samples per pixel must be 1…{MAX_SPP}, got {0}")]
     SamplesPerPixel(u32),
+    /// A scene's environment map could not be read (a missing file, a NaN texel, …).
+    #[error("environment map: {0}")]
+    Environment(String),
     /// A scene name that is not built in.
     #[error("unknown scene `{name}`; known: {known}")]
     UnknownScene {
@@ -266,6 +270,7 @@ mod tests {
             scenes::moving_ball(2.0).unwrap(),
             scenes::moving_ball(0.0).unwrap(),
             scenes::cornell_mirror().unwrap(),
+            scenes::probe_lit().unwrap(),
         ];
         let mut skipped_checked = 0;
         let mut needed_checked = 0;

@@ -7,6 +7,7 @@
 //! shift the others: that is what makes "forced on, image identical" testable bit for bit.
 
 use super::analysis::Passes;
+use super::environment;
 use super::scene::{Hit, Material, PointLight, Scene, Shape};
 use crate::geometry::sphere::{reflect, spawn_origin};
 use crate::geometry::{InputError, Ray};
@@ -91,7 +92,7 @@ impl<'a> Tracer<'a> {
         let hit = self.scene.closest_hit(ray, time, f64::INFINITY);
         let (glow, transmittance) = self.segment(ray, hit, time);
         let surface = match hit {
-            None => self.scene.background(),
+            None => self.scene.escaped_radiance(ray.dir),
             Some(hit) => match self.scene.objects()[hit.object].material {
                 Material::Emitter { radiance } => front_side(ray, &hit) * radiance,
                 Material::Mirror { reflectance } => {
@@ -136,7 +137,7 @@ impl<'a> Tracer<'a> {
             throughput *= transmittance;
             let Some(hit) = hit else {
                 if counts_emission {
-                    radiance += throughput * self.scene.background();
+                    radiance += throughput * self.scene.escaped_radiance(ray.dir);
                 }
                 break;
             };
@@ -236,8 +237,8 @@ impl<'a> Tracer<'a> {
         total
     }
 
-    /// Next-event estimation at a diffuse or glossy hit: every point light, and one sample per
-    /// area light, with shadow rays and transmittance.
+    /// Next-event estimation at a diffuse or glossy hit: every point light, one sample per area
+    /// light, and the environment's samples ([`environment`]), with shadow rays and transmittance.
     fn direct_light(&self, ray: &Ray<f64>, hit: &Hit, time: f64, sampler: &mut Sampler) -> DVec3 {
         let material = self.scene.objects()[hit.object].material;
         let normal = facing_normal(ray, hit);
@@ -277,7 +278,19 @@ impl<'a> Tracer<'a> {
                 }
             }
         }
+        let brdf_toward = |dir: DVec3| brdf(&material, to_eye, dir, normal);
+        let to_infinity = self.light_transmittance(f64::INFINITY);
         total
+            + environment::direct_light(
+                self.scene,
+                hit.point,
+                normal,
+                hit.normal,
+                time,
+                &brdf_toward,
+                to_infinity,
+                sampler,
+            )
     }
 
     /// Transmittance towards a light, on when the transmittance pass is.
