@@ -4,6 +4,7 @@ pub mod analysis;
 pub mod command;
 pub mod environment;
 pub mod integrator;
+pub mod medium;
 pub mod scene;
 pub mod scenes;
 
@@ -271,6 +272,8 @@ mod tests {
             scenes::moving_ball(0.0).unwrap(),
             scenes::cornell_mirror().unwrap(),
             scenes::probe_lit().unwrap(),
+            scenes::fog_panel(0.15).unwrap(),
+            scenes::fog_panel(0.0).unwrap(),
         ];
         let mut skipped_checked = 0;
         let mut needed_checked = 0;

@@ -28,7 +28,7 @@ pub enum Pass {
     SpecularRecursion,
     /// Beer–Lambert attenuation `e^(−σ_t d)` of every ray segment in a medium.
     Transmittance,
-    /// Single scattering from point lights along every ray segment (`…V…E`).
+    /// Single scattering from point and area lights along every ray segment (`…V…E`).
     InScattering,
     /// A random time in the shutter interval for every camera sample (motion blur).
     TimeSampling,
@@ -236,18 +236,18 @@ pub fn analyze(scene: &Scene) -> Analysis {
         PathClass {
             notation: "LV(D|G|S)*E",
             effect: "glow of lights in fog (single scattering)",
-            carries_energy: letters.point_light,
+            carries_energy: letters.point_light || letters.area_light,
             reason: yes_no(
-                letters.scattering && letters.point_light,
-                "a scattering medium and a point light",
-                "needs a scattering medium (σ_s > 0) and a point light",
+                letters.scattering && (letters.point_light || letters.area_light),
+                "a scattering medium and a point or area light",
+                "needs a scattering medium (σ_s > 0) and a point or area light",
             ),
             pass: Some(Pass::InScattering),
         },
     ];
     // The letter test is one language intersection per class: the class must share a path with
     // the scene's language. The flags left above are what letters cannot say (two objects to
-    // exchange light, a light that sees the mirror, in-scattering only from point lights).
+    // exchange light, a light that sees the mirror, in-scattering only from point and area lights).
     let scene_language = scene_language(&letters);
     for class in &mut classes {
         let class_language = Lang::parse(class.notation).expect("built-in notation parses");

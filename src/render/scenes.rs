@@ -9,7 +9,7 @@ use glam::DVec3;
 use rand_core::Rng as _;
 
 /// Every built-in scene: CLI name and a one-line description.
-pub const CATALOGUE: [(&str, &str); 9] = [
+pub const CATALOGUE: [(&str, &str); 10] = [
     ("clutter", "Q1a: 1500 spheres in a 41×41×10 slab, seen from the front"),
     ("fog", "Q1b: a street with two lamps in fog (σ_s = 0.08, no absorption)"),
     ("clear-street", "Q1b's street without the medium"),
@@ -19,6 +19,7 @@ pub const CATALOGUE: [(&str, &str); 9] = [
     ("still", "Q1d's scene with the ball at rest"),
     ("cornell", "a closed box, area light, mirror, glossy and glass spheres (indirect light, caustics)"),
     ("probe-lit", "diffuse, glossy and mirror spheres on a floor, lit only by Q4's courtyard map"),
+    ("fog-panel", "a ceiling panel light over a ball in fog (area-light single scattering)"),
 ];
 
 /// The built-in scene called `name` (see [`CATALOGUE`]).
@@ -42,6 +43,7 @@ pub fn by_name(name: &str) -> Result<Scene, RenderError> {
         "still" => moving_ball(0.0),
         "cornell" => cornell_mirror(),
         "probe-lit" => return probe_lit(),
+        "fog-panel" => fog_panel(0.15),
         _ => {
             return Err(RenderError::UnknownScene { name: name.into(), known: CATALOGUE.map(|(n, _)| n).join(", ") });
         }
@@ -274,6 +276,32 @@ pub fn cornell_mirror() -> Result<Scene, InputError> {
     objects.push(Object::sphere(Sphere::new(DVec3::new(0.1, -0.75, 0.6), 0.25)?, Material::Glass { index: 1.5 }));
     let camera = Camera::looking_at(DVec3::new(0.0, 0.0, 3.4), DVec3::ZERO, 40.0);
     Scene::new(camera, objects, vec![], None, DVec3::ZERO)
+}
+
+/// A 1×1 panel light facing down 3 units above a grey floor, a ball under it, and a
+/// non-absorbing fog of scattering coefficient `sigma_s` (no medium for 0): the area light's
+/// glow in the fog is single scattering from an area light ([`super::medium`]).
+///
+/// # Errors
+/// [`InputError`] for a negative or non-finite `sigma_s`.
+pub fn fog_panel(sigma_s: f64) -> Result<Scene, InputError> {
+    let floor = Object::quad(
+        DVec3::new(-5.0, 0.0, 3.0),
+        DVec3::new(10.0, 0.0, 0.0),
+        DVec3::new(0.0, 0.0, -12.0),
+        Material::Diffuse { albedo: DVec3::splat(0.5) },
+    );
+    let panel = Object::quad(
+        DVec3::new(-0.5, 3.0, -3.5),
+        DVec3::new(1.0, 0.0, 0.0),
+        DVec3::new(0.0, 0.0, 1.0),
+        Material::Emitter { radiance: DVec3::new(12.0, 11.0, 9.0) },
+    );
+    let ball =
+        Object::sphere(Sphere::new(DVec3::new(0.0, 0.7, -3.0), 0.7)?, Material::Diffuse { albedo: DVec3::splat(0.7) });
+    let camera = Camera::looking_at(DVec3::new(0.0, 1.8, 4.0), DVec3::new(0.0, 1.5, -3.0), 45.0);
+    let fog = (sigma_s != 0.0).then_some(Fog { sigma_a: 0.0, sigma_s });
+    Scene::new(camera, vec![floor, panel, ball], vec![], fog, DVec3::ZERO)
 }
 
 /// Three spheres (diffuse, glossy, mirror) on a grey floor quad, lit only by the vendored Q4
