@@ -3,6 +3,7 @@
 pub mod analysis;
 pub mod command;
 pub mod environment;
+pub mod figures;
 pub mod integrator;
 pub mod medium;
 pub mod scene;
