@@ -434,6 +434,28 @@ mod tests {
         assert!(!carried(&analysis).contains(&"LS+(D|G)…E"));
     }
 
+    /// The environment is a light derived from the scene: a non-black map lights the probe-lit
+    /// scene (LE, LDE, reflections, caustics through the mirror), a black one lights nothing, and
+    /// its glow in fog is reported as not rendered while an area light's glow is planned.
+    #[test]
+    fn the_environment_is_a_light_and_area_lights_glow_in_fog() {
+        use crate::render::environment::Environment;
+        let lit = analyze(&scenes::probe_lit().unwrap());
+        for class in ["LE", "LDE", "LGE", "L(D|G)?S+E", "LS+(D|G)…E"] {
+            assert!(carried(&lit).contains(&class), "{class}");
+        }
+        let no_light = scenes::mirror_spheres(false).unwrap();
+        let (camera, objects) = (*no_light.camera(), no_light.objects().to_vec());
+        let dark = Scene::new(camera, objects, vec![], None, DVec3::ONE).unwrap();
+        let black = analyze(&dark.with_environment(Environment::constant(DVec3::ZERO).unwrap()));
+        assert!(!carried(&black).contains(&"LDE"), "a black environment is no light");
+        let foggy = scenes::fog_panel(0.15).unwrap();
+        let analysis = analyze(&foggy);
+        assert!(analysis.plan.in_scattering && analysis.not_rendered.is_empty());
+        let with_sky = analyze(&foggy.with_environment(Environment::constant(DVec3::ONE).unwrap()));
+        assert_eq!(with_sky.not_rendered, vec!["LV(D|G|S)*E (environment)"]);
+    }
+
     #[test]
     fn passes_all_sets_every_flag_and_with_clears_one() {
         let all = Passes::all();
