@@ -56,6 +56,7 @@ pub fn all_answers() -> Vec<Answers> {
 pub fn all_figures() -> Result<Vec<plot::Figure>, plot::PlotError> {
     let mut figures: Vec<plot::Figure> = Vec::new();
     figures.extend(q1_hard_scenes::figures()?);
+    figures.extend(render::figures::figures()?);
     figures.extend(q2_ray_sphere::figures()?);
     figures.extend(q3_kd_traversal::figures()?);
     figures.extend(q4_light_probe::figures()?);

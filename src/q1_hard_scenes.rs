@@ -4,7 +4,7 @@ use crate::Answers;
 use crate::geometry::Sphere;
 use crate::geometry::{InputError, Ray};
 use crate::plot::{self, Figure, PALETTE, PlotError, err};
-use crate::render::analysis::analyze;
+use crate::render::analysis::{Pass, analyze};
 use crate::render::integrator::{IN_SCATTER_STEPS, Integrator, Sampler, Tracer, airlight_closed_form, airlight_traced};
 use crate::render::scene::{Camera, Material, Object, PointLight, Scene, Shape};
 use crate::render::scenes::{self, CLUTTER_HALF_WIDTH, CLUTTER_RADIUS};
@@ -196,22 +196,27 @@ fn fog_target_scene(sigma_t: f64, distance: f64, target_radiance: f64) -> Result
 /// [`InputError`] for an invalid `sigma_t` or `distance`.
 pub fn fog_row(sigma_t: f64, distance: f64) -> Result<FogRow, InputError> {
     let probe = Ray { origin: DVec3::ZERO, dir: fog_probe_direction() };
-    let radiance = |target: f64| -> Result<f64, InputError> {
+    let radiance = |target: f64, in_scattering: bool| -> Result<f64, InputError> {
         let scene = fog_target_scene(sigma_t, distance, target)?;
-        let plan = analyze(&scene).plan;
+        let plan = analyze(&scene).plan.with(Pass::InScattering, in_scattering);
         let tracer = Tracer::new(&scene, plan);
         let whitted = Integrator::Whitted { max_depth: 0 };
         Ok(tracer.radiance(whitted, &probe, 0.0, &mut Sampler::new(0, 0, 0)).x)
     };
-    let (lit, dark) = (radiance(1.0)?, radiance(0.0)?);
+    // The lamp's airlight is common to the lit and the dark target and cancels in the difference;
+    // the lit target's own glow (an area light in fog) is left out: the contrast law is about
+    // what the medium does to a target's light on its way to the eye, not about the target
+    // lighting the fog.
+    let transmittance = radiance(1.0, false)? - radiance(0.0, false)?;
+    let dark = radiance(0.0, true)?;
     let path_length = distance / -probe.dir.z;
     Ok(FogRow {
         sigma_t,
         distance,
-        transmittance: lit - dark,
+        transmittance,
         law: (-sigma_t * path_length).exp(),
         airlight: dark,
-        apparent_contrast: (lit - dark) / dark,
+        apparent_contrast: transmittance / dark,
     })
 }
 

@@ -2,7 +2,10 @@
 
 pub mod analysis;
 pub mod command;
+pub mod environment;
+pub mod figures;
 pub mod integrator;
+pub mod medium;
 pub mod scene;
 pub mod scenes;
 
@@ -37,6 +40,9 @@ pub enum RenderError {
     /// Zero or too many samples per pixel.
     #[error("samples per pixel must be 1…{MAX_SPP}, got {0}")]
     SamplesPerPixel(u32),
+    /// A scene's environment map could not be read (a missing file, a NaN texel, …).
+    #[error("environment map: {0}")]
+    Environment(String),
     /// A scene name that is not built in.
     #[error("unknown scene `{name}`; known: {known}")]
     UnknownScene {
@@ -266,6 +272,9 @@ mod tests {
             scenes::moving_ball(2.0).unwrap(),
             scenes::moving_ball(0.0).unwrap(),
             scenes::cornell_mirror().unwrap(),
+            scenes::probe_lit().unwrap(),
+            scenes::fog_panel(0.15).unwrap(),
+            scenes::fog_panel(0.0).unwrap(),
         ];
         let mut skipped_checked = 0;
         let mut needed_checked = 0;

@@ -181,17 +181,123 @@ impl Sh9 {
 #[derive(Debug, Clone)]
 pub struct Irradiance<'a> {
     probe: &'a Probe,
-    /// Cumulative `luminance × Δω` over all texels (unnormalised).
-    cdf: Vec<f64>,
+    distribution: MapDistribution,
     sh9: Sh9,
     equal_weight: f64,
 }
 
 /// What one map sample returns: the direction, its solid-angle pdf, and the texel.
-struct MapSample {
-    omega: DVec3,
-    pdf: f64,
-    texel: usize,
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MapSample {
+    /// The sampled world direction (unit).
+    pub omega: DVec3,
+    /// Its solid-angle pdf (per steradian).
+    pub pdf: f64,
+    /// The texel it lies in (its radiance is the probe's radiance toward `omega`).
+    pub texel: usize,
+}
+
+/// Importance sampling of a probe's directions in proportion to texel luminance × solid angle:
+/// the "map" strategy of the irradiance study, also the renderer's environment-light sampler
+/// ([`crate::render`]). It owns only the cumulative table; the probe is passed to each call, so
+/// the table can be stored next to the probe it was built from.
+///
+/// # Examples
+/// ```
+/// use glam::{DMat3, DVec3};
+/// use hw3::q4_light_probe::{irradiance::MapDistribution, Probe, ProbeFormat};
+/// let probe = Probe::from_fn(ProbeFormat::LatLong, 16, 8, DMat3::IDENTITY, |w| DVec3::splat(1.0 + w.z)).unwrap();
+/// let distribution = MapDistribution::new(&probe);
+/// let mut numbers = [0.3, 0.6, 0.2].into_iter().cycle();
+/// let sample = distribution.sample(&probe, &mut || numbers.next().unwrap()).unwrap();
+/// assert!((distribution.pdf(&probe, sample.omega) - sample.pdf).abs() < 1e-12 * sample.pdf);
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct MapDistribution {
+    /// Cumulative `luminance × Δω` over all texels (unnormalised).
+    cdf: Vec<f64>,
+}
+
+impl MapDistribution {
+    /// The table of `probe`.
+    #[must_use]
+    pub fn new(probe: &Probe) -> Self {
+        let mut running = 0.0;
+        let cdf = probe
+            .texels()
+            .iter()
+            .map(|t| {
+                running += luminance(t.radiance) * t.solid_angle;
+                running
+            })
+            .collect();
+        Self { cdf }
+    }
+
+    /// `Σ luminance × Δω` (the map's luminous "power"); 0 for a black map, which has no samples.
+    #[must_use]
+    pub fn total_power(&self) -> f64 {
+        self.cdf.last().copied().unwrap_or(0.0)
+    }
+
+    /// Draws a texel in proportion to luminance × Δω, then a point uniformly in the texel's image
+    /// area inside the domain; the solid-angle pdf is `p_t / (A_t · dω/dA)`. `uniform` supplies
+    /// numbers in `[0, 1)`: one for the texel, two per rejection try. `probe` must be the probe
+    /// the table was built from.
+    ///
+    /// Returns `None` for a black map, and when a rim texel of a disk format rejects all 64 tries
+    /// (a texel with a fraction `f` of its square inside the disk fails with probability
+    /// `(1 − f)^64`; the sample then counts as zero, a bias below 1e-3 of that texel's share —
+    /// already tiny, since `Δω ∝ f` — unless `f < 0.1`). Lat-long texels lie wholly inside
+    /// their domain and never fail: sampling a lat-long map is exactly unbiased.
+    pub fn sample(&self, probe: &Probe, uniform: &mut dyn FnMut() -> f64) -> Option<MapSample> {
+        let total = self.total_power();
+        if total <= 0.0 {
+            return None;
+        }
+        let target = uniform() * total;
+        let texel = self.cdf.partition_point(|c| *c <= target).min(self.cdf.len() - 1);
+        let rect = probe.texel_rect(texel);
+        for _ in 0..64 {
+            let u = DVec2::new(uniform(), uniform());
+            let p = rect.min + (rect.max - rect.min) * u;
+            if let Some((omega, jacobian)) = probe.image_to_world(p)
+                && probe.texel_index_at(p) == texel
+                && jacobian > 0.0
+            {
+                return Some(MapSample {
+                    omega,
+                    pdf: self.texel_probability(probe, texel) / (probe.texels()[texel].area * jacobian),
+                    texel,
+                });
+            }
+        }
+        None
+    }
+
+    fn texel_probability(&self, probe: &Probe, texel: usize) -> f64 {
+        let t = &probe.texels()[texel];
+        luminance(t.radiance) * t.solid_angle / self.total_power()
+    }
+
+    /// The solid-angle pdf with which [`Self::sample`] draws direction `omega` (unit); 0 for a
+    /// black map or a blind direction.
+    #[must_use]
+    pub fn pdf(&self, probe: &Probe, omega: DVec3) -> f64 {
+        if self.total_power() <= 0.0 {
+            return 0.0;
+        }
+        let Some(p) = probe.world_to_image(omega) else {
+            return 0.0;
+        };
+        let texel = probe.texel_index_at(p);
+        let t = &probe.texels()[texel];
+        let jacobian = probe.format().jacobian(p);
+        if t.area <= 0.0 || jacobian <= 0.0 {
+            return 0.0;
+        }
+        self.texel_probability(probe, texel) / (t.area * jacobian)
+    }
 }
 
 impl<'a> Irradiance<'a> {
@@ -209,20 +315,11 @@ impl<'a> Irradiance<'a> {
     /// ```
     #[must_use]
     pub fn new(probe: &'a Probe) -> Self {
-        let mut running = 0.0;
-        let cdf = probe
-            .texels()
-            .iter()
-            .map(|t| {
-                running += luminance(t.radiance) * t.solid_angle;
-                running
-            })
-            .collect();
         let inside = probe.texels().iter().filter(|t| t.centre_inside).count();
         let covered: f64 = probe.texels().iter().map(|t| t.solid_angle).sum();
         Self {
             probe,
-            cdf,
+            distribution: MapDistribution::new(probe),
             sh9: Sh9::project(probe),
             equal_weight: if inside > 0 { covered / inside as f64 } else { 0.0 },
         }
@@ -366,59 +463,16 @@ impl<'a> Irradiance<'a> {
     }
 
     fn total_power(&self) -> f64 {
-        self.cdf.last().copied().unwrap_or(0.0)
+        self.distribution.total_power()
     }
 
-    /// Draws a texel in proportion to luminance × Δω, then a point uniformly in the texel's image
-    /// area inside the domain; the solid-angle pdf is `p_t / (A_t · dω/dA)`.
     fn sample_map(&self, rng: &mut Generator) -> Option<MapSample> {
-        let total = self.total_power();
-        if total <= 0.0 {
-            return None;
-        }
-        let target = uniform(rng) * total;
-        let texel = self.cdf.partition_point(|c| *c <= target).min(self.cdf.len() - 1);
-        let rect = self.probe.texel_rect(texel);
-        // Rejection against the disk. A rim texel with a fraction f of its square inside the
-        // disk fails all 64 tries with probability (1 − f)^64; such a sample then counts as zero,
-        // a bias below 1e-3 of that texel's (already tiny, since Δω ∝ f) share unless f < 0.1.
-        for _ in 0..64 {
-            let u = DVec2::new(uniform(rng), uniform(rng));
-            let p = rect.min + (rect.max - rect.min) * u;
-            if let Some((omega, jacobian)) = self.probe.image_to_world(p)
-                && self.probe.texel_index_at(p) == texel
-                && jacobian > 0.0
-            {
-                return Some(MapSample {
-                    omega,
-                    pdf: self.texel_probability(texel) / (self.probe.texels()[texel].area * jacobian),
-                    texel,
-                });
-            }
-        }
-        None
-    }
-
-    fn texel_probability(&self, texel: usize) -> f64 {
-        let t = &self.probe.texels()[texel];
-        luminance(t.radiance) * t.solid_angle / self.total_power()
+        self.distribution.sample(self.probe, &mut || uniform(rng))
     }
 
     /// The map strategy's solid-angle pdf at direction `omega`.
     fn map_pdf(&self, omega: DVec3) -> f64 {
-        if self.total_power() <= 0.0 {
-            return 0.0;
-        }
-        let Some(p) = self.probe.world_to_image(omega) else {
-            return 0.0;
-        };
-        let texel = self.probe.texel_index_at(p);
-        let t = &self.probe.texels()[texel];
-        let jacobian = self.probe.format().jacobian(p);
-        if t.area <= 0.0 || jacobian <= 0.0 {
-            return 0.0;
-        }
-        self.texel_probability(texel) / (t.area * jacobian)
+        self.distribution.pdf(self.probe, omega)
     }
 
     /// Map (light) sampling: `(1/N) Σ L_t max(0, n·ω_i) / pdf(ω_i)`; below-horizon samples are

@@ -28,7 +28,7 @@ pub enum Pass {
     SpecularRecursion,
     /// Beer–Lambert attenuation `e^(−σ_t d)` of every ray segment in a medium.
     Transmittance,
-    /// Single scattering from point lights along every ray segment (`…V…E`).
+    /// Single scattering from point and area lights along every ray segment (`…V…E`).
     InScattering,
     /// A random time in the shutter interval for every camera sample (motion blur).
     TimeSampling,
@@ -150,6 +150,8 @@ pub struct Analysis {
 struct Letters {
     point_light: bool,
     area_light: bool,
+    /// A non-black environment map: a light at infinity, non-delta like an area light.
+    environment: bool,
     diffuse: bool,
     glossy: bool,
     specular: bool,
@@ -172,7 +174,7 @@ struct Letters {
 #[must_use]
 pub fn analyze(scene: &Scene) -> Analysis {
     let letters = letters(scene);
-    let light = letters.point_light || letters.area_light;
+    let light = letters.point_light || letters.area_light || letters.environment;
     let diffuse_like = letters.diffuse || letters.glossy;
     let yes_no = |ok: bool, yes: &str, no: &str| {
         if ok { yes.to_string() } else { no.to_string() }
@@ -180,9 +182,13 @@ pub fn analyze(scene: &Scene) -> Analysis {
     let mut classes = vec![
         PathClass {
             notation: "LE",
-            effect: "an area light seen directly",
+            effect: "an area light or environment seen directly",
             carries_energy: true,
-            reason: yes_no(letters.area_light, "an emitter quad", "no area light"),
+            reason: yes_no(
+                letters.area_light || letters.environment,
+                "an emitter quad or an environment map",
+                "no area light or environment",
+            ),
             pass: None,
         },
         PathClass {
@@ -230,18 +236,18 @@ pub fn analyze(scene: &Scene) -> Analysis {
         PathClass {
             notation: "LV(D|G|S)*E",
             effect: "glow of lights in fog (single scattering)",
-            carries_energy: letters.point_light,
+            carries_energy: letters.point_light || letters.area_light,
             reason: yes_no(
-                letters.scattering && letters.point_light,
-                "a scattering medium and a point light",
-                "needs a scattering medium (σ_s > 0) and a point light",
+                letters.scattering && (letters.point_light || letters.area_light),
+                "a scattering medium and a point or area light",
+                "needs a scattering medium (σ_s > 0) and a point or area light",
             ),
             pass: Some(Pass::InScattering),
         },
     ];
     // The letter test is one language intersection per class: the class must share a path with
     // the scene's language. The flags left above are what letters cannot say (two objects to
-    // exchange light, a light that sees the mirror, in-scattering only from point lights).
+    // exchange light, a light that sees the mirror, in-scattering only from point and area lights).
     let scene_language = scene_language(&letters);
     for class in &mut classes {
         let class_language = Lang::parse(class.notation).expect("built-in notation parses");
@@ -255,13 +261,19 @@ pub fn analyze(scene: &Scene) -> Analysis {
     }
     // A mirror that only reflects the background or fog still needs recursion.
     plan.specular_recursion |= letters.specular;
-    let caustic_from_point = letters.lit_specular && diffuse_like && letters.point_light && !letters.area_light;
-    let not_rendered = if caustic_from_point { vec!["LS+(D|G)…E"] } else { vec![] };
+    let caustic_from_point =
+        letters.lit_specular && diffuse_like && letters.point_light && !letters.area_light && !letters.environment;
+    let mut not_rendered = if caustic_from_point { vec!["LS+(D|G)…E"] } else { vec![] };
+    // Single scattering gathers point lights only: the environment's glow in fog is not rendered
+    // (and in a medium nothing arrives from infinitely far, so the environment lights nothing else).
+    if letters.environment && letters.scattering {
+        not_rendered.push("LV(D|G|S)*E (environment)");
+    }
     Analysis { classes, extinction: letters.extinction, moving: letters.moving, plan, not_rendered }
 }
 
 /// The paths a scene can carry, as a language over the letters its materials provide:
-/// `L M* E` for area lights (M = the letters present) and `L M* [DGV] M* E` for point lights,
+/// `L M* E` for area lights and the environment (M = the letters present) and `L M* [DGV] M* E` for point lights,
 /// whose paths need one non-delta vertex (a point light seen directly or through mirrors only,
 /// `LS*E`, has measure zero). ∅ without a light.
 #[must_use]
@@ -277,7 +289,7 @@ fn scene_language(letters: &Letters) -> Lang {
     .collect();
     let any = || Lang::star(Lang::any_of(&present));
     let light_to = |middle: Lang| Lang::concat(Lang::letter(Letter::L), Lang::concat(middle, Lang::letter(Letter::E)));
-    let area = if letters.area_light { light_to(any()) } else { Lang::Empty };
+    let area = if letters.area_light || letters.environment { light_to(any()) } else { Lang::Empty };
     let non_delta: Vec<Letter> = present.iter().copied().filter(|&l| l != Letter::S).collect();
     let point = if letters.point_light {
         light_to(Lang::concat(any(), Lang::concat(Lang::any_of(&non_delta), any())))
@@ -290,6 +302,7 @@ fn scene_language(letters: &Letters) -> Lang {
 fn letters(scene: &Scene) -> Letters {
     let mut letters = Letters {
         point_light: scene.point_lights().iter().any(|l| l.intensity.max_element() > 0.0),
+        environment: scene.environment().is_some_and(|e| !e.is_black()),
         ..Letters::default()
     };
     let (open, close) = scene.camera().shutter;
@@ -313,7 +326,8 @@ fn letters(scene: &Scene) -> Letters {
         letters.scattering = fog.sigma_s > 0.0;
         letters.extinction = fog.sigma_t() > 0.0;
     }
-    letters.lit_specular = letters.specular && light_sees_a_mirror(scene);
+    // An environment surrounds everything: coarsely, it sees every mirror.
+    letters.lit_specular = letters.specular && (letters.environment || light_sees_a_mirror(scene));
     letters
 }
 
@@ -418,6 +432,28 @@ mod tests {
         let analysis = analyze(&scene);
         assert!(analysis.plan.specular_recursion, "the eye still sees it");
         assert!(!carried(&analysis).contains(&"LS+(D|G)…E"));
+    }
+
+    /// The environment is a light derived from the scene: a non-black map lights the probe-lit
+    /// scene (LE, LDE, reflections, caustics through the mirror), a black one lights nothing, and
+    /// its glow in fog is reported as not rendered while an area light's glow is planned.
+    #[test]
+    fn the_environment_is_a_light_and_area_lights_glow_in_fog() {
+        use crate::render::environment::Environment;
+        let lit = analyze(&scenes::probe_lit().unwrap());
+        for class in ["LE", "LDE", "LGE", "L(D|G)?S+E", "LS+(D|G)…E"] {
+            assert!(carried(&lit).contains(&class), "{class}");
+        }
+        let no_light = scenes::mirror_spheres(false).unwrap();
+        let (camera, objects) = (*no_light.camera(), no_light.objects().to_vec());
+        let dark = Scene::new(camera, objects, vec![], None, DVec3::ONE).unwrap();
+        let black = analyze(&dark.with_environment(Environment::constant(DVec3::ZERO).unwrap()));
+        assert!(!carried(&black).contains(&"LDE"), "a black environment is no light");
+        let foggy = scenes::fog_panel(0.15).unwrap();
+        let analysis = analyze(&foggy);
+        assert!(analysis.plan.in_scattering && analysis.not_rendered.is_empty());
+        let with_sky = analyze(&foggy.with_environment(Environment::constant(DVec3::ONE).unwrap()));
+        assert_eq!(with_sky.not_rendered, vec!["LV(D|G|S)*E (environment)"]);
     }
 
     #[test]

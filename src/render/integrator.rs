@@ -7,6 +7,8 @@
 //! shift the others: that is what makes "forced on, image identical" testable bit for bit.
 
 use super::analysis::Passes;
+use super::environment;
+use super::medium;
 use super::scene::{Hit, Material, PointLight, Scene, Shape};
 use crate::geometry::sphere::{reflect, spawn_origin};
 use crate::geometry::{InputError, Ray};
@@ -89,9 +91,9 @@ impl<'a> Tracer<'a> {
 
     fn whitted(&self, ray: &Ray<f64>, time: f64, depth_left: u32, sampler: &mut Sampler) -> DVec3 {
         let hit = self.scene.closest_hit(ray, time, f64::INFINITY);
-        let (glow, transmittance) = self.segment(ray, hit, time);
+        let (glow, transmittance) = self.segment(ray, hit, time, sampler);
         let surface = match hit {
-            None => self.scene.background(),
+            None => self.scene.escaped_radiance(ray.dir),
             Some(hit) => match self.scene.objects()[hit.object].material {
                 Material::Emitter { radiance } => front_side(ray, &hit) * radiance,
                 Material::Mirror { reflectance } => {
@@ -131,12 +133,12 @@ impl<'a> Tracer<'a> {
         let mut counts_emission = true;
         for bounce in 0..=max_depth {
             let hit = self.scene.closest_hit(&ray, time, f64::INFINITY);
-            let (glow, transmittance) = self.segment(&ray, hit, time);
+            let (glow, transmittance) = self.segment(&ray, hit, time, sampler);
             radiance += throughput * glow;
             throughput *= transmittance;
             let Some(hit) = hit else {
                 if counts_emission {
-                    radiance += throughput * self.scene.background();
+                    radiance += throughput * self.scene.escaped_radiance(ray.dir);
                 }
                 break;
             };
@@ -184,11 +186,16 @@ impl<'a> Tracer<'a> {
         radiance
     }
 
-    /// Single-scattered glow along the segment up to the hit (or to infinity), and the segment's
-    /// transmittance; `(0, 1)` when the passes are off or there is no medium.
-    fn segment(&self, ray: &Ray<f64>, hit: Option<Hit>, time: f64) -> (DVec3, f64) {
+    /// Single-scattered glow along the segment up to the hit (or to infinity) from point lights
+    /// (deterministic) and area lights (sampled, [`medium`]), and the segment's transmittance;
+    /// `(0, 1)` when the passes are off or there is no medium.
+    fn segment(&self, ray: &Ray<f64>, hit: Option<Hit>, time: f64, sampler: &mut Sampler) -> (DVec3, f64) {
         let length = hit.map_or(f64::INFINITY, |h| h.t);
-        let glow = if self.passes.in_scattering { self.in_scattering(ray, length, time) } else { DVec3::ZERO };
+        let glow = if self.passes.in_scattering {
+            self.in_scattering(ray, length, time) + medium::area_in_scattering(self.scene, ray, length, time, sampler)
+        } else {
+            DVec3::ZERO
+        };
         let transmittance = if self.passes.transmittance { self.transmittance(length) } else { 1.0 };
         (glow, transmittance)
     }
@@ -213,17 +220,13 @@ impl<'a> Tracer<'a> {
         let end = length.min(40.0 / sigma_t);
         let mut total = DVec3::ZERO;
         for light in self.scene.point_lights() {
-            let to_light = light.position - ray.origin;
-            let along = to_light.dot(ray.dir);
-            // A light on the ray's line makes the integral diverge like 1/h; keep it finite.
-            let h = (to_light - ray.dir * along).length().max(1e-9 * (1.0 + to_light.length()));
-            let theta_start = (-along / h).atan();
-            let theta_end = ((end - along) / h).atan();
-            let step = (theta_end - theta_start) / self.in_scatter_steps as f64;
+            let span = medium::Equiangular::new(ray, light.position, end);
+            let h = span.h;
+            let step = (span.theta_end - span.theta_start) / self.in_scatter_steps as f64;
             let mut sum = 0.0;
             for i in 0..self.in_scatter_steps {
-                let theta = theta_start + (i as f64 + 0.5) * step;
-                let x = along + h * theta.tan();
+                let theta = span.theta_start + (i as f64 + 0.5) * step;
+                let x = span.distance(theta);
                 let r = h / theta.cos();
                 let point = ray.at(x);
                 let shadow = Ray { origin: point, dir: (light.position - point) / r };
@@ -236,8 +239,8 @@ impl<'a> Tracer<'a> {
         total
     }
 
-    /// Next-event estimation at a diffuse or glossy hit: every point light, and one sample per
-    /// area light, with shadow rays and transmittance.
+    /// Next-event estimation at a diffuse or glossy hit: every point light, one sample per area
+    /// light, and the environment's samples ([`environment`]), with shadow rays and transmittance.
     fn direct_light(&self, ray: &Ray<f64>, hit: &Hit, time: f64, sampler: &mut Sampler) -> DVec3 {
         let material = self.scene.objects()[hit.object].material;
         let normal = facing_normal(ray, hit);
@@ -277,7 +280,19 @@ impl<'a> Tracer<'a> {
                 }
             }
         }
+        let brdf_toward = |dir: DVec3| brdf(&material, to_eye, dir, normal);
+        let to_infinity = self.light_transmittance(f64::INFINITY);
         total
+            + environment::direct_light(
+                self.scene,
+                hit.point,
+                normal,
+                hit.normal,
+                time,
+                &brdf_toward,
+                to_infinity,
+                sampler,
+            )
     }
 
     /// Transmittance towards a light, on when the transmittance pass is.

@@ -7,6 +7,7 @@
 use crate::geometry::sphere::{first_hit_stable, surface_hit};
 use crate::geometry::{InputError, Ray, Sphere, require_finite};
 use crate::kdtree::{BuildError, KdTree};
+use crate::render::environment::Environment;
 use glam::DVec3;
 use std::sync::Arc;
 
@@ -200,6 +201,8 @@ pub struct Scene {
     point_lights: Vec<PointLight>,
     fog: Option<Fog>,
     background: DVec3,
+    /// Radiance from infinitely far away; replaces `background` for escaping rays when present.
+    environment: Option<Arc<Environment>>,
     /// The kd-tree over the static spheres, shared by the clones [`Scene::with_camera`] makes;
     /// `None` when the scene has no static sphere or acceleration was switched off.
     acceleration: Option<Arc<Acceleration>>,
@@ -207,8 +210,8 @@ pub struct Scene {
 
 impl PartialEq for Scene {
     fn eq(&self, other: &Self) -> bool {
-        (self.camera, &self.objects, &self.point_lights, self.fog, self.background)
-            == (other.camera, &other.objects, &other.point_lights, other.fog, other.background)
+        (self.camera, &self.objects, &self.point_lights, self.fog, self.background, &self.environment)
+            == (other.camera, &other.objects, &other.point_lights, other.fog, other.background, &other.environment)
     }
 }
 
@@ -310,7 +313,30 @@ impl Scene {
         }
         require_non_negative("background", background)?;
         let acceleration = Acceleration::build(&objects)?.map(Arc::new);
-        Ok(Self { camera, objects, point_lights, fog, background, acceleration })
+        Ok(Self { camera, objects, point_lights, fog, background, environment: None, acceleration })
+    }
+
+    /// The same scene lit by `environment` too, which escaping rays then see instead of the
+    /// background (module [`crate::render::environment`]). The environment was validated when
+    /// it was built.
+    ///
+    /// # Examples
+    /// ```
+    /// use glam::DVec3;
+    /// use hw3::render::{environment::Environment, scenes};
+    /// let scene = scenes::mirror_spheres(true).unwrap();
+    /// let lit = scene.clone().with_environment(Environment::constant(DVec3::ONE).unwrap());
+    /// assert!(scene.environment().is_none() && lit.environment().is_some());
+    /// ```
+    #[must_use]
+    pub fn with_environment(self, environment: Environment) -> Self {
+        Self { environment: Some(Arc::new(environment)), ..self }
+    }
+
+    /// The environment light, if any.
+    #[must_use]
+    pub fn environment(&self) -> Option<&Environment> {
+        self.environment.as_deref()
     }
 
     /// The same scene with every ray query answered by testing every object (the brute-force

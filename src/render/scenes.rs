@@ -2,13 +2,14 @@
 //! tracer. `hw3 scenes` lists them; `hw3 render NAME` and `hw3 effects NAME` take their names.
 
 use super::RenderError;
+use super::environment::Environment;
 use super::scene::{Camera, Fog, Material, Object, PointLight, Scene, Shape};
 use crate::geometry::{InputError, Sphere};
 use glam::DVec3;
 use rand_core::Rng as _;
 
 /// Every built-in scene: CLI name and a one-line description.
-pub const CATALOGUE: [(&str, &str); 8] = [
+pub const CATALOGUE: [(&str, &str); 10] = [
     ("clutter", "Q1a: 1500 spheres in a 41×41×10 slab, seen from the front"),
     ("fog", "Q1b: a street with two lamps in fog (σ_s = 0.08, no absorption)"),
     ("clear-street", "Q1b's street without the medium"),
@@ -17,6 +18,8 @@ pub const CATALOGUE: [(&str, &str); 8] = [
     ("motion", "Q1d: a ball moving 2 units during the shutter (motion blur)"),
     ("still", "Q1d's scene with the ball at rest"),
     ("cornell", "a closed box, area light, mirror, glossy and glass spheres (indirect light, caustics)"),
+    ("probe-lit", "diffuse, glossy and mirror spheres on a floor, lit only by Q4's courtyard map"),
+    ("fog-panel", "a ceiling panel light over a ball in fog (area-light single scattering)"),
 ];
 
 /// The built-in scene called `name` (see [`CATALOGUE`]).
@@ -39,6 +42,8 @@ pub fn by_name(name: &str) -> Result<Scene, RenderError> {
         "motion" => moving_ball(2.0),
         "still" => moving_ball(0.0),
         "cornell" => cornell_mirror(),
+        "probe-lit" => return probe_lit(),
+        "fog-panel" => fog_panel(0.15),
         _ => {
             return Err(RenderError::UnknownScene { name: name.into(), known: CATALOGUE.map(|(n, _)| n).join(", ") });
         }
@@ -271,6 +276,68 @@ pub fn cornell_mirror() -> Result<Scene, InputError> {
     objects.push(Object::sphere(Sphere::new(DVec3::new(0.1, -0.75, 0.6), 0.25)?, Material::Glass { index: 1.5 }));
     let camera = Camera::looking_at(DVec3::new(0.0, 0.0, 3.4), DVec3::ZERO, 40.0);
     Scene::new(camera, objects, vec![], None, DVec3::ZERO)
+}
+
+/// A 1×1 panel light facing down 3 units above a grey floor, a ball under it, and a
+/// non-absorbing fog of scattering coefficient `sigma_s` (no medium for 0): the area light's
+/// glow in the fog is single scattering from an area light ([`super::medium`]).
+///
+/// # Errors
+/// [`InputError`] for a negative or non-finite `sigma_s`.
+pub fn fog_panel(sigma_s: f64) -> Result<Scene, InputError> {
+    let floor = Object::quad(
+        DVec3::new(-5.0, 0.0, 3.0),
+        DVec3::new(10.0, 0.0, 0.0),
+        DVec3::new(0.0, 0.0, -12.0),
+        Material::Diffuse { albedo: DVec3::splat(0.5) },
+    );
+    let panel = Object::quad(
+        DVec3::new(-0.5, 3.0, -3.5),
+        DVec3::new(1.0, 0.0, 0.0),
+        DVec3::new(0.0, 0.0, 1.0),
+        Material::Emitter { radiance: DVec3::new(12.0, 11.0, 9.0) },
+    );
+    let ball =
+        Object::sphere(Sphere::new(DVec3::new(0.0, 0.7, -3.0), 0.7)?, Material::Diffuse { albedo: DVec3::splat(0.7) });
+    let camera = Camera::looking_at(DVec3::new(0.0, 1.8, 4.0), DVec3::new(0.0, 1.5, -3.0), 45.0);
+    let fog = (sigma_s != 0.0).then_some(Fog { sigma_a: 0.0, sigma_s });
+    Scene::new(camera, vec![floor, panel, ball], vec![], fog, DVec3::ZERO)
+}
+
+/// Three spheres (diffuse, glossy, mirror) on a grey floor quad, lit only by the vendored Q4
+/// `courtyard` map (`docs/data/q4`), which the camera also sees around them.
+///
+/// # Errors
+/// [`RenderError::Environment`] if the map file cannot be read.
+///
+/// # Examples
+/// ```
+/// let scene = hw3::render::scenes::probe_lit().unwrap();
+/// assert!(scene.environment().is_some() && scene.point_lights().is_empty());
+/// ```
+pub fn probe_lit() -> Result<Scene, RenderError> {
+    let path = crate::q4_light_probe::study::real_map_path("courtyard");
+    let environment = Environment::read_lat_long(path).map_err(|e| RenderError::Environment(e.to_string()))?;
+    let floor = Object::quad(
+        DVec3::new(-4.0, 0.0, 2.0),
+        DVec3::new(8.0, 0.0, 0.0),
+        DVec3::new(0.0, 0.0, -8.0),
+        Material::Diffuse { albedo: DVec3::splat(0.5) },
+    );
+    let ball = |x: f64, material| -> Result<Object, InputError> {
+        Ok(Object::sphere(Sphere::new(DVec3::new(x, 0.6, -2.0), 0.6)?, material))
+    };
+    let objects = vec![
+        floor,
+        ball(-1.4, Material::Diffuse { albedo: DVec3::new(0.8, 0.8, 0.8) })?,
+        ball(
+            0.0,
+            Material::Glossy { diffuse: DVec3::new(0.6, 0.25, 0.1), specular: DVec3::splat(0.3), exponent: 60.0 },
+        )?,
+        ball(1.4, Material::Mirror { reflectance: DVec3::splat(0.9) })?,
+    ];
+    let camera = Camera::looking_at(DVec3::new(0.0, 1.5, 2.5), DVec3::new(0.0, 0.5, -2.0), 45.0);
+    Ok(Scene::new(camera, objects, vec![], None, DVec3::ZERO)?.with_environment(environment))
 }
 
 #[cfg(test)]
