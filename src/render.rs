@@ -3,6 +3,7 @@
 pub mod analysis;
 pub mod command;
 pub mod integrator;
+pub mod photon;
 pub mod scene;
 pub mod scenes;
 
