@@ -20,8 +20,9 @@
 //! maps are identical for any number of rayon threads.
 
 use super::integrator::{Sampler, brdf, cosine_direction, dielectric_split, facing_normal, reflected_ray};
-use super::scene::{Material, Scene, Shape};
+use super::scene::{Camera, Material, Object, PointLight, Scene, Shape};
 use crate::geometry::Ray;
+use crate::geometry::Sphere;
 use crate::geometry::sphere::spawn_origin;
 use glam::DVec3;
 use kiddo::{ImmutableKdTree, SquaredEuclidean};
@@ -424,31 +425,54 @@ fn phong_direction(axis: DVec3, exponent: f64, u1: f64, u2: f64) -> DVec3 {
     (tangent * (sin_alpha * phi.cos()) + bitangent * (sin_alpha * phi.sin()) + axis * cos_alpha).normalize()
 }
 
+/// The white-furnace scene: a closed unit sphere of grey albedo `albedo` with an isotropic point
+/// light of intensity `intensity` at its centre. Every point of the wall receives the irradiance
+/// `E = Φ/(A(1 − ρ)) = I/(1 − ρ)` (direct `I` at distance 1, plus the geometric series of uniform
+/// interreflection), the exact reference of the photon-map tests and accuracy bench.
+///
+/// # Errors
+/// [`crate::geometry::InputError`] for an albedo outside `[0, 1]` or a negative or non-finite intensity.
+///
+/// # Examples
+/// ```
+/// let scene = hw3::render::photon::furnace_sphere(0.5, 1.0).unwrap();
+/// assert_eq!(scene.objects().len(), 1);
+/// assert!(hw3::render::photon::furnace_sphere(1.5, 1.0).is_err());
+/// ```
+pub fn furnace_sphere(albedo: f64, intensity: f64) -> Result<Scene, crate::geometry::InputError> {
+    let camera = Camera::looking_at(DVec3::new(0.0, 0.0, 0.5), DVec3::ZERO, 40.0);
+    let shell = Object::sphere(Sphere::new(DVec3::ZERO, 1.0)?, Material::Diffuse { albedo: DVec3::splat(albedo) });
+    let lamp = PointLight { position: DVec3::ZERO, intensity: DVec3::splat(intensity) };
+    Scene::new(camera, vec![shell], vec![lamp], None, DVec3::ZERO)
+}
+
+/// `n` points spread evenly over the unit sphere (a Fibonacci lattice), in a fixed order: the
+/// query points of the furnace measurements.
+///
+/// # Examples
+/// ```
+/// let points = hw3::render::photon::fibonacci_sphere(100);
+/// assert!(points.iter().all(|p| (p.length() - 1.0).abs() < 1e-12));
+/// ```
+#[must_use]
+pub fn fibonacci_sphere(n: usize) -> Vec<DVec3> {
+    let golden = PI * (3.0 - 5f64.sqrt());
+    (0..n)
+        .map(|i| {
+            let z = 1.0 - (2.0 * i as f64 + 1.0) / n as f64;
+            let r = (1.0 - z * z).max(0.0).sqrt();
+            let phi = golden * i as f64;
+            DVec3::new(r * phi.cos(), r * phi.sin(), z)
+        })
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geometry::Sphere;
-    use crate::render::scene::{Camera, Object, PointLight};
 
     fn closed_sphere(albedo: f64, intensity: f64) -> Scene {
-        let camera = Camera::looking_at(DVec3::new(0.0, 0.0, 0.5), DVec3::ZERO, 40.0);
-        let shell =
-            Object::sphere(Sphere::new(DVec3::ZERO, 1.0).unwrap(), Material::Diffuse { albedo: DVec3::splat(albedo) });
-        let lamp = PointLight { position: DVec3::ZERO, intensity: DVec3::splat(intensity) };
-        Scene::new(camera, vec![shell], vec![lamp], None, DVec3::ZERO).unwrap()
-    }
-
-    /// Points spread evenly over the unit sphere (a Fibonacci lattice).
-    fn sphere_points(n: usize) -> Vec<DVec3> {
-        let golden = PI * (3.0 - 5f64.sqrt());
-        (0..n)
-            .map(|i| {
-                let z = 1.0 - (2.0 * i as f64 + 1.0) / n as f64;
-                let r = (1.0 - z * z).sqrt();
-                let phi = golden * i as f64;
-                DVec3::new(r * phi.cos(), r * phi.sin(), z)
-            })
-            .collect()
+        furnace_sphere(albedo, intensity).unwrap()
     }
 
     /// White furnace: inside a closed unit sphere of albedo ρ with a point light `I` at the
@@ -464,7 +488,7 @@ mod tests {
         for albedo in [0.3, 0.7] {
             let intensity = 2.0;
             let maps = trace_photons(&closed_sphere(albedo, intensity), 200_000, 5).unwrap();
-            let points = sphere_points(1000);
+            let points = fibonacci_sphere(1000);
             let mean = points.iter().map(|&p| maps.all.irradiance(p, 100).unwrap().x).sum::<f64>() / 1000.0;
             let exact = intensity / (1.0 - albedo);
             assert!((mean / exact - 1.0).abs() < 0.01, "ρ = {albedo}: {mean} vs {exact}");
