@@ -71,6 +71,8 @@ pub struct Photon {
     pub position: DVec3,
     /// Unit direction of travel (towards the surface).
     pub direction: DVec3,
+    /// Unit normal of the surface where it was stored, turned towards the arriving photon.
+    pub normal: DVec3,
     /// Power (flux, W per channel) the photon carries.
     pub power: DVec3,
 }
@@ -151,7 +153,7 @@ impl PhotonMap {
     /// // A 100 × 100 grid of 1 W photons with spacing 0.01 m: 10⁴ W/m².
     /// let photons = (0..10_000)
     ///     .map(|i| Photon { position: DVec3::new(f64::from(i % 100) * 0.01, f64::from(i / 100) * 0.01, 0.0),
-    ///                       direction: DVec3::NEG_Z, power: DVec3::ONE })
+    ///                       direction: DVec3::NEG_Z, normal: DVec3::Z, power: DVec3::ONE })
     ///     .collect();
     /// let e = PhotonMap::new(photons).irradiance(DVec3::new(0.505, 0.505, 0.0), 40).unwrap();
     /// assert!((e.x / 1e4 - 1.0).abs() < 0.3);
@@ -163,8 +165,10 @@ impl PhotonMap {
     }
 
     /// Reflected radiance towards `to_eye` at a hit with facing unit `normal` on `material`:
-    /// `Σ f_r(to_eye, −direction_p) Φ_p / (πr_k²)` over the `k − 1` nearest photons that arrived
-    /// from the `normal`'s side. Mirrors, glass and emitters reflect nothing here (zero).
+    /// `Σ f_r(to_eye, −direction_p) Φ_p / (πr_k²)` over the `k − 1` nearest photons stored on a
+    /// surface facing the same way (normals within about 25°, Jensen's guard against the disc
+    /// collecting the other wall's photons at a corner; it biases the estimate low there
+    /// instead of high). Mirrors, glass and emitters reflect nothing here (zero).
     ///
     /// # Errors
     /// As [`PhotonMap::nearest`].
@@ -179,7 +183,7 @@ impl PhotonMap {
         let (nearest, radius_squared) = self.nearest(point, k)?;
         let reflected: DVec3 = nearest[..k - 1]
             .iter()
-            .filter(|p| p.direction.dot(normal) < 0.0)
+            .filter(|p| p.normal.dot(normal) > 0.9)
             .map(|p| brdf(material, to_eye, -p.direction, normal) * p.power)
             .sum();
         Ok(reflected / (PI * radius_squared))
@@ -350,7 +354,7 @@ fn trace_one(
             _ => DVec3::ZERO,
         };
         if diffuse_part.max_element() > 0.0 {
-            out.push((Photon { position: hit.point, direction: ray.dir, power }, path));
+            out.push((Photon { position: hit.point, direction: ray.dir, normal, power }, path));
         }
         let u = sampler.uniform();
         let next = match material {
@@ -572,7 +576,7 @@ mod tests {
     /// with it is a typed error, not an infinite irradiance.
     #[test]
     fn duplicate_photon_positions_are_handled() {
-        let photon = |position| Photon { position, direction: DVec3::NEG_Z, power: DVec3::ONE };
+        let photon = |position| Photon { position, direction: DVec3::NEG_Z, normal: DVec3::Z, power: DVec3::ONE };
         let mut photons = vec![photon(DVec3::ZERO); 5000];
         photons.extend((0..100).map(|i| {
             let angle = f64::from(i) * 2.0 * PI / 100.0;
@@ -600,6 +604,7 @@ mod tests {
                 .map(|_| Photon {
                     position: DVec3::new(sampler.uniform(), sampler.uniform(), 0.0),
                     direction: DVec3::NEG_Z,
+                    normal: DVec3::Z,
                     power: DVec3::ONE,
                 })
                 .collect();
