@@ -476,7 +476,7 @@ mod tests {
         let first = &grammar[0];
         assert_eq!((first["effect"].as_str(), first["method"].as_str()), (Some("a"), Some("radiosity")));
         assert_eq!((first["verdict"].as_str(), first["seed"].as_str()), (Some("no"), Some("no")));
-        assert_eq!(value["measured"].as_array().unwrap().len(), 4);
+        assert_eq!(value["measured"].as_array().unwrap().len(), 8);
         let text = effects_table_command(false).unwrap();
         assert!(text.contains("No `LGE` (seed: No)") && text.contains("measured verdict"));
     }
