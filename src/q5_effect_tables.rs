@@ -1,6 +1,7 @@
 #![doc = include_str!(concat!(env!("OUT_DIR"), "/q5_effect_tables.md"))]
 
 pub mod experiments;
+pub mod photon_accuracy;
 pub mod radiosity;
 
 use crate::Answers;
@@ -418,7 +419,9 @@ pub fn answers() -> Answers {
 /// # Errors
 /// [`PlotError`] if a figure cannot be drawn or a scene fails.
 pub fn figures() -> Result<Vec<Figure>, PlotError> {
-    experiments::figures()
+    let mut figures = experiments::figures()?;
+    figures.push(photon_accuracy::figure()?);
+    Ok(figures)
 }
 
 #[cfg(test)]
