@@ -172,6 +172,19 @@ impl PhotonMap {
     ///
     /// # Errors
     /// As [`PhotonMap::nearest`].
+    ///
+    /// # Examples
+    /// ```
+    /// use glam::DVec3;
+    /// use hw3::render::photon::{fibonacci_sphere, furnace_sphere, trace_photons};
+    /// use hw3::render::scene::Material;
+    /// // Furnace, ρ = 0.5, I = 1: L = ρE/π with E = 2 at every wall point.
+    /// let maps = trace_photons(&furnace_sphere(0.5, 1.0).unwrap(), 20_000, 1).unwrap();
+    /// let white = Material::Diffuse { albedo: DVec3::splat(0.5) };
+    /// let points = fibonacci_sphere(200);
+    /// let mean = points.iter().map(|&p| maps.all.radiance(&white, p, -p, -p, 50).unwrap().x).sum::<f64>() / 200.0;
+    /// assert!((mean / (1.0 / std::f64::consts::PI) - 1.0).abs() < 0.05);
+    /// ```
     pub fn radiance(
         &self,
         material: &Material,
