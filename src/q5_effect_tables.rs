@@ -1,6 +1,7 @@
 #![doc = include_str!(concat!(env!("OUT_DIR"), "/q5_effect_tables.md"))]
 
 pub mod experiments;
+pub mod photon_accuracy;
 pub mod radiosity;
 
 use crate::Answers;
@@ -418,7 +419,9 @@ pub fn answers() -> Answers {
 /// # Errors
 /// [`PlotError`] if a figure cannot be drawn or a scene fails.
 pub fn figures() -> Result<Vec<Figure>, PlotError> {
-    experiments::figures()
+    let mut figures = experiments::figures()?;
+    figures.push(photon_accuracy::figure()?);
+    Ok(figures)
 }
 
 #[cfg(test)]
@@ -476,7 +479,7 @@ mod tests {
         let first = &grammar[0];
         assert_eq!((first["effect"].as_str(), first["method"].as_str()), (Some("a"), Some("radiosity")));
         assert_eq!((first["verdict"].as_str(), first["seed"].as_str()), (Some("no"), Some("no")));
-        assert_eq!(value["measured"].as_array().unwrap().len(), 4);
+        assert_eq!(value["measured"].as_array().unwrap().len(), 8);
         let text = effects_table_command(false).unwrap();
         assert!(text.contains("No `LGE` (seed: No)") && text.contains("measured verdict"));
     }

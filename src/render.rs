@@ -6,6 +6,7 @@ pub mod environment;
 pub mod figures;
 pub mod integrator;
 pub mod medium;
+pub mod photon;
 pub mod scene;
 pub mod scenes;
 

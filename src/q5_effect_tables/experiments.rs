@@ -7,6 +7,7 @@ use crate::geometry::{InputError, Ray};
 use crate::plot::{self, Figure, PALETTE, PlotError, err};
 use crate::render::analysis::analyze;
 use crate::render::integrator::{Integrator, Sampler, Tracer};
+use crate::render::photon::{PhotonMap, trace_photons};
 use crate::render::scene::{Camera, Material, Object, Scene};
 use glam::DVec3;
 use plotters::prelude::*;
@@ -122,7 +123,18 @@ pub enum Measured {
     Whitted,
     /// The renderer's path tracer, the reference ([`REFERENCE_SPP`] samples per point).
     PathTracing,
+    /// The seed's two-pass method: eye rays with direct light (Whitted's shadow rays, not traced
+    /// further) plus the radiance of the *indirect* photon map ([`PHOTONS`], [`NEIGHBOURS`]).
+    TwoPass,
+    /// Photon mapping: the two-pass method plus the caustic map's radiance at the eye ray's
+    /// first hit (no final gather).
+    PhotonMapping,
 }
+
+/// Photons emitted for the two-pass and photon-mapping cells.
+pub const PHOTONS: usize = 200_000;
+/// Neighbours of the photon-map radiance estimate for those cells.
+pub const NEIGHBOURS: usize = 100;
 
 /// Radiosity at the measured table's mesh ([`TABLE_MESH`]).
 const TABLE_RADIOSITY: Measured = Measured::Radiosity { subdivisions: TABLE_MESH.0, samples: TABLE_MESH.1 };
@@ -133,6 +145,8 @@ impl Measured {
             Measured::Radiosity { .. } => "radiosity",
             Measured::Whitted => "whitted",
             Measured::PathTracing => "path_tracing",
+            Measured::TwoPass => "two_pass",
+            Measured::PhotonMapping => "photon_mapping",
         }
     }
 }
@@ -169,6 +183,32 @@ fn mean_radiance(scene: &Scene, method: Measured, points: &[(DVec3, DVec3)]) -> 
                         / f64::from(spp)
                 })
                 .sum()
+        }
+        Measured::TwoPass | Measured::PhotonMapping => {
+            let maps = trace_photons(scene, PHOTONS, 3).map_err(|_| RadiosityError::NoPatches)?;
+            let integrator = Integrator::Whitted { max_depth: 5 };
+            let tracer = Tracer::new(scene, analyze(scene).plan.for_integrator(integrator));
+            let mut total = DVec3::ZERO;
+            for (k, &(p, n)) in points.iter().enumerate() {
+                let ray = Ray { origin: p + n * 0.05, dir: -n };
+                let mut sampler = Sampler::new(5, k as u64, 0);
+                let direct =
+                    (0..16).map(|_| tracer.radiance(integrator, &ray, 0.0, &mut sampler)).sum::<DVec3>() / 16.0;
+                let Some(hit) = scene.closest_hit(&ray, 0.0, 1.0) else { continue };
+                let material = scene.objects()[hit.object].material;
+                let normal = if ray.dir.dot(hit.normal) < 0.0 { hit.normal } else { -hit.normal };
+                let estimate = |map: &PhotonMap| {
+                    map.radiance(&material, hit.point, -ray.dir, normal, NEIGHBOURS)
+                        .map_err(|_| RadiosityError::NoPatches)
+                };
+                let caustic = if method == Measured::PhotonMapping && maps.caustic.len() >= NEIGHBOURS {
+                    estimate(&maps.caustic)?
+                } else {
+                    DVec3::ZERO
+                };
+                total += direct + estimate(&maps.indirect)? + caustic;
+            }
+            total
         }
     };
     Ok(sum / points.len() as f64)
@@ -216,8 +256,8 @@ pub fn glow(method: Measured) -> Result<f64, RadiosityError> {
     Ok(mean_radiance(&scene, method, &glow_region())?.element_sum() / 3.0)
 }
 
-/// The measured table: effects (b) colour bleeding and (e) ambient glow, for radiosity and
-/// Whitted ray tracing against the path tracer.
+/// The measured table: effects (b) colour bleeding and (e) ambient glow, for radiosity, the
+/// two-pass method, Whitted ray tracing and photon mapping against the path tracer.
 ///
 /// # Errors
 /// [`RadiosityError`] if a mesh cannot be built (never for the built-in scenes).
@@ -227,7 +267,7 @@ pub fn measured_table() -> Result<Vec<MeasuredCell>, RadiosityError> {
     let experiments: [(&str, Experiment); 2] = [("b", bleeding), ("e", glow)];
     for (effect, measure) in experiments {
         let reference = measure(Measured::PathTracing)?;
-        for method in [TABLE_RADIOSITY, Measured::Whitted] {
+        for method in [TABLE_RADIOSITY, Measured::TwoPass, Measured::Whitted, Measured::PhotonMapping] {
             let value = measure(method)?;
             let fraction = value / reference;
             let verdict = if fraction >= YES_FRACTION {

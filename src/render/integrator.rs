@@ -388,11 +388,11 @@ fn front_side(ray: &Ray<f64>, hit: &Hit) -> f64 {
 }
 
 /// The geometric normal turned towards the side the ray came from.
-fn facing_normal(ray: &Ray<f64>, hit: &Hit) -> DVec3 {
+pub(crate) fn facing_normal(ray: &Ray<f64>, hit: &Hit) -> DVec3 {
     if ray.dir.dot(hit.normal) < 0.0 { hit.normal } else { -hit.normal }
 }
 
-fn reflected_ray(ray: &Ray<f64>, hit: &Hit) -> Ray<f64> {
+pub(crate) fn reflected_ray(ray: &Ray<f64>, hit: &Hit) -> Ray<f64> {
     let dir = reflect::<f64>(ray.dir, hit.normal);
     Ray { origin: spawn_origin::<f64>(hit.point, hit.normal, dir), dir }
 }
@@ -449,7 +449,7 @@ pub fn dielectric_split(ray: &Ray<f64>, hit: &Hit, index: f64) -> DielectricSpli
 }
 
 /// The BRDF of a diffuse or glossy material for unit `to_eye`, `to_light` and facing `normal`.
-fn brdf(material: &Material, to_eye: DVec3, to_light: DVec3, normal: DVec3) -> DVec3 {
+pub(crate) fn brdf(material: &Material, to_eye: DVec3, to_light: DVec3, normal: DVec3) -> DVec3 {
     match *material {
         Material::Diffuse { albedo } => albedo / PI,
         Material::Glossy { diffuse, specular, exponent } => {
@@ -462,7 +462,7 @@ fn brdf(material: &Material, to_eye: DVec3, to_light: DVec3, normal: DVec3) -> D
 }
 
 /// A cosine-distributed direction about the unit `normal` (Malley's method).
-fn cosine_direction(normal: DVec3, u1: f64, u2: f64) -> DVec3 {
+pub(crate) fn cosine_direction(normal: DVec3, u1: f64, u2: f64) -> DVec3 {
     let radius = u1.sqrt();
     let phi = 2.0 * PI * u2;
     let (tangent, bitangent) = normal.any_orthonormal_pair();

@@ -1,0 +1,90 @@
+//! Photon-map benchmarks.
+//!
+//! - divan: 1000 k-nearest queries (k = 50) in a map of 10⁵ photons, with `kiddo`'s
+//!   `ImmutableKdTree` (what [`hw3::render::photon::PhotonMap`] uses) and with a brute-force scan
+//!   (`select_nth_unstable` over all squared distances). The crate's own kd-tree
+//!   ([`hw3::kdtree`]) indexes spheres for ray traversal and has no k-nearest query, so it is not
+//!   a candidate without a second traversal.
+//! - `cargo bench --bench q5_photon` also measures the photon map's accuracy against time in the
+//!   white furnace (closed unit sphere, ρ = 0.5, point light I = 1 at the centre, exact irradiance
+//!   E = I/(1 − ρ) = 2 everywhere, which the path tracer reproduces to 1e-9 in
+//!   `render::integrator`'s furnace test): the relative RMS error of the irradiance at 1000 wall
+//!   points for photon counts 10⁴…10⁶ and k = 8…512, with the seconds of tracing and of the
+//!   queries; writes `docs/data/q5_photon_accuracy.md` and `.csv`. `cargo test --benches` runs each
+//!   divan bench once and skips that measurement.
+
+use glam::DVec3;
+use hw3::render::photon::{PhotonMap, fibonacci_sphere, furnace_sphere, trace_photons};
+use std::fmt::Write as _;
+use std::time::Instant;
+
+fn main() {
+    if std::env::args().any(|a| a == "--bench") {
+        write_accuracy_table();
+    }
+    divan::main();
+}
+
+fn furnace_map(photons: usize) -> PhotonMap {
+    trace_photons(&furnace_sphere(0.5, 1.0).expect("valid scene"), photons, 1).expect("photons").all
+}
+
+fn brute_force_nearest(points: &[[f64; 3]], query: DVec3, k: usize) -> f64 {
+    let mut distances: Vec<f64> = points.iter().map(|p| DVec3::from(*p).distance_squared(query)).collect();
+    let (_, kth, _) = distances.select_nth_unstable_by(k - 1, f64::total_cmp);
+    *kth
+}
+
+#[divan::bench]
+fn knn_kiddo(bencher: divan::Bencher) {
+    let map = furnace_map(50_000);
+    let queries = fibonacci_sphere(1000);
+    bencher.bench_local(|| queries.iter().map(|&q| map.nearest(q, 50).expect("enough photons").1).sum::<f64>());
+}
+
+#[divan::bench(sample_count = 3)]
+fn knn_brute_force(bencher: divan::Bencher) {
+    let map = furnace_map(50_000);
+    let points: Vec<[f64; 3]> = map.photons().iter().map(|p| p.position.to_array()).collect();
+    let queries = fibonacci_sphere(1000);
+    bencher.bench_local(|| queries.iter().map(|&q| brute_force_nearest(&points, q, 50)).sum::<f64>());
+}
+
+const PHOTONS: [usize; 4] = [10_000, 30_000, 100_000, 1_000_000];
+const NEIGHBOURS: [usize; 5] = [8, 32, 128, 512, 2048];
+
+fn write_accuracy_table() {
+    let exact = 2.0;
+    let queries = fibonacci_sphere(1000);
+    let mut csv = String::from("photons,stored,k,trace_seconds,query_seconds,rms_error,mean_error\n");
+    let mut table = String::from(
+        "White furnace (closed unit sphere, ρ = 0.5, I = 1 at the centre, exact E = 2); irradiance from the `all` map at 1000 wall points, (k − 1)/(πr²) estimate. Seconds: tracing (2 threads) and the 1000 queries.\n\n| photons | stored | k | trace s | query s | RMS error | mean error |\n|---|---|---|---|---|---|---|\n",
+    );
+    for photons in PHOTONS {
+        let start = Instant::now();
+        let map = furnace_map(photons);
+        let trace_seconds = start.elapsed().as_secs_f64();
+        for k in NEIGHBOURS.into_iter().filter(|&k| k * 20 <= map.len()) {
+            let start = Instant::now();
+            let errors: Vec<f64> =
+                queries.iter().map(|&q| map.irradiance(q, k).expect("enough photons").x / exact - 1.0).collect();
+            let query_seconds = start.elapsed().as_secs_f64();
+            let n = errors.len() as f64;
+            let rms = (errors.iter().map(|e| e * e).sum::<f64>() / n).sqrt();
+            let mean = errors.iter().sum::<f64>() / n;
+            let stored = map.len();
+            let _ =
+                writeln!(csv, "{photons},{stored},{k},{trace_seconds:.4e},{query_seconds:.4e},{rms:.4e},{mean:.4e}");
+            let _ = writeln!(
+                table,
+                "| {photons} | {stored} | {k} | {trace_seconds:.3} | {query_seconds:.4} | {:.2} % | {:+.2} % |",
+                rms * 100.0,
+                mean * 100.0
+            );
+        }
+    }
+    let data = concat!(env!("CARGO_MANIFEST_DIR"), "/docs/data");
+    std::fs::create_dir_all(data).expect("docs/data is writable");
+    std::fs::write(format!("{data}/q5_photon_accuracy.csv"), csv).expect("write the CSV");
+    std::fs::write(format!("{data}/q5_photon_accuracy.md"), table).expect("write the table");
+}

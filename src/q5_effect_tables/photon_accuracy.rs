@@ -1,0 +1,138 @@
+//! The photon map's accuracy against k and photon count, plotted from the CSV that
+//! `cargo bench --bench q5_photon` writes (`docs/data/q5_photon_accuracy.csv`), so that
+//! [`super::figures`] stays deterministic: timings come only from the benchmark.
+
+use crate::plot::{self, Figure, PALETTE, PlotError, err};
+use plotters::prelude::*;
+
+/// One row of the photon accuracy CSV.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AccuracyRow {
+    /// Photons emitted.
+    pub photons: f64,
+    /// Photons stored in the map.
+    pub stored: f64,
+    /// Neighbours of the estimate.
+    pub k: f64,
+    /// Seconds to trace the photons.
+    pub trace_seconds: f64,
+    /// Seconds for the 1000 queries.
+    pub query_seconds: f64,
+    /// Relative RMS error of the irradiance over the query points.
+    pub rms_error: f64,
+    /// Mean relative error (the bias).
+    pub mean_error: f64,
+}
+
+/// Parses the CSV (header `photons,stored,k,trace_seconds,query_seconds,rms_error,mean_error`).
+///
+/// # Errors
+/// A message naming the first line with a missing or non-numeric field.
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::photon_accuracy::parse;
+/// let rows = parse("header\n10000,19823,8,4.8e-2,1.8e-3,4.2e-1,2.0e-2\n").unwrap();
+/// assert_eq!(rows[0].k, 8.0);
+/// assert!(parse("header\n1,2,x\n").is_err());
+/// ```
+pub fn parse(csv: &str) -> Result<Vec<AccuracyRow>, String> {
+    csv.lines()
+        .skip(1)
+        .filter(|line| !line.trim().is_empty())
+        .map(|line| {
+            let fields: Vec<f64> = line
+                .split(',')
+                .map(|f| f.trim().parse::<f64>())
+                .collect::<Result<_, _>>()
+                .map_err(|e| format!("q5_photon_accuracy.csv: `{line}`: {e}"))?;
+            match fields[..] {
+                [photons, stored, k, trace_seconds, query_seconds, rms_error, mean_error] => {
+                    Ok(AccuracyRow { photons, stored, k, trace_seconds, query_seconds, rms_error, mean_error })
+                }
+                _ => Err(format!("q5_photon_accuracy.csv: `{line}`: expected 7 fields")),
+            }
+        })
+        .collect()
+}
+
+/// The log-log chart of RMS error against k, one line per photon count, with the noise law
+/// `1/√(k − 2)` of the (k − 1)/(πr²) estimate dashed.
+///
+/// # Errors
+/// [`PlotError`] when the CSV is missing or malformed, or drawing fails.
+pub fn figure() -> Result<Figure, PlotError> {
+    let name = "q5_photon_accuracy.svg";
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/docs/data/q5_photon_accuracy.csv");
+    let csv = std::fs::read_to_string(path).map_err(|e| PlotError::Draw {
+        figure: name.into(),
+        message: format!("{path}: {e} (run `cargo bench --bench q5_photon`)"),
+    })?;
+    let rows = parse(&csv).map_err(|message| PlotError::Draw { figure: name.into(), message })?;
+    let mut counts: Vec<f64> = rows.iter().map(|r| r.photons).collect();
+    counts.dedup();
+    plot::svg_figure(name, (640, 400), |root| {
+        root.fill(&WHITE).map_err(err)?;
+        let mut chart = ChartBuilder::on(root)
+            .caption("Photon map in the white furnace: error vs k", ("sans-serif", 18))
+            .margin(12)
+            .x_label_area_size(40)
+            .y_label_area_size(60)
+            .build_cartesian_2d((4f64..4096f64).log_scale(), (0.01f64..1f64).log_scale())
+            .map_err(err)?;
+        chart
+            .configure_mesh()
+            .x_desc("k (neighbours)")
+            .y_desc("relative RMS error of E")
+            .label_style(("sans-serif", 12))
+            .draw()
+            .map_err(err)?;
+        for (index, &count) in counts.iter().enumerate() {
+            let color = PALETTE[index % PALETTE.len()];
+            let points: Vec<(f64, f64)> =
+                rows.iter().filter(|r| r.photons == count).map(|r| (r.k, r.rms_error)).collect();
+            chart
+                .draw_series(LineSeries::new(points.clone(), color.stroke_width(2)))
+                .map_err(err)?
+                .label(format!("{count:.0} photons"))
+                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], color.stroke_width(2)));
+            chart.draw_series(points.iter().map(|&p| Circle::new(p, 3, color.filled()))).map_err(err)?;
+        }
+        let law: Vec<(f64, f64)> = (3..=12).map(|e| 2f64.powi(e)).map(|k| (k, 1.0 / (k - 2.0).sqrt())).collect();
+        chart
+            .draw_series(DashedLineSeries::new(law, 6, 4, BLACK.stroke_width(1)))
+            .map_err(err)?
+            .label("1/√(k − 2)")
+            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], BLACK.stroke_width(1)));
+        chart
+            .configure_series_labels()
+            .background_style(WHITE.mix(0.8))
+            .border_style(BLACK)
+            .label_font(("sans-serif", 13))
+            .draw()
+            .map_err(err)
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The committed measurement obeys the estimate's noise law: the RMS error is within 25 % of
+    /// 1/√(k − 2) on every row (the furnace has no gradient, so no blur adds to it), and the bias
+    /// stays within ±3 %.
+    #[test]
+    fn committed_photon_accuracy_follows_the_noise_law() {
+        let csv =
+            std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/data/q5_photon_accuracy.csv")).unwrap();
+        let rows = parse(&csv).unwrap();
+        assert!(rows.len() >= 12);
+        for r in &rows {
+            let law = 1.0 / (r.k - 2.0).sqrt();
+            assert!((r.rms_error / law - 1.0).abs() < 0.25, "{r:?} vs {law}");
+            assert!(r.mean_error.abs() < 0.03, "{r:?}");
+            assert!(r.stored >= r.photons, "each photon lands at least once in a closed sphere");
+        }
+        assert!(parse("h\n1,2,3,4,5,6\n").is_err(), "six fields");
+    }
+}
