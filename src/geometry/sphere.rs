@@ -161,8 +161,8 @@ pub struct SurfaceHit<T: Real> {
 /// The computed `e + d t` is off the surface by the error in `t` times `|d|` (far from the eye that
 /// is many ulps), so the point is **reprojected**: `p = o + r (p' − o)/|p' − o|`, which puts it
 /// within a few ulps of the true surface whatever the error in `t` (pbrt-v4 §6.8.5). The normal is
-/// `(p − o)/r`, as in the homework. For the small `t` errors of the stable solver, `1/|p' − o|` is
-/// taken from one Newton step starting at `1/r` (error `O(δ²)` for `|p' − o|² = r²(1 + δ)`), which
+/// `(p − o)/r`, as in the homework. For the small `t` errors of the stable solver, `r/|p' − o|` is
+/// taken from one Newton step starting at `1` (that is, `1/|p' − o|` from the guess `1/r`) (error `O(δ²)` for `|p' − o|² = r²(1 + δ)`), which
 /// avoids a square root; larger errors fall back to the exact square root.
 ///
 /// # Preconditions
@@ -187,7 +187,8 @@ pub fn surface_hit<T: Real>(ray: &Ray<T>, sphere: &Sphere<T>, t: T) -> SurfaceHi
     let radial = ray.at(t) - sphere.center;
     let inv_r = T::ONE / sphere.radius;
     // |radial|²/r² = 1 + δ with |δ| of a few ulps times t|d|/r for a t from the stable solver.
-    // One Newton step for 1/√ from the guess 1/r gives 1/|radial| to O(δ²), with no square root;
+    // One Newton step for 1/√ from the guess 1/r gives 1/|radial| to O(δ²) (here scaled by r),
+    // with no square root;
     // a larger δ (a t from a less accurate solver) takes the exact route.
     let ratio = T::dot(radial, radial) * inv_r * inv_r;
     let delta = ratio - T::ONE;
