@@ -26,6 +26,9 @@ use std::time::Instant;
 
 type Hit = Option<(usize, f64)>;
 
+/// The contender index of obvhs's CWBVH in the interleaved timings (the kd-tree is 0).
+const CWBVH: usize = 3;
+
 /// The note's ray with direction exactly (−0, −0, −1), on which obvhs 0.4's CWBVH can miss.
 const PROBE: usize = 839_669;
 
@@ -98,44 +101,103 @@ fn mrays(count: usize, secs: f64) -> f64 {
 }
 
 /// Rays on which a peer names a different sphere than the tree (or hits where it misses).
-fn mismatches(peer: &[peers::HitF32], tree: &[Hit]) -> usize {
+fn mismatches(peer: &[Hit], tree: &[Hit]) -> usize {
     peer.iter().zip(tree).filter(|(p, t)| p.map(|h| h.0) != t.map(|h| h.0)).count()
 }
 
-/// The peers' CSV fields for one scene (build ms, camera and random Mrays/s, mismatches against the
-/// tree per peer), and the probe's verdict per peer.
-struct PeerRun {
-    fields: String,
+/// Best seconds per contender, the median per-round time ratio of each contender to the first,
+/// and each contender's answers.
+struct Timed {
+    best_secs: Vec<f64>,
+    median_ratio: Vec<f64>,
+    answers: Vec<Vec<Hit>>,
+}
+
+/// Times every contender on the same rays in interleaved rounds (round r runs the kd-tree, then
+/// each peer), so that a change of load on the shared machine hits all of them alike and the
+/// per-round ratios compare like with like.
+fn interleaved(rounds: usize, contenders: &mut [&mut dyn FnMut() -> Vec<Hit>]) -> Timed {
+    let count = contenders.len();
+    let mut secs = vec![Vec::with_capacity(rounds); count];
+    let mut answers = vec![Vec::new(); count];
+    for _ in 0..rounds {
+        for (c, work) in contenders.iter_mut().enumerate() {
+            let (elapsed, hits) = best_of(1, &mut **work);
+            secs[c].push(elapsed);
+            answers[c] = hits;
+        }
+    }
+    let median = |mut v: Vec<f64>| {
+        v.sort_by(f64::total_cmp);
+        v[v.len() / 2]
+    };
+    let best_secs = secs.iter().map(|s| s.iter().copied().fold(f64::INFINITY, f64::min)).collect();
+    let median_ratio = secs.iter().map(|s| median(s.iter().zip(&secs[0]).map(|(t, kd)| t / kd).collect())).collect();
+    Timed { best_secs, median_ratio, answers }
+}
+
+/// The camera and random timings of the kd-tree and every peer, with the peers' CSV fields (build
+/// ms, camera and random Mrays/s, mismatches against the tree) and the probe's verdict per peer.
+struct Run {
+    camera: Timed,
+    random: Timed,
+    peer_fields: String,
     probe: Vec<String>,
 }
 
-fn run_peers(
-    spheres: &[Sphere<f64>],
-    rays: (&[peers::RayF32], &[peers::RayF32], &peers::RayF32),
-    tree_answers: (&[Hit], &[Hit], Hit),
-    repeats: (usize, usize),
-) -> PeerRun {
-    let (camera, random, probe) = rays;
+/// The rays every contender traces: `f64` for the kd-tree, the same rays narrowed (exactly) to
+/// `f32` for the peers, and the probe ray.
+struct Rays<'a> {
+    camera: &'a [Ray<f64>],
+    random: &'a [Ray<f64>],
+    camera32: &'a [peers::RayF32],
+    random32: &'a [peers::RayF32],
+    probe32: &'a peers::RayF32,
+}
+
+fn run_all(tree: &KdTree, spheres: &[Sphere<f64>], rays: &Rays<'_>, tree_probe: Hit, repeats: (usize, usize)) -> Run {
+    let Rays { camera, random, camera32, random32, probe32 } = *rays;
     let t_min = T_MIN as f32;
-    let mut run = PeerRun { fields: String::new(), probe: Vec::new() };
-    for (index, name) in peers::NAMES.iter().enumerate() {
-        let mut shapes = peers::spheres_f32(spheres);
-        let (build_secs, peer) = best_of(repeats.0, || peers::Peer::build(index, &mut shapes));
-        let trace = |rays: &[peers::RayF32]| -> Vec<peers::HitF32> {
-            rays.iter().map(|r| peer.closest_hit(&shapes, black_box(r), t_min)).collect()
-        };
-        let (camera_secs, camera_hits) = best_of(repeats.1, || trace(camera));
-        let (random_secs, random_hits) = best_of(repeats.1.min(2), || trace(random));
-        let wrong = mismatches(&camera_hits, tree_answers.0) + mismatches(&random_hits, tree_answers.1);
+    let built: Vec<(Vec<peers::SphereF32>, peers::Peer, f64)> = (0..peers::NAMES.len())
+        .map(|index| {
+            let mut shapes = peers::spheres_f32(spheres);
+            let (build_secs, peer) = best_of(repeats.0, || peers::Peer::build(index, &mut shapes));
+            (shapes, peer, build_secs)
+        })
+        .collect();
+    let time_on = |rounds: usize, kd_rays: &[Ray<f64>], peer_rays: &[peers::RayF32]| {
+        let mut kd = || trace_all(tree, kd_rays);
+        let mut peer_work: Vec<_> = built
+            .iter()
+            .map(|(shapes, peer, _)| {
+                move || -> Vec<Hit> {
+                    peer_rays
+                        .iter()
+                        .map(|r| peer.closest_hit(shapes, black_box(r), t_min).map(|(i, t)| (i, f64::from(t))))
+                        .collect()
+                }
+            })
+            .collect();
+        let mut contenders: Vec<&mut dyn FnMut() -> Vec<Hit>> = vec![&mut kd];
+        contenders.extend(peer_work.iter_mut().map(|w| w as &mut dyn FnMut() -> Vec<Hit>));
+        interleaved(rounds, &mut contenders)
+    };
+    let camera_timed = time_on(repeats.1, camera, camera32);
+    let random_timed = time_on(repeats.1.min(3), random, random32);
+    let mut run = Run { camera: camera_timed, random: random_timed, peer_fields: String::new(), probe: Vec::new() };
+    for (p, (name, (shapes, peer, build_secs))) in peers::NAMES.iter().zip(&built).enumerate() {
+        let c = p + 1;
+        let wrong = mismatches(&run.camera.answers[c], &run.camera.answers[0])
+            + mismatches(&run.random.answers[c], &run.random.answers[0]);
         let _ = write!(
-            run.fields,
+            run.peer_fields,
             ",{:.3},{:.3},{:.3},{wrong}",
             build_secs * 1e3,
-            mrays(camera.len(), camera_secs),
-            mrays(random.len(), random_secs)
+            mrays(camera32.len(), run.camera.best_secs[c]),
+            mrays(random32.len(), run.random.best_secs[c])
         );
-        let answer = peer.closest_hit(&shapes, probe, t_min);
-        let verdict = match (answer, tree_answers.2) {
+        let answer = peer.closest_hit(shapes, probe32, t_min);
+        let verdict = match (answer, tree_probe) {
             (a, b) if a.map(|h| h.0) == b.map(|h| h.0) => "ok".to_string(),
             (None, Some((i, _))) => format!("MISSES sphere {i}"),
             (Some((i, _)), _) => format!("differs (sphere {i})"),
@@ -153,6 +215,7 @@ fn env_override<T: std::str::FromStr>(name: &str) -> Option<T> {
 
 fn main() {
     let measuring = std::env::args().any(|a| a == "--bench");
+    assert_eq!(peers::NAMES[CWBVH - 1], "obvhs_cwbvh", "CWBVH's contender index");
     let max_n: usize = env_override("HW3_Q3_MAX_N").unwrap_or(100_000);
     // Tuning knobs: override K_I, the empty bonus, the bin count, or skip small N. A tuning run
     // prints its rows but writes nothing (the committed data are the crate's defaults).
@@ -174,7 +237,7 @@ fn main() {
     let (sizes, camera, random, repeats): (Vec<usize>, _, _, usize) = if measuring {
         let sizes =
             [100, 1_000, 10_000, 100_000, 1_000_000].into_iter().filter(|&n| (min_n..=max_n).contains(&n)).collect();
-        (sizes, camera_rays(512, 512), random_rays(1_000_000, 0xBEEF), 3)
+        (sizes, camera_rays(512, 512), random_rays(1_000_000, 0xBEEF), 7)
     } else {
         (vec![100], camera_rays(64, 64), random_rays(4_096, 0xBEEF), 1)
     };
@@ -191,7 +254,7 @@ fn main() {
          random_sum_t,brute_camera_mrays,brute_random_mrays,brute_mismatches,versus_note",
     );
     csv.push_str(&peer_header);
-    csv.push_str(",probe_839669\n");
+    csv.push_str(",probe_839669,kd_over_cwbvh_camera,kd_over_cwbvh_random\n");
     for density in [Density::FixedMeanFreePath, Density::FixedVolumeFraction] {
         let label = match density {
             Density::FixedMeanFreePath => "fixed_k",
@@ -201,8 +264,16 @@ fn main() {
             let spheres = scene(n, density);
             let build_repeats = if n >= 100_000 { 1 } else { repeats };
             let (build_secs, tree) = best_of(build_repeats, || KdTree::build_with(&spheres, costs).unwrap());
-            let (camera_secs, camera_hits) = best_of(repeats, || trace_all(&tree, &camera));
-            let (random_secs, random_hits) = best_of(repeats.min(2), || trace_all(&tree, &random));
+            let tree_probe = tree.closest_hit(&probe_ray, T_MIN, f64::INFINITY);
+            let run = run_all(
+                &tree,
+                &spheres,
+                &Rays { camera: &camera, random: &random, camera32: &camera32, random32: &random32, probe32: &probe32 },
+                tree_probe,
+                (build_repeats, repeats),
+            );
+            let (camera_hits, random_hits) = (&run.camera.answers[0], &run.random.answers[0]);
+            let (camera_secs, random_secs) = (run.camera.best_secs[0], run.random.best_secs[0]);
             let camera_work = work_per_ray(&tree, &camera);
             let random_work = work_per_ray(&tree, &random);
             // Brute force only where it is affordable, on a prefix as in the note.
@@ -217,29 +288,22 @@ fn main() {
                     let (cam, ran) = (&camera[..p.min(camera.len())], &random[..p.min(random.len())]);
                     let (cs, cb) = best_of(1, || brute_all(&spheres, cam));
                     let (rs, rb) = best_of(1, || brute_all(&spheres, ran));
-                    let wrong = cb.iter().zip(&camera_hits).filter(|(a, b)| a != b).count()
-                        + rb.iter().zip(&random_hits).filter(|(a, b)| a != b).count();
+                    let wrong = cb.iter().zip(camera_hits).filter(|(a, b)| a != b).count()
+                        + rb.iter().zip(random_hits).filter(|(a, b)| a != b).count();
                     (format!("{:.3}", mrays(cam.len(), cs)), format!("{:.3}", mrays(ran.len(), rs)), wrong.to_string())
                 }
                 None => ("-".into(), "-".into(), "-".into()),
             };
-            let (ch, ct) = checksum(&camera_hits);
-            let (rh, rt) = checksum(&random_hits);
-            let tree_probe = tree.closest_hit(&probe_ray, T_MIN, f64::INFINITY);
-            let peer_run = run_peers(
-                &spheres,
-                (&camera32, &random32, &probe32),
-                (&camera_hits, &random_hits, tree_probe),
-                (build_repeats, repeats),
-            );
+            let (ch, ct) = checksum(camera_hits);
+            let (rh, rt) = checksum(random_hits);
             let probe = match tree_probe {
-                Some((i, t)) => format!("kd hits sphere {i} at t={t:.6}; {}", peer_run.probe.join("; ")),
-                None => format!("kd misses; {}", peer_run.probe.join("; ")),
+                Some((i, t)) => format!("kd hits sphere {i} at t={t:.6}; {}", run.probe.join("; ")),
+                None => format!("kd misses; {}", run.probe.join("; ")),
             };
             let note = if measuring { versus_note(n, density, (ch, ct), (rh, rt)) } else { "-".into() };
             let line = format!(
                 "{label},{n},{:.3},{},{},{:.3},{:.2},{:.2},{ch},{ct:.2},{:.3},{:.2},{:.2},{rh},{rt:.2},\
-                 {brute_camera},{brute_random},{mismatches},{note}{},{probe}\n",
+                 {brute_camera},{brute_random},{mismatches},{note}{},{probe},{:.3},{:.3}\n",
                 build_secs * 1e3,
                 tree.node_count(),
                 tree.reference_count(),
@@ -249,7 +313,9 @@ fn main() {
                 mrays(random.len(), random_secs),
                 random_work.0,
                 random_work.1,
-                peer_run.fields,
+                run.peer_fields,
+                run.camera.median_ratio[CWBVH],
+                run.random.median_ratio[CWBVH],
             );
             eprint!("{line}");
             csv.push_str(&line);
@@ -292,13 +358,13 @@ fn markdown(csv: &str) -> String {
          mismatches = rays, camera + random, where the peer names another sphere than the kd-tree):\n\n\
          | density | N | kd build ms | kd camera | kd random | bvh build ms | bvh camera | bvh random | \
          BVH2 build ms | BVH2 camera | BVH2 random | CWBVH build ms | CWBVH camera | CWBVH random | \
-         kd / CWBVH camera | mismatches bvh / BVH2 / CWBVH |\n\
+         kd ÷ CWBVH speed, camera / random (median of per-round ratios) | mismatches bvh / BVH2 / CWBVH |\n\
          |---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
     );
     for line in csv.lines().skip(1) {
         let f: Vec<&str> = line.split(',').collect();
-        let ratio = match (f[5].parse::<f64>(), f[28].parse::<f64>()) {
-            (Ok(kd), Ok(cw)) => format!("{:.2}", kd / cw),
+        let ratio = match (f.get(32), f.get(33)) {
+            (Some(camera), Some(random)) => format!("{camera} / {random}"),
             _ => "-".into(),
         };
         let columns: [&[usize]; 15] = [

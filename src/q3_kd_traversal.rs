@@ -8,7 +8,7 @@ pub mod seed;
 pub use cli::{TraceInputError, kd_trace_command, parse_vec2};
 
 use crate::geometry::InputError;
-use crate::kdtree::{Side, split_interval};
+use crate::kdtree::{QuotientAxis, Side, split_interval};
 use std::fmt;
 
 /// A coordinate axis of the homework's plane.
@@ -437,7 +437,7 @@ fn walk(node: &Node2, ray: &Ray2, path: &mut Vec<Branch>, interval: Interval, ou
         return;
     };
     let a = axis.index();
-    let decision = split_interval(ray.origin[a], ray.dir[a], *split, interval.t_min, interval.t_max);
+    let decision = split_interval(QuotientAxis::new(ray.origin[a], ray.dir[a]), *split, interval.t_min, interval.t_max);
     out.push(Step::Plane { path: path.clone(), axis: *axis, split: *split, t: decision.t_plane });
     for (side, t_min, t_max) in decision.pieces(interval.t_min, interval.t_max) {
         path.push(Branch { axis: *axis, side, split: *split });

@@ -1,7 +1,7 @@
 //! The 3-D kd-tree over spheres: flat node array, closest-hit traversal with early exit.
 
 use super::build::{Builder, SahCosts, check_costs, max_depth, sphere_boxes};
-use super::{BuildError, Side, Visit, split_interval};
+use super::{BuildError, ReciprocalAxis, Side, split_pieces};
 use crate::geometry::sphere::roots_stable;
 use crate::geometry::{Ray, Sphere};
 use glam::DVec3;
@@ -135,10 +135,19 @@ impl Counter for HitStats {
 /// [`split_interval`](super::split_interval).
 #[derive(Debug, Clone)]
 pub struct KdTree {
-    spheres: Vec<Sphere<f64>>,
     nodes: Vec<Node>,
-    indices: Vec<u32>,
+    /// The leaves' sphere lists, concatenated in node order: each reference carries a copy of its
+    /// sphere, so a leaf's spheres sit side by side in memory instead of behind an index into the
+    /// input slice (that indirection was a cache miss per sphere test on large scenes).
+    references: Vec<Reference>,
     bounds: Aabb,
+}
+
+/// One entry of a leaf's list: the sphere and its index in the input slice.
+#[derive(Debug, Clone, Copy)]
+struct Reference {
+    sphere: Sphere<f64>,
+    index: u32,
 }
 
 /// Fixed traversal stack size; the build's depth bound (at most 60) keeps pushes below it.
@@ -191,8 +200,9 @@ impl KdTree {
         } else {
             builder.build(bounds, all, 0);
         }
-        let (nodes, indices) = (builder.nodes, builder.indices);
-        Ok(Self { spheres: spheres.to_vec(), nodes, indices, bounds })
+        let references =
+            builder.indices.iter().map(|&index| Reference { sphere: spheres[index as usize], index }).collect();
+        Ok(Self { nodes: builder.nodes, references, bounds })
     }
 
     /// Number of nodes (interior and leaf).
@@ -210,7 +220,7 @@ impl KdTree {
     /// Number of sphere references in the leaves (≥ the sphere count: straddling spheres repeat).
     #[must_use]
     pub fn reference_count(&self) -> usize {
-        self.indices.len()
+        self.references.len()
     }
 
     /// The closest sphere hit with `t` strictly inside `(t_min, t_max)`: its index in the slice the
@@ -268,36 +278,37 @@ impl KdTree {
         let mut stack = [(0u32, 0.0f64, 0.0f64); STACK];
         let mut depth = 0;
         let mut node = 0u32;
-        // Plain arrays: indexing a glam vector by a run-time axis is a three-way branch, which the
+        // A plain array: indexing a glam vector by a run-time axis is a three-way branch, which the
         // varying split axes make unpredictable.
-        let (origin, dir) = (ray.origin.to_array(), ray.dir.to_array());
+        let axes = [0, 1, 2].map(|a| ReciprocalAxis::new(ray.origin[a], ray.dir[a]));
         loop {
             counter.node();
             match self.nodes[node as usize].kind() {
                 NodeKind::Interior { split, upper, axis: a } => {
-                    let decision = split_interval(origin[a], dir[a], split, cell_min, cell_max);
-                    let child = |side| match side {
-                        Side::Lower => node + 1,
-                        Side::Upper => upper,
+                    let pieces = split_pieces(axes[a], split, cell_min, cell_max);
+                    let (near, far) = match pieces.near {
+                        Side::Lower => (node + 1, upper),
+                        Side::Upper => (upper, node + 1),
                     };
-                    match decision.visit {
-                        Visit::Only(side) => node = child(side),
-                        Visit::NearThenFar { near, t_plane } => {
-                            stack[depth] = (child(near.opposite()), t_plane, cell_max);
-                            depth += 1;
-                            node = child(near);
-                            cell_max = t_plane;
-                        }
+                    if pieces.near_live & pieces.far_live {
+                        stack[depth] = (far, pieces.t_plane, cell_max);
+                        depth += 1;
+                        cell_max = pieces.t_plane;
+                        node = near;
+                    } else if pieces.near_live {
+                        node = near;
+                    } else {
+                        node = far;
                     }
                     continue;
                 }
                 NodeKind::Leaf { first, count } => {
                     let range = first as usize..(first + count) as usize;
-                    for &i in &self.indices[range] {
+                    for reference in &self.references[range] {
                         counter.sphere_test();
-                        let i = i as usize;
+                        let i = reference.index as usize;
                         let Some(t) =
-                            roots_stable(ray, &self.spheres[i]).and_then(|roots| roots.first_in(t_min, t_max))
+                            roots_stable(ray, &reference.sphere).and_then(|roots| roots.first_in(t_min, t_max))
                         else {
                             continue;
                         };
