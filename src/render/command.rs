@@ -201,6 +201,8 @@ mod tests {
         assert!(text.contains("time_sampling      skip"));
         assert!(text.contains("caustics           run (Whitted only"), "the point light's caustics get photons");
         assert!(!text.contains("carried but not rendered"));
+        assert!(effects_text("caustic", true).unwrap().contains("\"caustics\": true"));
+        assert!(effects_text("diffuse-spheres", true).unwrap().contains("\"caustics\": false"));
         assert!(matches!(effects_text("nope", true), Err(RenderError::UnknownScene { .. })));
     }
 
