@@ -368,24 +368,8 @@ mod tests {
         (mean, (variance / n).sqrt())
     }
 
-    /// The `caustic` scene's footprint: the disc of radius 0.3 about the focus (0.5625, 0, 0),
-    /// the floor point on the line from the light's centre through the ball's centre, all of it
-    /// in the ball's umbra. `n` points spread evenly over its area (a sunflower pattern).
-    fn caustic_footprint(n: usize) -> (DVec3, f64, Vec<DVec3>) {
-        let (center, radius) = (DVec3::new(0.5625, 0.0, 0.0), 0.3);
-        let golden = std::f64::consts::PI * (3.0 - 5f64.sqrt());
-        let points = (0..n)
-            .map(|i| {
-                let r = radius * ((i as f64 + 0.5) / n as f64).sqrt();
-                let angle = golden * i as f64;
-                center + DVec3::new(r * angle.cos(), 0.0, r * angle.sin())
-            })
-            .collect();
-        (center, radius, points)
-    }
-
     /// The caustic pass on the `caustic` scene, measured on the floor under the glass ball (mean
-    /// radiance over [`caustic_footprint`], rays straight down):
+    /// radiance over [`scenes::caustic_footprint`], rays straight down):
     /// - without the pass Whitted tracing leaves the footprint exactly black (its shadow rays to
     ///   the light are blocked by the glass), with it the footprint is more than 20× as bright
     ///   as the open floor beside the ball;
@@ -405,7 +389,7 @@ mod tests {
         let without = Tracer::new(&scene, plan.with(analysis::Pass::Caustics, false));
         let reference = Tracer::new(&scene, plan.with(analysis::Pass::IndirectBounces, true));
         let whitted = Integrator::Whitted { max_depth: 8 };
-        let (center, radius, points) = caustic_footprint(400);
+        let (center, radius, points) = scenes::caustic_footprint(400);
         let (lit, _) = footprint_radiance(&with, whitted, &points, 1);
         let (dark, _) = footprint_radiance(&without, whitted, &points, 1);
         let (path, standard_error) =

@@ -346,6 +346,30 @@ pub fn glass_ball_caustic() -> Result<Scene, InputError> {
     Scene::new(camera, vec![floor, light, ball], vec![], None, DVec3::ZERO)
 }
 
+/// The `caustic` scene's footprint: the disc of radius 0.3 about the focus (0.5625, 0, 0), the
+/// floor point on the line from the light's centre through the ball's centre, all of it in the
+/// ball's umbra; with `n` floor points spread evenly over its area (a sunflower pattern). The
+/// caustic pass's tests and accuracy table measure there.
+///
+/// # Examples
+/// ```
+/// let (center, radius, points) = hw3::render::scenes::caustic_footprint(100);
+/// assert!(points.iter().all(|p| (*p - center).length() <= radius && p.y == 0.0));
+/// ```
+#[must_use]
+pub fn caustic_footprint(n: usize) -> (DVec3, f64, Vec<DVec3>) {
+    let (center, radius) = (DVec3::new(0.5625, 0.0, 0.0), 0.3);
+    let golden = std::f64::consts::PI * (3.0 - 5f64.sqrt());
+    let points = (0..n)
+        .map(|i| {
+            let r = radius * ((i as f64 + 0.5) / n as f64).sqrt();
+            let angle = golden * i as f64;
+            center + DVec3::new(r * angle.cos(), 0.0, r * angle.sin())
+        })
+        .collect();
+    (center, radius, points)
+}
+
 /// Three spheres (diffuse, glossy, mirror) on a grey floor quad, lit only by the vendored Q4
 /// `courtyard` map (`docs/data/q4`), which the camera also sees around them.
 ///
