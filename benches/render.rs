@@ -11,16 +11,23 @@
 //! - `cargo bench --bench render` also writes `docs/data/render_speed.md`: the kd-tree's speed-up
 //!   and the 1→2 thread scaling on the clutter scene, with the CPU time the process actually got
 //!   and the machine's load average, so that a shared machine's contention is visible.
+//! - divan: the cost of the caustic pass on the `caustic` scene (Whitted with the pass planned
+//!   and forced off, and tracing the caustic map alone).
+//! - The tables are written only by a run without a name filter: `cargo bench --bench render --
+//!   caustic` runs the matching divan benchmarks and nothing else.
 
-use hw3::render::analysis::{Passes, analyze};
+use hw3::render::analysis::{Pass, Passes, analyze};
 use hw3::render::integrator::Integrator;
+use hw3::render::photon;
 use hw3::render::scene::Scene;
 use hw3::render::{Image, Settings, render, scenes};
 use std::fmt::Write as _;
 use std::time::Instant;
 
 fn main() {
-    if std::env::args().any(|a| a == "--bench") {
+    let arguments: Vec<String> = std::env::args().skip(1).collect();
+    let filtered = arguments.iter().any(|a| !a.starts_with('-'));
+    if arguments.iter().any(|a| a == "--bench") && !filtered {
         write_speed_tables();
         write_accuracy_tables();
     }
@@ -48,6 +55,29 @@ fn bench_whitted(bencher: divan::Bencher, scene: &Scene, threads: usize) {
 #[divan::bench(args = [1, 2])]
 fn whitted_clutter_camera_samples(bencher: divan::Bencher, threads: usize) {
     bench_whitted(bencher, &scenes::by_name("clutter").expect("built-in scene"), threads);
+}
+
+/// Whitted tracing of the `caustic` scene on one thread with its plan (caustic map traced and
+/// read) and with the caustic pass forced off: the difference is the pass's cost.
+#[divan::bench(args = ["planned", "caustics off"])]
+fn whitted_caustic_scene(bencher: divan::Bencher, plan: &str) {
+    let scene = scenes::by_name("caustic").expect("built-in scene");
+    let planned = analyze(&scene).plan;
+    let passes = if plan == "planned" { planned } else { planned.with(Pass::Caustics, false) };
+    let settings = Settings::whitted(SIZE.0, SIZE.1, SPP, passes);
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build().expect("a rayon pool");
+    bencher.bench(|| pool.install(|| render(&scene, &settings, &|_| {}).expect("valid settings")));
+}
+
+/// Tracing the `caustic` scene's caustic map alone ([`photon::CAUSTIC_PHOTONS`] photons, one
+/// thread).
+#[divan::bench]
+fn caustic_map_trace(bencher: divan::Bencher) {
+    let scene = scenes::by_name("caustic").expect("built-in scene");
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build().expect("a rayon pool");
+    bencher.bench(|| {
+        pool.install(|| photon::trace_caustic_photons(&scene, photon::CAUSTIC_PHOTONS, 1).expect("valid count"))
+    });
 }
 
 /// The 1500-sphere forest on one thread, its static spheres through the kd-tree or tested one

@@ -40,6 +40,7 @@ mod tree;
 pub mod workload;
 
 pub use build::{BuildError, SahCosts};
+pub(crate) use tree::moved;
 pub use tree::{HitStats, KdTree, brute_force_closest_hit};
 
 /// Which child of a split a piece of the ray lies in: `Lower` holds `p_a < s`, `Upper` holds

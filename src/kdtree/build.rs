@@ -70,6 +70,14 @@ pub enum BuildError {
     /// The cost constants are out of range.
     #[error("invalid SAH constants: {0}")]
     InvalidCosts(&'static str),
+    /// [`super::KdTree::build_moving`] got a different number of velocities than spheres.
+    #[error("{velocities} velocities for {spheres} spheres")]
+    VelocityCount {
+        /// Spheres given.
+        spheres: usize,
+        /// Velocities given.
+        velocities: usize,
+    },
 }
 
 /// Validated bounding boxes of the input spheres.

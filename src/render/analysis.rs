@@ -34,12 +34,22 @@ pub enum Pass {
     TimeSampling,
     /// Diffuse/glossy bounces after the first (`L(D|G)(D|G)+…E`; path tracer only).
     IndirectBounces,
+    /// A caustic photon map (`LS+D`) traced once per render from the point and area lights and
+    /// read at every diffuse or glossy hit (Whitted only: the path tracer finds area-light
+    /// caustics by its own bounces).
+    Caustics,
 }
 
 impl Pass {
     /// Every pass, in a fixed order.
-    pub const ALL: [Pass; 5] =
-        [Pass::SpecularRecursion, Pass::Transmittance, Pass::InScattering, Pass::TimeSampling, Pass::IndirectBounces];
+    pub const ALL: [Pass; 6] = [
+        Pass::SpecularRecursion,
+        Pass::Transmittance,
+        Pass::InScattering,
+        Pass::TimeSampling,
+        Pass::IndirectBounces,
+        Pass::Caustics,
+    ];
 
     /// The pass's name as the CLI and JSON print it.
     #[must_use]
@@ -50,6 +60,7 @@ impl Pass {
             Pass::InScattering => "in_scattering",
             Pass::TimeSampling => "time_sampling",
             Pass::IndirectBounces => "indirect_bounces",
+            Pass::Caustics => "caustics",
         }
     }
 }
@@ -67,6 +78,8 @@ pub struct Passes {
     pub time_sampling: bool,
     /// See [`Pass::IndirectBounces`].
     pub indirect_bounces: bool,
+    /// See [`Pass::Caustics`].
+    pub caustics: bool,
 }
 
 impl Passes {
@@ -85,16 +98,19 @@ impl Passes {
             Pass::InScattering => self.in_scattering,
             Pass::TimeSampling => self.time_sampling,
             Pass::IndirectBounces => self.indirect_bounces,
+            Pass::Caustics => self.caustics,
         }
     }
 
     /// The passes `integrator` can run: Whitted tracing has no indirect bounces, so the plan
-    /// drops [`Pass::IndirectBounces`] for it (the class is then reported, not rendered).
+    /// drops [`Pass::IndirectBounces`] for it (the class is then reported, not rendered); the
+    /// path tracer reads no photon map, so it drops [`Pass::Caustics`] (it finds caustics from
+    /// area lights and the environment by its own bounces, and none from point lights).
     #[must_use]
     pub fn for_integrator(self, integrator: Integrator) -> Self {
         match integrator {
             Integrator::Whitted { .. } => self.with(Pass::IndirectBounces, false),
-            Integrator::PathTracer { .. } => self,
+            Integrator::PathTracer { .. } => self.with(Pass::Caustics, false),
         }
     }
 
@@ -107,6 +123,7 @@ impl Passes {
             Pass::InScattering => &mut self.in_scattering,
             Pass::TimeSampling => &mut self.time_sampling,
             Pass::IndirectBounces => &mut self.indirect_bounces,
+            Pass::Caustics => &mut self.caustics,
         };
         *flag = on;
         self
@@ -156,7 +173,10 @@ struct Letters {
     glossy: bool,
     specular: bool,
     diffuse_like_objects: usize,
+    /// A light (point, area or environment) sees a mirror or glass.
     lit_specular: bool,
+    /// A point or area light sees a mirror or glass: the caustic map has photons to shoot.
+    lamp_lit_specular: bool,
     scattering: bool,
     extinction: bool,
     moving: bool,
@@ -231,7 +251,7 @@ pub fn analyze(scene: &Scene) -> Analysis {
             effect: "caustics",
             carries_energy: letters.lit_specular,
             reason: yes_no(letters.lit_specular, "a light sees a mirror or glass", "no light sees a mirror or glass"),
-            pass: None,
+            pass: Some(Pass::Caustics),
         },
         PathClass {
             notation: "LV(D|G|S)*E",
@@ -261,9 +281,15 @@ pub fn analyze(scene: &Scene) -> Analysis {
     }
     // A mirror that only reflects the background or fog still needs recursion.
     plan.specular_recursion |= letters.specular;
-    let caustic_from_point =
-        letters.lit_specular && diffuse_like && letters.point_light && !letters.area_light && !letters.environment;
-    let mut not_rendered = if caustic_from_point { vec!["LS+(D|G)…E"] } else { vec![] };
+    // The caustic map is shot from point and area lights: caustics of the environment alone are
+    // left to the path tracer (whose escaping bounces see the map), so the pass would trace nothing.
+    plan.caustics &= letters.lamp_lit_specular && diffuse_like;
+    // The path tracer reaches a caustic by bouncing off the diffuse surface through the glass
+    // into an area light or the environment: that bounce is the indirect pass, needed even with
+    // a single diffuse object (a point light is never hit, so it adds nothing there).
+    let caustic_carried = classes.iter().any(|c| c.pass == Some(Pass::Caustics) && c.carries_energy);
+    plan.indirect_bounces |= caustic_carried && (letters.area_light || letters.environment);
+    let mut not_rendered = vec![];
     // Single scattering gathers point lights only: the environment's glow in fog is not rendered
     // (and in a medium nothing arrives from infinitely far, so the environment lights nothing else).
     if letters.environment && letters.scattering {
@@ -327,7 +353,8 @@ fn letters(scene: &Scene) -> Letters {
         letters.extinction = fog.sigma_t() > 0.0;
     }
     // An environment surrounds everything: coarsely, it sees every mirror.
-    letters.lit_specular = letters.specular && (letters.environment || light_sees_a_mirror(scene));
+    letters.lamp_lit_specular = letters.specular && light_sees_a_mirror(scene);
+    letters.lit_specular = letters.lamp_lit_specular || (letters.specular && letters.environment);
     letters
 }
 
@@ -412,7 +439,14 @@ mod tests {
         let mirrors = analyze(&scenes::mirror_spheres(true).unwrap());
         assert!(carried(&mirrors).contains(&"L(D|G)?S+E"));
         assert!(carried(&mirrors).contains(&"LS+(D|G)…E"));
-        assert_eq!(mirrors.not_rendered, vec!["LS+(D|G)…E"]);
+        assert!(
+            mirrors.plan.caustics && mirrors.not_rendered.is_empty(),
+            "a point light's caustics get the photon pass"
+        );
+        assert!(!mirrors.plan.for_integrator(Integrator::PathTracer { max_depth: 3 }).caustics);
+        let caustic = analyze(&scenes::by_name("caustic").unwrap());
+        assert!(caustic.plan.caustics && caustic.plan.specular_recursion);
+        assert!(!analyze(&scenes::fog_street(0.1).unwrap()).plan.caustics);
         let diffuse = analyze(&scenes::mirror_spheres(false).unwrap());
         assert!(!carried(&diffuse).contains(&"L(D|G)?S+E"));
         assert!(!diffuse.plan.specular_recursion);
@@ -432,6 +466,7 @@ mod tests {
         let analysis = analyze(&scene);
         assert!(analysis.plan.specular_recursion, "the eye still sees it");
         assert!(!carried(&analysis).contains(&"LS+(D|G)…E"));
+        assert!(!analysis.plan.caustics);
     }
 
     /// The environment is a light derived from the scene: a non-black map lights the probe-lit
@@ -444,6 +479,7 @@ mod tests {
         for class in ["LE", "LDE", "LGE", "L(D|G)?S+E", "LS+(D|G)…E"] {
             assert!(carried(&lit).contains(&class), "{class}");
         }
+        assert!(!lit.plan.caustics, "environment caustics are the path tracer's: no photons to shoot");
         let no_light = scenes::mirror_spheres(false).unwrap();
         let (camera, objects) = (*no_light.camera(), no_light.objects().to_vec());
         let dark = Scene::new(camera, objects, vec![], None, DVec3::ONE).unwrap();
@@ -463,7 +499,7 @@ mod tests {
         for pass in Pass::ALL {
             let off = all.with(pass, false);
             assert!(!off.get(pass));
-            assert_eq!(Pass::ALL.iter().filter(|&&p| off.get(p)).count(), 4);
+            assert_eq!(Pass::ALL.iter().filter(|&&p| off.get(p)).count(), Pass::ALL.len() - 1);
         }
     }
 }

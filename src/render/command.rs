@@ -53,8 +53,11 @@ fn describe(scene_name: &str, analysis: &Analysis) -> String {
     );
     for pass in Pass::ALL {
         let state = if analysis.plan.get(pass) { "run" } else { "skip" };
-        let note =
-            if pass == Pass::IndirectBounces { " (path tracer only; hw3 render traces Whitted-style)" } else { "" };
+        let note = match pass {
+            Pass::IndirectBounces => " (path tracer only; hw3 render traces Whitted-style)",
+            Pass::Caustics => " (Whitted only: a caustic photon map; the path tracer bounces into lights)",
+            _ => "",
+        };
         let _ = writeln!(text, "  {:18} {state}{note}", pass.name());
     }
     if !analysis.not_rendered.is_empty() {
@@ -196,7 +199,10 @@ mod tests {
         assert!(text.contains("yes L(D|G)?S+E"));
         assert!(text.contains("specular_recursion run"));
         assert!(text.contains("time_sampling      skip"));
-        assert!(text.contains("carried but not rendered (no pass for it): LS+(D|G)…E"));
+        assert!(text.contains("caustics           run (Whitted only"), "the point light's caustics get photons");
+        assert!(!text.contains("carried but not rendered"));
+        assert!(effects_text("caustic", true).unwrap().contains("\"caustics\": true"));
+        assert!(effects_text("diffuse-spheres", true).unwrap().contains("\"caustics\": false"));
         assert!(matches!(effects_text("nope", true), Err(RenderError::UnknownScene { .. })));
     }
 

@@ -20,7 +20,7 @@
 //! maps are identical for any number of rayon threads.
 
 use super::integrator::{Sampler, brdf, cosine_direction, dielectric_split, facing_normal, reflected_ray};
-use super::scene::{Camera, Material, Object, PointLight, Scene, Shape};
+use super::scene::{Camera, Hit, Material, Object, PointLight, Scene, Shape};
 use crate::geometry::Ray;
 use crate::geometry::Sphere;
 use crate::geometry::sphere::spawn_origin;
@@ -62,6 +62,9 @@ pub enum PhotonError {
     /// The `k` nearest photons all sit at the query point (radius 0): the density is unbounded.
     #[error("the {0} nearest photons coincide with the query point: radius 0, density undefined")]
     CoincidentPhotons(usize),
+    /// A gather radius that is not finite and positive.
+    #[error("the maximum gather radius must be finite and > 0")]
+    MaxRadius,
 }
 
 /// One stored photon: where it landed, the direction it travelled, and the power it carries.
@@ -194,14 +197,122 @@ impl PhotonMap {
         k: usize,
     ) -> Result<DVec3, PhotonError> {
         let (nearest, radius_squared) = self.nearest(point, k)?;
-        let reflected: DVec3 = nearest[..k - 1]
-            .iter()
-            .filter(|p| p.normal.dot(normal) > 0.9)
-            .map(|p| brdf(material, to_eye, -p.direction, normal) * p.power)
-            .sum();
-        Ok(reflected / (PI * radius_squared))
+        Ok(reflected_power(nearest[..k - 1].iter().copied(), material, to_eye, normal) / (PI * radius_squared))
+    }
+
+    /// Reflected radiance as [`PhotonMap::radiance`], but gathering only within
+    /// `gather.max_radius()` (Jensen's maximum search distance): where the `k` nearest photons
+    /// lie within it, the `(k−1)/(πr_k²)` estimate; where fewer do, the photons inside the fixed
+    /// disc over its area `πr_max²` (also unbiased for a uniform density, and noisier). Far from
+    /// every photon the result is exactly zero, and an empty map returns zero without a query:
+    /// a caustic pass with nothing to gather adds nothing, bit for bit.
+    ///
+    /// Should the `k` nearest photons all coincide with `point` (radius 0, a measure-zero
+    /// event), the fixed-disc form is used over those `k`.
+    ///
+    /// # Examples
+    /// ```
+    /// use glam::DVec3;
+    /// use hw3::render::photon::{Gather, Photon, PhotonMap};
+    /// use hw3::render::scene::Material;
+    /// let white = Material::Diffuse { albedo: DVec3::ONE };
+    /// let photon = Photon { position: DVec3::ZERO, direction: DVec3::NEG_Z, normal: DVec3::Z, power: DVec3::ONE };
+    /// let map = PhotonMap::new(vec![photon]);
+    /// let gather = Gather::new(10, 0.5).unwrap();
+    /// // One photon of 1 W inside the 0.5-disc: L = (1/π) · 1 / (π 0.25).
+    /// let near = map.radiance_gathered(&white, DVec3::new(0.1, 0.0, 0.0), DVec3::Z, DVec3::Z, gather);
+    /// assert!((near.x - 4.0 / (std::f64::consts::PI * std::f64::consts::PI)).abs() < 1e-12);
+    /// assert_eq!(map.radiance_gathered(&white, DVec3::X, DVec3::Z, DVec3::Z, gather), DVec3::ZERO);
+    /// ```
+    #[must_use]
+    pub fn radiance_gathered(
+        &self,
+        material: &Material,
+        point: DVec3,
+        to_eye: DVec3,
+        normal: DVec3,
+        gather: Gather,
+    ) -> DVec3 {
+        if self.photons.is_empty() {
+            return DVec3::ZERO;
+        }
+        let k = gather.neighbours;
+        let max_squared = gather.max_radius * gather.max_radius;
+        let count = NonZero::new(k).expect("Gather::new keeps k ≥ 2");
+        let found =
+            self.tree.query(&point.to_array()).nearest_n::<SquaredEuclidean<f64>>(count).within(max_squared).execute();
+        let photons = found.iter().map(|item| &self.photons[item.item as usize]);
+        match found.last() {
+            Some(kth) if found.len() == k && kth.distance > 0.0 => {
+                reflected_power(photons.take(k - 1), material, to_eye, normal) / (PI * kth.distance)
+            }
+            _ => reflected_power(photons, material, to_eye, normal) / (PI * max_squared),
+        }
     }
 }
+
+/// `Σ f_r(to_eye, −direction_p) Φ_p` over `photons` stored on a surface facing like `normal`
+/// (within about 25°).
+fn reflected_power<'p>(
+    photons: impl Iterator<Item = &'p Photon>,
+    material: &Material,
+    to_eye: DVec3,
+    normal: DVec3,
+) -> DVec3 {
+    photons.filter(|p| p.normal.dot(normal) > 0.9).map(|p| brdf(material, to_eye, -p.direction, normal) * p.power).sum()
+}
+
+/// How a radiance estimate gathers photons: the `k` nearest ([`Gather::neighbours`], k ≥ 2),
+/// but none farther than [`Gather::max_radius`]. Validated on construction.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Gather {
+    neighbours: usize,
+    max_radius: f64,
+}
+
+impl Gather {
+    /// `neighbours` photons at most, within `max_radius` (scene units).
+    ///
+    /// # Errors
+    /// [`PhotonError::NeighbourCount`] for `neighbours < 2`; [`PhotonError::MaxRadius`] unless
+    /// `max_radius` is finite and positive.
+    ///
+    /// # Examples
+    /// ```
+    /// use hw3::render::photon::Gather;
+    /// assert_eq!(Gather::new(50, 0.1).unwrap().neighbours(), 50);
+    /// assert!(Gather::new(1, 0.1).is_err() && Gather::new(50, f64::NAN).is_err());
+    /// ```
+    pub fn new(neighbours: usize, max_radius: f64) -> Result<Self, PhotonError> {
+        if neighbours < 2 {
+            return Err(PhotonError::NeighbourCount(neighbours));
+        }
+        if !(max_radius > 0.0 && max_radius.is_finite()) {
+            return Err(PhotonError::MaxRadius);
+        }
+        Ok(Self { neighbours, max_radius })
+    }
+
+    /// The number of nearest photons `k`.
+    #[must_use]
+    pub fn neighbours(&self) -> usize {
+        self.neighbours
+    }
+
+    /// The largest gather radius.
+    #[must_use]
+    pub fn max_radius(&self) -> f64 {
+        self.max_radius
+    }
+}
+
+/// The renderer's caustic gather: the 50 nearest photons within 0.1 scene units (render
+/// settings; the built-in scenes are a few units across, see the renderer chapter for the
+/// trade-off).
+pub const CAUSTIC_GATHER: Gather = Gather { neighbours: 50, max_radius: 0.1 };
+
+/// Photons the renderer's caustic pass traces per render (all aimed at mirrors and glass).
+pub const CAUSTIC_PHOTONS: usize = 50_000;
 
 /// The three photon maps of one trace (see the module docs for what each keeps).
 #[derive(Debug)]
@@ -290,20 +401,10 @@ pub fn trace_photons(scene: &Scene, count: usize, seed: u64) -> Result<PhotonMap
     if lights.is_empty() || !(total > 0.0 && total.is_finite()) {
         return Err(PhotonError::NoLight);
     }
-    // Chunks of fixed size traced in parallel and concatenated in order: thread-count independent.
-    let chunk = 4096;
-    let stored: Vec<Vec<(Photon, Path)>> = (0..count.div_ceil(chunk))
-        .into_par_iter()
-        .map(|c| {
-            let mut out = Vec::new();
-            for index in (c * chunk)..((c + 1) * chunk).min(count) {
-                let mut sampler = Sampler::new(seed, index as u64, 2);
-                trace_one(scene, &lights, total, count, &mut sampler, &mut out);
-            }
-            out
-        })
-        .collect();
-    let stored: Vec<(Photon, Path)> = stored.into_iter().flatten().collect();
+    let stored = in_ordered_chunks(count, |index, out| {
+        let mut sampler = Sampler::new(seed, index as u64, 2);
+        trace_one(scene, &lights, total, count, &mut sampler, out);
+    });
     let keep = |wanted: fn(Path) -> bool| {
         PhotonMap::new(stored.iter().filter(|(_, path)| wanted(*path)).map(|(photon, _)| *photon).collect())
     };
@@ -313,6 +414,168 @@ pub fn trace_photons(scene: &Scene, count: usize, seed: u64) -> Result<PhotonMap
         caustic: keep(|path| path == Path::SpecularOnly),
         emitted: count,
     })
+}
+
+/// A mirror or glass object of the scene and a sphere that bounds it: the target of caustic
+/// photons.
+#[derive(Debug, Clone, Copy)]
+struct SpecularTarget {
+    object: usize,
+    center: DVec3,
+    radius: f64,
+}
+
+/// Every mirror (of non-black reflectance) and glass object, with its bounding sphere at `time`.
+fn specular_targets(scene: &Scene, time: f64) -> Vec<SpecularTarget> {
+    scene
+        .objects()
+        .iter()
+        .enumerate()
+        .filter(|(_, o)| match o.material {
+            Material::Mirror { reflectance } => reflectance.max_element() > 0.0,
+            Material::Glass { .. } => true,
+            Material::Diffuse { .. } | Material::Glossy { .. } | Material::Emitter { .. } => false,
+        })
+        .map(|(object, o)| {
+            let (center, radius) = match o.shape {
+                Shape::Sphere { sphere, velocity } => (sphere.center + velocity * time, sphere.radius),
+                Shape::Quad { corner, edge_u, edge_v } => {
+                    (corner + (edge_u + edge_v) * 0.5, (edge_u + edge_v).length().max((edge_u - edge_v).length()) * 0.5)
+                }
+            };
+            SpecularTarget { object, center, radius }
+        })
+        .collect()
+}
+
+/// The cone from `origin` that contains the sphere (`center`, `radius`): its unit axis and the
+/// cosine of its half-angle; the whole sphere of directions (cosine −1) from inside.
+fn bounding_cone(origin: DVec3, center: DVec3, radius: f64) -> (DVec3, f64) {
+    let offset = center - origin;
+    let distance = offset.length();
+    if distance <= radius {
+        return (DVec3::Z, -1.0);
+    }
+    let sin_half = radius / distance;
+    (offset / distance, (1.0 - sin_half * sin_half).sqrt())
+}
+
+/// A direction uniform in the cone about unit `axis` with half-angle cosine `cos_max`
+/// (solid angle `2π(1 − cos_max)`).
+fn cone_direction(axis: DVec3, cos_max: f64, u1: f64, u2: f64) -> DVec3 {
+    let cos_theta = 1.0 - u1 * (1.0 - cos_max);
+    let sin_theta = (1.0 - cos_theta * cos_theta).max(0.0).sqrt();
+    let phi = 2.0 * PI * u2;
+    let (tangent, bitangent) = axis.any_orthonormal_pair();
+    (tangent * (sin_theta * phi.cos()) + bitangent * (sin_theta * phi.sin()) + axis * cos_theta).normalize()
+}
+
+/// Traces a caustic photon map (paths `LS+D`): `count` photons from the point and quad lights of
+/// `scene`, each *aimed* at one mirror or glass object (Jensen's projection map), followed
+/// through mirrors and glass and stored at the first diffuse (or glossy-with-diffuse-part) hit.
+///
+/// Each (light, target) pair is chosen with probability `p` proportional to the light's
+/// luminous power times the fraction of its sphere of directions that the target's bounding
+/// cone covers (seen from a quad light's centre). A photon leaves uniformly inside that cone
+/// (solid angle Ω) and carries `I Ω / (p N)` from a point light of intensity `I`, and
+/// `L A cos θ_l Ω / (p N)` from a quad of radiance `L` and area `A` (point uniform on the quad,
+/// `θ_l` the angle to its normal; zero behind it): an unbiased estimate of the flux into the
+/// cone. A photon counts only when the first object it hits *is* its target: a direction that
+/// reaches another mirror or glass first belongs to that object's cone, one that reaches a
+/// diffuse surface first is direct light (`LD`), so no path is counted twice. Photons travel at
+/// the shutter's opening time and ignore the medium (as [`trace_photons`] does).
+///
+/// Deterministic: photon `i` draws from stream 3 of `(seed, i)`, traced in ordered parallel
+/// chunks, so the map is identical for any number of threads. Without a lit emitter or without
+/// a mirror or glass object, nothing is traced and the map is empty.
+///
+/// # Errors
+/// [`PhotonError::PhotonCount`] for 0 or more than [`MAX_PHOTONS`].
+///
+/// # Examples
+/// ```
+/// use hw3::render::{photon::trace_caustic_photons, scenes};
+/// let caustic = trace_caustic_photons(&scenes::by_name("caustic").unwrap(), 2000, 1).unwrap();
+/// assert!(caustic.len() > 1000, "most photons aimed at the glass ball land on the floor");
+/// let none = trace_caustic_photons(&scenes::by_name("diffuse-spheres").unwrap(), 2000, 1).unwrap();
+/// assert!(none.is_empty(), "no mirror or glass: no caustic photon");
+/// ```
+pub fn trace_caustic_photons(scene: &Scene, count: usize, seed: u64) -> Result<PhotonMap, PhotonError> {
+    if count == 0 || count > MAX_PHOTONS {
+        return Err(PhotonError::PhotonCount(count));
+    }
+    let time = scene.camera().shutter.0;
+    let targets = specular_targets(scene, time);
+    let pairs: Vec<(Emitter, SpecularTarget, f64)> = emitters(scene)
+        .into_iter()
+        .flat_map(|light| targets.iter().map(move |&target| (light, target)))
+        .map(|(light, target)| {
+            let reference = match light {
+                Emitter::Point { position, .. } => position,
+                Emitter::Quad { corner, edge_u, edge_v, .. } => corner + (edge_u + edge_v) * 0.5,
+            };
+            let (_, cos_max) = bounding_cone(reference, target.center, target.radius);
+            (light, target, luminance(light.power()) * (1.0 - cos_max) / 2.0)
+        })
+        .collect();
+    let total: f64 = pairs.iter().map(|pair| pair.2).sum();
+    if !(total > 0.0 && total.is_finite()) {
+        return Ok(PhotonMap::new(vec![]));
+    }
+    let photons = in_ordered_chunks(count, |index, out| {
+        let mut sampler = Sampler::new(seed, index as u64, 3);
+        let (light, target, weight) = pairs[pick_index(pairs.iter().map(|p| p.2), sampler.uniform() * total)];
+        let per_photon = 1.0 / (weight / total * count as f64);
+        let (origin, light_normal, intensity) = match light {
+            Emitter::Point { position, power } => (position, None, power / (4.0 * PI)),
+            Emitter::Quad { corner, edge_u, edge_v, power } => {
+                let point = corner + edge_u * sampler.uniform() + edge_v * sampler.uniform();
+                // Φ = πLA, so Φ/π is L·A.
+                (point, Some(edge_u.cross(edge_v).normalize()), power / PI)
+            }
+        };
+        let (axis, cos_max) = bounding_cone(origin, target.center, target.radius);
+        let dir = cone_direction(axis, cos_max, sampler.uniform(), sampler.uniform());
+        let (cos_light, origin) = match light_normal {
+            None => (1.0, origin),
+            Some(normal) => (normal.dot(dir), spawn_origin::<f64>(origin, normal, dir)),
+        };
+        if cos_light <= 0.0 {
+            return;
+        }
+        let solid_angle = 2.0 * PI * (1.0 - cos_max);
+        let power = intensity * (cos_light * solid_angle * per_photon);
+        let ray = Ray { origin, dir };
+        if let Some(hit) = scene.closest_hit(&ray, time, f64::INFINITY).filter(|hit| hit.object == target.object) {
+            follow_caustic(scene, ray, hit, power, time, &mut sampler, out);
+        }
+    });
+    Ok(PhotonMap::new(photons))
+}
+
+/// Follows a photon that has just hit a mirror or glass object through specular bounces to the
+/// first diffuse hit, where it is stored (absorbed, escaped or at an emitter: nothing stored).
+fn follow_caustic(
+    scene: &Scene,
+    mut ray: Ray<f64>,
+    mut hit: Hit,
+    mut power: DVec3,
+    time: f64,
+    sampler: &mut Sampler,
+    out: &mut Vec<Photon>,
+) {
+    for _ in 0..MAX_BOUNCES {
+        let material = scene.objects()[hit.object].material;
+        if diffuse_part(material).max_element() > 0.0 {
+            let normal = facing_normal(&ray, &hit);
+            out.push(Photon { position: hit.point, direction: ray.dir, normal, power });
+            return;
+        }
+        let Some(next) = specular_bounce(&ray, &hit, material, &mut power, sampler.uniform()) else { return };
+        ray = next;
+        let Some(next_hit) = scene.closest_hit(&ray, time, f64::INFINITY) else { return };
+        hit = next_hit;
+    }
 }
 
 /// What a photon's path did before the hit where it is stored.
@@ -335,14 +598,7 @@ fn trace_one(
     out: &mut Vec<(Photon, Path)>,
 ) {
     // Choose a light by luminous power.
-    let mut pick = sampler.uniform() * total;
-    let light = lights
-        .iter()
-        .find(|e| {
-            pick -= luminance(e.power());
-            pick < 0.0
-        })
-        .unwrap_or(&lights[lights.len() - 1]);
+    let light = &lights[pick_index(lights.iter().map(|e| luminance(e.power())), sampler.uniform() * total)];
     let probability = luminance(light.power()) / total;
     let mut power = light.power() / (probability * count as f64);
     let mut ray = match *light {
@@ -361,12 +617,7 @@ fn trace_one(
         let Some(hit) = scene.closest_hit(&ray, 0.0, f64::INFINITY) else { return };
         let material = scene.objects()[hit.object].material;
         let normal = facing_normal(&ray, &hit);
-        let diffuse_part = match material {
-            Material::Diffuse { albedo } => albedo,
-            Material::Glossy { diffuse, .. } => diffuse,
-            _ => DVec3::ZERO,
-        };
-        if diffuse_part.max_element() > 0.0 {
+        if diffuse_part(material).max_element() > 0.0 {
             out.push((Photon { position: hit.point, direction: ray.dir, normal, power }, path));
         }
         let u = sampler.uniform();
@@ -401,28 +652,80 @@ fn trace_one(
                     return;
                 }
             }
-            Material::Mirror { reflectance } => {
-                let survive = reflectance.max_element();
-                if u >= survive {
-                    return;
-                }
-                power *= reflectance / survive;
+            Material::Mirror { .. } | Material::Glass { .. } => {
                 path = specular_step(path);
-                reflected_ray(&ray, &hit).dir
-            }
-            Material::Glass { index } => {
-                let split = dielectric_split(&ray, &hit, index);
-                path = specular_step(path);
-                match split.refracted {
-                    Some(refracted) if u >= split.reflectance => {
-                        ray = refracted;
-                        continue;
-                    }
-                    _ => reflected_ray(&ray, &hit).dir,
-                }
+                let Some(next) = specular_bounce(&ray, &hit, material, &mut power, u) else { return };
+                ray = next;
+                continue;
             }
         };
         ray = Ray { origin: spawn_origin::<f64>(hit.point, hit.normal, next), dir: next };
+    }
+}
+
+/// Photon `index` of `count` traced by `trace` into its own output, in parallel chunks of fixed
+/// size concatenated in order: the result does not depend on the number of threads.
+fn in_ordered_chunks<T: Send>(count: usize, trace: impl Fn(usize, &mut Vec<T>) + Sync) -> Vec<T> {
+    let chunk = 4096;
+    let stored: Vec<Vec<T>> = (0..count.div_ceil(chunk))
+        .into_par_iter()
+        .map(|c| {
+            let mut out = Vec::new();
+            for index in (c * chunk)..((c + 1) * chunk).min(count) {
+                trace(index, &mut out);
+            }
+            out
+        })
+        .collect();
+    stored.into_iter().flatten().collect()
+}
+
+/// The index whose cumulative weight first exceeds `target` (a number in `[0, Σ weights)`): a
+/// choice with probability proportional to the weights. Rounding can leave `target` at the very
+/// end of the range; the last index takes it.
+fn pick_index(weights: impl ExactSizeIterator<Item = f64>, mut target: f64) -> usize {
+    let last = weights.len() - 1;
+    weights
+        .enumerate()
+        .find(|&(_, weight)| {
+            target -= weight;
+            target < 0.0
+        })
+        .map_or(last, |(index, _)| index)
+}
+
+/// The photon leaving a mirror or glass hit: a mirror reflects with probability
+/// `max(reflectance)` (Russian roulette, drawn from `u`; `power` is rescaled by
+/// `reflectance / max(reflectance)`), glass reflects with the Fresnel probability and refracts
+/// otherwise (power unchanged). `None` when the photon is absorbed or the material is not specular.
+fn specular_bounce(ray: &Ray<f64>, hit: &Hit, material: Material, power: &mut DVec3, u: f64) -> Option<Ray<f64>> {
+    match material {
+        Material::Mirror { reflectance } => {
+            let survive = reflectance.max_element();
+            if u >= survive {
+                return None;
+            }
+            *power *= reflectance / survive;
+            Some(reflected_ray(ray, hit))
+        }
+        Material::Glass { index } => {
+            let split = dielectric_split(ray, hit, index);
+            Some(match split.refracted {
+                Some(refracted) if u >= split.reflectance => refracted,
+                _ => reflected_ray(ray, hit),
+            })
+        }
+        Material::Diffuse { .. } | Material::Glossy { .. } | Material::Emitter { .. } => None,
+    }
+}
+
+/// The diffuse albedo of a material (zero for mirrors, glass and emitters): photons are stored
+/// where it is non-zero.
+fn diffuse_part(material: Material) -> DVec3 {
+    match material {
+        Material::Diffuse { albedo } => albedo,
+        Material::Glossy { diffuse, .. } => diffuse,
+        Material::Mirror { .. } | Material::Glass { .. } | Material::Emitter { .. } => DVec3::ZERO,
     }
 }
 
@@ -715,6 +1018,48 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// Aimed photons carry exactly the flux into the cone: a point light at the centre of a
+    /// closed grey sphere (radius 5) and a glass ball (radius 1) 3 units away. Every direction
+    /// in the ball's cone (half-angle asin(1/3)) hits the ball, glass absorbs nothing and a ray
+    /// leaving a sphere is never totally reflected, so every photon lands on the shell, and
+    /// their powers add up to `I · 2π(1 − cos α)` to rounding.
+    #[test]
+    fn caustic_photons_carry_the_flux_into_the_target_cone() {
+        let camera = Camera::looking_at(DVec3::new(0.0, 0.0, 0.5), DVec3::ZERO, 40.0);
+        let shell =
+            Object::sphere(Sphere::new(DVec3::ZERO, 5.0).unwrap(), Material::Diffuse { albedo: DVec3::splat(0.5) });
+        let ball = Object::sphere(Sphere::new(DVec3::new(0.0, 3.0, 0.0), 1.0).unwrap(), Material::Glass { index: 1.5 });
+        let intensity = DVec3::new(1.0, 2.0, 3.0);
+        let lamp = PointLight { position: DVec3::ZERO, intensity };
+        let scene = Scene::new(camera, vec![shell, ball], vec![lamp], None, DVec3::ZERO).unwrap();
+        let map = trace_caustic_photons(&scene, 20_000, 4).unwrap();
+        assert_eq!(map.len(), 20_000, "every aimed photon is stored once");
+        let cos_alpha = (1.0 - 1.0 / 9.0f64).sqrt();
+        let flux = intensity * (2.0 * PI * (1.0 - cos_alpha));
+        let stored: DVec3 = map.photons().iter().map(|p| p.power).sum();
+        assert!(((stored - flux) / flux).abs().max_element() < 1e-9, "{stored} vs {flux}");
+        let none = Scene::new(camera, vec![shell], vec![lamp], None, DVec3::ZERO).unwrap();
+        assert!(trace_caustic_photons(&none, 20_000, 4).unwrap().is_empty(), "no glass, nothing traced");
+        assert_eq!(trace_caustic_photons(&scene, 0, 4).unwrap_err(), PhotonError::PhotonCount(0));
+    }
+
+    /// Aiming changes the noise, not the answer: on the `caustic` scene (a quad light, whose
+    /// aimed photons carry `L A cos θ_l Ω / (p N)`) the total caustic power stored by
+    /// [`trace_caustic_photons`] equals that of the untargeted [`trace_photons`]' caustic map,
+    /// whose photons each carry `Φ/N` and of which a binomial number land: within 4 of that
+    /// count's standard deviations.
+    #[test]
+    fn aimed_and_untargeted_caustic_maps_carry_the_same_power() {
+        let scene = crate::render::scenes::glass_ball_caustic().unwrap();
+        let aimed: f64 = trace_caustic_photons(&scene, 20_000, 5).unwrap().photons().iter().map(|p| p.power.x).sum();
+        let maps = trace_photons(&scene, 200_000, 6).unwrap();
+        let caustic = maps.caustic.photons();
+        let each = caustic[0].power.x;
+        let untargeted = each * caustic.len() as f64;
+        let sigma = each * (caustic.len() as f64).sqrt();
+        assert!((aimed - untargeted).abs() < 4.0 * sigma, "aimed {aimed}, untargeted {untargeted} ± {sigma}");
     }
 
     /// A caustic in the caustic map: a glass ball (n = 1.5, radius 1, focal length 1.5 from its

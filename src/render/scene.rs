@@ -203,8 +203,9 @@ pub struct Scene {
     background: DVec3,
     /// Radiance from infinitely far away; replaces `background` for escaping rays when present.
     environment: Option<Arc<Environment>>,
-    /// The kd-tree over the static spheres, shared by the clones [`Scene::with_camera`] makes;
-    /// `None` when the scene has no static sphere or acceleration was switched off.
+    /// The kd-tree over the spheres (moving ones swept over the shutter), shared by the clones
+    /// [`Scene::with_camera`] makes; `None` when the scene has no sphere or acceleration was
+    /// switched off.
     acceleration: Option<Arc<Acceleration>>,
 }
 
@@ -215,9 +216,9 @@ impl PartialEq for Scene {
     }
 }
 
-/// The static spheres of a scene in a kd-tree ([`crate::kdtree`]), and the objects that stay
-/// outside it because a tree built once cannot hold them: moving spheres (their bounds depend on
-/// the ray's time) and quads (the tree holds spheres only).
+/// The spheres of a scene in a kd-tree ([`crate::kdtree`]), moving ones bounded by their swept
+/// boxes over the shutter interval ([`KdTree::build_moving`]), and the objects that stay outside
+/// it: quads (the tree holds spheres only).
 #[derive(Debug, Clone)]
 struct Acceleration {
     tree: KdTree,
@@ -228,25 +229,28 @@ struct Acceleration {
 }
 
 impl Acceleration {
-    /// The tree over the static spheres of `objects`, or `None` when there is none.
-    fn build(objects: &[Object]) -> Result<Option<Self>, InputError> {
-        let (mut tree_objects, mut spheres, mut others) = (Vec::new(), Vec::new(), Vec::new());
+    /// The tree over the spheres of `objects` for ray times in `shutter`, or `None` when there
+    /// is no sphere.
+    fn build(objects: &[Object], shutter: (f64, f64)) -> Result<Option<Self>, InputError> {
+        let (mut tree_objects, mut spheres, mut velocities, mut others) =
+            (Vec::new(), Vec::new(), Vec::new(), Vec::new());
         for (index, object) in objects.iter().enumerate() {
             match object.shape {
-                Shape::Sphere { sphere, velocity } if velocity == DVec3::ZERO => {
+                Shape::Sphere { sphere, velocity } => {
                     tree_objects.push(index);
                     spheres.push(sphere);
+                    velocities.push(velocity);
                 }
-                _ => others.push(index),
+                Shape::Quad { .. } => others.push(index),
             }
         }
         if spheres.is_empty() {
             return Ok(None);
         }
-        let tree = KdTree::build(&spheres).map_err(|error| match error {
+        let tree = KdTree::build_moving(&spheres, &velocities, shutter).map_err(|error| match error {
             BuildError::InvalidSphere { source, .. } => source,
             other => InputError::OutOfRange {
-                name: "static spheres",
+                name: "spheres",
                 value: other.to_string(),
                 expected: "a set the kd-tree can index",
             },
@@ -276,7 +280,7 @@ impl Scene {
     /// whose view direction is zero or parallel to `up`, a field of view outside `(0°, 180°)`, or a
     /// shutter that closes before it opens; a quad with parallel edges; reflectances outside
     /// `[0, 1]` (or `kd + ks > 1`), negative emission, intensity or fog densities; an emitter on
-    /// a sphere.
+    /// a sphere; a moving sphere whose box swept over the shutter overflows.
     ///
     /// # Examples
     /// ```
@@ -312,7 +316,7 @@ impl Scene {
             require_scalar_range("fog sigma_s", fog.sigma_s, 0.0, f64::MAX, "finite and ≥ 0")?;
         }
         require_non_negative("background", background)?;
-        let acceleration = Acceleration::build(&objects)?.map(Arc::new);
+        let acceleration = Acceleration::build(&objects, camera.shutter)?.map(Arc::new);
         Ok(Self { camera, objects, point_lights, fog, background, environment: None, acceleration })
     }
 
@@ -354,8 +358,8 @@ impl Scene {
         Self { acceleration: None, ..self.clone() }
     }
 
-    /// How many spheres the scene's kd-tree holds: every static sphere, or 0 after
-    /// [`Scene::without_kd_tree`]. Moving spheres and quads are never in it.
+    /// How many spheres the scene's kd-tree holds: every sphere (moving ones by their swept box
+    /// over the shutter interval), or 0 after [`Scene::without_kd_tree`]. Quads are never in it.
     #[must_use]
     pub fn kd_tree_spheres(&self) -> usize {
         self.acceleration.as_ref().map_or(0, |a| a.tree_objects.len())
@@ -401,8 +405,9 @@ impl Scene {
     }
 
     /// The closest hit with `t` in `(0, t_max)` at time `time` (ties go to the lowest object
-    /// index). Static spheres are found through the kd-tree, the other objects by testing each;
-    /// the answer is the brute-force one bit for bit (same solver, same tie rule).
+    /// index). Spheres are found through the kd-tree (a time outside the shutter the tree was
+    /// built for makes it test every sphere), quads by testing each; the answer is the
+    /// brute-force one bit for bit (same solver, same sphere position, same tie rule).
     #[must_use]
     pub fn closest_hit(&self, ray: &Ray<f64>, time: f64, t_max: f64) -> Option<Hit> {
         let mut best: Option<(f64, usize)> = None;
@@ -413,7 +418,7 @@ impl Scene {
         };
         match &self.acceleration {
             Some(accel) => {
-                if let Some((k, t)) = accel.tree.closest_hit(ray, 0.0, t_max) {
+                if let Some((k, t)) = accel.tree.closest_hit_at(ray, 0.0, t_max, time) {
                     consider(accel.tree_objects[k], t);
                 }
                 for &index in &accel.others {
@@ -439,7 +444,7 @@ impl Scene {
         let blocks = |index: usize| intersect(&self.objects[index].shape, ray, time).is_some_and(|t| t < t_max);
         match &self.acceleration {
             Some(accel) => {
-                accel.tree.closest_hit(ray, 0.0, t_max).is_some() || accel.others.iter().copied().any(blocks)
+                accel.tree.closest_hit_at(ray, 0.0, t_max, time).is_some() || accel.others.iter().copied().any(blocks)
             }
             None => (0..self.objects.len()).any(blocks),
         }
@@ -448,7 +453,7 @@ impl Scene {
     /// Every object whose surface the ray crosses in `(0, t_max)`, counted once per crossing
     /// surface (a sphere pierced through counts once): the depth complexity of the ray.
     ///
-    /// With the kd-tree, the static spheres are walked hit by hit (each query starts where the
+    /// With the kd-tree, the spheres are walked hit by hit (each query starts where the
     /// last hit was), so the cost grows with the number of crossings, not with the scene. Two
     /// spheres whose crossings coincide bit for bit (a duplicated sphere) are then counted once:
     /// the tree reports one sphere per `t`.
@@ -460,7 +465,7 @@ impl Scene {
         };
         let mut pierced: Vec<usize> = Vec::new();
         let mut t_min = 0.0;
-        while let Some((k, t)) = accel.tree.closest_hit(ray, t_min, t_max) {
+        while let Some((k, t)) = accel.tree.closest_hit_at(ray, t_min, t_max, time) {
             if !pierced.contains(&k) {
                 pierced.push(k);
             }
@@ -518,11 +523,7 @@ pub fn intersect(shape: &Shape, ray: &Ray<f64>, time: f64) -> Option<f64> {
 /// The sphere at `time`. A static sphere is returned untouched (no `+ 0·t`, which would turn a
 /// `−0.0` coordinate into `+0.0`), so the kd-tree and the brute-force loop test the same numbers.
 fn position_at(sphere: Sphere<f64>, velocity: DVec3, time: f64) -> Sphere<f64> {
-    if velocity == DVec3::ZERO {
-        sphere
-    } else {
-        Sphere { center: sphere.center + velocity * time, radius: sphere.radius }
-    }
+    crate::kdtree::moved(sphere, velocity, time)
 }
 
 fn validate_camera(camera: &Camera) -> Result<(), InputError> {
@@ -667,8 +668,10 @@ mod tests {
         let mover = Sphere::new(DVec3::new(0.0, 0.0, -5.0), 2.0).unwrap();
         objects.insert(7, Object { shape: Shape::Sphere { sphere: mover, velocity: DVec3::X }, material });
         objects.push(Object::quad(DVec3::new(-30.0, -3.0, -12.0), DVec3::X * 60.0, DVec3::Y * 6.0, material));
-        let scene = Scene::new(*forest.camera(), objects, vec![], None, DVec3::ZERO).unwrap();
-        assert_eq!(scene.kd_tree_spheres(), 400, "the moving sphere and the quad stay outside the tree");
+        // Times 0…1.5 fall in the shutter (the mover's swept box), 2.0 outside it.
+        let camera = Camera { shutter: (0.0, 1.5), ..*forest.camera() };
+        let scene = Scene::new(camera, objects, vec![], None, DVec3::ZERO).unwrap();
+        assert_eq!(scene.kd_tree_spheres(), 401, "the moving sphere is in the tree, the quad outside");
         let brute = scene.without_kd_tree();
         let mut rng = crate::rng::seeded(11, 0);
         let mut point = |half: f64| {

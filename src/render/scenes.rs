@@ -9,7 +9,7 @@ use glam::DVec3;
 use rand_core::Rng as _;
 
 /// Every built-in scene: CLI name and a one-line description.
-pub const CATALOGUE: [(&str, &str); 10] = [
+pub const CATALOGUE: [(&str, &str); 11] = [
     ("clutter", "Q1a: 1500 spheres in a 41×41×10 slab, seen from the front"),
     ("fog", "Q1b: a street with two lamps in fog (σ_s = 0.08, no absorption)"),
     ("clear-street", "Q1b's street without the medium"),
@@ -20,6 +20,7 @@ pub const CATALOGUE: [(&str, &str); 10] = [
     ("cornell", "a closed box, area light, mirror, glossy and glass spheres (indirect light, caustics)"),
     ("probe-lit", "diffuse, glossy and mirror spheres on a floor, lit only by Q4's courtyard map"),
     ("fog-panel", "a ceiling panel light over a ball in fog (area-light single scattering)"),
+    ("caustic", "a glass ball over a white floor under a small area light (a refraction caustic)"),
 ];
 
 /// The built-in scene called `name` (see [`CATALOGUE`]).
@@ -44,6 +45,7 @@ pub fn by_name(name: &str) -> Result<Scene, RenderError> {
         "cornell" => cornell_mirror(),
         "probe-lit" => return probe_lit(),
         "fog-panel" => fog_panel(0.15),
+        "caustic" => glass_ball_caustic(),
         _ => {
             return Err(RenderError::UnknownScene { name: name.into(), known: CATALOGUE.map(|(n, _)| n).join(", ") });
         }
@@ -302,6 +304,70 @@ pub fn fog_panel(sigma_s: f64) -> Result<Scene, InputError> {
     let camera = Camera::looking_at(DVec3::new(0.0, 1.8, 4.0), DVec3::new(0.0, 1.5, -3.0), 45.0);
     let fog = (sigma_s != 0.0).then_some(Fog { sigma_a: 0.0, sigma_s });
     Scene::new(camera, vec![floor, panel, ball], vec![], fog, DVec3::ZERO)
+}
+
+/// Centre of the `caustic` scene's glass ball (radius 1, refractive index 1.5).
+pub const CAUSTIC_BALL_CENTER: DVec3 = DVec3::new(0.0, 1.5, 0.0);
+/// Centre of the `caustic` scene's 0.8 × 0.8 area light, facing down.
+pub const CAUSTIC_LIGHT_CENTER: DVec3 = DVec3::new(-3.0, 9.5, 0.0);
+
+/// A glass ball (radius 1, index 1.5, centre [`CAUSTIC_BALL_CENTER`]) over a white diffuse floor,
+/// lit by one small area light ([`CAUSTIC_LIGHT_CENTER`], 0.8 × 0.8, radiance 250) up and to
+/// the side, so that the ball focuses the light into a bright spot inside its own shadow. A ball
+/// lens of index n and radius R focuses parallel light at `nR/(2(n − 1)) = 1.5` from its centre;
+/// the floor point on the line from the light through the centre, (0.56, 0, 0), lies 1.60 from
+/// it, so the spot is nearly in focus. Eye rays with shadow rays cannot find it (the shadow ray
+/// from the floor to the light is blocked by the glass): the scene of the caustic pass.
+///
+/// # Errors
+/// Never for the built-in numbers.
+///
+/// # Examples
+/// ```
+/// let scene = hw3::render::scenes::glass_ball_caustic().unwrap();
+/// assert_eq!(scene.objects().len(), 3);
+/// ```
+pub fn glass_ball_caustic() -> Result<Scene, InputError> {
+    let floor = Object::quad(
+        DVec3::new(-6.0, 0.0, 6.0),
+        DVec3::new(12.0, 0.0, 0.0),
+        DVec3::new(0.0, 0.0, -12.0),
+        Material::Diffuse { albedo: DVec3::splat(0.7) },
+    );
+    let half = 0.4;
+    let light = Object::quad(
+        CAUSTIC_LIGHT_CENTER - DVec3::new(half, 0.0, half),
+        DVec3::new(2.0 * half, 0.0, 0.0),
+        DVec3::new(0.0, 0.0, 2.0 * half),
+        Material::Emitter { radiance: DVec3::splat(250.0) },
+    );
+    let ball = Object::sphere(Sphere::new(CAUSTIC_BALL_CENTER, 1.0)?, Material::Glass { index: 1.5 });
+    let camera = Camera::looking_at(DVec3::new(1.0, 3.0, 6.5), DVec3::new(0.3, 0.6, 0.0), 35.0);
+    Scene::new(camera, vec![floor, light, ball], vec![], None, DVec3::ZERO)
+}
+
+/// The `caustic` scene's footprint: the disc of radius 0.3 about the focus (0.5625, 0, 0), the
+/// floor point on the line from the light's centre through the ball's centre, all of it in the
+/// ball's umbra; with `n` floor points spread evenly over its area (a sunflower pattern). The
+/// caustic pass's tests and accuracy table measure there.
+///
+/// # Examples
+/// ```
+/// let (center, radius, points) = hw3::render::scenes::caustic_footprint(100);
+/// assert!(points.iter().all(|p| (*p - center).length() <= radius && p.y == 0.0));
+/// ```
+#[must_use]
+pub fn caustic_footprint(n: usize) -> (DVec3, f64, Vec<DVec3>) {
+    let (center, radius) = (DVec3::new(0.5625, 0.0, 0.0), 0.3);
+    let golden = std::f64::consts::PI * (3.0 - 5f64.sqrt());
+    let points = (0..n)
+        .map(|i| {
+            let r = radius * ((i as f64 + 0.5) / n as f64).sqrt();
+            let angle = golden * i as f64;
+            center + DVec3::new(r * angle.cos(), 0.0, r * angle.sin())
+        })
+        .collect();
+    (center, radius, points)
 }
 
 /// Three spheres (diffuse, glossy, mirror) on a grey floor quad, lit only by the vendored Q4
