@@ -419,8 +419,8 @@ pub fn effects_table_command(json: bool) -> Result<String, String> {
 /// ```
 #[must_use]
 pub fn answers() -> Answers {
-    let text = "(a) radiosity, LD*E: (a) highlight No (misses LGE), (b) colour bleeding Yes, (c) diffuse shading Yes, (d) specular effects No (misses LDSE, LSDE), (e) ambient glow Yes — all five as the seed says; measured: colour bleeding and ambient glow reach the path-traced reference (table q5_measured).\n\
-                (b) two-pass (direct light from eye rays + photon tracing): (a) Yes, (b) Yes, (c) Yes, (d) mirror images No (misses LDSE: eye rays are not traced further), caustics possible but impractical (LSDE only in the diffuse photon map), (e) Yes (the seed's answer is lost in the transcription).\n\
+    let text = "(a) radiosity, LD*E: (a) highlight No (misses LGE), (b) colour bleeding Yes, (c) diffuse shading Yes, (d) specular effects No (misses LDSE, LSDE), (e) ambient glow Yes — all five as the seed says, and all five measured so against the path tracer (table q5_measured).\n\
+                (b) two-pass (direct light from eye rays + photon tracing): (a) Yes, (b) Yes, (c) Yes, (d) mirror images No (misses LDSE: eye rays are not traced further), caustics possible but impractical by the grammar (LSDE only in the diffuse photon map) and No when measured (a photon pass that stores photons only after a diffuse bounce never holds LS+D photons: 0.03 % of the path-traced caustic; photon mapping with a caustic map: 100 %), (e) Yes (the seed's answer is lost in the transcription).\n\
                 With a point light the path tracer loses caustics altogether (No: LSDE), photon mapping keeps them.";
     Answers {
         question: "q5",
