@@ -3,6 +3,7 @@
 pub mod effect_scenes;
 pub mod experiments;
 pub mod photon_accuracy;
+pub mod photon_cornell;
 pub mod radiosity;
 
 use crate::Answers;
@@ -436,6 +437,7 @@ pub fn answers() -> Answers {
 pub fn figures() -> Result<Vec<Figure>, PlotError> {
     let mut figures = experiments::figures()?;
     figures.push(photon_accuracy::figure()?);
+    figures.push(photon_cornell::figure()?);
     Ok(figures)
 }
 

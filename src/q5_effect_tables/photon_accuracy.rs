@@ -37,23 +37,49 @@ pub struct AccuracyRow {
 /// assert!(parse("header\n1,2,x\n").is_err());
 /// ```
 pub fn parse(csv: &str) -> Result<Vec<AccuracyRow>, String> {
+    numeric_rows(csv, "q5_photon_accuracy.csv")?
+        .into_iter()
+        .map(|fields| match fields[..] {
+            [photons, stored, k, trace_seconds, query_seconds, rms_error, mean_error] => {
+                Ok(AccuracyRow { photons, stored, k, trace_seconds, query_seconds, rms_error, mean_error })
+            }
+            _ => Err(format!("q5_photon_accuracy.csv: expected 7 fields, got {}", fields.len())),
+        })
+        .collect()
+}
+
+/// The numeric fields of every line of a CSV after its header (blank lines skipped).
+///
+/// # Errors
+/// A message naming `file` and the first line with a non-numeric field.
+pub(super) fn numeric_rows(csv: &str, file: &str) -> Result<Vec<Vec<f64>>, String> {
     csv.lines()
         .skip(1)
         .filter(|line| !line.trim().is_empty())
         .map(|line| {
-            let fields: Vec<f64> = line
-                .split(',')
+            line.split(',')
                 .map(|f| f.trim().parse::<f64>())
                 .collect::<Result<_, _>>()
-                .map_err(|e| format!("q5_photon_accuracy.csv: `{line}`: {e}"))?;
-            match fields[..] {
-                [photons, stored, k, trace_seconds, query_seconds, rms_error, mean_error] => {
-                    Ok(AccuracyRow { photons, stored, k, trace_seconds, query_seconds, rms_error, mean_error })
-                }
-                _ => Err(format!("q5_photon_accuracy.csv: `{line}`: expected 7 fields")),
-            }
+                .map_err(|e| format!("{file}: `{line}`: {e}"))
         })
         .collect()
+}
+
+/// Reads and parses the committed `docs/data/<file>` for the figure `figure`.
+///
+/// # Errors
+/// [`PlotError::Draw`] when the file is missing (naming the benchmark that writes it) or malformed.
+pub(super) fn read_committed<T>(
+    file: &str,
+    figure: &str,
+    parse: impl Fn(&str) -> Result<Vec<T>, String>,
+) -> Result<Vec<T>, PlotError> {
+    let path = format!("{}/docs/data/{file}", env!("CARGO_MANIFEST_DIR"));
+    let csv = std::fs::read_to_string(&path).map_err(|e| PlotError::Draw {
+        figure: figure.into(),
+        message: format!("{path}: {e} (run `cargo bench --bench q5_photon`)"),
+    })?;
+    parse(&csv).map_err(|message| PlotError::Draw { figure: figure.into(), message })
 }
 
 /// The log-log chart of RMS error against k, one line per photon count, with the noise law
@@ -63,12 +89,7 @@ pub fn parse(csv: &str) -> Result<Vec<AccuracyRow>, String> {
 /// [`PlotError`] when the CSV is missing or malformed, or drawing fails.
 pub fn figure() -> Result<Figure, PlotError> {
     let name = "q5_photon_accuracy.svg";
-    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/docs/data/q5_photon_accuracy.csv");
-    let csv = std::fs::read_to_string(path).map_err(|e| PlotError::Draw {
-        figure: name.into(),
-        message: format!("{path}: {e} (run `cargo bench --bench q5_photon`)"),
-    })?;
-    let rows = parse(&csv).map_err(|message| PlotError::Draw { figure: name.into(), message })?;
+    let rows = read_committed("q5_photon_accuracy.csv", name, parse)?;
     let mut counts: Vec<f64> = rows.iter().map(|r| r.photons).collect();
     counts.dedup();
     plot::svg_figure(name, (640, 400), |root| {
