@@ -1,5 +1,6 @@
 #![doc = include_str!(concat!(env!("OUT_DIR"), "/q5_effect_tables.md"))]
 
+pub mod cornell_published;
 pub mod effect_scenes;
 pub mod experiments;
 pub mod photon_accuracy;
