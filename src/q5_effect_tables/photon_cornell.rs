@@ -10,14 +10,15 @@
 //! radiance over a radius `r ∝ √(k/N)`, so it grows with k and shrinks as photons are added).
 
 use super::experiments::cornell_box;
+use super::photon_accuracy::LogLogChart;
 use crate::geometry::{InputError, Ray};
-use crate::plot::{self, Figure, PALETTE, PlotError, err};
+use crate::plot::{Figure, PlotError};
 use crate::render::analysis::{Pass, analyze};
 use crate::render::integrator::{Integrator, Sampler, Tracer};
 use crate::render::photon::{PhotonError, PhotonMap};
 use crate::render::scene::Scene;
 use glam::DVec3;
-use plotters::prelude::*;
+use plotters::prelude::SeriesLabelPosition;
 use rayon::prelude::*;
 
 /// File name of the committed measurement (under `docs/data/`).
@@ -250,48 +251,26 @@ pub fn figure() -> Result<Figure, PlotError> {
     ks.dedup();
     let envelope: Vec<(f64, f64)> = best_k(&rows).iter().map(|r| (r.photons, r.error.rms)).collect();
     let slope = log_log_slope(&envelope);
-    plot::svg_figure(name, (640, 400), |root| {
-        root.fill(&WHITE).map_err(err)?;
-        let mut chart = ChartBuilder::on(root)
-            .caption("Photon map in the Cornell box: error vs photons", ("sans-serif", 18))
-            .margin(12)
-            .x_label_area_size(40)
-            .y_label_area_size(60)
-            .build_cartesian_2d((5e3f64..2e6f64).log_scale(), (0.03f64..1f64).log_scale())
-            .map_err(err)?;
-        chart
-            .configure_mesh()
-            .x_desc("photons emitted")
-            .y_desc("relative RMS error of L")
-            .x_label_formatter(&|x| format!("{x:.0e}"))
-            .y_label_formatter(&|y| format!("{y:.2}"))
-            .label_style(("sans-serif", 12))
-            .draw()
-            .map_err(err)?;
-        for (index, &k) in ks.iter().enumerate() {
-            let color = PALETTE[index % PALETTE.len()];
-            let points: Vec<(f64, f64)> = rows.iter().filter(|r| r.k == k).map(|r| (r.photons, r.error.rms)).collect();
-            chart
-                .draw_series(LineSeries::new(points.clone(), color.stroke_width(2)))
-                .map_err(err)?
-                .label(format!("k = {k:.0}"))
-                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], color.stroke_width(2)));
-            chart.draw_series(points.iter().map(|&p| Circle::new(p, 3, color.filled()))).map_err(err)?;
-        }
-        chart
-            .draw_series(DashedLineSeries::new(envelope.clone(), 6, 4, BLACK.stroke_width(1)))
-            .map_err(err)?
-            .label(format!("best k: slope {slope:.2}"))
-            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], BLACK.stroke_width(1)));
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::LowerLeft)
-            .background_style(WHITE.mix(0.8))
-            .border_style(BLACK)
-            .label_font(("sans-serif", 13))
-            .draw()
-            .map_err(err)
-    })
+    let lines = ks
+        .iter()
+        .map(|&k| {
+            let points = rows.iter().filter(|r| r.k == k).map(|r| (r.photons, r.error.rms)).collect();
+            (format!("k = {k:.0}"), points)
+        })
+        .collect();
+    LogLogChart {
+        name,
+        caption: "Photon map in the Cornell box: error vs photons",
+        x_range: (5e3, 2e6),
+        y_range: (0.03, 1.0),
+        x_desc: "photons emitted",
+        y_desc: "relative RMS error of L",
+        lines,
+        dashed: (format!("best k: slope {slope:.2}"), envelope),
+        tick_formats: Some((|x| format!("{x:.0e}"), |y| format!("{y:.2}"))),
+        legend: Some(SeriesLabelPosition::LowerLeft),
+    }
+    .draw()
 }
 
 #[cfg(test)]
@@ -300,14 +279,12 @@ mod tests {
     use crate::render::photon::trace_photons;
 
     /// The committed measurement: the reference's own noise stays below a third of every error it
-    /// judges; at fixed k the error does not fall below the noise floor ≈ 1/√(k − 2) … and with
-    /// the best k per count it falls as photons are added (slope between −0.7 and −0.15, around the
+    /// judges; the noise stays above half the floor 1/√(k − 2) that k sets, whatever the photon
+    /// count; and with the best k per count the error falls as photons are added (slope between −0.7 and −0.15, around the
     /// −1/3 that the bias–variance balance of a 2-D density estimate predicts).
     #[test]
     fn committed_cornell_accuracy_is_judged_by_a_converged_reference_and_falls_with_photons() {
-        let csv =
-            std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/data/q5_photon_cornell.csv")).unwrap();
-        let rows = parse(&csv).unwrap();
+        let rows = super::super::photon_accuracy::read_committed(CSV_NAME, "test", parse).unwrap();
         assert!(rows.len() >= 12);
         for r in &rows {
             assert!(r.reference_error < r.error.rms / 3.0, "{r:?}");
