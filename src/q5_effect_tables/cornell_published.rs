@@ -149,20 +149,20 @@ pub fn radiosity_at_probes(n: usize, samples: usize) -> Result<Vec<f64>, Experim
 }
 
 /// The radiosity solution rendered from the published camera next to the path tracer's image of
-/// the same scene (`size × size` each; radiosity at 8 × 8 patches per quad and 2 × 2 samples,
-/// the path tracer at 64 samples per pixel, seed 1).
+/// the same scene (`size × size` each; radiosity at 12 × 12 patches per quad and one form-factor sample,
+/// the path tracer at 32 samples per pixel, seed 1).
 ///
 /// # Errors
 /// [`ExperimentError`] if the scene, the system or the render fails (never for these numbers).
 pub fn side_by_side(size: u32) -> Result<image::RgbImage, ExperimentError> {
     let scene = scene()?;
-    let system = System::new(&scene, Mesh::new(&scene, 8)?, 2)?;
+    let system = System::new(&scene, Mesh::new(&scene, 12)?, 1)?;
     let solution = system.solve(Solver::GaussSeidel, 80).pop().unwrap_or_default();
     let radiosity = system.render(&scene, &solution, size, size).to_rgb8();
     let settings = Settings {
         width: size,
         height: size,
-        spp: 64,
+        spp: 32,
         integrator: Integrator::PathTracer { max_depth: 12 },
         passes: analyze(&scene).plan,
         seed: 1,

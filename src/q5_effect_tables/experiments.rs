@@ -575,7 +575,7 @@ const PUBLISHED_PNG: &str = "q5_cornell_published.png";
 /// File name of the experiment-scene montage.
 const EFFECT_SCENES_PNG: &str = "q5_effect_scenes.png";
 
-/// The four open experiment scenes side by side, path-traced (160 × 120, 64 samples per pixel,
+/// The four open experiment scenes side by side, path-traced (160 × 120, 32 samples per pixel,
 /// every bounce on, seed 1: byte-identical run to run): the glossy floor's highlight, the white
 /// floor's cosine falloff, the red panel in the mirror, the caustic under the glass ball.
 fn effect_scenes_figure() -> Result<Figure, ExperimentError> {
@@ -593,7 +593,7 @@ fn effect_scenes_figure() -> Result<Figure, ExperimentError> {
         let settings = Settings {
             width,
             height,
-            spp: 64,
+            spp: 32,
             integrator: Integrator::PathTracer { max_depth: 12 },
             passes: reference_passes(scene),
             seed: 1,
