@@ -109,6 +109,15 @@ pub fn scene() -> Result<Scene, InputError> {
 /// Probe rays onto the walls, 10 mm off each wall along its inward normal, four on each of the
 /// floor (in front of the blocks), the ceiling (away from the light), the back, green and red
 /// walls: 20 points away from edges, blocks and the light.
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::cornell_published::{scene, wall_probes};
+/// let (scene, probes) = (scene().unwrap(), wall_probes());
+/// assert_eq!(probes.len(), 20);
+/// // 10 mm off the wall (the red wall, tilted by the parallelogram, up to 3 mm more).
+/// assert!(probes.iter().all(|ray| scene.closest_hit(ray, 0.0, 0.014).is_some()));
+/// ```
 #[must_use]
 pub fn wall_probes() -> Vec<Ray<f64>> {
     let probe = |point: DVec3, inward: DVec3| Ray { origin: point + inward * 0.01, dir: -inward };
@@ -135,6 +144,12 @@ pub fn wall_probes() -> Vec<Ray<f64>> {
 ///
 /// # Errors
 /// [`ExperimentError`] for a zero count; never otherwise.
+///
+/// # Examples
+/// ```
+/// let radiance = hw3::q5_effect_tables::cornell_published::radiosity_at_probes(2, 1).unwrap();
+/// assert!(radiance.len() == 20 && radiance.iter().all(|&l| l > 0.0));
+/// ```
 pub fn radiosity_at_probes(n: usize, samples: usize) -> Result<Vec<f64>, ExperimentError> {
     let scene = scene()?;
     let system = System::new(&scene, Mesh::new(&scene, n)?, samples)?;

@@ -83,6 +83,12 @@ pub const WHITE_FLOOR: Material = Material::Diffuse { albedo: WHITE };
 ///
 /// # Errors
 /// Never for the built-in numbers.
+///
+/// # Examples
+/// ```
+/// let room = hw3::q5_effect_tables::effect_scenes::mirror_room().unwrap();
+/// assert_eq!(room.objects().len(), 3);
+/// ```
 pub fn mirror_room() -> Result<Scene, InputError> {
     let objects = vec![
         Object::quad(DVec3::new(-1.0, 0.0, -1.0), DVec3::Y * 2.0, DVec3::Z * 2.0, Material::Diffuse { albedo: RED }),

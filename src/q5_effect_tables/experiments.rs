@@ -334,6 +334,14 @@ fn grey(radiance: DVec3) -> f64 {
 ///
 /// # Errors
 /// [`ExperimentError`] if a method fails on the scene (never for the built-in ones).
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::experiments::{Measured, highlight};
+/// // Whitted's shadow rays evaluate the Phong lobe; radiosity keeps only the diffuse part.
+/// assert!(highlight(Measured::Whitted).unwrap() > 1.0);
+/// assert_eq!(highlight(Measured::Radiosity { subdivisions: 2, samples: 1 }).unwrap(), 0.0);
+/// ```
 pub fn highlight(method: Measured) -> Result<f64, ExperimentError> {
     let Material::Glossy { diffuse, .. } = GLOSSY_FLOOR else { return Err(ExperimentError::UnknownId("glossy")) };
     let probes = effect_scenes::highlight_probes();
@@ -348,6 +356,12 @@ pub fn highlight(method: Measured) -> Result<f64, ExperimentError> {
 ///
 /// # Errors
 /// As [`highlight`].
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::experiments::{Measured, direct_shading};
+/// assert!(direct_shading(Measured::Whitted).unwrap() > 0.03);
+/// ```
 pub fn direct_shading(method: Measured) -> Result<f64, ExperimentError> {
     let scene = lit_floor(WHITE_FLOOR, false)?;
     let near = mean_radiance(&scene, method, &effect_scenes::floor_probes(DVec3::ZERO, 0.05))?;
@@ -361,6 +375,13 @@ pub fn direct_shading(method: Measured) -> Result<f64, ExperimentError> {
 ///
 /// # Errors
 /// As [`highlight`].
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::experiments::{Measured, mirror_image};
+/// assert!(mirror_image(Measured::Whitted).unwrap() > 0.2);
+/// assert_eq!(mirror_image(Measured::Radiosity { subdivisions: 2, samples: 1 }).unwrap(), 0.0);
+/// ```
 pub fn mirror_image(method: Measured) -> Result<f64, ExperimentError> {
     Ok(grey(mean_radiance(&mirror_room()?, method, &effect_scenes::mirror_probes())?))
 }
@@ -371,6 +392,13 @@ pub fn mirror_image(method: Measured) -> Result<f64, ExperimentError> {
 ///
 /// # Errors
 /// As [`highlight`].
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::experiments::{Measured, caustic};
+/// // Whitted's shadow ray from the focus is blocked by the glass: the shadow, no caustic.
+/// assert_eq!(caustic(Measured::Whitted).unwrap(), 0.0);
+/// ```
 pub fn caustic(method: Measured) -> Result<f64, ExperimentError> {
     let probes = effect_scenes::floor_probes(DVec3::ZERO, 0.01);
     let focused = mean_radiance(&lit_floor(WHITE_FLOOR, true)?, method, &probes)?;
@@ -418,6 +446,12 @@ pub const TABLE_METHODS: [Measured; 4] =
 
 /// The verdict for a measured fraction: Yes at [`YES_FRACTION`] or more, No at [`NO_FRACTION`]
 /// or less, Impractical (partial) in between.
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::{Verdict, experiments::verdict};
+/// assert_eq!((verdict(0.97), verdict(0.5), verdict(0.0)), (Verdict::Yes, Verdict::Impractical, Verdict::No));
+/// ```
 #[must_use]
 pub fn verdict(fraction: f64) -> Verdict {
     if fraction >= YES_FRACTION {

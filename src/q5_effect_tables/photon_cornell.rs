@@ -67,6 +67,14 @@ impl Reference {
 
 /// Path-traces `spp` samples along every probe (every bounce on, 12 at most; probe `i` draws from
 /// stream `(7, i)`, so the result does not depend on the thread count).
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::photon_cornell::{reference, scene_and_probes};
+/// let (scene, probes) = scene_and_probes().unwrap();
+/// let truth = reference(&scene, &probes[..2], 64);
+/// assert!(truth.radiance.iter().all(|&l| l > 0.0) && truth.max_relative_error() > 0.0);
+/// ```
 #[must_use]
 pub fn reference(scene: &Scene, probes: &[Ray<f64>], spp: u32) -> Reference {
     let integrator = Integrator::PathTracer { max_depth: 12 };
@@ -97,6 +105,16 @@ pub fn reference(scene: &Scene, probes: &[Ray<f64>], spp: u32) -> Reference {
 /// # Errors
 /// As [`PhotonMap::radiance`] (fewer than `k` photons, `k < 2`); a probe that misses the scene
 /// estimates 0.
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::photon_cornell::{estimates, scene_and_probes};
+/// use hw3::render::photon::trace_photons;
+/// let (scene, probes) = scene_and_probes().unwrap();
+/// let map = trace_photons(&scene, 5000, 1).unwrap().all;
+/// assert!(estimates(&scene, &map, &probes, 16).unwrap().iter().all(|&l| l > 0.0));
+/// assert!(estimates(&scene, &map, &probes, 1).is_err()); // k < 2
+/// ```
 pub fn estimates(scene: &Scene, map: &PhotonMap, probes: &[Ray<f64>], k: usize) -> Result<Vec<f64>, PhotonError> {
     probes
         .iter()
@@ -225,6 +243,14 @@ pub fn parse(csv: &str) -> Result<Vec<Row>, String> {
 }
 
 /// For each photon count, the row of smallest RMS error (the best k for that count).
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::photon_cornell::{best_k, parse};
+/// let rows = parse("h\n1e4,8,0,0,0.4,0,0.4,0\n1e4,32,0,0,0.2,0,0.2,0\n1e5,8,0,0,0.4,0,0.4,0\n").unwrap();
+/// let best: Vec<(f64, f64)> = best_k(&rows).iter().map(|r| (r.photons, r.k)).collect();
+/// assert_eq!(best, [(1e4, 32.0), (1e5, 8.0)]);
+/// ```
 #[must_use]
 pub fn best_k(rows: &[Row]) -> Vec<Row> {
     let mut best: Vec<Row> = Vec::new();
