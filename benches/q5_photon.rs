@@ -13,7 +13,7 @@
 //!   queries; writes `docs/data/q5_photon_accuracy.md` and `.csv`.
 //! - and the same in a scene with gradients, the Cornell-like box: the global map's radiance at 32
 //!   floor probes against a path-traced reference (2¹⁷ samples per probe, its standard error
-//!   stated), for photon counts 10⁴…10⁶ and k = 8…512, four independent traces each, the error
+//!   stated), for photon counts 10⁴…10⁶ and k = 8…2048, four independent traces each, the error
 //!   split into bias and noise; writes `docs/data/q5_photon_cornell.md` and `.csv`
 //!   ([`hw3::q5_effect_tables::photon_cornell`]).
 //!
@@ -98,7 +98,7 @@ fn write_accuracy_table() {
 }
 
 const CORNELL_PHOTONS: [usize; 5] = [10_000, 30_000, 100_000, 300_000, 1_000_000];
-const CORNELL_NEIGHBOURS: [usize; 4] = [8, 32, 128, 512];
+const CORNELL_NEIGHBOURS: [usize; 5] = [8, 32, 128, 512, 2048];
 const CORNELL_TRACES: u64 = 4;
 const CORNELL_REFERENCE_SPP: u32 = 1 << 17;
 
