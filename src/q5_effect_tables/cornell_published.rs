@@ -175,12 +175,8 @@ pub fn side_by_side(size: u32) -> Result<image::RgbImage, ExperimentError> {
     let solution = system.solve(Solver::GaussSeidel, 80).pop().unwrap_or_default();
     let radiosity = system.render(&scene, &solution, size, size).to_rgb8();
     let settings = Settings {
-        width: size,
-        height: size,
-        spp: 32,
         integrator: Integrator::PathTracer { max_depth: 12 },
-        passes: analyze(&scene).plan,
-        seed: 1,
+        ..Settings::whitted(size, size, 32, analyze(&scene).plan)
     };
     let traced = render(&scene, &settings, &|_| {}).map_err(|e| ExperimentError::Render(e.to_string()))?.to_rgb8();
     let mut both = image::RgbImage::new(2 * size, size);

@@ -625,12 +625,8 @@ fn effect_scenes_figure() -> Result<Figure, ExperimentError> {
     let mut montage = image::RgbImage::new(width * scenes.len() as u32, height);
     for (k, scene) in scenes.iter().enumerate() {
         let settings = Settings {
-            width,
-            height,
-            spp: 32,
             integrator: Integrator::PathTracer { max_depth: 12 },
-            passes: reference_passes(scene),
-            seed: 1,
+            ..Settings::whitted(width, height, 32, reference_passes(scene))
         };
         let image = render(scene, &settings, &|_| {}).map_err(|e| ExperimentError::Render(e.to_string()))?;
         image::imageops::replace(&mut montage, &image.to_rgb8(), i64::from(width) * k as i64, 0);
