@@ -10,10 +10,17 @@
 //!   E = I/(1 − ρ) = 2 everywhere, which the path tracer reproduces to 1e-9 in
 //!   `render::integrator`'s furnace test): the relative RMS error of the irradiance at 1000 wall
 //!   points for photon counts 10⁴…10⁶ and k = 8…512, with the seconds of tracing and of the
-//!   queries; writes `docs/data/q5_photon_accuracy.md` and `.csv`. `cargo test --benches` runs each
-//!   divan bench once and skips that measurement.
+//!   queries; writes `docs/data/q5_photon_accuracy.md` and `.csv`.
+//! - and the same in a scene with gradients, the Cornell-like box: the global map's radiance at 32
+//!   floor probes against a path-traced reference (2¹⁷ samples per probe, its standard error
+//!   stated), for photon counts 10⁴…10⁶ and k = 8…2048, four independent traces each, the error
+//!   split into bias and noise; writes `docs/data/q5_photon_cornell.md` and `.csv`
+//!   ([`hw3::q5_effect_tables::photon_cornell`]).
+//!
+//! `cargo test --benches` runs each divan bench once and skips both measurements.
 
 use glam::DVec3;
+use hw3::q5_effect_tables::photon_cornell::{self, ErrorSplit};
 use hw3::render::photon::{PhotonMap, fibonacci_sphere, furnace_sphere, trace_photons};
 use std::fmt::Write as _;
 use std::time::Instant;
@@ -21,6 +28,7 @@ use std::time::Instant;
 fn main() {
     if std::env::args().any(|a| a == "--bench") {
         write_accuracy_table();
+        write_cornell_table();
     }
     divan::main();
 }
@@ -87,4 +95,65 @@ fn write_accuracy_table() {
     std::fs::create_dir_all(data).expect("docs/data is writable");
     std::fs::write(format!("{data}/q5_photon_accuracy.csv"), csv).expect("write the CSV");
     std::fs::write(format!("{data}/q5_photon_accuracy.md"), table).expect("write the table");
+}
+
+const CORNELL_PHOTONS: [usize; 5] = [10_000, 30_000, 100_000, 300_000, 1_000_000];
+const CORNELL_NEIGHBOURS: [usize; 5] = [8, 32, 128, 512, 2048];
+const CORNELL_TRACES: u64 = 4;
+const CORNELL_REFERENCE_SPP: u32 = 1 << 17;
+
+fn write_cornell_table() {
+    let (scene, probes) = photon_cornell::scene_and_probes().expect("built-in scene");
+    let start = Instant::now();
+    let reference = photon_cornell::reference(&scene, &probes, CORNELL_REFERENCE_SPP);
+    let reference_seconds = start.elapsed().as_secs_f64();
+    let reference_error = reference.max_relative_error();
+    let mut csv = String::from("photons,k,trace_seconds,query_seconds,rms,bias,noise,reference_error\n");
+    let mut rows = Vec::new();
+    for photons in CORNELL_PHOTONS {
+        let start = Instant::now();
+        let maps: Vec<PhotonMap> =
+            (1..=CORNELL_TRACES).map(|seed| trace_photons(&scene, photons, seed).expect("photons").all).collect();
+        let trace_seconds = start.elapsed().as_secs_f64() / CORNELL_TRACES as f64;
+        for k in CORNELL_NEIGHBOURS {
+            let start = Instant::now();
+            let traces: Vec<Vec<f64>> = maps
+                .iter()
+                .map(|map| photon_cornell::estimates(&scene, map, &probes, k).expect("enough photons"))
+                .collect();
+            let query_seconds = start.elapsed().as_secs_f64() / CORNELL_TRACES as f64;
+            let ErrorSplit { rms, bias, noise } = photon_cornell::error_split(&traces, &reference.radiance);
+            let _ = writeln!(
+                csv,
+                "{photons},{k},{trace_seconds:.4e},{query_seconds:.4e},{rms:.4e},{bias:.4e},{noise:.4e},{reference_error:.4e}"
+            );
+            rows.push(format!(
+                "| {photons} | {k} | {trace_seconds:.3} | {query_seconds:.5} | {:.2} % | {:.2} % | {:.2} % |",
+                rms * 100.0,
+                bias * 100.0,
+                noise * 100.0
+            ));
+        }
+    }
+    let parsed = photon_cornell::parse(&csv).expect("the CSV just written");
+    let envelope: Vec<(f64, f64)> = photon_cornell::best_k(&parsed).iter().map(|r| (r.photons, r.error.rms)).collect();
+    let slope = photon_cornell::log_log_slope(&envelope);
+    let median_error = {
+        let mut relative: Vec<f64> =
+            reference.radiance.iter().zip(&reference.standard_error).map(|(l, s)| s / l).collect();
+        relative.sort_by(f64::total_cmp);
+        relative[relative.len() / 2]
+    };
+    let mut table = format!(
+        "Cornell-like box, global photon map (`all`), (k − 1)/(πr²) radiance estimate at 32 floor probes against the path tracer ({CORNELL_REFERENCE_SPP} samples per probe, {reference_seconds:.1} s; relative standard error median {:.2} %, largest {:.2} %). {CORNELL_TRACES} independent traces per photon count; error relative, RMS over probes and traces, split into bias (error of the trace mean) and noise (spread between traces). Seconds per trace (2 threads) and per 32 queries. Best k per count: log-log slope {slope:.2}.\n\n| photons | k | trace s | query s | RMS error | bias | noise |\n|---|---|---|---|---|---|---|\n",
+        median_error * 100.0,
+        reference_error * 100.0
+    );
+    for row in rows {
+        table.push_str(&row);
+        table.push('\n');
+    }
+    let data = concat!(env!("CARGO_MANIFEST_DIR"), "/docs/data");
+    std::fs::write(format!("{data}/q5_photon_cornell.csv"), csv).expect("write the CSV");
+    std::fs::write(format!("{data}/q5_photon_cornell.md"), table).expect("write the table");
 }

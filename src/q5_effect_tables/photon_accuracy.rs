@@ -37,23 +37,49 @@ pub struct AccuracyRow {
 /// assert!(parse("header\n1,2,x\n").is_err());
 /// ```
 pub fn parse(csv: &str) -> Result<Vec<AccuracyRow>, String> {
+    numeric_rows(csv, "q5_photon_accuracy.csv")?
+        .into_iter()
+        .map(|fields| match fields[..] {
+            [photons, stored, k, trace_seconds, query_seconds, rms_error, mean_error] => {
+                Ok(AccuracyRow { photons, stored, k, trace_seconds, query_seconds, rms_error, mean_error })
+            }
+            _ => Err(format!("q5_photon_accuracy.csv: expected 7 fields, got {}", fields.len())),
+        })
+        .collect()
+}
+
+/// The numeric fields of every line of a CSV after its header (blank lines skipped).
+///
+/// # Errors
+/// A message naming `file` and the first line with a non-numeric field.
+pub(super) fn numeric_rows(csv: &str, file: &str) -> Result<Vec<Vec<f64>>, String> {
     csv.lines()
         .skip(1)
         .filter(|line| !line.trim().is_empty())
         .map(|line| {
-            let fields: Vec<f64> = line
-                .split(',')
+            line.split(',')
                 .map(|f| f.trim().parse::<f64>())
                 .collect::<Result<_, _>>()
-                .map_err(|e| format!("q5_photon_accuracy.csv: `{line}`: {e}"))?;
-            match fields[..] {
-                [photons, stored, k, trace_seconds, query_seconds, rms_error, mean_error] => {
-                    Ok(AccuracyRow { photons, stored, k, trace_seconds, query_seconds, rms_error, mean_error })
-                }
-                _ => Err(format!("q5_photon_accuracy.csv: `{line}`: expected 7 fields")),
-            }
+                .map_err(|e| format!("{file}: `{line}`: {e}"))
         })
         .collect()
+}
+
+/// Reads and parses the committed `docs/data/<file>` for the figure `figure`.
+///
+/// # Errors
+/// [`PlotError::Draw`] when the file is missing (naming the benchmark that writes it) or malformed.
+pub(super) fn read_committed<T>(
+    file: &str,
+    figure: &str,
+    parse: impl Fn(&str) -> Result<Vec<T>, String>,
+) -> Result<Vec<T>, PlotError> {
+    let path = format!("{}/docs/data/{file}", env!("CARGO_MANIFEST_DIR"));
+    let csv = std::fs::read_to_string(&path).map_err(|e| PlotError::Draw {
+        figure: figure.into(),
+        message: format!("{path}: {e} (run `cargo bench --bench q5_photon`)"),
+    })?;
+    parse(&csv).map_err(|message| PlotError::Draw { figure: figure.into(), message })
 }
 
 /// The log-log chart of RMS error against k, one line per photon count, with the noise law
@@ -63,55 +89,106 @@ pub fn parse(csv: &str) -> Result<Vec<AccuracyRow>, String> {
 /// [`PlotError`] when the CSV is missing or malformed, or drawing fails.
 pub fn figure() -> Result<Figure, PlotError> {
     let name = "q5_photon_accuracy.svg";
-    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/docs/data/q5_photon_accuracy.csv");
-    let csv = std::fs::read_to_string(path).map_err(|e| PlotError::Draw {
-        figure: name.into(),
-        message: format!("{path}: {e} (run `cargo bench --bench q5_photon`)"),
-    })?;
-    let rows = parse(&csv).map_err(|message| PlotError::Draw { figure: name.into(), message })?;
+    let rows = read_committed("q5_photon_accuracy.csv", name, parse)?;
     let mut counts: Vec<f64> = rows.iter().map(|r| r.photons).collect();
     counts.dedup();
-    plot::svg_figure(name, (640, 400), |root| {
-        root.fill(&WHITE).map_err(err)?;
-        let mut chart = ChartBuilder::on(root)
-            .caption("Photon map in the white furnace: error vs k", ("sans-serif", 18))
-            .margin(12)
-            .x_label_area_size(40)
-            .y_label_area_size(60)
-            .build_cartesian_2d((4f64..4096f64).log_scale(), (0.01f64..1f64).log_scale())
-            .map_err(err)?;
-        chart
-            .configure_mesh()
-            .x_desc("k (neighbours)")
-            .y_desc("relative RMS error of E")
-            .label_style(("sans-serif", 12))
-            .draw()
-            .map_err(err)?;
-        for (index, &count) in counts.iter().enumerate() {
-            let color = PALETTE[index % PALETTE.len()];
-            let points: Vec<(f64, f64)> =
-                rows.iter().filter(|r| r.photons == count).map(|r| (r.k, r.rms_error)).collect();
+    let lines = counts
+        .iter()
+        .map(|&count| {
+            let points = rows.iter().filter(|r| r.photons == count).map(|r| (r.k, r.rms_error)).collect();
+            (format!("{count:.0} photons"), points)
+        })
+        .collect();
+    let law: Vec<(f64, f64)> = (3..=12).map(|e| 2f64.powi(e)).map(|k| (k, 1.0 / (k - 2.0).sqrt())).collect();
+    LogLogChart {
+        name,
+        caption: "Photon map in the white furnace: error vs k",
+        x_range: (4.0, 4096.0),
+        y_range: (0.01, 1.0),
+        x_desc: "k (neighbours)",
+        y_desc: "relative RMS error of E",
+        lines,
+        dashed: ("1/√(k − 2)".to_string(), law),
+        tick_formats: None,
+        legend: None,
+    }
+    .draw()
+}
+
+/// Formats an axis tick value.
+pub(super) type TickFormat = fn(&f64) -> String;
+
+/// A log-log chart of marked lines and one dashed reference line (the photon accuracy figures).
+pub(super) struct LogLogChart<'a> {
+    /// File name.
+    pub name: &'a str,
+    /// Title.
+    pub caption: &'a str,
+    /// x range (both ends positive).
+    pub x_range: (f64, f64),
+    /// y range (both ends positive).
+    pub y_range: (f64, f64),
+    /// x-axis label.
+    pub x_desc: &'a str,
+    /// y-axis label.
+    pub y_desc: &'a str,
+    /// Legend label and points of each marked line.
+    pub lines: Vec<(String, Vec<(f64, f64)>)>,
+    /// Legend label and points of the dashed line.
+    pub dashed: (String, Vec<(f64, f64)>),
+    /// Tick formats of the x and y axes (plotters' defaults when `None`).
+    pub tick_formats: Option<(TickFormat, TickFormat)>,
+    /// Where the legend goes (plotters' default when `None`).
+    pub legend: Option<SeriesLabelPosition>,
+}
+
+impl LogLogChart<'_> {
+    /// The chart as an SVG figure (640 × 400).
+    pub(super) fn draw(self) -> Result<Figure, PlotError> {
+        plot::svg_figure(self.name, (640, 400), |root| {
+            root.fill(&WHITE).map_err(err)?;
+            let mut chart = ChartBuilder::on(root)
+                .caption(self.caption, ("sans-serif", 18))
+                .margin(12)
+                .x_label_area_size(40)
+                .y_label_area_size(60)
+                .build_cartesian_2d(
+                    (self.x_range.0..self.x_range.1).log_scale(),
+                    (self.y_range.0..self.y_range.1).log_scale(),
+                )
+                .map_err(err)?;
+            let mut mesh = chart.configure_mesh();
+            mesh.x_desc(self.x_desc).y_desc(self.y_desc).label_style(("sans-serif", 12));
+            if let Some((x_format, y_format)) = &self.tick_formats {
+                mesh.x_label_formatter(x_format).y_label_formatter(y_format);
+            }
+            mesh.draw().map_err(err)?;
+            for (index, (label, points)) in self.lines.iter().enumerate() {
+                let color = PALETTE[index % PALETTE.len()];
+                chart
+                    .draw_series(LineSeries::new(points.clone(), color.stroke_width(2)))
+                    .map_err(err)?
+                    .label(label)
+                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], color.stroke_width(2)));
+                chart.draw_series(points.iter().map(|&p| Circle::new(p, 3, color.filled()))).map_err(err)?;
+            }
             chart
-                .draw_series(LineSeries::new(points.clone(), color.stroke_width(2)))
+                .draw_series(DashedLineSeries::new(self.dashed.1.clone(), 6, 4, BLACK.stroke_width(1)))
                 .map_err(err)?
-                .label(format!("{count:.0} photons"))
-                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], color.stroke_width(2)));
-            chart.draw_series(points.iter().map(|&p| Circle::new(p, 3, color.filled()))).map_err(err)?;
-        }
-        let law: Vec<(f64, f64)> = (3..=12).map(|e| 2f64.powi(e)).map(|k| (k, 1.0 / (k - 2.0).sqrt())).collect();
-        chart
-            .draw_series(DashedLineSeries::new(law, 6, 4, BLACK.stroke_width(1)))
-            .map_err(err)?
-            .label("1/√(k − 2)")
-            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], BLACK.stroke_width(1)));
-        chart
-            .configure_series_labels()
-            .background_style(WHITE.mix(0.8))
-            .border_style(BLACK)
-            .label_font(("sans-serif", 13))
-            .draw()
-            .map_err(err)
-    })
+                .label(&self.dashed.0)
+                .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], BLACK.stroke_width(1)));
+            let mut labels = chart.configure_series_labels();
+            if let Some(position) = self.legend {
+                labels.position(position);
+            }
+            labels
+                .background_style(WHITE.mix(0.8))
+                .border_style(BLACK)
+                .label_font(("sans-serif", 13))
+                .draw()
+                .map_err(err)
+        })
+    }
 }
 
 #[cfg(test)]
@@ -123,9 +200,7 @@ mod tests {
     /// stays within ±3 %.
     #[test]
     fn committed_photon_accuracy_follows_the_noise_law() {
-        let csv =
-            std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/data/q5_photon_accuracy.csv")).unwrap();
-        let rows = parse(&csv).unwrap();
+        let rows = read_committed("q5_photon_accuracy.csv", "test", parse).unwrap();
         assert!(rows.len() >= 12);
         for r in &rows {
             let law = 1.0 / (r.k - 2.0).sqrt();
