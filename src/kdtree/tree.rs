@@ -297,7 +297,7 @@ impl KdTree {
     /// ```
     #[must_use]
     pub fn closest_hit(&self, ray: &Ray<f64>, t_min: f64, t_max: f64) -> Option<(usize, f64)> {
-        self.closest_hit_at(ray, t_min, t_max, self.motion.as_ref().map_or(0.0, |m| m.interval.0))
+        self.closest_hit_at(ray, t_min, t_max, self.default_time())
     }
 
     /// [`KdTree::closest_hit`] with every sphere where its velocity puts it at `time`
@@ -325,6 +325,11 @@ impl KdTree {
             }
             _ => self.traverse(ray, t_min, t_max, time, &mut ()),
         }
+    }
+
+    /// The time a query without one uses: the opening of a moving tree's interval, else 0.
+    fn default_time(&self) -> f64 {
+        self.motion.as_ref().map_or(0.0, |m| m.interval.0)
     }
 
     /// A leaf's sphere at `time`: the stored copy, moved by its velocity in a moving tree.
@@ -357,7 +362,7 @@ impl KdTree {
         t_max: f64,
         stats: &mut HitStats,
     ) -> Option<(usize, f64)> {
-        self.traverse(ray, t_min, t_max, self.motion.as_ref().map_or(0.0, |m| m.interval.0), stats)
+        self.traverse(ray, t_min, t_max, self.default_time(), stats)
     }
 
     fn traverse<C: Counter>(
