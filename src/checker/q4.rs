@@ -1,6 +1,6 @@
 //! Q4 variants: irradiance from an analytic sky with a closed form, and the mirror ball's blind spot.
 
-use super::{Expected, MalRule, Part, Variant};
+use super::key::{Expected, MalRule, Part, Variant};
 use crate::q4_light_probe::blind_spot;
 use crate::q4_light_probe::maps::{AnalyticMap, Term};
 use crate::rng;
