@@ -6,6 +6,7 @@
 )]
 
 pub mod cli;
+pub mod envmap;
 pub mod fsio;
 pub mod geometry;
 pub mod kdtree;
