@@ -22,6 +22,7 @@ pub mod q4_light_probe;
 pub mod q5_effect_tables;
 
 pub mod checker;
+pub mod notes;
 
 /// One question's printed answers, as `hw3 answers` shows them.
 #[derive(Debug, Clone, PartialEq, Eq)]
