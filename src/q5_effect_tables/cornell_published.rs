@@ -17,9 +17,9 @@
 //! coincident surfaces do not tie (a tie would go to the lower object index, hiding the light
 //! behind the ceiling for half the rays).
 
-use super::experiments::ExperimentError;
-use super::experiments::{GREEN, RED, WHITE};
+use super::error::ExperimentError;
 use super::radiosity::{Mesh, Solver, System};
+use super::scenes::{GREEN, RED, WHITE};
 use crate::geometry::{InputError, Ray};
 use crate::render::analysis::analyze;
 use crate::render::integrator::Integrator;

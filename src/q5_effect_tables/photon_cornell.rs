@@ -9,8 +9,8 @@
 //! `1/√(k − 2)` of the value, set by k) and **bias** (the seed-mean's error: the kNN disc blurs the
 //! radiance over a radius `r ∝ √(k/N)`, so it grows with k and shrinks as photons are added).
 
-use super::experiments::cornell_box;
 use super::photon_accuracy::LogLogChart;
+use super::scenes::cornell_box;
 use crate::geometry::{InputError, Ray};
 use crate::plot::{Figure, PlotError};
 use crate::render::analysis::{Pass, analyze};

@@ -86,7 +86,7 @@ impl Mesh {
     /// # Examples
     /// ```
     /// use hw3::q5_effect_tables::radiosity::Mesh;
-    /// let scene = hw3::q5_effect_tables::experiments::cornell_box(true).unwrap();
+    /// let scene = hw3::q5_effect_tables::scenes::cornell_box(true).unwrap();
     /// let mesh = Mesh::new(&scene, 2).unwrap();
     /// assert_eq!(mesh.patches.len() % 4, 0);
     /// assert!(Mesh::new(&scene, 0).is_err());
@@ -394,7 +394,7 @@ pub fn relative_errors(history: &[Vec<DVec3>], reference: &[DVec3]) -> Vec<f64> 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::q5_effect_tables::experiments::{closed_box, cornell_box};
+    use crate::q5_effect_tables::scenes::{closed_box, cornell_box};
 
     #[test]
     fn point_to_polygon_matches_the_disc_and_the_closed_cube() {
