@@ -17,8 +17,28 @@ pub use motion::{MOTION_SPP, MotionChange, MotionNoise, NOISE_TARGET, motion_cha
 
 use crate::Answers;
 
+/// Median growth of a ray pair's separation per bounce between the four mirror spheres
+/// ([`mirror_divergence`] at [`DIVERGENCE_TRIALS`]), as [`answers`] prints it. Measured, not
+/// computed by `answers` (which renders and traces nothing); pinned by
+/// `tests::printed_measurements_are_what_the_code_measures`.
+const MIRROR_GROWTH: &str = "2.55";
+/// Lowest and highest ratio of the mirror to the diffuse image sensitivity over [`MIRROR_STEPS`]
+/// ([`mirror_sensitivity`]), cut to one decimal (1.155 and 1.690 print 1.1 and 1.6); pinned by the
+/// same test.
+const SENSITIVITY_RATIOS: (&str, &str) = ("1.1", "1.6");
+/// The clutter rows' gap fractions are within this many standard errors of the exact law
+/// ([`clutter_row`]); pinned by the same test.
+const CLUTTER_STANDARD_ERRORS: f64 = 2.0;
+
 /// The Q1 answers: the four hard scenes and what makes each hard, with the law each obeys.
 /// Cheap (no rendering); the measured tables are in the chapter and in `hw3 figures`.
+///
+/// The sphere counts, fog densities, tolerances, image size and the ball's image speed are
+/// computed from the code that measures them; the three numbers only a measurement gives are
+/// constants pinned by a test.
+///
+/// # Panics
+/// Never: the built-in moving-ball scene is valid.
 ///
 /// # Examples
 /// ```
@@ -29,20 +49,28 @@ use crate::Answers;
 #[must_use]
 pub fn answers() -> Answers {
     let visual_range = |sigma: f64| 50f64.ln() / sigma;
+    let [first_count, .., last_count] = CLUTTER_COUNTS;
+    let sigmas = FOG_SIGMAS.map(|s| s.to_string()).join(" / ");
+    let ranges = FOG_SIGMAS.map(|s| format!("{:.1}", visual_range(s))).join(" / ");
+    let (coarse, fine) = fog::AIRLIGHT_TOLERANCES;
+    let (width, height) = metric::METRIC_SIZE;
+    let (low, high) = SENSITIVITY_RATIOS;
+    let pixels_per_frame = motion::ball_pixels_per_frame().expect("the built-in moving-ball scene is valid");
     let text = format!(
-        "(a) clutter: the gap fraction of a random forest falls as (1−p)^N ≈ e^(−nπa²Z) and the depth complexity grows as nπa²Z; measured within 2 standard errors over N = 250…4000 (table q1_clutter_table).\n\
-         (b) fog: contrast to an object falls as e^(−σ_t d) (the renderer reproduces it to rounding, below 1e-13), visual range ln 50/σ_t = {:.1} / {:.1} / {:.1} units for σ_t = 0.05 / 0.1 / 0.2, and the lamp's glow adds airlight that matches Sun et al.'s closed form (1e-2 at 32 steps, < 1e-6 at 4096).\n\
-         (c) mirrors: nearby rays separate ×2.55 per bounce between four mirror spheres (reference note ×2.45) but only linearly between flat mirrors; over the pixels that see the spheres, the image changes 1.1–1.6× faster per unit camera move than the same spheres made diffuse (Whitted, 64×48).\n\
-         (d) change over time: the moving ball shifts 2.4 px per frame (above the 0.5 px/frame limit for a 1-px feature), and its motion blur needs more samples per pixel than the still scene for the same noise (table q1_motion_table).",
-        visual_range(0.05),
-        visual_range(0.1),
-        visual_range(0.2)
+        "(a) clutter: the gap fraction of a random forest falls as (1−p)^N ≈ e^(−nπa²Z) and the depth complexity grows as nπa²Z; measured within {CLUTTER_STANDARD_ERRORS} standard errors over N = {first_count}…{last_count} (table q1_clutter_table).\n\
+         (b) fog: contrast to an object falls as e^(−σ_t d) (the renderer reproduces it to rounding, below {:e}), visual range ln 50/σ_t = {ranges} units for σ_t = {sigmas}, and the lamp's glow adds airlight that matches Sun et al.'s closed form ({coarse:e} at {} steps, < {fine:e} at 4096).\n\
+         (c) mirrors: nearby rays separate ×{MIRROR_GROWTH} per bounce between four mirror spheres (reference note ×2.45) but only linearly between flat mirrors; over the pixels that see the spheres, the image changes {low}–{high}× faster per unit camera move than the same spheres made diffuse (Whitted, {width}×{height}).\n\
+         (d) change over time: the moving ball shifts {pixels_per_frame:.1} px per frame (above the 0.5 px/frame limit for a 1-px feature), and its motion blur needs more samples per pixel than the still scene for the same noise (table q1_motion_table).",
+        fog::ROUNDING_LEVEL,
+        crate::render::integrator::IN_SCATTER_STEPS,
     );
     Answers { question: "q1", title: "Four scenes that are hard to render, and why (measured)", text }
 }
 
 #[cfg(test)]
 mod tests {
+    use super::*;
+
     #[test]
     fn chapter_includes_every_generated_table() {
         let chapter = include_str!("../docs/q1_hard_scenes.md");
@@ -56,5 +84,26 @@ mod tests {
         ] {
             assert!(chapter.contains(&format!("{{{{include:figures/{table}}}}}")), "{table}");
         }
+    }
+
+    /// The numbers [`answers`] prints from measurements are what the measurements give today.
+    #[test]
+    fn printed_measurements_are_what_the_code_measures() {
+        let divergence = mirror_divergence(DIVERGENCE_TRIALS).unwrap();
+        assert_eq!(format!("{:.2}", divergence.median_factor), MIRROR_GROWTH);
+        let ratios: Vec<f64> = mirror_sensitivity().unwrap().iter().map(|&(_, m, d)| m / d).collect();
+        let cut = |r: f64| format!("{:.1}", (r * 10.0).floor() / 10.0);
+        let (low, high) = ratios.iter().fold((f64::INFINITY, 0.0f64), |(l, h), &r| (l.min(r), h.max(r)));
+        assert_eq!((cut(low).as_str(), cut(high).as_str()), SENSITIVITY_RATIOS);
+        for n in CLUTTER_COUNTS {
+            let row = clutter_row(n).unwrap();
+            let z = (row.gap_fraction - row.gap_exact) / row.gap_standard_error;
+            assert!(z.abs() < CLUTTER_STANDARD_ERRORS, "N = {n}: z = {z:.2}");
+        }
+        for row in fog::fog_rows().unwrap() {
+            assert!((row.transmittance / row.law - 1.0).abs() < fog::ROUNDING_LEVEL, "{row:?}");
+        }
+        let text = answers().text;
+        assert!(text.contains(&format!("{:.1} px per frame", motion_change().unwrap().pixels_per_frame)));
     }
 }

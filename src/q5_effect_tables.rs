@@ -26,6 +26,13 @@ use grammar::agreement;
 ///
 /// # Errors
 /// A message when the grammar ([`decide`]) or an experiment fails (never for the built-in tables).
+///
+/// # Examples
+/// ```no_run
+/// // Not run here: it needs the measured table; `tests::grammar_tables_snapshot` pins the output.
+/// let markdown = hw3::q5_effect_tables::seed_comparison_markdown().unwrap();
+/// assert!(markdown.contains("| 5(a)(a) |"));
+/// ```
 pub fn seed_comparison_markdown() -> Result<String, String> {
     let measured = experiments::measured_table().map_err(|e| e.to_string())?;
     let mut out = String::from(
@@ -57,6 +64,15 @@ pub fn seed_comparison_markdown() -> Result<String, String> {
 ///
 /// # Errors
 /// A message when a table cannot be built (a grammar overflow or a scene error).
+///
+/// # Examples
+/// ```no_run
+/// // Not run here: it needs the measured table; `tests::effects_table_json_has_every_cell_with_its_seed_answer`
+/// // runs both forms.
+/// let json: serde_json::Value =
+///     serde_json::from_str(&hw3::q5_effect_tables::effects_table_command(true).unwrap()).unwrap();
+/// assert_eq!(json["measured"].as_array().unwrap().len(), 24);
+/// ```
 pub fn effects_table_command(json: bool) -> Result<String, String> {
     let cells = grammar_table().map_err(|e| e.to_string())?;
     let measured = experiments::measured_table().map_err(|e| e.to_string())?;
@@ -72,6 +88,12 @@ pub fn effects_table_command(json: bool) -> Result<String, String> {
     }
 }
 
+/// Percentage of the path-traced caustic that the seed's two-pass method captures (two
+/// decimals) and that photon mapping captures (no decimals), as [`answers`] prints them. Measured
+/// by [`experiments::measured_table`], too slow for `answers`; pinned by
+/// `tests::printed_caustic_fractions_are_the_measured_ones`.
+const CAUSTIC_PERCENT: (&str, &str) = ("0.03", "100");
+
 /// Q5's answers.
 ///
 /// # Examples
@@ -80,13 +102,16 @@ pub fn effects_table_command(json: bool) -> Result<String, String> {
 /// ```
 #[must_use]
 pub fn answers() -> Answers {
-    let text = "(a) radiosity, LD*E: (a) highlight No (misses LGE), (b) colour bleeding Yes, (c) diffuse shading Yes, (d) specular effects No (misses LDSE, LSDE), (e) ambient glow Yes — all five as the seed says, and all five measured so against the path tracer (table q5_measured).\n\
-                (b) two-pass (direct light from eye rays + photon tracing): (a) Yes, (b) Yes, (c) Yes, (d) mirror images No (misses LDSE: eye rays are not traced further), caustics possible but impractical by the grammar (LSDE only in the diffuse photon map) and No when measured (a photon pass that stores photons only after a diffuse bounce never holds LS+D photons: 0.03 % of the path-traced caustic; photon mapping with a caustic map: 100 %), (e) Yes (the seed's answer is lost in the transcription).\n\
-                With a point light the path tracer loses caustics altogether (No: LSDE), photon mapping keeps them.";
+    let (two_pass, photon_mapping) = CAUSTIC_PERCENT;
+    let text = format!(
+        "(a) radiosity, LD*E: (a) highlight No (misses LGE), (b) colour bleeding Yes, (c) diffuse shading Yes, (d) specular effects No (misses LDSE, LSDE), (e) ambient glow Yes — all five as the seed says, and all five measured so against the path tracer (table q5_measured).\n\
+         (b) two-pass (direct light from eye rays + photon tracing): (a) Yes, (b) Yes, (c) Yes, (d) mirror images No (misses LDSE: eye rays are not traced further), caustics possible but impractical by the grammar (LSDE only in the diffuse photon map) and No when measured (a photon pass that stores photons only after a diffuse bounce never holds LS+D photons: {two_pass} % of the path-traced caustic; photon mapping with a caustic map: {photon_mapping} %), (e) Yes (the seed's answer is lost in the transcription).\n\
+         With a point light the path tracer loses caustics altogether (No: LSDE), photon mapping keeps them."
+    );
     Answers {
         question: "q5",
         title: "Which effects radiosity and a two-pass method capture (grammar + experiment)",
-        text: text.to_string(),
+        text,
     }
 }
 
@@ -94,6 +119,14 @@ pub fn answers() -> Answers {
 ///
 /// # Errors
 /// [`PlotError`] if a figure cannot be drawn or a scene fails.
+///
+/// # Examples
+/// ```no_run
+/// // Not run here: it runs every Q5 measurement; `tests/docs.rs` compares its output with the
+/// // committed figures byte for byte.
+/// let figures = hw3::q5_effect_tables::figures().unwrap();
+/// assert!(figures.iter().any(|f| f.file_name == "q5_measured_table.md"));
+/// ```
 pub fn figures() -> Result<Vec<Figure>, PlotError> {
     let mut figures = figures::figures()?;
     let comparison = seed_comparison_markdown()
@@ -171,5 +204,20 @@ mod tests {
             insta::assert_snapshot!("q5_grammar_tables", grammar_table_markdown().unwrap());
             insta::assert_snapshot!("q5_seed_comparison", seed_comparison_markdown().unwrap());
         });
+    }
+
+    /// The caustic percentages [`answers`] prints are the measured table's, and every radiosity
+    /// cell is measured as the seed answers it ("all five measured so").
+    #[test]
+    fn printed_caustic_fractions_are_the_measured_ones() {
+        let cells = experiments::measured_table().unwrap();
+        let fraction = |method: &str| {
+            cells.iter().find(|c| c.effect == "d_caustic" && c.method == method).map(|c| 100.0 * c.fraction).unwrap()
+        };
+        let printed = (format!("{:.2}", fraction("two_pass")), format!("{:.0}", fraction("photon_mapping")));
+        assert_eq!((printed.0.as_str(), printed.1.as_str()), CAUSTIC_PERCENT);
+        for c in cells.iter().filter(|c| c.method == "radiosity") {
+            assert_eq!(c.verdict.text(), c.seed.text(), "{c:?}");
+        }
     }
 }

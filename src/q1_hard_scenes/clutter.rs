@@ -53,6 +53,16 @@ const VISIBILITY_SIZE: (u32, u32) = (64, 48);
 ///
 /// # Errors
 /// [`InputError`] only if a scene could not be built (never for the built-in numbers).
+///
+/// # Examples
+/// ```
+/// use hw3::q1_hard_scenes::clutter_row;
+/// // 250 spheres (τ ≈ 0.12): most probe rays cross the slab, as the exact law says.
+/// let row = clutter_row(250).unwrap();
+/// assert!((row.gap_fraction - row.gap_exact).abs() < 3.0 * row.gap_standard_error);
+/// assert!((row.depth_complexity / row.optical_depth - 1.0).abs() < 0.05);
+/// assert!(row.visible_fraction > 0.9);
+/// ```
 pub fn clutter_row(count: usize) -> Result<ClutterRow, InputError> {
     let mut gaps = Vec::new();
     let mut pierced_total = 0.0;

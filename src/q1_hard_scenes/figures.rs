@@ -159,6 +159,14 @@ fn motion_figures(change: &MotionChange, noise: &MotionNoise) -> Result<Vec<Figu
 ///
 /// # Errors
 /// [`PlotError`] if a chart cannot be drawn.
+///
+/// # Examples
+/// ```no_run
+/// // Not run here: it runs every Q1 measurement; `tests/docs.rs` compares its output with the
+/// // committed figures byte for byte.
+/// let figures = hw3::q1_hard_scenes::figures().unwrap();
+/// assert!(figures.iter().any(|f| f.file_name == "q1_clutter_table.md"));
+/// ```
 pub fn figures() -> Result<Vec<Figure>, PlotError> {
     let clutter: Vec<ClutterRow> = CLUTTER_COUNTS
         .iter()

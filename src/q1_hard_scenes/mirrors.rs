@@ -25,6 +25,13 @@ const MIRROR_SPP: u32 = 4;
 ///
 /// # Errors
 /// [`InputError`] never for the built-in numbers.
+///
+/// # Examples
+/// ```no_run
+/// // Not run here: it renders twelve images; `mirrors::tests` runs it and pins the table.
+/// let rows = hw3::q1_hard_scenes::mirror_sensitivity().unwrap();
+/// assert!(rows.iter().all(|&(_, mirror, diffuse)| mirror > diffuse));
+/// ```
 pub fn mirror_sensitivity() -> Result<Vec<(f64, f64, f64)>, InputError> {
     let mask = sphere_pixels(&scenes::mirror_spheres(true)?);
     let masked_change = |a: &Image, b: &Image| {
@@ -110,6 +117,15 @@ fn mirror_path(scene: &Scene, mut ray: Ray<f64>, bounces: usize) -> Vec<DVec3> {
 ///
 /// # Errors
 /// [`InputError`] never for the built-in numbers.
+///
+/// # Examples
+/// ```
+/// let divergence = hw3::q1_hard_scenes::mirror_divergence(200).unwrap();
+/// assert!(divergence.trapped > 0 && divergence.median_factor > 1.5);
+/// for &(_, measured, law) in &divergence.flat {
+///     assert!((measured / law - 1.0).abs() < 0.05);
+/// }
+/// ```
 pub fn mirror_divergence(trials: usize) -> Result<MirrorDivergence, InputError> {
     let mirror = Material::Mirror { reflectance: DVec3::ONE };
     let corners = [[1.0, 1.0, 1.0], [1.0, -1.0, -1.0], [-1.0, 1.0, -1.0], [-1.0, -1.0, 1.0]];

@@ -32,6 +32,13 @@ pub struct MotionChange {
 ///
 /// # Errors
 /// [`InputError`] never for the built-in numbers.
+///
+/// # Examples
+/// ```
+/// let change = hw3::q1_hard_scenes::motion_change().unwrap();
+/// assert_eq!(change.mean_change.len(), 10);
+/// assert!(change.mean_change.iter().all(|&c| c > 0.0) && change.pixels_per_frame > 0.5);
+/// ```
 pub fn motion_change() -> Result<MotionChange, InputError> {
     let frames: Vec<Image> = (0..=MOTION_FRAMES)
         .map(|k| {
@@ -48,14 +55,16 @@ pub fn motion_change() -> Result<MotionChange, InputError> {
         let changed = a.iter().zip(&b).filter(|(x, y)| (*x - *y).abs() > 0.05).count();
         changed_fraction.push(changed as f64 / a.len() as f64);
     }
+    Ok(MotionChange { mean_change, changed_fraction, pixels_per_frame: ball_pixels_per_frame()? })
+}
+
+/// The ball's image speed in pixels per frame at the metric size, at the depth of the image
+/// centre: geometry only, no rendering.
+pub(super) fn ball_pixels_per_frame() -> Result<f64, InputError> {
     let camera = scenes::moving_ball(MOTION_SPEED)?.camera().to_owned();
     let depth = (DVec3::new(0.0, 0.5, -3.0) - camera.eye).length();
     let focal_pixels = f64::from(METRIC_SIZE.1) / 2.0 / (camera.vfov_degrees.to_radians() / 2.0).tan();
-    Ok(MotionChange {
-        mean_change,
-        changed_fraction,
-        pixels_per_frame: MOTION_SPEED / MOTION_FRAMES as f64 * focal_pixels / depth,
-    })
+    Ok(MOTION_SPEED / MOTION_FRAMES as f64 * focal_pixels / depth)
 }
 
 /// RMS error against a 256-spp reference (another seed) versus spp, for the moving and the
@@ -77,6 +86,13 @@ pub struct MotionNoise {
 
 impl MotionNoise {
     /// Samples per pixel needed for RMSE ≤ `target`: `(c / target)²`, rounded up.
+    ///
+    /// # Examples
+    /// ```
+    /// use hw3::q1_hard_scenes::MotionNoise;
+    /// assert_eq!(MotionNoise::spp_needed(0.5, 0.125), 16.0);
+    /// assert_eq!(MotionNoise::spp_needed(0.5, 0.2), 7.0); // 6.25, rounded up
+    /// ```
     #[must_use]
     pub fn spp_needed(constant: f64, target: f64) -> f64 {
         (constant / target).powi(2).ceil()
@@ -87,6 +103,14 @@ impl MotionNoise {
 ///
 /// # Errors
 /// [`InputError`] never for the built-in numbers.
+///
+/// # Examples
+/// ```no_run
+/// // Not run here: it renders two 256-spp references; `motion::tests` runs it and pins the table.
+/// let noise = hw3::q1_hard_scenes::motion_noise().unwrap();
+/// assert!((noise.slope_moving + 0.5).abs() < 0.05);
+/// assert!(noise.constant_moving > noise.constant_resting);
+/// ```
 pub fn motion_noise() -> Result<MotionNoise, InputError> {
     let curve = |speed: f64| -> Result<Vec<f64>, InputError> {
         let scene = scenes::moving_ball(speed)?;

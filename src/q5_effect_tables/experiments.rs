@@ -298,6 +298,14 @@ pub fn caustic(method: Measured) -> Result<f64, ExperimentError> {
 ///
 /// # Errors
 /// As [`highlight`].
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::experiments::{Measured, bleeding};
+/// // Red light reaches the floor only by a diffuse bounce off the wall: radiosity has it, direct light not.
+/// assert!(bleeding(Measured::Radiosity { subdivisions: 2, samples: 1 }).unwrap() > 0.05);
+/// assert!(bleeding(Measured::Whitted).unwrap().abs() < 1e-12);
+/// ```
 pub fn bleeding(method: Measured) -> Result<f64, ExperimentError> {
     let ratio = |red: bool| -> Result<f64, ExperimentError> {
         let l = mean_radiance(&cornell_box(red)?, method, &bleeding_region())?;
@@ -310,6 +318,13 @@ pub fn bleeding(method: Measured) -> Result<f64, ExperimentError> {
 ///
 /// # Errors
 /// As [`highlight`].
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::experiments::{Measured, glow};
+/// assert!(glow(Measured::Radiosity { subdivisions: 2, samples: 1 }).unwrap() > 0.0);
+/// assert_eq!(glow(Measured::Whitted).unwrap(), 0.0);
+/// ```
 pub fn glow(method: Measured) -> Result<f64, ExperimentError> {
     Ok(grey(mean_radiance(&cornell_box(true)?, method, &glow_region())?))
 }
@@ -358,6 +373,14 @@ pub fn verdict(fraction: f64) -> Verdict {
 ///
 /// # Errors
 /// [`ExperimentError`] if an experiment fails (never for the built-in scenes).
+///
+/// # Examples
+/// ```no_run
+/// // Not run here: 24 cells against a 1024-sample path tracer; `experiments::tests` runs it and
+/// // pins the table.
+/// let cells = hw3::q5_effect_tables::experiments::measured_table().unwrap();
+/// assert_eq!(cells.len(), 24);
+/// ```
 pub fn measured_table() -> Result<Vec<MeasuredCell>, ExperimentError> {
     static TABLE: OnceLock<Result<Vec<MeasuredCell>, ExperimentError>> = OnceLock::new();
     TABLE.get_or_init(measure_table).clone()
@@ -391,6 +414,24 @@ fn measure_table() -> Result<Vec<MeasuredCell>, ExperimentError> {
 }
 
 /// The measured table as markdown.
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::experiments::{MeasuredCell, measured_table_markdown};
+/// use hw3::q5_effect_tables::{SeedAnswer, Verdict};
+/// let cell = MeasuredCell {
+///     effect: "d_caustic",
+///     method: "two_pass",
+///     value: 0.017,
+///     reference: 57.6,
+///     fraction: 0.017 / 57.6,
+///     verdict: Verdict::No,
+///     grammar: Verdict::Impractical,
+///     seed: SeedAnswer::No,
+/// };
+/// let table = measured_table_markdown(&[cell]);
+/// assert!(table.ends_with("| (d caustic) | two_pass | 0.0170 | 57.6000 | 0.000 | No | Impractical | No |\n"));
+/// ```
 #[must_use]
 pub fn measured_table_markdown(cells: &[MeasuredCell]) -> String {
     let mut out = String::from(
@@ -416,6 +457,14 @@ pub fn measured_table_markdown(cells: &[MeasuredCell]) -> String {
 ///
 /// # Errors
 /// As [`System::new`].
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::experiments::cornell_system;
+/// // 11 quads of 2 × 2 patches.
+/// let (_, system) = cornell_system(2, 1).unwrap();
+/// assert_eq!(system.mesh.patches.len(), 44);
+/// ```
 pub fn cornell_system(n: usize, samples: usize) -> Result<(Scene, System), ExperimentError> {
     let scene = cornell_box(true)?;
     let system = System::new(&scene, Mesh::new(&scene, n)?, samples)?;

@@ -165,6 +165,12 @@ pub enum Verdict {
 
 impl Verdict {
     /// The word the table prints.
+    ///
+    /// # Examples
+    /// ```
+    /// use hw3::q5_effect_tables::Verdict;
+    /// assert_eq!([Verdict::Yes, Verdict::Impractical, Verdict::No].map(Verdict::text), ["Yes", "Impractical", "No"]);
+    /// ```
     #[must_use]
     pub fn text(self) -> &'static str {
         match self {
@@ -191,6 +197,12 @@ pub enum SeedAnswer {
 
 impl SeedAnswer {
     /// The word the tables print (`–` for a column the seed does not have).
+    ///
+    /// # Examples
+    /// ```
+    /// use hw3::q5_effect_tables::SeedAnswer;
+    /// assert_eq!((SeedAnswer::NotTranscribed.text(), SeedAnswer::NotAsked.text()), ("lost", "–"));
+    /// ```
     #[must_use]
     pub fn text(self) -> &'static str {
         match self {
@@ -217,6 +229,14 @@ pub const SEED_ANSWERS: [(char, char, SeedAnswer); 10] = [
 ];
 
 /// The seed's answer for `effect` under `method`.
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::{EFFECTS, METHODS, SeedAnswer, seed_answer};
+/// // Q5(a)(a): the seed says radiosity misses the highlight; Whitted is not a seed column.
+/// assert_eq!(seed_answer(&METHODS[0], &EFFECTS[0]), SeedAnswer::No);
+/// assert_eq!(seed_answer(&METHODS[2], &EFFECTS[0]), SeedAnswer::NotAsked);
+/// ```
 #[must_use]
 pub fn seed_answer(method: &Method, effect: &Effect) -> SeedAnswer {
     method
@@ -250,6 +270,15 @@ pub struct Cell {
 /// # Errors
 /// [`GrammarError`] if a built-in expression fails to parse or the search overflows (never for
 /// the built-in tables; tested).
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::{EFFECTS, LightKind, METHODS, Verdict, decide};
+/// let caustic = EFFECTS.iter().find(|e| e.id == "d_caustic").unwrap();
+/// let path_tracing = METHODS.iter().find(|m| m.id == "path_tracing").unwrap();
+/// let cell = decide(caustic, path_tracing, LightKind::Point).unwrap();
+/// assert_eq!((cell.verdict, cell.witness.as_deref()), (Verdict::No, Some("LSDE")));
+/// ```
 pub fn decide(effect: &Effect, method: &Method, light: LightKind) -> Result<Cell, GrammarError> {
     let column = usize::from(light == LightKind::Point);
     let languages = [
@@ -322,6 +351,13 @@ fn cell_text(cell: &Cell) -> String {
 ///
 /// # Errors
 /// As [`decide`].
+///
+/// # Examples
+/// ```
+/// let markdown = hw3::q5_effect_tables::grammar_table_markdown().unwrap();
+/// assert!(markdown.starts_with("**Area light (the seed's setting)**"));
+/// assert!(markdown.contains("No `LGE` (seed: No)"));
+/// ```
 pub fn grammar_table_markdown() -> Result<String, GrammarError> {
     let cells = grammar_table()?;
     let mut out = String::new();

@@ -37,6 +37,14 @@ fn walls(albedos: [DVec3; 6]) -> Vec<Object> {
 ///
 /// # Errors
 /// [`InputError`] for an albedo outside `[0, 1]`.
+///
+/// # Examples
+/// ```
+/// use glam::DVec3;
+/// use hw3::q5_effect_tables::scenes::closed_box;
+/// assert_eq!(closed_box(DVec3::splat(0.5)).unwrap().objects().len(), 6);
+/// assert!(closed_box(DVec3::splat(1.5)).is_err());
+/// ```
 pub fn closed_box(albedo: DVec3) -> Result<Scene, InputError> {
     let camera = Camera::looking_at(DVec3::new(0.0, 0.0, 0.9), DVec3::ZERO, 60.0);
     Scene::new(camera, walls([albedo; 6]), vec![], None, DVec3::ZERO)
@@ -49,6 +57,13 @@ pub fn closed_box(albedo: DVec3) -> Result<Scene, InputError> {
 ///
 /// # Errors
 /// Never for the built-in numbers.
+///
+/// # Examples
+/// ```
+/// // Five walls, the light and the block's five faces.
+/// let scene = hw3::q5_effect_tables::scenes::cornell_box(true).unwrap();
+/// assert_eq!(scene.objects().len(), 11);
+/// ```
 pub fn cornell_box(red_left: bool) -> Result<Scene, InputError> {
     let left = if red_left { RED } else { WHITE };
     let mut objects = walls([WHITE, WHITE, WHITE, left, GREEN, WHITE]);
