@@ -158,10 +158,7 @@ pub(super) fn clutter_table(rows: &[ClutterRow]) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn snapshot(name: &str, text: &str) {
-        crate::test_support::insta_settings().bind(|| insta::assert_snapshot!(name, text));
-    }
+    use crate::q1_hard_scenes::metric::snapshot;
 
     /// The gap fraction and depth complexity follow the exact law within 3 standard errors of
     /// the mean over forests (a z-test), and the visible fraction falls as the forest grows.

@@ -213,12 +213,9 @@ pub(super) fn fog_rows() -> Result<Vec<FogRow>, InputError> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::q1_hard_scenes::metric::snapshot;
     use crate::render::scenes;
     use crate::render::{Settings, render};
-
-    fn snapshot(name: &str, text: &str) {
-        crate::test_support::insta_settings().bind(|| insta::assert_snapshot!(name, text));
-    }
 
     #[test]
     fn fog_transmittance_is_beer_lambert_and_the_airlight_is_sun_et_al() {

@@ -15,15 +15,17 @@ pub(super) fn render_metric(scene: &Scene, spp: u32, seed: u64) -> Result<Image,
     Ok(render(scene, &settings, &|_| {}).expect("the metric settings are within limits"))
 }
 
+/// Pins `text` as the snapshot `name` in the crate's `snapshots/` folder.
+#[cfg(test)]
+pub(super) fn snapshot(name: &str, text: &str) {
+    crate::test_support::insta_settings().bind(|| insta::assert_snapshot!(name, text));
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::render::scenes;
     use std::fmt::Write as _;
-
-    fn snapshot(name: &str, text: &str) {
-        crate::test_support::insta_settings().bind(|| insta::assert_snapshot!(name, text));
-    }
 
     #[test]
     fn render_thumbnails() {

@@ -201,10 +201,7 @@ pub(super) fn divergence_table(result: &MirrorDivergence) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn snapshot(name: &str, text: &str) {
-        crate::test_support::insta_settings().bind(|| insta::assert_snapshot!(name, text));
-    }
+    use crate::q1_hard_scenes::metric::snapshot;
 
     #[test]
     fn mirrors_change_faster_than_the_same_scene_made_diffuse() {

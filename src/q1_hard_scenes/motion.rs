@@ -173,10 +173,7 @@ pub(super) fn motion_tables(change: &MotionChange, noise: &MotionNoise) -> Strin
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn snapshot(name: &str, text: &str) {
-        crate::test_support::insta_settings().bind(|| insta::assert_snapshot!(name, text));
-    }
+    use crate::q1_hard_scenes::metric::snapshot;
 
     #[test]
     fn motion_changes_every_frame_and_blur_costs_samples() {
