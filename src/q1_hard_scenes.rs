@@ -4,11 +4,15 @@ use crate::Answers;
 use crate::geometry::Sphere;
 use crate::geometry::{InputError, Ray};
 use crate::plot::{self, Figure, PALETTE, PlotError, err};
-use crate::render::analysis::{Pass, analyze};
-use crate::render::integrator::{IN_SCATTER_STEPS, Integrator, Sampler, Tracer, airlight_closed_form, airlight_traced};
+use crate::render::catalogue::{self, CLUTTER_HALF_WIDTH, CLUTTER_RADIUS};
 use crate::render::scene::{Camera, Material, Object, PointLight, Scene, Shape};
-use crate::render::scenes::{self, CLUTTER_HALF_WIDTH, CLUTTER_RADIUS};
 use crate::render::{Image, Settings, render};
+use crate::render::{analysis::analyze, passes::Pass};
+use crate::render::{
+    integrator::{IN_SCATTER_STEPS, Integrator, Tracer, airlight_traced},
+    medium::airlight_closed_form,
+    sampling::Sampler,
+};
 use glam::DVec3;
 use plotters::prelude::*;
 use std::collections::BTreeSet;
@@ -66,7 +70,7 @@ pub fn clutter_row(count: usize) -> Result<ClutterRow, InputError> {
     let mut pierced_total = 0.0;
     let mut visible_total = 0.0;
     for seed in 1..=CLUTTER_SEEDS {
-        let scene = scenes::clutter_forest(count, seed)?;
+        let scene = catalogue::clutter_forest(count, seed)?;
         let mut open = 0usize;
         let mut pierced = 0usize;
         for i in 0..PROBE_GRID * PROBE_GRID {
@@ -187,7 +191,7 @@ pub struct FogRow {
 fn fog_target_scene(sigma_t: f64, distance: f64, target_radiance: f64) -> Result<Scene, InputError> {
     let lamp = PointLight { position: DVec3::new(2.0, 1.5, -distance / 2.0), intensity: DVec3::splat(5.0) };
     let target = Material::Emitter { radiance: DVec3::splat(target_radiance) };
-    scenes::wall_in_fog(distance, target, lamp, sigma_t)
+    catalogue::wall_in_fog(distance, target, lamp, sigma_t)
 }
 
 /// Measures one fog row by tracing the probe ray through the lit and the dark target.
@@ -299,19 +303,19 @@ const MIRROR_SPP: u32 = 4;
 /// # Errors
 /// [`InputError`] never for the built-in numbers.
 pub fn mirror_sensitivity() -> Result<Vec<(f64, f64, f64)>, InputError> {
-    let mask = sphere_pixels(&scenes::mirror_spheres(true)?);
+    let mask = sphere_pixels(&catalogue::mirror_spheres(true)?);
     let masked_change = |a: &Image, b: &Image| {
         let (a, b) = (a.luminance(), b.luminance());
         let sum: f64 = (0..a.len()).filter(|&i| mask[i]).map(|i| (a[i] - b[i]).abs()).sum();
         sum / mask.iter().filter(|&&m| m).count() as f64
     };
     let sensitivity = |mirror: bool| -> Result<Vec<f64>, InputError> {
-        let scene = scenes::mirror_spheres(mirror)?;
+        let scene = catalogue::mirror_spheres(mirror)?;
         let base = render_metric(&scene, MIRROR_SPP, 1)?;
         MIRROR_STEPS
             .iter()
             .map(|&delta| {
-                let moved = scene.with_camera(scenes::mirror_camera(DVec3::X * delta))?;
+                let moved = scene.with_camera(catalogue::mirror_camera(DVec3::X * delta))?;
                 Ok(masked_change(&render_metric(&moved, MIRROR_SPP, 1)?, &base) / delta)
             })
             .collect()
@@ -493,7 +497,7 @@ pub fn motion_change() -> Result<MotionChange, InputError> {
     let frames: Vec<Image> = (0..=MOTION_FRAMES)
         .map(|k| {
             let t = k as f64 / MOTION_FRAMES as f64;
-            let scene = scenes::moving_ball_with_shutter(MOTION_SPEED, (t, t))?;
+            let scene = catalogue::moving_ball_with_shutter(MOTION_SPEED, (t, t))?;
             render_metric(&scene, 1, 1)
         })
         .collect::<Result<_, _>>()?;
@@ -505,7 +509,7 @@ pub fn motion_change() -> Result<MotionChange, InputError> {
         let changed = a.iter().zip(&b).filter(|(x, y)| (*x - *y).abs() > 0.05).count();
         changed_fraction.push(changed as f64 / a.len() as f64);
     }
-    let camera = scenes::moving_ball(MOTION_SPEED)?.camera().to_owned();
+    let camera = catalogue::moving_ball(MOTION_SPEED)?.camera().to_owned();
     let depth = (DVec3::new(0.0, 0.5, -3.0) - camera.eye).length();
     let focal_pixels = f64::from(METRIC_SIZE.1) / 2.0 / (camera.vfov_degrees.to_radians() / 2.0).tan();
     Ok(MotionChange {
@@ -546,7 +550,7 @@ impl MotionNoise {
 /// [`InputError`] never for the built-in numbers.
 pub fn motion_noise() -> Result<MotionNoise, InputError> {
     let curve = |speed: f64| -> Result<Vec<f64>, InputError> {
-        let scene = scenes::moving_ball(speed)?;
+        let scene = catalogue::moving_ball(speed)?;
         let reference = render_metric(&scene, REFERENCE_SPP, 1_000_003)?;
         MOTION_SPP.iter().map(|&spp| Ok(render_metric(&scene, spp, 1)?.rms_difference(&reference))).collect()
     };
@@ -727,7 +731,7 @@ fn input_error(figure: &str, e: InputError) -> PlotError {
 
 /// The clutter figures: render, gap-fraction chart, table.
 fn clutter_figures(rows: &[ClutterRow]) -> Result<Vec<Figure>, PlotError> {
-    let forest = scenes::clutter_forest(1500, 1).map_err(|e| input_error("q1_clutter.png", e))?;
+    let forest = catalogue::clutter_forest(1500, 1).map_err(|e| input_error("q1_clutter.png", e))?;
     let counts: Vec<f64> = rows.iter().map(|r| r.count as f64).collect();
     let pick =
         |f: fn(&ClutterRow) -> f64| -> Vec<(f64, f64)> { counts.iter().copied().zip(rows.iter().map(f)).collect() };
@@ -761,7 +765,7 @@ fn fog_rows() -> Result<Vec<FogRow>, InputError> {
 }
 
 fn fog_figures(rows: &[FogRow]) -> Result<Vec<Figure>, PlotError> {
-    let scene = |sigma| scenes::fog_street(sigma).map_err(|e| input_error("q1_fog.png", e));
+    let scene = |sigma| catalogue::fog_street(sigma).map_err(|e| input_error("q1_fog.png", e));
     let mut plotted = Vec::new();
     for (k, &sigma) in FOG_SIGMAS.iter().enumerate() {
         let of_sigma = rows.iter().filter(|r| r.sigma_t == sigma);
@@ -805,7 +809,7 @@ fn fog_figures(rows: &[FogRow]) -> Result<Vec<Figure>, PlotError> {
 }
 
 fn mirror_figures(rows: &[(f64, f64, f64)], divergence: &MirrorDivergence) -> Result<Vec<Figure>, PlotError> {
-    let scene = |m| scenes::mirror_spheres(m).map_err(|e| input_error("q1_mirrors.png", e));
+    let scene = |m| catalogue::mirror_spheres(m).map_err(|e| input_error("q1_mirrors.png", e));
     let sensitivity = chart(
         "q1_mirror_sensitivity.svg",
         "Mirrors: image change per unit camera move (sphere pixels)",
@@ -827,7 +831,7 @@ fn mirror_figures(rows: &[(f64, f64, f64)], divergence: &MirrorDivergence) -> Re
 }
 
 fn motion_figures(change: &MotionChange, noise: &MotionNoise) -> Result<Vec<Figure>, PlotError> {
-    let scene = |speed| scenes::moving_ball(speed).map_err(|e| input_error("q1_motion.png", e));
+    let scene = |speed| catalogue::moving_ball(speed).map_err(|e| input_error("q1_motion.png", e));
     let law = |c: f64| -> Vec<(f64, f64)> { [1.0, 32.0].iter().map(|&s| (s, c / f64::sqrt(s))).collect() };
     let curve = chart(
         "q1_motion_noise.svg",
@@ -1012,7 +1016,7 @@ mod tests {
 
     #[test]
     fn zero_density_fog_renders_exactly_like_no_fog() {
-        let clear = scenes::fog_street(0.0).unwrap();
+        let clear = catalogue::fog_street(0.0).unwrap();
         let zero = Scene::new(
             *clear.camera(),
             clear.objects().to_vec(),
@@ -1021,13 +1025,13 @@ mod tests {
             clear.background(),
         )
         .unwrap();
-        let settings = Settings::whitted(24, 18, 1, crate::render::analysis::Passes::all());
+        let settings = Settings::whitted(24, 18, 1, crate::render::passes::Passes::all());
         assert_eq!(render(&zero, &settings, &|_| {}).unwrap(), render(&clear, &settings, &|_| {}).unwrap());
     }
 
     #[test]
     fn extreme_fog_hides_everything_but_stays_finite() {
-        let scene = scenes::fog_street(1e6).unwrap();
+        let scene = catalogue::fog_street(1e6).unwrap();
         let image = render(&scene, &Settings::whitted(16, 12, 1, analyze(&scene).plan), &|_| {}).unwrap();
         assert!(image.pixels.iter().all(|p| p.is_finite() && p.min_element() >= 0.0));
         let far = fog_row(1e3, 10.0).unwrap();
@@ -1069,7 +1073,7 @@ mod tests {
     fn still_frames_do_not_change() {
         let frames: Vec<Image> = [0.0, 0.5]
             .iter()
-            .map(|&t| render_metric(&scenes::moving_ball_with_shutter(0.0, (t, t)).unwrap(), 1, 1).unwrap())
+            .map(|&t| render_metric(&catalogue::moving_ball_with_shutter(0.0, (t, t)).unwrap(), 1, 1).unwrap())
             .collect();
         assert_eq!(frames[0], frames[1]);
     }
@@ -1078,10 +1082,10 @@ mod tests {
     fn render_thumbnails() {
         let mut text = String::new();
         for (name, scene) in [
-            ("mirrors", scenes::mirror_spheres(true).unwrap()),
-            ("fog", scenes::fog_street(0.08).unwrap()),
-            ("motion", scenes::moving_ball(2.0).unwrap()),
-            ("clutter", scenes::clutter_forest(300, 1).unwrap()),
+            ("mirrors", catalogue::mirror_spheres(true).unwrap()),
+            ("fog", catalogue::fog_street(0.08).unwrap()),
+            ("motion", catalogue::moving_ball(2.0).unwrap()),
+            ("clutter", catalogue::clutter_forest(300, 1).unwrap()),
         ] {
             let image = render_metric(&scene, 2, 1).unwrap();
             let _ = writeln!(text, "{name}:\n{}", image.thumbnail_text(8, 6));

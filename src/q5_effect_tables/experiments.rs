@@ -6,11 +6,18 @@ use super::radiosity::{Mesh, RadiosityError, Solver, System, relative_errors};
 use super::{EFFECTS, LightKind, METHODS, SeedAnswer, Verdict, decide, seed_answer};
 use crate::geometry::{InputError, Ray};
 use crate::plot::{self, Figure, PALETTE, PlotError, err};
-use crate::render::analysis::{Pass, Passes, analyze};
-use crate::render::integrator::{Integrator, Sampler, Tracer, dielectric_split, facing_normal, reflected_ray};
 use crate::render::photon::{PhotonError, PhotonMap, PhotonMaps, trace_photons};
 use crate::render::scene::{Camera, Material, Object, Scene};
 use crate::render::{Settings, render};
+use crate::render::{
+    analysis::analyze,
+    passes::{Pass, Passes},
+};
+use crate::render::{
+    bsdf::{dielectric_split, facing_normal, reflected_ray},
+    integrator::{Integrator, Tracer},
+    sampling::Sampler,
+};
 use glam::DVec3;
 use plotters::prelude::*;
 use serde::Serialize;
@@ -206,7 +213,7 @@ fn mean_radiance(scene: &Scene, method: Measured, probes: &[Ray<f64>]) -> Result
             let passes = if method == Measured::PathTracing {
                 reference_passes(scene)
             } else {
-                analyze(scene).plan.for_integrator(integrator)
+                integrator.restrict(analyze(scene).plan)
             };
             let tracer = Tracer::new(scene, passes);
             probes
@@ -256,7 +263,7 @@ struct PhotonEye<'a> {
 impl<'a> PhotonEye<'a> {
     fn new(scene: &'a Scene, maps: &'a PhotonMaps, caustics: bool) -> Self {
         let direct = Integrator::Whitted { max_depth: 0 };
-        Self { scene, tracer: Tracer::new(scene, analyze(scene).plan.for_integrator(direct)), maps, caustics }
+        Self { scene, tracer: Tracer::new(scene, direct.restrict(analyze(scene).plan)), maps, caustics }
     }
 
     /// Radiance along `ray`, following at most `depth` specular bounces.

@@ -18,10 +18,8 @@
 //! then uniformly in the texel's image area), whose pdf is exact in solid angle; a constant
 //! environment by uniform directions on the sphere (pdf `1/(4π)`).
 
-use super::integrator::Sampler;
-use super::scene::Scene;
-use crate::geometry::sphere::spawn_origin;
-use crate::geometry::{InputError, Ray, require_finite};
+use super::sampling::uniform_sphere;
+use crate::geometry::{InputError, require_finite};
 use crate::q4_light_probe::irradiance::MapDistribution;
 use crate::q4_light_probe::{Probe, ProbeError, ProbeFormat};
 use glam::{DMat3, DVec3};
@@ -206,11 +204,9 @@ impl Environment {
                 if radiance.max_element() <= 0.0 {
                     return None;
                 }
-                let z = 1.0 - 2.0 * uniform();
-                let phi = 2.0 * PI * uniform();
-                let ring = (1.0 - z * z).max(0.0).sqrt();
+                let (u1, u2) = (uniform(), uniform());
                 Some(EnvironmentSample {
-                    direction: DVec3::new(ring * phi.cos(), ring * phi.sin(), z),
+                    direction: uniform_sphere(u1, u2),
                     radiance: *radiance,
                     pdf: 1.0 / (4.0 * PI),
                 })
@@ -242,63 +238,17 @@ impl Environment {
     }
 }
 
-impl Scene {
-    /// The radiance seen along an escaping ray of unit direction `direction`: the environment
-    /// if the scene has one, else the constant background.
-    #[must_use]
-    pub fn escaped_radiance(&self, direction: DVec3) -> DVec3 {
-        self.environment().map_or_else(|| self.background(), |environment| environment.radiance(direction))
-    }
-}
-
-/// Next-event estimation of the environment at a surface point: the mean over
-/// [`ENVIRONMENT_SAMPLES`] sampled directions `ω` of `f(ω) · L(ω) · cos / pdf(ω)`, each with a
-/// shadow ray to infinity. `normal` faces the incoming ray, `geometric_normal` is the hit's
-/// normal (for the shadow ray's origin), `brdf(ω)` is the surface's BRDF toward `ω`, and
-/// `transmittance_to_infinity` multiplies every sample (0 in a medium, where nothing arrives
-/// from infinitely far). Zero without an environment; consumes random numbers only with one.
-#[allow(clippy::too_many_arguments)] // one estimator's inputs, all needed
-pub(crate) fn direct_light(
-    scene: &Scene,
-    point: DVec3,
-    normal: DVec3,
-    geometric_normal: DVec3,
-    time: f64,
-    brdf: &dyn Fn(DVec3) -> DVec3,
-    transmittance_to_infinity: f64,
-    sampler: &mut Sampler,
-) -> DVec3 {
-    let Some(environment) = scene.environment() else {
-        return DVec3::ZERO;
-    };
-    let mut total = DVec3::ZERO;
-    for _ in 0..ENVIRONMENT_SAMPLES {
-        let Some(sample) = environment.sample(&mut || sampler.uniform()) else {
-            continue;
-        };
-        let cosine = normal.dot(sample.direction);
-        if !(cosine > 0.0 && sample.pdf > 0.0) {
-            continue;
-        }
-        let dir = sample.direction;
-        let shadow = Ray { origin: spawn_origin::<f64>(point, geometric_normal, dir), dir };
-        if scene.occluded(&shadow, time, f64::INFINITY) {
-            continue;
-        }
-        total += brdf(dir) * sample.radiance * (cosine / sample.pdf);
-    }
-    total * (transmittance_to_infinity / ENVIRONMENT_SAMPLES as f64)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geometry::Sphere;
+    use crate::geometry::{Ray, Sphere};
     use crate::q4_light_probe::Irradiance;
     use crate::q4_light_probe::study::real_map_path;
-    use crate::render::analysis::{Passes, analyze};
+    use crate::render::analysis::analyze;
     use crate::render::integrator::{Integrator, Tracer};
-    use crate::render::scene::{Camera, Material, Object};
+    use crate::render::passes::Passes;
+    use crate::render::sampling::Sampler;
+    use crate::render::scene::{Camera, Material, Object, Scene};
 
     fn ball_under(environment: Environment, material: Material) -> Scene {
         let camera = Camera::looking_at(DVec3::new(0.0, 0.0, 4.0), DVec3::ZERO, 40.0);
@@ -309,7 +259,7 @@ mod tests {
     /// Mean and standard error of `count` one-pixel estimates of the radiance leaving the unit
     /// sphere at `normal`, seen from outside along `−normal`.
     fn estimate(scene: &Scene, integrator: Integrator, normal: DVec3, count: u64) -> (DVec3, DVec3) {
-        let tracer = Tracer::new(scene, analyze(scene).plan.for_integrator(integrator));
+        let tracer = Tracer::new(scene, integrator.restrict(analyze(scene).plan));
         let ray = Ray { origin: normal * 3.0, dir: -normal };
         let values: Vec<DVec3> =
             (0..count).map(|i| tracer.radiance(integrator, &ray, 0.0, &mut Sampler::new(9, i, 0))).collect();

@@ -17,9 +17,9 @@
 //! integrand is, so the estimate is unbiased. As the quad shrinks to a point this is the
 //! point-light integrand with the intensity `I(ω) = L_e A cos θ_l` of a small flat emitter.
 
-use super::integrator::Sampler;
-use super::scene::{Material, Scene, Shape};
-use crate::geometry::Ray;
+use super::sampling::Sampler;
+use super::scene::Scene;
+use crate::geometry::{InputError, Ray};
 use glam::DVec3;
 use std::f64::consts::PI;
 
@@ -73,17 +73,13 @@ pub(crate) fn area_in_scattering(
     // Beyond σ_t·x = 40 the integrand is below e^(−40) ≈ 4e-18 of its peak.
     let end = length.min(40.0 / sigma_t);
     let mut total = DVec3::ZERO;
-    for object in scene.objects() {
-        let (Material::Emitter { radiance }, Shape::Quad { corner, edge_u, edge_v }) = (object.material, object.shape)
-        else {
-            continue;
-        };
-        let cross = edge_u.cross(edge_v);
+    for light in scene.area_lights() {
+        let cross = light.edge_u.cross(light.edge_v);
         let area = cross.length();
         let light_normal = cross / area;
         let mut sum = 0.0;
         for _ in 0..AREA_IN_SCATTER_SAMPLES {
-            let target = corner + edge_u * sampler.uniform() + edge_v * sampler.uniform();
+            let target = light.point(sampler.uniform(), sampler.uniform());
             let span = Equiangular::new(ray, target, end);
             let theta = span.theta_start + (span.theta_end - span.theta_start) * sampler.uniform();
             let x = span.distance(theta);
@@ -102,17 +98,64 @@ pub(crate) fn area_in_scattering(
             }
             sum += cos_light * (span.theta_end - span.theta_start) / span.h * (-sigma_t * (x + r)).exp();
         }
-        total += radiance * (fog.sigma_s / (4.0 * PI) * area * sum / AREA_IN_SCATTER_SAMPLES as f64);
+        total += light.radiance * (fog.sigma_s / (4.0 * PI) * area * sum / AREA_IN_SCATTER_SAMPLES as f64);
     }
     total
+}
+
+/// The single-scattered radiance ("airlight") along a view ray of length `length` in a
+/// non-absorbing homogeneous medium (`σ_s = σ_t = beta`) from an isotropic point light of
+/// intensity `intensity` at distance `light_distance` and angle `gamma` (radians) from the ray:
+/// Sun et al.'s (2005) closed form `A₀ [F(A₁, ξ₁) − F(A₁, γ/2)]` with
+/// `F(u, v) = ∫₀^v e^(−u tan ξ) dξ` evaluated by composite Simpson (20 000 panels). An oracle for
+/// the renderer's marching, computed by a different route (reference note §4).
+///
+/// # Errors
+/// [`InputError::OutOfRange`] unless `beta`, `light_distance` and `length` are finite and > 0
+/// and `gamma` is in `(0, π)` (on the ray's line the integral diverges).
+///
+/// # Examples
+/// ```
+/// use hw3::render::medium::airlight_closed_form;
+/// // Anchor from the reference note (results_airlight.txt): β = 0.3, D = 1, γ = 5°, 20 units.
+/// let l = airlight_closed_form(0.3, 1.0, 1.0, 5f64.to_radians(), 20.0).unwrap();
+/// assert!((l / 5.770888e-01 - 1.0).abs() < 2e-6);
+/// ```
+pub fn airlight_closed_form(
+    beta: f64,
+    intensity: f64,
+    light_distance: f64,
+    gamma: f64,
+    length: f64,
+) -> Result<f64, InputError> {
+    for (name, value) in [("beta", beta), ("light distance", light_distance), ("length", length)] {
+        if !(value > 0.0 && value.is_finite()) {
+            return Err(InputError::OutOfRange { name, value: format!("{value}"), expected: "finite and > 0" });
+        }
+    }
+    if !(gamma > 0.0 && gamma < PI) {
+        return Err(InputError::OutOfRange { name: "gamma", value: format!("{gamma}"), expected: "in (0, π)" });
+    }
+    let f = |u: f64, v: f64| {
+        let n = 20_000;
+        let h = v / f64::from(n);
+        let g = |xi: f64| (-u * xi.tan()).exp();
+        let inner: f64 = (1..n).map(|i| g(f64::from(i) * h) * if i % 2 == 1 { 4.0 } else { 2.0 }).sum();
+        (g(0.0) + inner + g(v)) * h / 3.0
+    };
+    let (t_sv, t_vp) = (beta * light_distance, beta * length);
+    let a0 = beta * beta * intensity * (-t_sv * gamma.cos()).exp() / (2.0 * PI * t_sv * gamma.sin());
+    let a1 = t_sv * gamma.sin();
+    let v_end = PI / 4.0 + 0.5 * ((t_vp - t_sv * gamma.cos()) / (t_sv * gamma.sin())).atan();
+    Ok(a0 * (f(a1, v_end) - f(a1, gamma / 2.0)))
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::render::analysis::Passes;
     use crate::render::integrator::{Integrator, Tracer};
-    use crate::render::scene::{Camera, Fog, Object};
+    use crate::render::passes::Passes;
+    use crate::render::scene::{Camera, Fog, Material, Object};
 
     const SIGMA_S: f64 = 0.2;
     const LENGTH: f64 = 10.0;

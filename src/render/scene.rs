@@ -4,10 +4,10 @@
 //! infinite numbers, negative albedos or densities, degenerate quads and cameras, and an inverted
 //! shutter, so the integrators never see input that could turn into a silent NaN.
 
+use super::environment::Environment;
 use crate::geometry::sphere::{first_hit_stable, surface_hit};
 use crate::geometry::{InputError, Ray, Sphere, require_finite};
 use crate::kdtree::{BuildError, KdTree};
-use crate::render::environment::Environment;
 use glam::DVec3;
 use std::sync::Arc;
 
@@ -172,6 +172,30 @@ pub struct PointLight {
     pub intensity: DVec3,
 }
 
+/// An emitting quad (an object of [`Material::Emitter`] on a [`Shape::Quad`]): one-sided, its
+/// radiance leaving the side `edge_u × edge_v` points to. Listed by [`Scene::area_lights`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AreaLight {
+    /// Index of the object in [`Scene::objects`].
+    pub object: usize,
+    /// One corner.
+    pub corner: DVec3,
+    /// First edge from the corner.
+    pub edge_u: DVec3,
+    /// Second edge from the corner.
+    pub edge_v: DVec3,
+    /// Emitted radiance per channel (≥ 0; possibly black).
+    pub radiance: DVec3,
+}
+
+impl AreaLight {
+    /// The point at `(u, v) ∈ [0, 1]²` of the quad: `corner + u·edge_u + v·edge_v`.
+    #[must_use]
+    pub fn point(&self, u: f64, v: f64) -> DVec3 {
+        self.corner + self.edge_u * u + self.edge_v * v
+    }
+}
+
 /// A homogeneous medium filling all space (the camera is always inside it), with an isotropic
 /// phase function `1/(4π)`. Extinction `σ_t = σ_a + σ_s`.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -327,8 +351,8 @@ impl Scene {
     /// # Examples
     /// ```
     /// use glam::DVec3;
-    /// use hw3::render::{environment::Environment, scenes};
-    /// let scene = scenes::mirror_spheres(true).unwrap();
+    /// use hw3::render::{environment::Environment, catalogue};
+    /// let scene = catalogue::mirror_spheres(true).unwrap();
     /// let lit = scene.clone().with_environment(Environment::constant(DVec3::ONE).unwrap());
     /// assert!(scene.environment().is_none() && lit.environment().is_some());
     /// ```
@@ -348,7 +372,7 @@ impl Scene {
     ///
     /// # Examples
     /// ```
-    /// let scene = hw3::render::scenes::clutter_forest(50, 1).unwrap();
+    /// let scene = hw3::render::catalogue::clutter_forest(50, 1).unwrap();
     /// assert_eq!(scene.kd_tree_spheres(), 50);
     /// let brute = scene.without_kd_tree();
     /// assert_eq!((brute.kd_tree_spheres(), &brute), (0, &scene));
@@ -381,6 +405,43 @@ impl Scene {
     #[must_use]
     pub fn point_lights(&self) -> &[PointLight] {
         &self.point_lights
+    }
+
+    /// Every emitting quad, in object order (black ones included: callers that weigh lights by
+    /// power skip them themselves). Emitters are quads only ([`Scene::new`] refuses an emitting
+    /// sphere).
+    ///
+    /// # Examples
+    /// ```
+    /// let cornell = hw3::render::catalogue::cornell_mirror().unwrap();
+    /// assert_eq!(cornell.area_lights().count(), 1);
+    /// let light = cornell.area_lights().next().unwrap();
+    /// assert_eq!(light.point(0.0, 0.0), light.corner);
+    /// ```
+    pub fn area_lights(&self) -> impl Iterator<Item = AreaLight> + '_ {
+        self.objects.iter().enumerate().filter_map(|(object, o)| match (o.material, o.shape) {
+            (Material::Emitter { radiance }, Shape::Quad { corner, edge_u, edge_v }) => {
+                Some(AreaLight { object, corner, edge_u, edge_v, radiance })
+            }
+            _ => None,
+        })
+    }
+
+    /// The radiance seen along an escaping ray of unit direction `direction`: the environment
+    /// if the scene has one, else the constant background.
+    ///
+    /// # Examples
+    /// ```
+    /// use glam::DVec3;
+    /// use hw3::render::{environment::Environment, catalogue};
+    /// let scene = catalogue::mirror_spheres(true).unwrap();
+    /// assert_eq!(scene.escaped_radiance(DVec3::Y), scene.background());
+    /// let lit = scene.with_environment(Environment::constant(DVec3::ONE).unwrap());
+    /// assert_eq!(lit.escaped_radiance(DVec3::Y), DVec3::ONE);
+    /// ```
+    #[must_use]
+    pub fn escaped_radiance(&self, direction: DVec3) -> DVec3 {
+        self.environment().map_or_else(|| self.background(), |environment| environment.radiance(direction))
     }
 
     /// The medium, if any.
@@ -662,7 +723,7 @@ mod tests {
     /// added: closest hits, shadow tests and pierce counts agree with the brute-force loop.
     #[test]
     fn kd_tree_queries_equal_brute_force_on_a_mixed_scene() {
-        let forest = crate::render::scenes::clutter_forest(400, 3).unwrap();
+        let forest = crate::render::catalogue::clutter_forest(400, 3).unwrap();
         let mut objects = forest.objects().to_vec();
         let material = Material::Diffuse { albedo: DVec3::splat(0.5) };
         let mover = Sphere::new(DVec3::new(0.0, 0.0, -5.0), 2.0).unwrap();
