@@ -5,9 +5,12 @@ use crate::geometry::Sphere;
 use crate::geometry::{InputError, Ray};
 use crate::plot::{self, Figure, PALETTE, PlotError, err};
 use crate::render::catalogue::{self, CLUTTER_HALF_WIDTH, CLUTTER_RADIUS};
-use crate::render::scene::{Camera, Material, Object, PointLight, Scene, Shape};
 use crate::render::{Image, Settings, render};
 use crate::render::{analysis::analyze, passes::Pass};
+use crate::render::{
+    camera::Camera,
+    scene::{Material, Object, PointLight, Scene, Shape},
+};
 use crate::render::{
     integrator::{IN_SCATTER_STEPS, Integrator, Tracer, airlight_traced},
     medium::airlight_closed_form,
@@ -114,7 +117,7 @@ fn visible_fraction(scene: &Scene, seed: u64) -> Result<f64, InputError> {
             Camera { eye: scene.camera().eye + offset, look_at: scene.camera().look_at + offset, ..*scene.camera() };
         let view = scene.with_camera(camera)?;
         let (width, height) = VISIBILITY_SIZE;
-        let frame = crate::render::scene::CameraFrame::new(&camera);
+        let frame = crate::render::camera::CameraFrame::new(&camera);
         let aspect = f64::from(width) / f64::from(height);
         let seen: BTreeSet<usize> = (0..width * height)
             .filter_map(|k| {
@@ -327,7 +330,7 @@ pub fn mirror_sensitivity() -> Result<Vec<(f64, f64, f64)>, InputError> {
 /// Which pixels of the metric-size image see a sphere first (rays through pixel centres).
 fn sphere_pixels(scene: &Scene) -> Vec<bool> {
     let (width, height) = METRIC_SIZE;
-    let frame = crate::render::scene::CameraFrame::new(scene.camera());
+    let frame = crate::render::camera::CameraFrame::new(scene.camera());
     let aspect = f64::from(width) / f64::from(height);
     (0..width * height)
         .map(|k| {

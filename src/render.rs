@@ -2,6 +2,7 @@
 
 pub mod analysis;
 pub mod bsdf;
+pub mod camera;
 pub mod catalogue;
 pub mod color;
 pub mod command;
@@ -21,12 +22,13 @@ pub use error::RenderError;
 #[doc(no_inline)]
 pub use catalogue as scenes;
 
+use camera::CameraFrame;
 use glam::DVec3;
 use integrator::{Integrator, Tracer};
 use passes::Passes;
 use rayon::prelude::*;
 use sampling::Sampler;
-use scene::{CameraFrame, Scene};
+use scene::Scene;
 
 /// Largest accepted image side, in pixels.
 pub const MAX_SIDE: u32 = 8192;
@@ -436,7 +438,8 @@ mod tests {
     #[test]
     fn enclosed_lights_and_cameras_stay_dark_and_finite() {
         use crate::geometry::Sphere;
-        use scene::{Camera, Material, Object, PointLight};
+        use camera::Camera;
+        use scene::{Material, Object, PointLight};
         let camera = Camera::looking_at(DVec3::new(0.0, 0.0, 4.0), DVec3::ZERO, 40.0);
         let shell = |material| Object::sphere(Sphere::new(DVec3::ZERO, 1.0).unwrap(), material);
         let lamp = PointLight { position: DVec3::ZERO, intensity: DVec3::splat(100.0) };

@@ -13,7 +13,10 @@
 
 use super::experiments::{RED, WHITE};
 use crate::geometry::{InputError, Ray, Sphere};
-use crate::render::scene::{Camera, Material, Object, Scene};
+use crate::render::{
+    camera::Camera,
+    scene::{Material, Object, Scene},
+};
 use glam::DVec3;
 
 /// Radiance of the small lights of the open scenes (brighter than the box's: one light, no walls).

@@ -7,7 +7,6 @@ use super::{EFFECTS, LightKind, METHODS, SeedAnswer, Verdict, decide, seed_answe
 use crate::geometry::{InputError, Ray};
 use crate::plot::{self, Figure, PALETTE, PlotError, err};
 use crate::render::photon::{PhotonError, PhotonMap, PhotonMaps, trace_photons};
-use crate::render::scene::{Camera, Material, Object, Scene};
 use crate::render::{Settings, render};
 use crate::render::{
     analysis::analyze,
@@ -17,6 +16,10 @@ use crate::render::{
     bsdf::{dielectric_split, facing_normal, reflected_ray},
     integrator::{Integrator, Tracer},
     sampling::Sampler,
+};
+use crate::render::{
+    camera::Camera,
+    scene::{Material, Object, Scene},
 };
 use glam::DVec3;
 use plotters::prelude::*;

@@ -3,7 +3,10 @@
 
 use super::environment::Environment;
 use super::error::RenderError;
-use super::scene::{Camera, Fog, Material, Object, PointLight, Scene, Shape};
+use super::{
+    camera::Camera,
+    scene::{Fog, Material, Object, PointLight, Scene, Shape},
+};
 use crate::geometry::{InputError, Sphere};
 use crate::rng;
 use glam::DVec3;

@@ -248,7 +248,10 @@ mod tests {
     use crate::render::integrator::{Integrator, Tracer};
     use crate::render::passes::Passes;
     use crate::render::sampling::Sampler;
-    use crate::render::scene::{Camera, Material, Object, Scene};
+    use crate::render::{
+        camera::Camera,
+        scene::{Material, Object, Scene},
+    };
 
     fn ball_under(environment: Environment, material: Material) -> Scene {
         let camera = Camera::looking_at(DVec3::new(0.0, 0.0, 4.0), DVec3::ZERO, 40.0);

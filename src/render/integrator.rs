@@ -79,13 +79,14 @@ pub struct Tracer<'a> {
     passes: Passes,
     in_scatter_steps: usize,
     caustics: Option<(&'a PhotonMap, Gather)>,
+    indirect: Option<(&'a PhotonMap, Gather)>,
 }
 
 impl<'a> Tracer<'a> {
     /// A tracer for `scene` running `passes`.
     #[must_use]
     pub fn new(scene: &'a Scene, passes: Passes) -> Self {
-        Self { scene, passes, in_scatter_steps: IN_SCATTER_STEPS, caustics: None }
+        Self { scene, passes, in_scatter_steps: IN_SCATTER_STEPS, caustics: None, indirect: None }
     }
 
     /// The same tracer reading the caustic photon map `map` with `gather` at every diffuse or
@@ -94,6 +95,33 @@ impl<'a> Tracer<'a> {
     #[must_use]
     pub fn with_caustics(self, map: &'a PhotonMap, gather: Gather) -> Self {
         Self { caustics: Some((map, gather)), ..self }
+    }
+
+    /// The same tracer also reading the *indirect* photon map `map` (photons after a diffuse or
+    /// glossy bounce, [`super::photon::PhotonMaps::indirect`]) with `gather` at every diffuse or
+    /// glossy hit of Whitted tracing: the eye pass of two-pass rendering and of photon mapping.
+    /// Added before the caustic map's estimate; an empty map adds nothing (bit for bit), and so
+    /// does a tracer without it. A `gather` of `k` neighbours within [`f64::MAX`] is the plain
+    /// `k`-nearest estimate [`PhotonMap::radiance`], and zero for a map of fewer than `k` photons.
+    ///
+    /// # Examples
+    /// ```
+    /// use glam::DVec3;
+    /// use hw3::geometry::Ray;
+    /// use hw3::render::{catalogue, integrator::{Integrator, Tracer}, passes::Passes, photon};
+    /// use hw3::render::sampling::Sampler;
+    /// let scene = catalogue::cornell_mirror().unwrap();
+    /// let maps = photon::trace_photons(&scene, 5_000, 1).unwrap();
+    /// let gather = photon::Gather::new(20, f64::MAX).unwrap();
+    /// let ray = Ray { origin: scene.camera().eye, dir: (scene.camera().look_at - scene.camera().eye).normalize() };
+    /// let whitted = Integrator::Whitted { max_depth: 0 };
+    /// let direct = Tracer::new(&scene, Passes::default()).radiance(whitted, &ray, 0.0, &mut Sampler::new(1, 0, 0));
+    /// let both = Tracer::new(&scene, Passes::default()).with_indirect(&maps.indirect, gather);
+    /// assert!(both.radiance(whitted, &ray, 0.0, &mut Sampler::new(1, 0, 0)).x > direct.x); // the bounce light
+    /// ```
+    #[must_use]
+    pub fn with_indirect(self, map: &'a PhotonMap, gather: Gather) -> Self {
+        Self { indirect: Some((map, gather)), ..self }
     }
 
     /// The same tracer with `steps` quadrature steps for single scattering (≥ 1).
@@ -141,9 +169,13 @@ impl<'a> Tracer<'a> {
                 }
                 Material::Diffuse { .. } | Material::Glossy { .. } => {
                     let direct = self.direct_light(ray, &hit, time, sampler);
-                    match self.caustics {
-                        Some((map, gather)) if !map.is_empty() => direct + self.caustic(map, gather, ray, &hit),
+                    let lit = match self.indirect {
+                        Some((map, gather)) if !map.is_empty() => direct + self.gathered(map, gather, ray, &hit),
                         _ => direct,
+                    };
+                    match self.caustics {
+                        Some((map, gather)) if !map.is_empty() => lit + self.gathered(map, gather, ray, &hit),
+                        _ => lit,
                     }
                 }
             },
@@ -343,10 +375,10 @@ impl<'a> Tracer<'a> {
         total * (transmittance_to_infinity / ENVIRONMENT_SAMPLES as f64)
     }
 
-    /// The caustic map's radiance estimate toward the eye at a diffuse or glossy hit. Photons
+    /// A photon map's radiance estimate toward the eye at a diffuse or glossy hit. Photons
     /// ignore the medium (see [`super::photon::trace_caustic_photons`]), so in fog the caustic
     /// comes out unattenuated on its way from the light.
-    fn caustic(&self, map: &PhotonMap, gather: Gather, ray: &Ray<f64>, hit: &Hit) -> DVec3 {
+    fn gathered(&self, map: &PhotonMap, gather: Gather, ray: &Ray<f64>, hit: &Hit) -> DVec3 {
         let material = self.scene.objects()[hit.object].material;
         map.radiance_gathered(&material, hit.point, -ray.dir, facing_normal(ray, hit), gather)
     }
@@ -395,7 +427,9 @@ pub fn airlight_traced(
 mod tests {
     use super::*;
     use crate::geometry::Sphere;
-    use crate::render::scene::{Camera, Fog, Object};
+    use crate::render::camera::Camera;
+    use crate::render::photon::Photon;
+    use crate::render::scene::{Fog, Object};
 
     fn camera() -> Camera {
         Camera::looking_at(DVec3::ZERO, DVec3::NEG_Z, 40.0)
@@ -491,5 +525,45 @@ mod tests {
             let path = tracer.radiance(Integrator::PathTracer { max_depth: 40 }, &ray, 0.0, &mut Sampler::new(0, 1, 0));
             assert!((path.x - 0.7).abs() < 1e-12, "every sampled path ends in the background");
         }
+    }
+
+    /// The indirect-map option reads the map exactly as a photon-map gather at the diffuse hit
+    /// would, and with a radius of [`f64::MAX`] that is the plain `k`-nearest estimate; without
+    /// lights the direct part is exactly zero, so the radiances are compared bit for bit.
+    #[test]
+    fn the_indirect_map_option_equals_a_photon_map_gather_at_a_diffuse_hit() {
+        let grey = Material::Diffuse { albedo: DVec3::splat(0.5) };
+        let floor =
+            Object::quad(DVec3::new(-1.0, -1.0, -2.0), DVec3::new(2.0, 0.0, 0.0), DVec3::new(0.0, 2.0, 0.0), grey);
+        let scene = Scene::new(camera(), vec![floor], vec![], None, DVec3::ZERO).unwrap();
+        let photons = (0..400)
+            .map(|i| Photon {
+                position: DVec3::new(f64::from(i % 20) * 0.05 - 0.5, f64::from(i / 20) * 0.05 - 0.5, -2.0),
+                direction: DVec3::new(0.0, 0.6, -0.8),
+                normal: DVec3::Z,
+                power: DVec3::splat(0.01),
+            })
+            .collect();
+        let map = PhotonMap::new(photons);
+        let whitted = Integrator::Whitted { max_depth: 0 };
+        let ray = Ray { origin: DVec3::ZERO, dir: DVec3::new(0.05, -0.02, -1.0).normalize() };
+        let hit = scene.closest_hit(&ray, 0.0, f64::INFINITY).unwrap();
+        for gather in [Gather::new(30, 0.1).unwrap(), Gather::new(30, f64::MAX).unwrap()] {
+            let tracer = Tracer::new(&scene, Passes::default()).with_indirect(&map, gather);
+            let traced = tracer.radiance(whitted, &ray, 0.0, &mut Sampler::new(0, 0, 0));
+            let expected = map.radiance_gathered(&grey, hit.point, -ray.dir, DVec3::Z, gather);
+            assert_eq!(traced, expected);
+            assert!(traced.x > 0.0);
+        }
+        let knn = map.radiance(&grey, hit.point, -ray.dir, DVec3::Z, 30).unwrap();
+        let unbounded = Tracer::new(&scene, Passes::default()).with_indirect(&map, Gather::new(30, f64::MAX).unwrap());
+        assert_eq!(unbounded.radiance(whitted, &ray, 0.0, &mut Sampler::new(0, 0, 0)), knn);
+        // Off, or an empty map: the tracer without the option, bit for bit.
+        let empty = PhotonMap::new(vec![]);
+        let off = Tracer::new(&scene, Passes::default());
+        let with_empty = off.with_indirect(&empty, Gather::new(30, 0.1).unwrap());
+        let plain = off.radiance(whitted, &ray, 0.0, &mut Sampler::new(0, 0, 0));
+        assert_eq!(with_empty.radiance(whitted, &ray, 0.0, &mut Sampler::new(0, 0, 0)), plain);
+        assert_eq!(plain, DVec3::ZERO);
     }
 }

@@ -155,7 +155,10 @@ mod tests {
     use super::*;
     use crate::render::integrator::{Integrator, Tracer};
     use crate::render::passes::Passes;
-    use crate::render::scene::{Camera, Fog, Material, Object};
+    use crate::render::{
+        camera::Camera,
+        scene::{Fog, Material, Object},
+    };
 
     const SIGMA_S: f64 = 0.2;
     const LENGTH: f64 = 10.0;

@@ -72,7 +72,7 @@ fn bounding_cone(origin: DVec3, center: DVec3, radius: f64) -> (DVec3, f64) {
 /// cone. A photon counts only when the first object it hits *is* its target: a direction that
 /// reaches another mirror or glass first belongs to that object's cone, one that reaches a
 /// diffuse surface first is direct light (`LD`), so no path is counted twice. Photons travel at
-/// the shutter's opening time and ignore the medium (as [`trace_photons`] does).
+/// the shutter's opening time and ignore the medium (as [`trace_photons`](super::trace_photons) does).
 ///
 /// Deterministic: photon `i` draws from stream 3 of `(seed, i)`, traced in ordered parallel
 /// chunks, so the map is identical for any number of threads. Without a lit emitter or without
@@ -83,10 +83,10 @@ fn bounding_cone(origin: DVec3, center: DVec3, radius: f64) -> (DVec3, f64) {
 ///
 /// # Examples
 /// ```
-/// use hw3::render::{photon::trace_caustic_photons, scenes};
-/// let caustic = trace_caustic_photons(&scenes::by_name("caustic").unwrap(), 2000, 1).unwrap();
+/// use hw3::render::{photon::trace_caustic_photons, catalogue};
+/// let caustic = trace_caustic_photons(&catalogue::by_name("caustic").unwrap(), 2000, 1).unwrap();
 /// assert!(caustic.len() > 1000, "most photons aimed at the glass ball land on the floor");
-/// let none = trace_caustic_photons(&scenes::by_name("diffuse-spheres").unwrap(), 2000, 1).unwrap();
+/// let none = trace_caustic_photons(&catalogue::by_name("diffuse-spheres").unwrap(), 2000, 1).unwrap();
 /// assert!(none.is_empty(), "no mirror or glass: no caustic photon");
 /// ```
 pub fn trace_caustic_photons(scene: &Scene, count: usize, seed: u64) -> Result<PhotonMap, PhotonError> {

@@ -39,10 +39,10 @@ pub struct PhotonMaps {
 ///
 /// # Examples
 /// ```
-/// use hw3::render::{photon::trace_photons, scenes};
-/// let maps = trace_photons(&scenes::cornell_mirror().unwrap(), 2000, 1).unwrap();
+/// use hw3::render::{photon::trace_photons, catalogue};
+/// let maps = trace_photons(&catalogue::cornell_mirror().unwrap(), 2000, 1).unwrap();
 /// assert!(maps.all.len() >= maps.indirect.len() && maps.all.len() > 1000);
-/// assert!(trace_photons(&scenes::cornell_mirror().unwrap(), 0, 1).is_err());
+/// assert!(trace_photons(&catalogue::cornell_mirror().unwrap(), 0, 1).is_err());
 /// ```
 pub fn trace_photons(scene: &Scene, count: usize, seed: u64) -> Result<PhotonMaps, PhotonError> {
     if count == 0 || count > MAX_PHOTONS {

@@ -5,7 +5,10 @@ use crate::geometry::{Ray, Sphere};
 use crate::render::bsdf::{brdf, dielectric_split};
 use crate::render::catalogue::furnace_sphere;
 use crate::render::sampling::{Sampler, fibonacci_sphere, phong_direction};
-use crate::render::scene::{Camera, Material, Object, PointLight, Scene};
+use crate::render::{
+    camera::Camera,
+    scene::{Material, Object, PointLight, Scene},
+};
 use glam::DVec3;
 use std::f64::consts::PI;
 
@@ -68,7 +71,7 @@ fn first_hit_powers_sum_to_the_light_flux() {
 
 #[test]
 fn traces_are_identical_for_one_and_two_threads() {
-    let scene = crate::render::scenes::cornell_mirror().unwrap();
+    let scene = crate::render::catalogue::cornell_mirror().unwrap();
     let run = |threads| {
         rayon::ThreadPoolBuilder::new()
             .num_threads(threads)
@@ -266,7 +269,7 @@ fn caustic_photons_carry_the_flux_into_the_target_cone() {
 /// count's standard deviations.
 #[test]
 fn aimed_and_untargeted_caustic_maps_carry_the_same_power() {
-    let scene = crate::render::scenes::glass_ball_caustic().unwrap();
+    let scene = crate::render::catalogue::glass_ball_caustic().unwrap();
     let aimed: f64 = trace_caustic_photons(&scene, 20_000, 5).unwrap().photons().iter().map(|p| p.power.x).sum();
     let maps = trace_photons(&scene, 200_000, 6).unwrap();
     let caustic = maps.caustic.photons();
