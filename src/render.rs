@@ -16,7 +16,7 @@ pub mod photon;
 pub mod sampling;
 pub mod scene;
 
-pub use error::RenderError;
+pub use error::{MAX_PIXELS, MAX_SIDE, MAX_SPP, RenderError};
 
 // The chapters link the catalogue by its former name.
 #[doc(no_inline)]
@@ -29,13 +29,6 @@ use passes::Passes;
 use rayon::prelude::*;
 use sampling::Sampler;
 use scene::Scene;
-
-/// Largest accepted image side, in pixels.
-pub const MAX_SIDE: u32 = 8192;
-/// Largest accepted pixel count (a 4096² image).
-pub const MAX_PIXELS: u64 = 1 << 24;
-/// Largest accepted number of samples per pixel.
-pub const MAX_SPP: u32 = 1 << 16;
 
 /// How to render: size, samples, integrator, passes and seed.
 #[derive(Debug, Clone, Copy, PartialEq)]

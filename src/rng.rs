@@ -16,10 +16,10 @@
 //!   identical" tests), and photons on streams of their own. Its state is 128 bits like
 //!   [`Generator`]'s, but with a 64-bit multiply. Every committed render and figure was made
 //!   with it, so it stays.
-//! - SplitMix64 (Steele, Lea & Flood 2014, in `crate::kdtree::workload`): the Q3 benchmark
-//!   workload only, which must reproduce a published harness's random spheres and rays bit for
-//!   bit, so it uses that harness's generator; it also whitens the per-pixel seeds of
-//!   [`sample_stream`] (its finaliser, [`splitmix64_finalise`]).
+//! - SplitMix64 (Steele, Lea & Flood 2014): the Q3 kd-tree benchmark's workload only (random
+//!   spheres and rays, with the benchmarks), which must reproduce a fixed workload and its
+//!   checksums bit for bit, so it keeps the generator that workload was defined with. Its finaliser
+//!   ([`splitmix64_finalise`]) also whitens the per-pixel seeds of [`sample_stream`].
 
 use rand_core::{Rng, SeedableRng};
 use rand_pcg::{Pcg32, Pcg64Mcg};

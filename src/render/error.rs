@@ -1,10 +1,24 @@
-//! Why a render was refused: one error type for the renderer's entry points.
+//! Why a render was refused: the limits a render's settings must keep, and one error type for
+//! the renderer's entry points.
 
 use super::photon::PhotonError;
-use super::{MAX_PIXELS, MAX_SIDE, MAX_SPP};
 use crate::geometry::InputError;
 
+/// Largest accepted image side, in pixels.
+pub const MAX_SIDE: u32 = 8192;
+/// Largest accepted pixel count (a 4096² image).
+pub const MAX_PIXELS: u64 = 1 << 24;
+/// Largest accepted number of samples per pixel.
+pub const MAX_SPP: u32 = 1 << 16;
+
 /// Why a render was refused. Nothing is rendered or written when one is returned.
+///
+/// # Examples
+/// ```
+/// use hw3::render::{RenderError, catalogue};
+/// let err = catalogue::by_name("nope").unwrap_err();
+/// assert!(matches!(err, RenderError::UnknownScene { .. }) && err.to_string().contains("mirrors"));
+/// ```
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum RenderError {
     /// The scene or a camera setting is invalid.

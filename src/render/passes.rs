@@ -5,6 +5,13 @@
 use serde::Serialize;
 
 /// A render pass that the planner can switch on or off.
+///
+/// # Examples
+/// ```
+/// use hw3::render::passes::Pass;
+/// assert_eq!(Pass::ALL.len(), 6);
+/// assert_eq!(Pass::InScattering.name(), "in_scattering");
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Pass {
@@ -49,7 +56,15 @@ impl Pass {
     }
 }
 
-/// Which passes a render runs.
+/// Which passes a render runs: one flag per [`Pass`], all off by default.
+///
+/// # Examples
+/// ```
+/// use hw3::render::passes::{Pass, Passes};
+/// let plan = Passes::default().with(Pass::Caustics, true);
+/// assert!(plan.get(Pass::Caustics) && !plan.get(Pass::Transmittance));
+/// assert!(Pass::ALL.iter().all(|&pass| Passes::all().get(pass)));
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
 pub struct Passes {
     /// See [`Pass::SpecularRecursion`].
