@@ -81,7 +81,7 @@ struct Letters {
 ///
 /// # Examples
 /// ```
-/// use hw3::render::{analysis::{analyze, Pass}, catalogue};
+/// use hw3::render::{analysis::analyze, catalogue, passes::Pass};
 /// let fog = analyze(&catalogue::fog_street(0.1).unwrap());
 /// assert!(fog.plan.get(Pass::InScattering));
 /// assert!(!fog.plan.get(Pass::SpecularRecursion)); // no mirror in the street

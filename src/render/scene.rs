@@ -249,6 +249,7 @@ impl Scene {
     /// ```
     /// use glam::DVec3;
     /// use hw3::geometry::Sphere;
+    /// use hw3::render::camera::Camera;
     /// use hw3::render::scene::*;
     /// let camera = Camera { eye: DVec3::new(0.0, 0.0, 5.0), look_at: DVec3::ZERO, up: DVec3::Y,
     ///     vfov_degrees: 40.0, shutter: (0.0, 0.0) };

@@ -156,7 +156,7 @@ impl PhotonMap {
     /// # Examples
     /// ```
     /// use glam::DVec3;
-    /// use hw3::render::photon::{fibonacci_sphere, furnace_sphere, trace_photons};
+    /// use hw3::render::{catalogue::furnace_sphere, photon::trace_photons, sampling::fibonacci_sphere};
     /// use hw3::render::scene::Material;
     /// // Furnace, ρ = 0.5, I = 1: L = ρE/π with E = 2 at every wall point.
     /// let maps = trace_photons(&furnace_sphere(0.5, 1.0).unwrap(), 20_000, 1).unwrap();
