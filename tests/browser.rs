@@ -78,10 +78,10 @@ fn section_ids(html: &str) -> Vec<String> {
         if !matches!(level, Some(b'2' | b'3')) {
             continue;
         }
-        if let Some(rest) = piece[1..].trim_start().strip_prefix("id=\"") {
-            if let Some(id) = rest.split('"').next() {
-                ids.push(id.to_string());
-            }
+        if let Some(rest) = piece[1..].trim_start().strip_prefix("id=\"")
+            && let Some(id) = rest.split('"').next()
+        {
+            ids.push(id.to_string());
         }
     }
     ids
