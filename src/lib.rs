@@ -5,6 +5,9 @@
     reason = "`!(x >= 0)` is how the numerics say 'negative or NaN': NaN must fail every test"
 )]
 
+pub mod cli;
+pub mod envmap;
+pub mod fsio;
 pub mod geometry;
 pub mod kdtree;
 pub mod plot;
