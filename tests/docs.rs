@@ -260,8 +260,7 @@ fn q4_cost_table_matches_the_benchmark_csv() {
     for line in q4.lines().filter(|l| l.starts_with("| ") && (l.contains("²") || l.contains("N="))) {
         let cells: Vec<&str> = line.split('|').map(str::trim).collect();
         let (label, mean, worst) = (cells[1], cells[2], cells[3]);
-        let Some(row) = csv.lines().find(|r| r.starts_with(&format!("sun,")) && r.split(',').nth(2) == Some(label))
-        else {
+        let Some(row) = csv.lines().find(|r| r.starts_with("sun,") && r.split(',').nth(2) == Some(label)) else {
             continue;
         };
         let fields: Vec<&str> = row.split(',').collect();
