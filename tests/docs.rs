@@ -234,11 +234,11 @@ fn q3_cost_table_and_growth_law_match_the_benchmark_csv() {
     let exponent = (s1 / s0).ln() / (n1 / n0).ln();
     let per_decade = (s1 / s0).powf(1.0 / (n1 / n0).log10());
     assert!(
-        q3.contains(&format!("×{per_decade:.1} per decade (~N^{exponent:.2})")),
+        q3.contains(&format!("×{per_decade:.1} per decade ($\\sim N^{{{exponent:.2}}}$)")),
         "×{per_decade:.1}, N^{exponent:.2}"
     );
     let engineering = chapter("engineering_q3.md");
-    assert!(engineering.contains(&format!("×{per_decade:.1} per decade (~N^{exponent:.2})")));
+    assert!(engineering.contains(&format!("×{per_decade:.1} per decade ($\\sim N^{{{exponent:.2}}}$)")));
     // What helped and what did not: a change that made anything faster is not listed as not helping.
     let section = |title: &str| {
         let start = engineering.find(title).unwrap_or_else(|| panic!("{title}"));
@@ -260,8 +260,7 @@ fn q4_cost_table_matches_the_benchmark_csv() {
     for line in q4.lines().filter(|l| l.starts_with("| ") && (l.contains("²") || l.contains("N="))) {
         let cells: Vec<&str> = line.split('|').map(str::trim).collect();
         let (label, mean, worst) = (cells[1], cells[2], cells[3]);
-        let Some(row) = csv.lines().find(|r| r.starts_with(&format!("sun,")) && r.split(',').nth(2) == Some(label))
-        else {
+        let Some(row) = csv.lines().find(|r| r.starts_with("sun,") && r.split(',').nth(2) == Some(label)) else {
             continue;
         };
         let fields: Vec<&str> = row.split(',').collect();
@@ -319,7 +318,7 @@ fn q4_worked_probe_sums_are_right() {
 #[test]
 fn q5_cosine_falloff_is_the_point_source_law_and_matches_the_measurement() {
     use hw3::q5_effect_tables::effect_scenes::{FLOOR_LIGHT_HEIGHT, FLOOR_LIGHT_SIZE, OPEN_LIGHT_RADIANCE};
-    use hw3::q5_effect_tables::scenes::WHITE;
+    use hw3::q5_effect_tables::experiments::WHITE;
     let q5 = chapter("q5_effect_tables.md");
     let aside = 1.5;
     assert!(q5.contains("1.5 units aside"));
@@ -443,5 +442,26 @@ fn every_chapter_links_the_glossary_and_its_engineering_notes() {
             });
             assert!(defined, "glossary has no entry for #{anchor}");
         }
+    }
+}
+
+/// Q1: the chapter's mirror-scene cost table is the benchmark's data.
+#[test]
+fn q1_cost_table_matches_the_benchmark_csv() {
+    let q1 = chapter("q1_hard_scenes.md");
+    let csv = std::fs::read_to_string(Path::new(DOCS).join("data/q1_accuracy.csv")).unwrap();
+    let value = |integrator: &str, spp: u32| -> (f64, f64) {
+        let row = csv
+            .lines()
+            .find(|l| l.starts_with(&format!("mirrors,{integrator},{spp},")))
+            .unwrap_or_else(|| panic!("{integrator} {spp}"));
+        let f: Vec<f64> = row.split(',').skip(3).map(|x| x.parse().unwrap()).collect();
+        (f[1], f[0])
+    };
+    for spp in [1, 4, 16, 64] {
+        let (path_rmse, path_s) = value("path", spp);
+        let (whitted_rmse, whitted_s) = value("whitted", spp);
+        let row = format!("| {spp} | {path_rmse:.2e} | {path_s:.2e} | {whitted_rmse:.2e} | {whitted_s:.2e} |");
+        assert!(q1.contains(&row), "Q1 table row missing or stale: {row}");
     }
 }
