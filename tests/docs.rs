@@ -318,7 +318,7 @@ fn q4_worked_probe_sums_are_right() {
 #[test]
 fn q5_cosine_falloff_is_the_point_source_law_and_matches_the_measurement() {
     use hw3::q5_effect_tables::effect_scenes::{FLOOR_LIGHT_HEIGHT, FLOOR_LIGHT_SIZE, OPEN_LIGHT_RADIANCE};
-    use hw3::q5_effect_tables::experiments::WHITE;
+    use hw3::q5_effect_tables::scenes::WHITE;
     let q5 = chapter("q5_effect_tables.md");
     let aside = 1.5;
     assert!(q5.contains("1.5 units aside"));
