@@ -5,6 +5,7 @@
     reason = "`!(x >= 0)` is how the numerics say 'negative or NaN': NaN must fail every test"
 )]
 
+pub mod answers;
 pub mod geometry;
 pub mod kdtree;
 pub mod plot;
@@ -20,16 +21,7 @@ pub mod q5_effect_tables;
 
 pub mod checker;
 
-/// One question's printed answers, as `hw3 answers` shows them.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct Answers {
-    /// The question id (`"q2"`).
-    pub question: &'static str,
-    /// The homework's title for it.
-    pub title: &'static str,
-    /// The answers, as plain text with one claim per line.
-    pub text: String,
-}
+pub use answers::Answers;
 
 /// Every question's answers, in homework order.
 ///

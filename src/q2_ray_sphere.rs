@@ -6,7 +6,7 @@ mod figures;
 pub mod reflection;
 pub mod seed_solver;
 
-use crate::Answers;
+use crate::answers::Answers;
 use crate::geometry::sphere::{closest_approach_t, first_hit_stable, surface_hit};
 use crate::geometry::{InputError, Ray, Sphere};
 use crate::real::Real;

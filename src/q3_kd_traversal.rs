@@ -501,7 +501,7 @@ fn clip_to_cell(cell: &Cell, ray: &Ray2) -> Option<Interval> {
 /// Q3's printed answers: the reconstructed tree, the rules, and the traces of (d) and (e) with
 /// their comparison against the seed.
 #[must_use]
-pub fn answers() -> crate::Answers {
+pub fn answers() -> crate::answers::Answers {
     use std::fmt::Write as _;
     let tree = Node2::homework();
     let mut text = String::from(
@@ -526,7 +526,7 @@ pub fn answers() -> crate::Answers {
         "seed error in (d): x<3 starts at the root plane's t = 2, not at the y = 3 plane's t = 3 \
          (at t = 2.5 the ray is at (2.5, 2.5), in leaf x<3, y>=1).\n",
     );
-    crate::Answers {
+    crate::answers::Answers {
         question: "q3",
         title: "kd-tree traversal with parameter intervals",
         text: text.trim_end().to_owned(),
