@@ -6,12 +6,14 @@
 )]
 
 pub mod answers;
+pub mod data;
 pub mod geometry;
 pub mod kdtree;
 pub mod plot;
 pub mod real;
 pub mod render;
 pub mod rng;
+pub mod stats;
 
 pub mod q1_hard_scenes;
 pub mod q2_ray_sphere;

@@ -503,7 +503,7 @@ fn cycles(files: &[SourceFile]) -> Vec<Cycle> {
                 }
             }
         }
-        let folder = format!("src/{}", parent.module.join("/"));
+        let folder = ["src".to_string()].into_iter().chain(parent.module.iter().cloned()).collect::<Vec<_>>().join("/");
         for component in strongly_connected(&children, &graph) {
             if component.len() < 2 {
                 continue;
