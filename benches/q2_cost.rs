@@ -96,7 +96,7 @@ fn main() {
         csv.push_str(&line);
     }
     if measuring {
-        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/docs/data/q2_cost.csv");
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../docs/data/q2_cost.csv");
         std::fs::write(path, csv).expect("docs/data is writable");
         eprintln!("wrote {path}");
     }

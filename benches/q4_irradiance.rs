@@ -181,7 +181,7 @@ fn sweep() {
          resampled from the vendored 256×128 CC0 lat-long maps courtyard and sunrise (reference: the \
          file's own solid-angle-weighted texel sum); no photograph of a real ball.\n\n{summary}\n{table}"
     );
-    let data = concat!(env!("CARGO_MANIFEST_DIR"), "/docs/data");
+    let data = concat!(env!("CARGO_MANIFEST_DIR"), "/../docs/data");
     std::fs::write(format!("{data}/q4_accuracy_time.csv"), csv).expect("docs/data is writable");
     std::fs::write(format!("{data}/q4_accuracy_time.md"), markdown).expect("docs/data is writable");
 }

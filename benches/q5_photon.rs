@@ -91,7 +91,7 @@ fn write_accuracy_table() {
             );
         }
     }
-    let data = concat!(env!("CARGO_MANIFEST_DIR"), "/docs/data");
+    let data = concat!(env!("CARGO_MANIFEST_DIR"), "/../docs/data");
     std::fs::create_dir_all(data).expect("docs/data is writable");
     std::fs::write(format!("{data}/q5_photon_accuracy.csv"), csv).expect("write the CSV");
     std::fs::write(format!("{data}/q5_photon_accuracy.md"), table).expect("write the table");
@@ -153,7 +153,7 @@ fn write_cornell_table() {
         table.push_str(&row);
         table.push('\n');
     }
-    let data = concat!(env!("CARGO_MANIFEST_DIR"), "/docs/data");
+    let data = concat!(env!("CARGO_MANIFEST_DIR"), "/../docs/data");
     std::fs::write(format!("{data}/q5_photon_cornell.csv"), csv).expect("write the CSV");
     std::fs::write(format!("{data}/q5_photon_cornell.md"), table).expect("write the table");
 }

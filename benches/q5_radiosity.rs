@@ -59,7 +59,7 @@ fn write_accuracy_table() {
         let _ = writeln!(csv, "{n},{patches},{seconds:.4e},{b:.4e},{g:.4e},{eb:.4e},{eg:.4e}");
         let _ = writeln!(table, "| {n} | {patches} | {seconds:.3e} | {b:.4} | {eb:.3} | {g:.4} | {eg:.3} |");
     }
-    let data = concat!(env!("CARGO_MANIFEST_DIR"), "/docs/data");
+    let data = concat!(env!("CARGO_MANIFEST_DIR"), "/../docs/data");
     std::fs::create_dir_all(data).expect("docs/data is writable");
     std::fs::write(format!("{data}/q5_radiosity_accuracy.csv"), csv).expect("write the CSV");
     std::fs::write(format!("{data}/q5_radiosity_accuracy.md"), table).expect("write the table");
@@ -103,7 +103,7 @@ fn write_solver_table() {
         table.push_str(&row);
         table.push('\n');
     }
-    let data = concat!(env!("CARGO_MANIFEST_DIR"), "/docs/data");
+    let data = concat!(env!("CARGO_MANIFEST_DIR"), "/../docs/data");
     std::fs::write(format!("{data}/q5_radiosity_solvers.csv"), csv).expect("write the CSV");
     std::fs::write(format!("{data}/q5_radiosity_solvers.md"), table).expect("write the table");
 }

@@ -153,7 +153,7 @@ fn write_speed_tables() {
         let used = if cores[k].is_empty() { "n/a".to_string() } else { format!("{:.2}", median(&mut cores[k])) };
         let _ = writeln!(table, "| {queries} | {threads} | {wall:.3e} | {:.3e} | {used} |", samples / wall);
     }
-    let data = concat!(env!("CARGO_MANIFEST_DIR"), "/docs/data");
+    let data = concat!(env!("CARGO_MANIFEST_DIR"), "/../docs/data");
     std::fs::create_dir_all(data).expect("docs/data is writable");
     std::fs::write(format!("{data}/render_speed.md"), table).expect("write the table");
 }
@@ -202,7 +202,7 @@ fn write_accuracy_tables() {
                 writeln!(table, "| {name} | {spp} | {e_path:.3e} | {t_path:.3e} | {e_whitted:.3e} | {t_whitted:.3e} |");
         }
     }
-    let data = concat!(env!("CARGO_MANIFEST_DIR"), "/docs/data");
+    let data = concat!(env!("CARGO_MANIFEST_DIR"), "/../docs/data");
     std::fs::create_dir_all(data).expect("docs/data is writable");
     std::fs::write(format!("{data}/q1_accuracy.csv"), csv).expect("write the CSV");
     std::fs::write(format!("{data}/q1_accuracy.md"), table).expect("write the table");

@@ -97,7 +97,7 @@ fn write_accuracy_table() {
             );
         }
     }
-    let data = concat!(env!("CARGO_MANIFEST_DIR"), "/docs/data");
+    let data = concat!(env!("CARGO_MANIFEST_DIR"), "/../docs/data");
     std::fs::create_dir_all(data).expect("docs/data is writable");
     std::fs::write(format!("{data}/render_caustic_k.csv"), csv).expect("write the CSV");
     std::fs::write(format!("{data}/render_caustic_k.md"), table).expect("write the table");

@@ -32,12 +32,12 @@
 //! The Q3 chapter ([`crate::q3_kd_traversal`]) traces this rule on the homework's 2-D tree; the
 //! 3-D [`KdTree`] uses the same function at every interior node.
 //!
-//! [`workload`] reproduces the reference note's benchmark scenes and rays bit for bit;
-//! `benches/q3_kdtree.rs` measures the tree on them (results in the Q3 chapter).
+//! `benches/q3_kdtree.rs` measures the tree on random sphere scenes, camera and random rays, beside
+//! peer BVHs (results in the Q3 chapter).
 
 mod build;
+mod node;
 mod tree;
-pub mod workload;
 
 pub use build::{BuildError, SahCosts};
 pub(crate) use tree::moved;

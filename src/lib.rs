@@ -6,7 +6,9 @@
 )]
 
 pub mod answers;
+pub mod cli;
 pub mod data;
+pub mod fsio;
 pub mod geometry;
 pub mod kdtree;
 pub mod plot;

@@ -1,11 +1,13 @@
 //! `hw3`: prints every answer and regenerates every figure; subcommands compute single answers.
 //!
-//! Exit status: 0 on success, 2 on invalid input (one line on stderr, nothing written),
-//! 1 on an internal failure (for example a figure that cannot be written).
+//! Exit status: 0 on success, 1 when `check` finds wrong answers (or on an internal failure),
+//! 2 on invalid input (one line on stderr, nothing written), 3 when the output cannot be written
+//! (a full disk, a closed stdout): the README's table "Exit statuses and limits".
 
-use anyhow::Context as _;
 use clap::{Parser, Subcommand};
-use std::path::PathBuf;
+use hw3::cli::{self as limits, one_line};
+use std::io::Write as _;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 #[derive(Parser)]
@@ -34,7 +36,7 @@ enum Command {
         /// Sphere centre o, as X,Y,Z.
         #[arg(long, allow_hyphen_values = true)]
         center: String,
-        /// Sphere radius r (finite, >= 0).
+        /// Sphere radius r (finite, > 0).
         #[arg(long, allow_hyphen_values = true)]
         radius: f64,
         /// Arithmetic precision.
@@ -49,16 +51,16 @@ enum Command {
     },
     /// Write a blank answers file: every question of a variant, every key commented out.
     Template {
-        /// Variant seed (0 = the notes' worked example).
-        #[arg(long, default_value_t = 0)]
+        /// Variant seed, 0 … 2^63 − 1 (0 = the notes' worked example).
+        #[arg(long, default_value_t = 0, value_parser = seed_arg, allow_hyphen_values = true)]
         seed: u64,
     },
     /// Grade an answers file (TOML). Exit status 0 = all correct, 1 = some wrong, 2 = unreadable.
     Check {
         /// The answers file.
         file: PathBuf,
-        /// Variant seed (overrides `[meta] seed` in the file).
-        #[arg(long)]
+        /// Variant seed, 0 … 2^63 − 1 (overrides `[meta] seed` in the file).
+        #[arg(long, value_parser = seed_arg, allow_hyphen_values = true)]
         seed: Option<u64>,
         /// Report format.
         #[arg(long, value_enum, default_value_t = FormatArg::Text)]
@@ -75,8 +77,8 @@ enum Command {
         /// The question (q2).
         #[arg(long)]
         question: String,
-        /// Variant seed (0 = the notes' worked example).
-        #[arg(long, default_value_t = 0)]
+        /// Variant seed, 0 … 2^63 − 1 (0 = the notes' worked example).
+        #[arg(long, default_value_t = 0, value_parser = seed_arg, allow_hyphen_values = true)]
         seed: u64,
     },
     /// Q4: irradiance E(n) of an environment map through a light probe.
@@ -113,18 +115,21 @@ enum Command {
     Render {
         /// A built-in scene (see `hw3 scenes`).
         scene: String,
-        /// Samples per pixel.
-        #[arg(long, default_value_t = 4)]
+        /// Samples per pixel (1 … 65536; width × height × spp at most 2^22 without --allow-large).
+        #[arg(long, default_value_t = 4, value_parser = spp_arg, allow_hyphen_values = true)]
         spp: u32,
-        /// Image size, WIDTHxHEIGHT.
-        #[arg(long, default_value = "320x240")]
+        /// Image size, WIDTHxHEIGHT (each side 1 … 8192).
+        #[arg(long, default_value = "320x240", allow_hyphen_values = true)]
         size: String,
-        /// Output PNG file.
+        /// Output PNG file (its name must end in .png; its folder must exist).
         #[arg(long, default_value = "render.png")]
         out: PathBuf,
         /// `auto` runs the planned passes, `all` every pass.
         #[arg(long, default_value = "auto")]
         effects: String,
+        /// Allow up to 2^40 camera samples (days of work) instead of 2^22.
+        #[arg(long)]
+        allow_large: bool,
     },
 }
 
@@ -156,20 +161,45 @@ struct Q4IrradianceArgs {
     #[arg(long, allow_hyphen_values = true)]
     normal: String,
     /// unweighted|weighted|uniform|cosine|map|mis|sh9
-    #[arg(long)]
+    #[arg(long, value_parser = method_arg)]
     method: String,
-    /// Monte Carlo samples.
-    #[arg(long, default_value_t = 256)]
-    samples: usize,
+    /// Monte Carlo samples (1 … 2^20; 2^30 with --allow-large).
+    #[arg(long, default_value_t = 256, value_parser = count_arg, allow_hyphen_values = true)]
+    samples: u64,
     /// Monte Carlo seed.
-    #[arg(long, default_value_t = 0)]
+    #[arg(long, default_value_t = 0, value_parser = count_arg, allow_hyphen_values = true)]
     seed: u64,
-    /// Texels across the mirror-ball probe analytic maps are rasterised into.
-    #[arg(long, default_value_t = 256)]
-    size: usize,
+    /// Texels across the mirror-ball probe analytic maps are rasterised into (16 … 1024; 4096
+    /// with --allow-large).
+    #[arg(long, default_value_t = 256, value_parser = count_arg, allow_hyphen_values = true)]
+    size: u64,
     /// Print `{"irradiance":[r,g,b]}`.
     #[arg(long)]
     json: bool,
+    /// Raise the bounds on --samples, --size and the map's texels (see their help).
+    #[arg(long)]
+    allow_large: bool,
+}
+
+/// `--seed` of `template`, `check` and `variant`.
+fn seed_arg(text: &str) -> Result<u64, String> {
+    limits::parse_seed(text)
+}
+
+/// A count whose bound is checked later, with `--allow-large` known.
+fn count_arg(text: &str) -> Result<u64, String> {
+    limits::parse_unsigned(text, u64::MAX)
+}
+
+/// `render --spp`: the renderer's own range.
+fn spp_arg(text: &str) -> Result<u32, String> {
+    let spp = limits::parse_unsigned(text, u64::from(hw3::render::MAX_SPP))?;
+    if spp == 0 { Err("expected at least 1 sample per pixel, got `0`".into()) } else { Ok(spp as u32) }
+}
+
+/// `irradiance --method`, checked by the parser so that the message names `--method`.
+fn method_arg(text: &str) -> Result<String, String> {
+    text.parse::<hw3::q4_light_probe::irradiance::Method>().map(|_| text.to_owned())
 }
 
 /// An error the user caused: reported on one line, exit status 2, nothing written.
@@ -183,6 +213,18 @@ impl std::fmt::Display for UsageError {
 }
 
 impl std::error::Error for UsageError {}
+
+/// The output could not be written (stdout, or a file after the work): exit status 3.
+#[derive(Debug)]
+struct OutputError(String);
+
+impl std::fmt::Display for OutputError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for OutputError {}
 
 /// `hw3 check` found wrong answers: exit status 1, the report already printed.
 #[derive(Debug)]
@@ -207,25 +249,71 @@ fn restore_default_sigpipe() {
     }
 }
 
+/// One line on stderr, cleaned ([`one_line`]); a stderr that cannot be written is ignored, since
+/// there is nowhere left to report it.
+fn report(message: &str) {
+    let _ = writeln!(std::io::stderr(), "hw3: {}", one_line(message));
+}
+
+/// Writes `text` to stdout, turning a write failure (a full disk, a closed descriptor) into exit
+/// status 3 instead of a panic.
+fn emit(text: &str) -> anyhow::Result<()> {
+    let mut stdout = std::io::stdout().lock();
+    stdout
+        .write_all(text.as_bytes())
+        .and_then(|()| stdout.flush())
+        .map_err(|e| OutputError(format!("cannot write to stdout: {}", io_reason(&e))).into())
+}
+
+/// [`emit`] with a line break.
+fn emit_line(text: &str) -> anyhow::Result<()> {
+    emit(&format!("{text}\n"))
+}
+
+/// An I/O error's description without the `(os error N)` suffix.
+fn io_reason(error: &std::io::Error) -> String {
+    let text = error.to_string();
+    text.split(" (os error").next().unwrap_or(&text).to_owned()
+}
+
 fn main() -> ExitCode {
     restore_default_sigpipe();
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
+        Err(e) if !e.use_stderr() => {
+            // --help and --version: their text is the output.
+            let text = e.render().to_string();
+            return match emit(&text) {
+                Ok(()) => ExitCode::SUCCESS,
+                Err(e) => {
+                    report(&e.to_string());
+                    ExitCode::from(3)
+                }
+            };
+        }
         Err(e) => {
-            let code = if e.use_stderr() { 2 } else { 0 };
-            let _ = e.print();
-            return ExitCode::from(code);
+            // clap's first line is the error; its usage block and tips are dropped, to keep the
+            // promise of one line.
+            let rendered = e.render().to_string();
+            let first = rendered.lines().next().unwrap_or("invalid arguments");
+            let message = first.strip_prefix("error: ").unwrap_or(first);
+            report(&format!("{message} (see --help)"));
+            return ExitCode::from(2);
         }
     };
     match run(cli) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) if e.downcast_ref::<SomeWrong>().is_some() => ExitCode::from(1),
         Err(e) if e.downcast_ref::<UsageError>().is_some() => {
-            eprintln!("hw3: {e}");
+            report(&e.to_string());
             ExitCode::from(2)
         }
+        Err(e) if e.downcast_ref::<OutputError>().is_some() => {
+            report(&e.to_string());
+            ExitCode::from(3)
+        }
         Err(e) => {
-            eprintln!("hw3: {e:#}");
+            report(&format!("{e:#}"));
             ExitCode::from(1)
         }
     }
@@ -234,31 +322,32 @@ fn main() -> ExitCode {
 fn run(cli: Cli) -> anyhow::Result<()> {
     match cli.command {
         None => {
+            let out = PathBuf::from("docs/figures");
+            prepare_figures_dir(&out)?;
             print_answers(None)?;
-            write_figures(&PathBuf::from("docs/figures"))
+            write_figures(&out)
         }
         Some(Command::Answers { question }) => print_answers(question.as_deref()),
-        Some(Command::Figures { out }) => write_figures(&out),
-        Some(Command::Template { seed }) => {
-            print!("{}", hw3::checker::template(seed).map_err(|e| UsageError(e.to_string()))?);
-            Ok(())
+        Some(Command::Figures { out }) => {
+            prepare_figures_dir(&out)?;
+            write_figures(&out)
         }
+        Some(Command::Template { seed }) => emit(&hw3::checker::template(seed).map_err(|e| UsageError(e.to_string()))?),
         Some(Command::Variant { question, seed }) => {
             let variant = hw3::checker::variant(&question, seed).map_err(|e| UsageError(e.to_string()))?;
             let key = hw3::checker::answers_key_for(&question, seed).map_err(|e| UsageError(e.to_string()))?;
-            println!("{}\n\nSolution, as an answers file:\n[meta]\nseed = {seed}\n{key}", variant.statement);
-            Ok(())
+            emit_line(&format!("{}\n\nSolution, as an answers file:\n[meta]\nseed = {seed}\n{key}", variant.statement))
         }
         Some(Command::Check { file, seed, format }) => {
-            let text = std::fs::read_to_string(&file)
-                .map_err(|e| UsageError(format!("cannot read {}: {e}", file.display())))?;
+            let text = limits::read_text_bounded(&file, limits::ANSWERS_FILE_BYTES).map_err(UsageError)?;
             let report = hw3::checker::check(&text, seed)
-                .map_err(|e| UsageError(format!("{}: {e}", file.display()).replace('\n', " ")))?;
+                .map_err(|e| UsageError(format!("{}: {e}", limits::quote(&file.display().to_string()))))?;
             match format {
-                FormatArg::Text => println!("{}", hw3::checker::report_text(&report)),
-                FormatArg::Json => println!("{}", serde_json::to_string_pretty(&report)?),
+                // A student's file may hold terminal escapes: the text report shows them escaped.
+                FormatArg::Text => emit_line(&limits::terminal_text(&hw3::checker::report_text(&report)))?,
+                FormatArg::Json => emit_line(&serde_json::to_string_pretty(&report)?)?,
                 FormatArg::Gradescope => {
-                    println!("{}", serde_json::to_string_pretty(&hw3::checker::report_gradescope(&report))?)
+                    emit_line(&serde_json::to_string_pretty(&hw3::checker::report_gradescope(&report))?)?
                 }
             }
             if report.all_correct() { Ok(()) } else { Err(SomeWrong.into()) }
@@ -266,8 +355,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         Some(Command::KdTrace { origin, dir, json }) => {
             let out =
                 hw3::q3_kd_traversal::kd_trace_command(&origin, &dir, json).map_err(|e| UsageError(e.to_string()))?;
-            println!("{out}");
-            Ok(())
+            emit_line(&out)
         }
         Some(Command::Sphere { origin, dir, center, radius, precision, method, json }) => {
             use hw3::q2_ray_sphere::catalogue::{Method, Precision};
@@ -283,52 +371,80 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             };
             let answer =
                 hw3::q2_ray_sphere::solve(&ray, &sphere, method, precision).map_err(|e| UsageError(e.to_string()))?;
-            if json {
-                println!("{}", serde_json::to_string(&answer)?);
-            } else {
-                println!("{answer:#?}");
-            }
-            Ok(())
+            if json { emit_line(&serde_json::to_string(&answer)?) } else { emit_line(&format!("{answer:#?}")) }
         }
-        Some(Command::Scenes) => {
-            print!("{}", hw3::render::command::scenes_text());
-            Ok(())
-        }
+        Some(Command::Scenes) => emit(&hw3::render::command::scenes_text()),
         Some(Command::Effects { scene, json }) => {
-            let text = hw3::render::command::effects_text(&scene, json).map_err(|e| UsageError(e.to_string()))?;
-            print!("{text}");
-            Ok(())
+            emit(&hw3::render::command::effects_text(&scene, json).map_err(|e| UsageError(e.to_string()))?)
         }
-        Some(Command::Render { scene, spp, size, out, effects }) => render_to_file(&scene, spp, &size, &out, &effects),
-        Some(Command::Irradiance(args)) => {
-            let normal = hw3::geometry::parse_vec3("--normal", &args.normal).map_err(UsageError)?;
-            let request = hw3::q4_light_probe::IrradianceRequest {
-                env: args.env,
-                normal,
-                method: args.method,
-                samples: args.samples,
-                seed: args.seed,
-                size: args.size,
-                json: args.json,
-            };
-            let out = hw3::q4_light_probe::irradiance_command(&request).map_err(|e| UsageError(e.to_string()))?;
-            println!("{out}");
-            Ok(())
+        Some(Command::Render { scene, spp, size, out, effects, allow_large }) => {
+            render_to_file(&scene, spp, &size, &out, &effects, allow_large)
         }
+        Some(Command::Irradiance(args)) => irradiance(args),
         Some(Command::EffectsTable { json }) => {
-            println!("{}", hw3::q5_effect_tables::effects_table_command(json).map_err(anyhow::Error::msg)?);
-            Ok(())
+            emit_line(&hw3::q5_effect_tables::effects_table_command(json).map_err(anyhow::Error::msg)?)
         }
     }
 }
 
-fn render_to_file(scene: &str, spp: u32, size: &str, out: &PathBuf, effects: &str) -> anyhow::Result<()> {
-    use hw3::render::command::{parse_size, render_scene};
-    let size = parse_size(size).map_err(UsageError)?;
+/// `hw3 irradiance`: every bound is checked, and a map file's header read, before a texel is made.
+fn irradiance(args: Q4IrradianceArgs) -> anyhow::Result<()> {
+    let large = args.allow_large;
+    let samples = limits::IRRADIANCE_SAMPLES.check("--samples", args.samples, large).map_err(UsageError)?;
+    let size = limits::PROBE_SIZE.check("--size", args.size, large).map_err(UsageError)?;
+    let analytic = args.env == "sky" || args.env.starts_with("constant:") || args.env.starts_with("linear:");
+    if !analytic {
+        limits::check_hdr_file(Path::new(&args.env), large).map_err(UsageError)?;
+    }
+    let normal = hw3::geometry::parse_vec3("--normal", &args.normal).map_err(UsageError)?;
+    let request = hw3::q4_light_probe::IrradianceRequest {
+        env: args.env,
+        normal,
+        method: args.method,
+        // Both fit: the limits are far below 2^32.
+        samples: usize::try_from(samples).map_err(|e| UsageError(e.to_string()))?,
+        seed: args.seed,
+        size: usize::try_from(size).map_err(|e| UsageError(e.to_string()))?,
+        json: args.json,
+    };
+    let out = hw3::q4_light_probe::irradiance_command(&request).map_err(|e| UsageError(e.to_string()))?;
+    emit_line(&out)
+}
+
+/// Checks `--out` of `hw3 render` before any work: a `.png` name, in a folder that exists and
+/// accepts files, and not a folder itself.
+fn check_render_out(out: &Path) -> Result<(), UsageError> {
+    let shown = || limits::quote(&out.display().to_string());
+    let is_png = out.extension().is_some_and(|e| e.eq_ignore_ascii_case("png"));
+    if !is_png {
+        return Err(UsageError(format!("--out: `{}` must end in .png (the renderer writes PNG only)", shown())));
+    }
+    if out.is_dir() {
+        return Err(UsageError(format!("--out: `{}` is a folder", shown())));
+    }
+    hw3::fsio::check_writable_dir(hw3::fsio::parent_dir(out)).map_err(|e| UsageError(format!("--out: {e}")))
+}
+
+fn render_to_file(
+    scene: &str,
+    spp: u32,
+    size: &str,
+    out: &Path,
+    effects: &str,
+    allow_large: bool,
+) -> anyhow::Result<()> {
+    use hw3::render::command::render_scene;
+    let size = limits::parse_size(size, hw3::render::MAX_SIDE).map_err(UsageError)?;
+    let samples = u64::from(size.0) * u64::from(size.1) * u64::from(spp);
+    limits::RENDER_SAMPLES
+        .check("camera samples (width × height × --spp)", samples, allow_large)
+        .map_err(UsageError)?;
     let mode = effects.parse().map_err(UsageError)?;
+    check_render_out(out)?;
     let output = render_scene(scene, spp, size, mode).map_err(|e| UsageError(e.to_string()))?;
-    std::fs::write(out, &output.png).with_context(|| format!("writing {}", out.display()))?;
-    eprintln!("{} → {}", output.summary, out.display());
+    hw3::fsio::write_atomic(out, &output.png)
+        .map_err(|e| OutputError(format!("writing {}: {}", out.display(), io_reason(&e))))?;
+    let _ = writeln!(std::io::stderr(), "{} → {}", output.summary, out.display());
     Ok(())
 }
 
@@ -341,21 +457,34 @@ fn print_answers(question: Option<&str>) -> anyhow::Result<()> {
         return Err(UsageError(format!("unknown question `{q}`; known: {}", known.join(", "))).into());
     }
     for answers in all.iter().filter(|a| question.is_none_or(|q| a.question == q)) {
-        println!("== {} — {} ==\n{}\n", answers.question.to_uppercase(), answers.title, answers.text);
+        emit(&format!("== {} — {} ==\n{}\n\n", answers.question.to_uppercase(), answers.title, answers.text))?;
     }
     Ok(())
 }
 
-fn write_figures(out: &PathBuf) -> anyhow::Result<()> {
-    let figures = hw3::all_figures().context("drawing figures")?;
-    std::fs::create_dir_all(out).with_context(|| format!("creating {}", out.display()))?;
+/// Checks (and creates) the figures folder before any figure is drawn: a path that is a file, or a
+/// folder that cannot be created or written, is bad input.
+fn prepare_figures_dir(out: &Path) -> Result<(), UsageError> {
+    let shown = || limits::quote(&out.display().to_string());
+    if out.exists() && !out.is_dir() {
+        return Err(UsageError(format!("--out: `{}` is a file, not a folder", shown())));
+    }
+    std::fs::create_dir_all(out)
+        .map_err(|e| UsageError(format!("--out: cannot create `{}`: {}", shown(), io_reason(&e))))?;
+    hw3::fsio::check_writable_dir(out).map_err(|e| UsageError(format!("--out: {e}")))
+}
+
+fn write_figures(out: &Path) -> anyhow::Result<()> {
+    let figures = hw3::all_figures().map_err(|e| anyhow::anyhow!("drawing figures: {e:#}"))?;
     for figure in &figures {
         let path = out.join(&figure.file_name);
         let unchanged = std::fs::read(&path).is_ok_and(|old| old == figure.bytes);
         if !unchanged {
-            std::fs::write(&path, &figure.bytes).with_context(|| format!("writing {}", path.display()))?;
+            let written = std::fs::create_dir_all(hw3::fsio::parent_dir(&path))
+                .and_then(|()| hw3::fsio::write_atomic(&path, &figure.bytes));
+            written.map_err(|e| OutputError(format!("writing {}: {}", path.display(), io_reason(&e))))?;
         }
     }
-    eprintln!("{} figures in {}", figures.len(), out.display());
+    let _ = writeln!(std::io::stderr(), "{} figures in {}", figures.len(), out.display());
     Ok(())
 }

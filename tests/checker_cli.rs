@@ -85,5 +85,9 @@ fn the_seeds_own_answers_graded() {
         |key: &str| text.lines().find(|l| l.contains(key)).unwrap_or_default().split_whitespace().collect::<Vec<_>>();
     assert_eq!(line("q3d.leaves")[2..], ["1.50/3", "partial"], "{text}");
     assert_eq!(line("q3e.leaves")[2..], ["2.00/2", "correct"], "{text}");
+    // The chapter quotes this score; it must be the one the checker prints.
+    let score = text.lines().last().unwrap().trim_start_matches("score ").split(" over").next().unwrap();
+    let chapter = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/checker.md")).unwrap();
+    assert!(chapter.contains(&format!("**{score}**")), "docs/checker.md should quote the seed's score {score}");
     common::insta_settings().bind(|| insta::assert_snapshot!("checker_seed_graded", text));
 }

@@ -1,6 +1,6 @@
 //! Q2 variants: a ray and a sphere with small integer coordinates, and the parts a–c.
 
-use super::{Expected, MalRule, Part, Variant};
+use super::key::{Expected, MalRule, Part, Variant};
 use crate::geometry::sphere::{closest_approach_t, first_hit_stable, roots_stable, surface_hit};
 use crate::geometry::{Ray, Sphere};
 use crate::q2_ray_sphere::worked_example;

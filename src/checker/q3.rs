@@ -1,6 +1,6 @@
 //! Q3 variants: rays through the homework's kd-tree, graded leaf by leaf (path and t-interval).
 
-use super::{ExpectedLeaf, Part, Variant};
+use super::key::{Expected, ExpectedLeaf, Part, Variant};
 use crate::q3_kd_traversal::seed::cases;
 use crate::q3_kd_traversal::{Node2, Ray2, Step, traverse};
 use crate::rng;
@@ -74,7 +74,7 @@ pub(super) fn variant(seed: u64) -> Variant {
             key,
             prompt: "leaves reached, in order, with their t-intervals",
             points,
-            expected: super::Expected::Trace { leaves, planes },
+            expected: Expected::Trace { leaves, planes },
             mal_rules: vec![],
             explained_in: NOTES,
         }

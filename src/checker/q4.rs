@@ -1,6 +1,6 @@
 //! Q4 variants: irradiance from an analytic sky with a closed form, and the mirror ball's blind spot.
 
-use super::{Expected, MalRule, Part, Variant};
+use super::key::{Expected, MalRule, Part, Variant};
 use crate::q4_light_probe::blind_spot;
 use crate::q4_light_probe::maps::{AnalyticMap, Term};
 use crate::rng;
@@ -26,6 +26,9 @@ pub(super) fn variant(seed: u64) -> Variant {
         let mut pick = |n: u64| g.next_u64() % n;
         let a = 1.0 + pick(4) as f64;
         let b = [-1.0, 1.0, 2.0][pick(3) as usize];
+        // Radiance is never negative: with A ≥ |B| the sky is ≥ 0 straight down too, so the
+        // closed form (which integrates L as given) is the irradiance of a physical sky.
+        let a = a.max(f64::abs(b));
         let tilt = [0.0, 30.0, 45.0, 60.0, 90.0, 120.0][pick(6) as usize];
         let d = [2.0, 3.0, 4.0, 5.0, 10.0][pick(5) as usize];
         (a, b, tilt, d)
@@ -117,5 +120,43 @@ mod tests {
         assert!((value("q4a.irradiance") - 4.0 * PI / 3.0).abs() < 1e-12);
         assert!((value("q4b.blind_half_angle_deg") - 19.471_220_634_490_69).abs() < 1e-9);
         assert!((value("q4b.lost_fraction") - 1.0 / 9.0).abs() < 1e-12);
+    }
+
+    /// E(n) by midpoint quadrature over the sphere of the sky clamped at 0, written out here
+    /// without the crate's maps: if a variant's sky went negative anywhere, its closed-form key
+    /// would differ from this.
+    fn clamped_quadrature(a: f64, b: f64, normal: DVec3) -> f64 {
+        let (n_theta, n_phi) = (400, 800);
+        let (d_theta, d_phi) = (PI / f64::from(n_theta), 2.0 * PI / f64::from(n_phi));
+        let mut sum = 0.0;
+        for i in 0..n_theta {
+            let theta = (f64::from(i) + 0.5) * d_theta;
+            for j in 0..n_phi {
+                let phi = (f64::from(j) + 0.5) * d_phi;
+                let w = DVec3::new(theta.sin() * phi.cos(), theta.sin() * phi.sin(), theta.cos());
+                sum += (a + b * w.z).max(0.0) * normal.dot(w).max(0.0) * theta.sin() * d_theta * d_phi;
+            }
+        }
+        sum
+    }
+
+    #[test]
+    fn every_variant_sky_is_physical_and_its_key_matches_the_clamped_integral() {
+        for seed in 0..60 {
+            let v = variant(seed);
+            // The statement names the sky and the tilt; read them back rather than re-drawing.
+            let words: Vec<&str> = v.statement.split_whitespace().collect();
+            let at = words.iter().position(|w| *w == "L(w)").unwrap();
+            let a: f64 = words[at + 2].parse().unwrap();
+            let sign = if words[at + 3] == "-" { -1.0 } else { 1.0 };
+            let b = sign * words[at + 4].parse::<f64>().unwrap();
+            assert!(a >= b.abs(), "seed {seed}: L = {a} + {b} w_z goes negative");
+            let tilt_at = words.iter().position(|w| *w == "tilted").unwrap();
+            let tilt = words[tilt_at + 1].parse::<f64>().unwrap().to_radians();
+            let normal = DVec3::new(tilt.sin(), 0.0, tilt.cos());
+            let Expected::Number { value, .. } = v.parts[0].expected else { unreachable!() };
+            let brute = clamped_quadrature(a, b, normal);
+            assert!((value - brute).abs() < 1e-4 * value, "seed {seed}: key {value}, clamped integral {brute}");
+        }
     }
 }

@@ -1,7 +1,7 @@
 //! Q5 tables: which effects each method captures, graded cell by cell against the grammar's
 //! verdicts (area light, the homework's setting). Q5 has one variant: the seed is ignored.
 
-use super::{Expected, MalRule, Part, Variant};
+use super::key::{Expected, MalRule, Part, Variant};
 use crate::q5_effect_tables::{LightKind, Verdict, grammar_table};
 
 const NOTES: &str = "hw3/q5_effect_tables/index.html";

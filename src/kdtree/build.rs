@@ -16,7 +16,7 @@
 //! Spheres whose box touches or crosses the plane go to both children (closed test on both
 //! sides), so every cell whose closure contains a sphere's point lists that sphere.
 
-use super::tree::{Aabb, MAX_PACKED, Node};
+use super::node::{Aabb, MAX_PACKED, Node};
 use crate::geometry::{InputError, Sphere};
 
 /// Constants of the SAH cost model and the binning.

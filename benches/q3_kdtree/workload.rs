@@ -1,5 +1,5 @@
-//! The benchmark workload of the reference note `kdtree-perf.md` §4–5, reproduced bit for bit so
-//! that its checksums (hits, sum of t) can be compared: random spheres in the unit cube, a
+//! The Q3 benchmark's workload, reproduced bit for bit from the scratch measurement it was first run
+//! in, so that that run's checksums (hits, sum of t) can be compared: random spheres in the unit cube, a
 //! 512×512 pinhole camera, and incoherent random rays.
 //!
 //! Every draw is made in `f32` exactly as the note specifies (SplitMix64; a draw is the top 24
@@ -7,8 +7,9 @@
 //! the crate's `f64` kd-tree. The note's checksums were computed in `f32`; an `f64` tree lands
 //! within a few hits and about 2·10⁻⁵ relative on the sum of t, not bit-identically (grazing rays).
 
-use crate::geometry::{Ray, Sphere};
 use glam::DVec3;
+use hw3::geometry::{Ray, Sphere};
+use hw3::kdtree::{KdTree, brute_force_closest_hit};
 
 /// The ray parameter floor the note uses for every query.
 pub const T_MIN: f64 = 1e-4;
@@ -22,12 +23,6 @@ pub struct SplitMix64(pub u64);
 
 impl SplitMix64 {
     /// The next 64 random bits.
-    ///
-    /// # Examples
-    /// ```
-    /// let mut rng = hw3::kdtree::workload::SplitMix64(0);
-    /// assert_eq!(rng.next_u64(), 0xE220_A839_7B1D_CDAF);
-    /// ```
     pub fn next_u64(&mut self) -> u64 {
         self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
         let mut z = self.0;
@@ -37,12 +32,6 @@ impl SplitMix64 {
     }
 
     /// A uniform `f32` in `[0, 1)`: the top 24 bits over 2²⁴ (exact in `f32`).
-    ///
-    /// # Examples
-    /// ```
-    /// let u = hw3::kdtree::workload::SplitMix64(1).next_f32();
-    /// assert!((0.0..1.0).contains(&u));
-    /// ```
     pub fn next_f32(&mut self) -> f32 {
         (self.next_u64() >> 40) as f32 * (1.0 / 16_777_216.0)
     }
@@ -58,14 +47,6 @@ pub enum Density {
 }
 
 /// The note's scene: N spheres, centres uniform in `[0, 1]³`, radius `r₀ (0.5 + u)`.
-///
-/// # Examples
-/// ```
-/// use hw3::kdtree::workload::{Density, scene};
-/// let spheres = scene(100, Density::FixedMeanFreePath);
-/// assert_eq!(spheres.len(), 100);
-/// assert!(spheres.iter().all(|s| s.radius > 0.0));
-/// ```
 #[must_use]
 pub fn scene(n: usize, density: Density) -> Vec<Sphere<f64>> {
     let pi = std::f32::consts::PI;
@@ -99,13 +80,6 @@ fn ray(origin: [f32; 3], dir: [f32; 3]) -> Ray<f64> {
 
 /// The note's camera: eye (0.5, 0.5, −1) looking along +z, tan(half fov) = 0.5, one ray through
 /// each pixel centre of a `width`×`height` image, row by row.
-///
-/// # Examples
-/// ```
-/// let rays = hw3::kdtree::workload::camera_rays(4, 2);
-/// assert_eq!(rays.len(), 8);
-/// assert_eq!(rays[0].origin, glam::DVec3::new(0.5, 0.5, -1.0));
-/// ```
 #[must_use]
 pub fn camera_rays(width: usize, height: usize) -> Vec<Ray<f64>> {
     let mut rays = Vec::with_capacity(width * height);
@@ -122,12 +96,6 @@ pub fn camera_rays(width: usize, height: usize) -> Vec<Ray<f64>> {
 /// The note's incoherent rays: origin uniform in the unit cube, direction uniform on the sphere
 /// (z uniform in [−1, 1], azimuth uniform), `count` rays from seed `seed` (the note uses
 /// `0xBEEF`).
-///
-/// # Examples
-/// ```
-/// let rays = hw3::kdtree::workload::random_rays(3, 0xBEEF);
-/// assert!(rays.iter().all(|r| (r.dir.length() - 1.0).abs() < 1e-6));
-/// ```
 #[must_use]
 pub fn random_rays(count: usize, seed: u64) -> Vec<Ray<f64>> {
     let mut rng = SplitMix64(seed);
@@ -143,62 +111,50 @@ pub fn random_rays(count: usize, seed: u64) -> Vec<Ray<f64>> {
 }
 
 /// The note's checksum of a batch of answers: number of hits and the sum of their t.
-///
-/// # Examples
-/// ```
-/// let sum = hw3::kdtree::workload::checksum(&[Some((0, 1.5)), None, Some((3, 2.0))]);
-/// assert_eq!(sum, (2, 3.5));
-/// ```
 #[must_use]
 pub fn checksum(hits: &[Option<(usize, f64)>]) -> (usize, f64) {
     hits.iter().flatten().fold((0, 0.0), |(n, sum), &(_, t)| (n + 1, sum + t))
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::kdtree::KdTree;
+/// The workload's own checks, run by the benchmark before it measures (also under
+/// `cargo test --benches`, a harness-free target where `#[test]` functions would not run):
+///
+/// - SplitMix64's published first output for seed 0 (the reference implementation's test value);
+/// - ray #839 669 of the random set has direction exactly (−0, −0, −1), on which obvhs 0.4.0's
+///   CWBVH misses its hit in some scenes; the kd-tree must agree with brute force on it for both
+///   densities at N = 10², 10³, 10⁴;
+/// - the checksums at N = 100 (fixed k) of the first run (`f32`): camera 184 983 hits,
+///   Σt = 223 855.88; random 727 694 hits, Σt = 96 248.64. The `f64` tree must land within 3 hits
+///   and 2·10⁻⁵ relative.
+///
+/// # Panics
+/// On the first check that fails.
+pub fn self_checks() {
+    assert_eq!(SplitMix64(0).next_u64(), 0xE220_A839_7B1D_CDAF);
 
-    /// SplitMix64's published first output for seed 0 (the reference implementation's test value).
-    #[test]
-    fn splitmix_matches_the_reference_sequence() {
-        assert_eq!(SplitMix64(0).next_u64(), 0xE220_A839_7B1D_CDAF);
-    }
-
-    /// Ray #839 669 of the note's random set has direction exactly (−0, −0, −1); obvhs 0.4.0's
-    /// CWBVH misses its hit in some scenes (kdtree-perf §0, finding 1). The tree must agree with
-    /// brute force on it in every configuration the note ran that is affordable here.
-    #[test]
-    fn the_notes_negative_zero_ray_hits_like_brute_force() {
-        let ray = random_rays(839_670, 0xBEEF)[839_669];
-        assert_eq!(ray.dir, DVec3::new(-0.0, -0.0, -1.0));
-        assert!(ray.dir.x.is_sign_negative() && ray.dir.y.is_sign_negative());
-        let mut hits = 0;
-        for density in [Density::FixedMeanFreePath, Density::FixedVolumeFraction] {
-            for n in [100, 1_000, 10_000] {
-                let spheres = scene(n, density);
-                let tree = KdTree::build(&spheres).unwrap();
-                let expected = crate::kdtree::brute_force_closest_hit(&spheres, &ray, T_MIN, f64::INFINITY);
-                assert_eq!(tree.closest_hit(&ray, T_MIN, f64::INFINITY), expected, "N = {n}");
-                hits += usize::from(expected.is_some());
-            }
+    let ray = random_rays(839_670, 0xBEEF)[839_669];
+    assert_eq!(ray.dir, DVec3::new(-0.0, -0.0, -1.0));
+    assert!(ray.dir.x.is_sign_negative() && ray.dir.y.is_sign_negative());
+    let mut hits = 0;
+    for density in [Density::FixedMeanFreePath, Density::FixedVolumeFraction] {
+        for n in [100, 1_000, 10_000] {
+            let spheres = scene(n, density);
+            let tree = KdTree::build(&spheres).unwrap();
+            let expected = brute_force_closest_hit(&spheres, &ray, T_MIN, f64::INFINITY);
+            assert_eq!(tree.closest_hit(&ray, T_MIN, f64::INFINITY), expected, "N = {n}");
+            hits += usize::from(expected.is_some());
         }
-        assert!(hits > 0, "the ray hits something in at least one scene");
     }
+    assert!(hits > 0, "the ray hits something in at least one scene");
 
-    /// The note's checksums for N = 100 (fixed k): camera 184 983 hits, Σt = 223 855.88; random
-    /// 727 694 hits, Σt = 96 248.64. The f64 tree must land within 3 hits and 2·10⁻⁵ relative.
-    #[test]
-    fn kd_tree_reproduces_the_notes_checksums_at_n_100() {
-        let spheres = scene(100, Density::FixedMeanFreePath);
-        let tree = KdTree::build(&spheres).unwrap();
-        for (rays, (hits, sum_t)) in
-            [(camera_rays(512, 512), (184_983, 223_855.88)), (random_rays(1_000_000, 0xBEEF), (727_694, 96_248.64))]
-        {
-            let answers: Vec<_> = rays.iter().map(|r| tree.closest_hit(r, T_MIN, f64::INFINITY)).collect();
-            let (n, sum) = checksum(&answers);
-            assert!(n.abs_diff(hits) <= 3, "hits {n} vs {hits}");
-            assert!(((sum - sum_t) / sum_t).abs() < 2e-5, "sum t {sum} vs {sum_t}");
-        }
+    let spheres = scene(100, Density::FixedMeanFreePath);
+    let tree = KdTree::build(&spheres).unwrap();
+    for (rays, (hits, sum_t)) in
+        [(camera_rays(512, 512), (184_983, 223_855.88)), (random_rays(1_000_000, 0xBEEF), (727_694, 96_248.64))]
+    {
+        let answers: Vec<_> = rays.iter().map(|r| tree.closest_hit(r, T_MIN, f64::INFINITY)).collect();
+        let (n, sum) = checksum(&answers);
+        assert!(n.abs_diff(hits) <= 3, "hits {n} vs {hits}");
+        assert!(((sum - sum_t) / sum_t).abs() < 2e-5, "sum t {sum} vs {sum_t}");
     }
 }

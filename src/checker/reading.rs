@@ -1,0 +1,115 @@
+//! Reading an answers file: the TOML values of each part, shaped like the part's key.
+
+use super::error::CheckError;
+use super::key::{Expected, ExpectedLeaf};
+
+pub(super) fn read_seed(table: &toml::Table) -> Result<u64, CheckError> {
+    match table.get("meta").and_then(|m| m.get("seed")) {
+        None => Ok(0),
+        Some(toml::Value::Integer(i)) if *i >= 0 => Ok(*i as u64),
+        Some(other) => Err(CheckError::BadSeed(other.to_string())),
+    }
+}
+
+pub(super) fn lookup<'a>(table: &'a toml::Table, key: &str) -> Option<&'a toml::Value> {
+    let (section, name) = key.split_once('.')?;
+    table.get(section)?.get(name)
+}
+
+/// An answer read from the file, shaped like the part's expected value.
+#[derive(Debug, Clone, PartialEq)]
+pub(super) enum Given {
+    Number(f64),
+    Vector([f64; 3]),
+    Trace(Vec<ExpectedLeaf>),
+    Choice { answer: String, why: Option<String> },
+}
+
+fn read_choice(key: &str, value: &toml::Value) -> Result<Given, CheckError> {
+    let bad = |problem: String| CheckError::BadValue { key: key.to_string(), problem };
+    let text = |v: &toml::Value| v.as_str().map(|s| s.trim().to_lowercase());
+    match value {
+        toml::Value::String(_) => Ok(Given::Choice { answer: text(value).unwrap_or_default(), why: None }),
+        toml::Value::Table(table) => {
+            let answer =
+                table.get("answer").and_then(text).ok_or_else(|| bad("needs answer = \"yes\" or \"no\"".into()))?;
+            let why = match table.get("why") {
+                None => None,
+                Some(toml::Value::String(why)) => Some(why.clone()),
+                Some(other) => return Err(bad(format!("`why` must be a string, got {}", other.type_str()))),
+            };
+            Ok(Given::Choice { answer, why })
+        }
+        other => Err(bad(format!("expected \"yes\", \"no\" or \"impractical\", got {} `{other}`", other.type_str()))),
+    }
+}
+
+/// A t bound: a number, or the string `"inf"`.
+fn bound(key: &str, value: Option<&toml::Value>) -> Result<f64, CheckError> {
+    match value {
+        Some(toml::Value::String(s)) if s == "inf" => Ok(f64::INFINITY),
+        Some(other) => number(key, other),
+        None => Err(CheckError::BadValue { key: key.to_string(), problem: "each leaf needs tmin and tmax".into() }),
+    }
+}
+
+fn read_trace(key: &str, value: &toml::Value) -> Result<Vec<ExpectedLeaf>, CheckError> {
+    let bad = |problem: String| CheckError::BadValue { key: key.to_string(), problem };
+    let toml::Value::Array(items) = value else {
+        return Err(bad(format!("expected an array of leaves, got {} `{value}`", value.type_str())));
+    };
+    items
+        .iter()
+        .map(|item| {
+            let leaf = item.as_table().ok_or_else(|| bad("each leaf is a table { path, tmin, tmax }".into()))?;
+            let path = leaf
+                .get("path")
+                .and_then(toml::Value::as_array)
+                .ok_or_else(|| bad("each leaf needs path = [\"x>=3\", ...]".into()))?
+                .iter()
+                .map(|b| {
+                    b.as_str().map(str::to_owned).ok_or_else(|| bad("path entries are strings like \"y<1\"".into()))
+                })
+                .collect::<Result<Vec<_>, _>>()?;
+            Ok(ExpectedLeaf { path, t_min: bound(key, leaf.get("tmin"))?, t_max: bound(key, leaf.get("tmax"))? })
+        })
+        .collect()
+}
+
+fn number(key: &str, value: &toml::Value) -> Result<f64, CheckError> {
+    let x = match value {
+        toml::Value::Float(x) => *x,
+        toml::Value::Integer(i) => *i as f64,
+        other => {
+            let problem = format!("expected a number, got {} `{other}`", other.type_str());
+            return Err(CheckError::BadValue { key: key.to_string(), problem });
+        }
+    };
+    if x.is_finite() {
+        Ok(x)
+    } else {
+        Err(CheckError::BadValue { key: key.to_string(), problem: format!("must be finite, got {x}") })
+    }
+}
+
+pub(super) fn read_value(key: &str, value: &toml::Value, expected: &Expected) -> Result<Given, CheckError> {
+    match expected {
+        Expected::Number { .. } => number(key, value).map(Given::Number),
+        Expected::Trace { .. } => read_trace(key, value).map(Given::Trace),
+        Expected::Choice { .. } => read_choice(key, value),
+        Expected::Vector { .. } | Expected::Direction { .. } | Expected::Parallel { .. } => {
+            let bad = |problem: String| CheckError::BadValue { key: key.to_string(), problem };
+            let toml::Value::Array(items) = value else {
+                return Err(bad(format!("expected an array of 3 numbers, got {} `{value}`", value.type_str())));
+            };
+            if items.len() != 3 {
+                return Err(bad(format!("expected 3 numbers, got {}", items.len())));
+            }
+            let mut out = [0.0; 3];
+            for (slot, item) in out.iter_mut().zip(items) {
+                *slot = number(key, item)?;
+            }
+            Ok(Given::Vector(out))
+        }
+    }
+}

@@ -1,0 +1,114 @@
+//! Answers files written by the checker: the blank template and the key itself.
+
+use super::error::CheckError;
+use super::key::Expected;
+use super::variants::{QUESTIONS, variant};
+use std::fmt::Write as _;
+
+/// A blank answers file for `seed`: every question's statement as comments, every key present
+/// but commented out, with its tolerance.
+///
+/// # Examples
+/// ```
+/// let blank = hw3::checker::template(0).unwrap();
+/// assert!(blank.contains("# t = "));
+/// let report = hw3::checker::check(&blank, None).unwrap();
+/// assert_eq!(report.score, 0.0);
+/// ```
+///
+/// # Errors
+/// Never for the built-in questions; the `Result` covers future question ids.
+pub fn template(seed: u64) -> Result<String, CheckError> {
+    let mut out = format!("# hw3 answers file. Grade it with: hw3 check FILE\n[meta]\nseed = {seed}\n");
+    for question in QUESTIONS {
+        let variant = variant(question, seed)?;
+        out.push('\n');
+        for line in variant.statement.lines() {
+            let _ = writeln!(out, "# {line}");
+        }
+        let mut section = "";
+        for part in &variant.parts {
+            let (table, name) = part.key.split_once('.').unwrap_or((part.key, ""));
+            if table != section {
+                let _ = writeln!(out, "\n[{table}]");
+                section = table;
+            }
+            let shape = match part.expected {
+                Expected::Number { rtol, .. } => format!("a number; relative tolerance {rtol:.0e}"),
+                Expected::Vector { .. } => "[x, y, z]".to_string(),
+                Expected::Direction { angle_tol, .. } | Expected::Parallel { angle_tol, .. } => {
+                    format!("[x, y, z], unit length, within {angle_tol:.0e} rad")
+                }
+                Expected::Trace { .. } => "[{ path = [...], tmin = N, tmax = N or \"inf\" }, ...]".to_string(),
+                Expected::Choice { .. } => {
+                    "\"yes\", \"no\" or \"impractical\"; or { answer = ..., why = \"...\" }".to_string()
+                }
+            };
+            let _ = writeln!(out, "# {} ({shape}, {} points)\n# {name} = ", part.prompt, part.points);
+        }
+    }
+    Ok(out)
+}
+
+/// The key itself as an answers file (what a perfect student would submit).
+///
+/// # Errors
+/// Never for the built-in questions.
+///
+/// # Examples
+/// ```
+/// assert!(hw3::checker::answers_key(3).unwrap().contains("seed = 3"));
+/// ```
+pub fn answers_key(seed: u64) -> Result<String, CheckError> {
+    let mut out = format!("[meta]\nseed = {seed}\n");
+    for question in QUESTIONS {
+        out.push_str(&answers_key_for(question, seed)?);
+    }
+    Ok(out)
+}
+
+/// The key's tables for one question (no `[meta]`).
+///
+/// # Errors
+/// [`CheckError::UnknownQuestion`] for an unknown question id.
+///
+/// # Examples
+/// ```
+/// assert!(hw3::checker::answers_key_for("q3", 0).unwrap().contains("[q3d]"));
+/// ```
+pub fn answers_key_for(question: &str, seed: u64) -> Result<String, CheckError> {
+    let mut out = String::new();
+    let mut section = "";
+    for part in variant(question, seed)?.parts {
+        let (table, name) = part.key.split_once('.').unwrap_or((part.key, ""));
+        if table != section {
+            let _ = writeln!(out, "\n[{table}]");
+            section = table;
+        }
+        let value = match part.expected {
+            Expected::Number { value, .. } => format!("{value:?}"),
+            Expected::Vector { value, .. } | Expected::Direction { value, .. } | Expected::Parallel { value, .. } => {
+                format!("[{:?}, {:?}, {:?}]", value[0], value[1], value[2])
+            }
+            Expected::Choice { value } => format!("{value:?}"),
+            Expected::Trace { leaves, .. } => {
+                let bound = |t: f64| if t.is_infinite() { "\"inf\"".to_string() } else { format!("{t:?}") };
+                let rows: Vec<String> = leaves
+                    .iter()
+                    .map(|l| {
+                        let path: Vec<String> = l.path.iter().map(|p| format!("{p:?}")).collect();
+                        format!(
+                            "  {{ path = [{}], tmin = {}, tmax = {} }},",
+                            path.join(", "),
+                            bound(l.t_min),
+                            bound(l.t_max)
+                        )
+                    })
+                    .collect();
+                format!("[\n{}\n]", rows.join("\n"))
+            }
+        };
+        let _ = writeln!(out, "{name} = {value}");
+    }
+    Ok(out)
+}
