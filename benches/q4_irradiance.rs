@@ -7,16 +7,16 @@
 
 use divan::{Bencher, black_box};
 use glam::DVec3;
+use hw3::envmap::{Probe, ProbeFormat, horizontal_camera};
+use hw3::q4_light_probe::fibonacci_normals;
 use hw3::q4_light_probe::irradiance::{Irradiance, Method, Sh9};
 use hw3::q4_light_probe::maps::AnalyticMap;
 use hw3::q4_light_probe::study::{self, Config};
-use hw3::q4_light_probe::{Probe, ProbeFormat, fibonacci_normals, horizontal_camera};
 use std::fmt::Write as _;
 use std::time::Instant;
 
 fn sun_probe(size: usize) -> Probe {
-    Probe::from_map(&AnalyticMap::sun(), ProbeFormat::MirrorBall, size, horizontal_camera())
-        .expect("valid analytic map")
+    AnalyticMap::sun().rasterise(ProbeFormat::MirrorBall, size, horizontal_camera()).expect("valid analytic map")
 }
 
 fn normal() -> DVec3 {

@@ -8,6 +8,7 @@
 pub mod answers;
 pub mod cli;
 pub mod data;
+pub mod envmap;
 pub mod fsio;
 pub mod geometry;
 pub mod kdtree;
@@ -24,6 +25,7 @@ pub mod q4_light_probe;
 pub mod q5_effect_tables;
 
 pub mod checker;
+pub mod notes;
 
 pub use answers::Answers;
 

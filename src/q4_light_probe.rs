@@ -2,26 +2,35 @@
 
 pub mod blind_spot;
 mod figures;
-pub mod format;
 pub mod irradiance;
 pub mod maps;
-pub mod probe;
+mod normals;
 pub mod study;
 #[cfg(test)]
 mod tests;
 
 pub use figures::figures;
-pub use format::ProbeFormat;
 pub use irradiance::{Irradiance, Method, Sh9};
-pub use probe::{Probe, ProbeError, Texel, horizontal_camera};
-pub use study::fibonacci_normals;
+pub use normals::fibonacci_normals;
 
 use crate::Answers;
-use glam::DVec3;
+use crate::envmap::{Probe, ProbeError, ProbeFormat, horizontal_camera};
+use glam::{DVec2, DVec3};
 use maps::AnalyticMap;
 use std::fmt::Write as _;
 
 /// The `hw3 irradiance` request, as parsed by the CLI.
+///
+/// # Examples
+/// ```
+/// use hw3::q4_light_probe::{irradiance_command, IrradianceRequest};
+/// // What `hw3 irradiance --env sky --normal 0,0,1 --method weighted --size 32` asks for.
+/// let request = IrradianceRequest {
+///     env: "sky".into(), normal: glam::DVec3::Z, method: "weighted".into(),
+///     samples: 256, seed: 0, size: 32, json: false,
+/// };
+/// assert!(irradiance_command(&request).unwrap().starts_with("E(n) = 3.1"));
+/// ```
 #[derive(Debug, Clone, PartialEq)]
 pub struct IrradianceRequest {
     /// `constant:L`, `sky`, `linear:A,B` or a path to a lat-long `.hdr` file.
@@ -81,7 +90,7 @@ pub fn probe_from_spec(spec: &str, size: usize) -> Result<Probe, ProbeError> {
     } else {
         return Probe::read_lat_long(spec);
     };
-    Probe::from_map(&map, ProbeFormat::MirrorBall, size, horizontal_camera())
+    map.rasterise(ProbeFormat::MirrorBall, size, horizontal_camera())
 }
 
 /// Runs `hw3 irradiance`: the text (or JSON) it prints.
@@ -120,12 +129,34 @@ pub fn irradiance_command(request: &IrradianceRequest) -> Result<String, ProbeEr
     }
 }
 
-/// The unweighted sum's error on a constant map, in percent of `πL`, mean and max over 64
-/// normals, for a format at 128 texels across.
+/// Texels across the probes of the unweighted-sum bias table.
+const BIAS_SIZE: usize = 128;
+/// Normals the bias table averages over.
+const BIAS_NORMALS: usize = 64;
+/// The camera of the answers' camera-cone line: its radius and distance in ball radii (the text
+/// calls the radius `R`, so it must stay 1: pinned in the tests).
+const CAMERA_RADIUS: f64 = 1.0;
+const CAMERA_DISTANCE: f64 = 10.0;
+/// Pixels across the ball whose outermost pixel ring the answers measure.
+const RIM_BALL_SIZE: usize = 256;
+/// Texels across the ball of the SH9-near-a-sun line.
+const SUN_BALL_SIZE: usize = 64;
+
+/// The unweighted sum's error on a constant map, in percent of `πL`, mean and max over
+/// [`BIAS_NORMALS`] normals, for a format at [`BIAS_SIZE`] texels across.
 fn unweighted_bias(format: ProbeFormat) -> study::ErrorSummary {
     let map = AnalyticMap::constant(1.0);
-    let probe = Probe::from_map(&map, format, 128, horizontal_camera()).expect("valid analytic map");
-    study::analytic_error(&map, &Irradiance::new(&probe), Method::Unweighted, 1, &[0], &fibonacci_normals(64))
+    let probe = map.rasterise(format, BIAS_SIZE, horizontal_camera()).expect("valid analytic map");
+    let normals = fibonacci_normals(BIAS_NORMALS);
+    study::analytic_error(&map, &Irradiance::new(&probe), Method::Unweighted, 1, &[0], &normals)
+}
+
+/// The angle, in degrees, that the outermost pixel ring of an orthographic mirror ball `pixels`
+/// across spans on the sphere: from `θ(1 − 2/pixels)` to the rim's `θ = 180°`.
+fn rim_ring_degrees(pixels: usize) -> f64 {
+    let inner = DVec2::new(1.0 - 2.0 / pixels as f64, 0.0);
+    let direction = ProbeFormat::MirrorBall.image_to_direction(inner).expect("inside the disk");
+    180.0 - direction.z.acos().to_degrees()
 }
 
 /// Q4's answers, computed.
@@ -147,7 +178,10 @@ pub fn answers() -> Answers {
         "Diffuse light from a mirrored-ball probe: E(n) = Σ_t L_t max(0, n·ω_t) Δω_t, and L_o = (K_d/π) E \
          with K_d the albedo. The seed's Σ K_d L (n·l) omits Δω_t: right only if every texel subtends the same solid angle."
     );
-    let _ = writeln!(text, "Unweighted sum on a constant map (error % of πL, mean / max over 64 normals, 128 px):");
+    let _ = writeln!(
+        text,
+        "Unweighted sum on a constant map (error % of πL, mean / max over {BIAS_NORMALS} normals, {BIAS_SIZE} px):"
+    );
     for format in [
         ProbeFormat::MirrorBall,
         ProbeFormat::AngularMap,
@@ -159,7 +193,8 @@ pub fn answers() -> Answers {
     }
     let _ = writeln!(
         text,
-        "The orthographic ball is equal-area (dω = 4 dA), so the seed's sum is right there and only there."
+        "The orthographic ball is equal-area (dω = {} dA), so the seed's sum is right there and only there.",
+        ProbeFormat::MirrorBall.jacobian(DVec2::ZERO)
     );
     let _ = writeln!(
         text,
@@ -175,10 +210,10 @@ pub fn answers() -> Answers {
             100.0 * blind_spot::lost_fraction(d, 0.0).unwrap_or(f64::NAN)
         );
     }
-    let camera_cone = blind_spot::camera_half_angle(1.0, 10.0).unwrap_or(f64::NAN);
+    let camera_cone = blind_spot::camera_half_angle(CAMERA_RADIUS, CAMERA_DISTANCE).unwrap_or(f64::NAN);
     let _ = writeln!(
         text,
-        "  The camera: one as wide as the ball (r_c = R) at D = 10R hides a {:.2}° cone around the direction back to it, \
+        "  The camera: one as wide as the ball (r_c = R) at D = {CAMERA_DISTANCE}R hides a {:.2}° cone around the direction back to it, \
          {:.2} % of a uniform map's E at n = toward the camera; its reflection replaces that light.",
         camera_cone.to_degrees(),
         100.0 * maps::cap_irradiance_per_radiance(0.0, camera_cone) / std::f64::consts::PI
@@ -186,15 +221,23 @@ pub fn answers() -> Answers {
     let _ = writeln!(
         text,
         "  It omits: the camera's reflection is not missing light but wrong light (it replaces the scene behind the camera); \
-         the rim is smeared (the last pixel ring of a 256 px ball spans ~14° of the sphere); the ball's reflectance < 1."
+         the rim is smeared (the last pixel ring of a {RIM_BALL_SIZE} px ball spans ~{:.0}° of the sphere); the ball's reflectance < 1.",
+        rim_ring_degrees(RIM_BALL_SIZE)
     );
     let map = AnalyticMap::sun();
-    let probe = Probe::from_map(&map, ProbeFormat::MirrorBall, 64, horizontal_camera()).expect("valid map");
+    let probe = map.rasterise(ProbeFormat::MirrorBall, SUN_BALL_SIZE, horizontal_camera()).expect("valid map");
     let prepared = Irradiance::new(&probe);
-    let terminator = DVec3::new(-(30f64.to_radians().sin()), 0.0, 30f64.to_radians().cos());
+    // The normal 90° from the sun, in the plane of the sun and the zenith.
+    let sun = maps::sun_direction();
+    let terminator = DVec3::new(-sun.z, 0.0, sun.x);
+    let sun_half_angle = map.terms.iter().find_map(|t| match *t {
+        maps::Term::Cap { half_angle, .. } => Some(half_angle),
+        _ => None,
+    });
     let _ = writeln!(
         text,
-        "SH9 near a sun (sky + 0.27° sun, 64 px ball): at the sun's terminator exact {:.3}, SH9 {:.3}, weighted sum {:.3}.",
+        "SH9 near a sun (sky + {:.2}° sun, {SUN_BALL_SIZE} px ball): at the sun's terminator exact {:.3}, SH9 {:.3}, weighted sum {:.3}.",
+        sun_half_angle.map_or(f64::NAN, f64::to_degrees),
         map.irradiance(terminator),
         prepared.sh9().irradiance(terminator).x,
         prepared.weighted(terminator).x

@@ -7,11 +7,12 @@
 //! camera, of half-angle `arctan(r_c/D)` for a camera of radius `r_c`.
 
 use super::maps::cap_irradiance_per_radiance;
+use crate::envmap::ProbeFormat;
 use crate::geometry::InputError;
 use std::f64::consts::{PI, TAU};
 
 fn require_outside(distance_over_radius: f64) -> Result<f64, InputError> {
-    super::ProbeFormat::perspective_ball(distance_over_radius).map(|_| distance_over_radius)
+    ProbeFormat::perspective_ball(distance_over_radius).map(|_| distance_over_radius)
 }
 
 /// The blind cone's half-angle `γ = arcsin(R/D)` in radians.
@@ -87,7 +88,6 @@ mod tests {
     use super::*;
     use crate::geometry::sphere::{first_hit_stable, reflect, surface_hit};
     use crate::geometry::{Ray, Sphere};
-    use crate::q4_light_probe::ProbeFormat;
     use glam::{DVec2, DVec3};
 
     /// Traces camera rays at angle β off the axis into a unit ball with the crate's sphere solver,
@@ -151,7 +151,7 @@ mod tests {
 
     #[test]
     fn the_blind_cone_is_the_gap_in_the_texel_solid_angles() {
-        use crate::q4_light_probe::Probe;
+        use crate::envmap::Probe;
         for d in [3.0, 10.0] {
             let format = ProbeFormat::perspective_ball(d).unwrap();
             let probe = Probe::from_fn(format, 24, 24, glam::DMat3::IDENTITY, |_| DVec3::ONE).unwrap();

@@ -1,9 +1,10 @@
 //! Q4's figures: the blind spot versus distance, the texel solid angle of each format, and the
 //! accuracy-versus-time Pareto plot drawn from the benchmark's committed CSV.
 
-use super::irradiance::{Irradiance, luminance};
-use super::maps::AnalyticMap;
-use super::{Probe, ProbeFormat, blind_spot, horizontal_camera};
+use super::blind_spot;
+use super::irradiance::Irradiance;
+use super::maps::{AnalyticMap, sun_direction};
+use crate::envmap::{BuiltinMap, Probe, ProbeFormat, horizontal_camera, luminance};
 use crate::plot::{Figure, PALETTE, PlotError, err, png_bytes, svg_figure};
 use glam::DMat3;
 use glam::DVec3;
@@ -189,9 +190,9 @@ fn sphere_render_figure() -> Result<Figure, PlotError> {
     let name = "q4_sphere_render.png";
     let failed = |message: String| PlotError::Draw { figure: name.into(), message };
     let sun_map = AnalyticMap::sun();
-    let sun_probe = Probe::from_map(&sun_map, ProbeFormat::MirrorBall, 128, horizontal_camera())
-        .map_err(|e| failed(e.to_string()))?;
-    let sunrise = Probe::read_lat_long(super::study::real_map_path("sunrise")).map_err(|e| failed(e.to_string()))?;
+    let sun_probe =
+        sun_map.rasterise(ProbeFormat::MirrorBall, 128, horizontal_camera()).map_err(|e| failed(e.to_string()))?;
+    let sunrise = BuiltinMap::Sunrise.probe().map_err(|e| failed(e.to_string()))?;
     let sunrise_ball = Probe::resample_lat_long(&sunrise, ProbeFormat::MirrorBall, 128, horizontal_camera())
         .map_err(|e| failed(e.to_string()))?;
     let sunrise_reference = Irradiance::new(&sunrise);
@@ -201,7 +202,7 @@ fn sphere_render_figure() -> Result<Figure, PlotError> {
         .max_by(|a, b| luminance(a.radiance).total_cmp(&luminance(b.radiance)))
         .map_or(DVec3::X, |t| t.direction);
     let rows = [
-        render_row("analytic sun", &sun_probe, &|n| sun_map.irradiance(n), super::study::sun_direction()),
+        render_row("analytic sun", &sun_probe, &|n| sun_map.irradiance(n), sun_direction()),
         render_row("sunrise (CC0)", &sunrise_ball, &|n| luminance(sunrise_reference.weighted(n)), brightest),
     ];
     let gap = 8_usize;

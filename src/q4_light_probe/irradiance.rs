@@ -4,10 +4,10 @@
 //! value over its footprint), so they are unbiased for the same integral, which the solid-angle
 //! weighted texel sum approximates to second order in the texel size.
 
-use super::probe::{Probe, ProbeError};
+use crate::envmap::{MapDistribution, MapSample, Probe, ProbeError};
 use crate::geometry::{InputError, require_direction};
 use crate::rng::{Generator, uniform};
-use glam::{DVec2, DVec3};
+use glam::DVec3;
 use std::f64::consts::{PI, TAU};
 use std::str::FromStr;
 
@@ -42,10 +42,24 @@ pub enum Method {
 
 impl Method {
     /// Every method, in the CLI's order.
+    ///
+    /// # Examples
+    /// ```
+    /// use hw3::q4_light_probe::Method;
+    /// assert_eq!(Method::ALL.len(), 7);
+    /// assert_eq!(Method::ALL[0], Method::Unweighted);
+    /// ```
     pub const ALL: [Method; 7] =
         [Method::Unweighted, Method::Weighted, Method::Uniform, Method::Cosine, Method::Map, Method::Mis, Method::Sh9];
 
     /// The CLI name.
+    ///
+    /// # Examples
+    /// ```
+    /// use hw3::q4_light_probe::Method;
+    /// assert_eq!(Method::Mis.name(), "mis");
+    /// assert!(Method::ALL.iter().all(|m| m.name().parse::<Method>() == Ok(*m)));
+    /// ```
     #[must_use]
     pub fn name(self) -> &'static str {
         match self {
@@ -60,6 +74,13 @@ impl Method {
     }
 
     /// Whether the method draws random samples (and so takes `--samples` and `--seed`).
+    ///
+    /// # Examples
+    /// ```
+    /// use hw3::q4_light_probe::Method;
+    /// let random: Vec<_> = Method::ALL.into_iter().filter(|m| m.is_monte_carlo()).map(Method::name).collect();
+    /// assert_eq!(random, ["uniform", "cosine", "map", "mis"]);
+    /// ```
     #[must_use]
     pub fn is_monte_carlo(self) -> bool {
         matches!(self, Method::Uniform | Method::Cosine | Method::Map | Method::Mis)
@@ -95,18 +116,6 @@ pub fn outgoing_radiance(albedo: f64, irradiance: DVec3) -> DVec3 {
     irradiance * (albedo / PI)
 }
 
-/// Rec. 709 luminance, the scalar the map sampler follows and the study's errors are measured in
-/// (equal to the value itself for grey radiance).
-///
-/// # Examples
-/// ```
-/// assert!((hw3::q4_light_probe::irradiance::luminance(glam::DVec3::splat(2.0)) - 2.0).abs() < 1e-15);
-/// ```
-#[must_use]
-pub fn luminance(c: DVec3) -> f64 {
-    c.dot(DVec3::new(0.2126, 0.7152, 0.0722))
-}
-
 /// The spherical-harmonic basis `Y_lm(ω)` for l ≤ 2, ordered (0,0), (1,−1), (1,0), (1,1),
 /// (2,−2), (2,−1), (2,0), (2,1), (2,2) (reference note §2).
 ///
@@ -135,7 +144,8 @@ const KERNEL: [f64; 9] = [PI, TAU / 3.0, TAU / 3.0, TAU / 3.0, PI / 4.0, PI / 4.
 /// # Examples
 /// ```
 /// use glam::{DMat3, DVec3};
-/// use hw3::q4_light_probe::{Probe, ProbeFormat, Sh9};
+/// use hw3::envmap::{Probe, ProbeFormat};
+/// use hw3::q4_light_probe::Sh9;
 /// // L = 1 + ω_z has only l ≤ 1 content: SH9 is exact up to the projection's quadrature.
 /// let probe = Probe::from_fn(ProbeFormat::MirrorBall, 64, 64, DMat3::IDENTITY, |w| DVec3::splat(1.0 + w.z)).unwrap();
 /// let sh9 = Sh9::project(&probe);
@@ -151,6 +161,18 @@ pub struct Sh9 {
 
 impl Sh9 {
     /// Projects the probe onto the first 9 SH functions, weighting each texel by its solid angle.
+    ///
+    /// # Examples
+    /// ```
+    /// use glam::{DMat3, DVec3};
+    /// use hw3::envmap::{Probe, ProbeFormat};
+    /// use hw3::q4_light_probe::Sh9;
+    /// // A constant map has only the l = 0 coefficient: L · 4π · Y_00 = L · 2√π.
+    /// let probe = Probe::from_fn(ProbeFormat::LatLong, 64, 32, DMat3::IDENTITY, |_| DVec3::ONE).unwrap();
+    /// let sh9 = Sh9::project(&probe);
+    /// assert!((sh9.coefficients[0].x - 2.0 * std::f64::consts::PI.sqrt()).abs() < 1e-3);
+    /// assert!(sh9.coefficients[1..].iter().all(|c| c.x.abs() < 1e-2)); // to the texel quadrature
+    /// ```
     #[must_use]
     pub fn project(probe: &Probe) -> Self {
         let mut coefficients = [DVec3::ZERO; 9];
@@ -164,12 +186,42 @@ impl Sh9 {
     }
 
     /// `E(n) = Σ Â_l L_lm Y_lm(n)` without clamping: can be negative behind a bright source.
+    ///
+    /// # Examples
+    /// ```
+    /// use glam::{DMat3, DVec3};
+    /// use hw3::envmap::{Probe, ProbeFormat};
+    /// use hw3::q4_light_probe::Sh9;
+    /// // One bright texel above: the order-2 fit rings negative on the far side.
+    /// let probe = Probe::from_fn(ProbeFormat::LatLong, 32, 16, DMat3::IDENTITY, |w| {
+    ///     DVec3::splat(if w.z > 0.99 { 100.0 } else { 0.0 })
+    /// })
+    /// .unwrap();
+    /// let sh9 = Sh9::project(&probe);
+    /// let tilted = DVec3::new(0.85, 0.0, -0.53).normalize();
+    /// assert!(sh9.irradiance_unclamped(tilted).x < 0.0);
+    /// ```
     #[must_use]
     pub fn irradiance_unclamped(&self, normal: DVec3) -> DVec3 {
         sh_basis(normal).iter().zip(KERNEL).zip(&self.coefficients).map(|((y, a), c)| *c * (a * y)).sum()
     }
 
     /// [`Self::irradiance_unclamped`] clamped at 0 per channel (irradiance cannot be negative).
+    ///
+    /// # Examples
+    /// ```
+    /// use glam::{DMat3, DVec3};
+    /// use hw3::envmap::{Probe, ProbeFormat};
+    /// use hw3::q4_light_probe::Sh9;
+    /// let probe = Probe::from_fn(ProbeFormat::LatLong, 32, 16, DMat3::IDENTITY, |w| {
+    ///     DVec3::splat(if w.z > 0.99 { 100.0 } else { 0.0 })
+    /// })
+    /// .unwrap();
+    /// let sh9 = Sh9::project(&probe);
+    /// let tilted = DVec3::new(0.85, 0.0, -0.53).normalize();
+    /// assert_eq!(sh9.irradiance(tilted), DVec3::ZERO); // clamped where the fit is negative
+    /// assert!(sh9.irradiance(DVec3::Z).x > 0.0);
+    /// ```
     #[must_use]
     pub fn irradiance(&self, normal: DVec3) -> DVec3 {
         self.irradiance_unclamped(normal).max(DVec3::ZERO)
@@ -178,6 +230,22 @@ impl Sh9 {
 
 /// A probe prepared for every method: the map-sampling distribution and the SH9 projection are
 /// built once, then any number of normals are evaluated.
+///
+/// # Examples
+/// ```
+/// use glam::DVec3;
+/// use hw3::envmap::{horizontal_camera, ProbeFormat};
+/// use hw3::q4_light_probe::{maps::AnalyticMap, Irradiance, Method};
+/// let map = AnalyticMap::sky();
+/// let probe = map.rasterise(ProbeFormat::MirrorBall, 32, horizontal_camera()).unwrap();
+/// let prepared = Irradiance::new(&probe); // built once ...
+/// let mut rng = hw3::rng::seeded(0, 0);
+/// for n in [DVec3::Z, DVec3::X, -DVec3::Z] {
+///     // ... evaluated at any number of normals
+///     let e = prepared.estimate(n, Method::Weighted, 1, &mut rng).unwrap().x;
+///     assert!((e - map.irradiance(n)).abs() < 0.02);
+/// }
+/// ```
 #[derive(Debug, Clone)]
 pub struct Irradiance<'a> {
     probe: &'a Probe,
@@ -186,127 +254,14 @@ pub struct Irradiance<'a> {
     equal_weight: f64,
 }
 
-/// What one map sample returns: the direction, its solid-angle pdf, and the texel.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct MapSample {
-    /// The sampled world direction (unit).
-    pub omega: DVec3,
-    /// Its solid-angle pdf (per steradian).
-    pub pdf: f64,
-    /// The texel it lies in (its radiance is the probe's radiance toward `omega`).
-    pub texel: usize,
-}
-
-/// Importance sampling of a probe's directions in proportion to texel luminance × solid angle:
-/// the "map" strategy of the irradiance study, also the renderer's environment-light sampler
-/// ([`crate::render`]). It owns only the cumulative table; the probe is passed to each call, so
-/// the table can be stored next to the probe it was built from.
-///
-/// # Examples
-/// ```
-/// use glam::{DMat3, DVec3};
-/// use hw3::q4_light_probe::{irradiance::MapDistribution, Probe, ProbeFormat};
-/// let probe = Probe::from_fn(ProbeFormat::LatLong, 16, 8, DMat3::IDENTITY, |w| DVec3::splat(1.0 + w.z)).unwrap();
-/// let distribution = MapDistribution::new(&probe);
-/// let mut numbers = [0.3, 0.6, 0.2].into_iter().cycle();
-/// let sample = distribution.sample(&probe, &mut || numbers.next().unwrap()).unwrap();
-/// assert!((distribution.pdf(&probe, sample.omega) - sample.pdf).abs() < 1e-12 * sample.pdf);
-/// ```
-#[derive(Debug, Clone, PartialEq)]
-pub struct MapDistribution {
-    /// Cumulative `luminance × Δω` over all texels (unnormalised).
-    cdf: Vec<f64>,
-}
-
-impl MapDistribution {
-    /// The table of `probe`.
-    #[must_use]
-    pub fn new(probe: &Probe) -> Self {
-        let mut running = 0.0;
-        let cdf = probe
-            .texels()
-            .iter()
-            .map(|t| {
-                running += luminance(t.radiance) * t.solid_angle;
-                running
-            })
-            .collect();
-        Self { cdf }
-    }
-
-    /// `Σ luminance × Δω` (the map's luminous "power"); 0 for a black map, which has no samples.
-    #[must_use]
-    pub fn total_power(&self) -> f64 {
-        self.cdf.last().copied().unwrap_or(0.0)
-    }
-
-    /// Draws a texel in proportion to luminance × Δω, then a point uniformly in the texel's image
-    /// area inside the domain; the solid-angle pdf is `p_t / (A_t · dω/dA)`. `uniform` supplies
-    /// numbers in `[0, 1)`: one for the texel, two per rejection try. `probe` must be the probe
-    /// the table was built from.
-    ///
-    /// Returns `None` for a black map, and when a rim texel of a disk format rejects all 64 tries
-    /// (a texel with a fraction `f` of its square inside the disk fails with probability
-    /// `(1 − f)^64`; the sample then counts as zero, a bias below 1e-3 of that texel's share —
-    /// already tiny, since `Δω ∝ f` — unless `f < 0.1`). Lat-long texels lie wholly inside
-    /// their domain and never fail: sampling a lat-long map is exactly unbiased.
-    pub fn sample(&self, probe: &Probe, uniform: &mut dyn FnMut() -> f64) -> Option<MapSample> {
-        let total = self.total_power();
-        if total <= 0.0 {
-            return None;
-        }
-        let target = uniform() * total;
-        let texel = self.cdf.partition_point(|c| *c <= target).min(self.cdf.len() - 1);
-        let rect = probe.texel_rect(texel);
-        for _ in 0..64 {
-            let u = DVec2::new(uniform(), uniform());
-            let p = rect.min + (rect.max - rect.min) * u;
-            if let Some((omega, jacobian)) = probe.image_to_world(p)
-                && probe.texel_index_at(p) == texel
-                && jacobian > 0.0
-            {
-                return Some(MapSample {
-                    omega,
-                    pdf: self.texel_probability(probe, texel) / (probe.texels()[texel].area * jacobian),
-                    texel,
-                });
-            }
-        }
-        None
-    }
-
-    fn texel_probability(&self, probe: &Probe, texel: usize) -> f64 {
-        let t = &probe.texels()[texel];
-        luminance(t.radiance) * t.solid_angle / self.total_power()
-    }
-
-    /// The solid-angle pdf with which [`Self::sample`] draws direction `omega` (unit); 0 for a
-    /// black map or a blind direction.
-    #[must_use]
-    pub fn pdf(&self, probe: &Probe, omega: DVec3) -> f64 {
-        if self.total_power() <= 0.0 {
-            return 0.0;
-        }
-        let Some(p) = probe.world_to_image(omega) else {
-            return 0.0;
-        };
-        let texel = probe.texel_index_at(p);
-        let t = &probe.texels()[texel];
-        let jacobian = probe.format().jacobian(p);
-        if t.area <= 0.0 || jacobian <= 0.0 {
-            return 0.0;
-        }
-        self.texel_probability(probe, texel) / (t.area * jacobian)
-    }
-}
-
 impl<'a> Irradiance<'a> {
     /// Prepares `probe`.
     ///
     /// # Examples
     /// ```
     /// use glam::{DMat3, DVec3};
-    /// use hw3::q4_light_probe::{irradiance::{Irradiance, Method}, Probe, ProbeFormat};
+    /// use hw3::envmap::{Probe, ProbeFormat};
+    /// use hw3::q4_light_probe::irradiance::{Irradiance, Method};
     /// let probe = Probe::from_fn(ProbeFormat::MirrorBall, 16, 16, DMat3::IDENTITY, |_| DVec3::ONE).unwrap();
     /// let prepared = Irradiance::new(&probe);
     /// let mut rng = hw3::rng::seeded(1, 0);
@@ -326,6 +281,17 @@ impl<'a> Irradiance<'a> {
     }
 
     /// The SH9 projection.
+    ///
+    /// # Examples
+    /// ```
+    /// use glam::DVec3;
+    /// use hw3::envmap::{horizontal_camera, ProbeFormat};
+    /// use hw3::q4_light_probe::{maps::AnalyticMap, Irradiance, Sh9};
+    /// let probe = AnalyticMap::constant(1.0).rasterise(ProbeFormat::MirrorBall, 16, horizontal_camera()).unwrap();
+    /// let prepared = Irradiance::new(&probe);
+    /// assert_eq!(*prepared.sh9(), Sh9::project(&probe));
+    /// assert!((prepared.sh9().irradiance(DVec3::Z).x - std::f64::consts::PI).abs() < 1e-2);
+    /// ```
     #[must_use]
     pub fn sh9(&self) -> &Sh9 {
         &self.sh9
@@ -339,8 +305,9 @@ impl<'a> Irradiance<'a> {
     /// # Examples
     /// ```
     /// use glam::DVec3;
-    /// use hw3::q4_light_probe::{horizontal_camera, maps::AnalyticMap, Irradiance, Method, Probe, ProbeFormat};
-    /// let probe = Probe::from_map(&AnalyticMap::sky(), ProbeFormat::MirrorBall, 16, horizontal_camera()).unwrap();
+    /// use hw3::envmap::{horizontal_camera, Probe, ProbeFormat};
+    /// use hw3::q4_light_probe::{maps::AnalyticMap, Irradiance, Method};
+    /// let probe = AnalyticMap::sky().rasterise(ProbeFormat::MirrorBall, 16, horizontal_camera()).unwrap();
     /// let prepared = Irradiance::new(&probe);
     /// let mut rng = hw3::rng::seeded(0, 0);
     /// assert!(prepared.estimate(DVec3::ZERO, Method::Sh9, 1, &mut rng).is_err());
@@ -376,13 +343,14 @@ impl<'a> Irradiance<'a> {
     /// # Examples
     /// ```
     /// use glam::DVec3;
-    /// use hw3::q4_light_probe::{horizontal_camera, maps::AnalyticMap, Irradiance, Probe, ProbeFormat};
+    /// use hw3::envmap::{horizontal_camera, Probe, ProbeFormat};
+    /// use hw3::q4_light_probe::{maps::AnalyticMap, Irradiance};
     /// // Equal weights are nearly right on the equal-area mirror ball, far off on the angular map.
     /// let map = AnalyticMap::constant(1.0);
     /// let pi = std::f64::consts::PI;
-    /// let ball = Probe::from_map(&map, ProbeFormat::MirrorBall, 64, horizontal_camera()).unwrap();
+    /// let ball = map.rasterise(ProbeFormat::MirrorBall, 64, horizontal_camera()).unwrap();
     /// assert!((Irradiance::new(&ball).unweighted(DVec3::Z).x / pi - 1.0).abs() < 0.01);
-    /// let angular = Probe::from_map(&map, ProbeFormat::AngularMap, 64, horizontal_camera()).unwrap();
+    /// let angular = map.rasterise(ProbeFormat::AngularMap, 64, horizontal_camera()).unwrap();
     /// assert!((Irradiance::new(&angular).unweighted(DVec3::Z).x / pi - 1.0).abs() > 0.1);
     /// ```
     #[must_use]
@@ -401,9 +369,10 @@ impl<'a> Irradiance<'a> {
     /// # Examples
     /// ```
     /// use glam::DVec3;
-    /// use hw3::q4_light_probe::{horizontal_camera, maps::AnalyticMap, Irradiance, Probe, ProbeFormat};
+    /// use hw3::envmap::{horizontal_camera, Probe, ProbeFormat};
+    /// use hw3::q4_light_probe::{maps::AnalyticMap, Irradiance};
     /// let map = AnalyticMap::sky();
-    /// let probe = Probe::from_map(&map, ProbeFormat::AngularMap, 64, horizontal_camera()).unwrap();
+    /// let probe = map.rasterise(ProbeFormat::AngularMap, 64, horizontal_camera()).unwrap();
     /// let e = Irradiance::new(&probe).weighted(DVec3::Z).x;
     /// assert!((e / std::f64::consts::PI - 1.0).abs() < 2e-3);
     /// ```
@@ -417,8 +386,9 @@ impl<'a> Irradiance<'a> {
     /// # Examples
     /// ```
     /// use glam::DVec3;
-    /// use hw3::q4_light_probe::{horizontal_camera, maps::AnalyticMap, Irradiance, Probe, ProbeFormat};
-    /// let probe = Probe::from_map(&AnalyticMap::sky(), ProbeFormat::MirrorBall, 32, horizontal_camera()).unwrap();
+    /// use hw3::envmap::{horizontal_camera, Probe, ProbeFormat};
+    /// use hw3::q4_light_probe::{maps::AnalyticMap, Irradiance};
+    /// let probe = AnalyticMap::sky().rasterise(ProbeFormat::MirrorBall, 32, horizontal_camera()).unwrap();
     /// let mut rng = hw3::rng::seeded(5, 0);
     /// let e = Irradiance::new(&probe).uniform(DVec3::Z, 4096, &mut rng).x;
     /// assert!((e / std::f64::consts::PI - 1.0).abs() < 0.1); // a loose bound: one seed
@@ -451,8 +421,9 @@ impl<'a> Irradiance<'a> {
     /// # Examples
     /// ```
     /// use glam::DVec3;
-    /// use hw3::q4_light_probe::{horizontal_camera, maps::AnalyticMap, Irradiance, Probe, ProbeFormat};
-    /// let probe = Probe::from_map(&AnalyticMap::constant(1.0), ProbeFormat::MirrorBall, 8, horizontal_camera()).unwrap();
+    /// use hw3::envmap::{horizontal_camera, Probe, ProbeFormat};
+    /// use hw3::q4_light_probe::{maps::AnalyticMap, Irradiance};
+    /// let probe = AnalyticMap::constant(1.0).rasterise(ProbeFormat::MirrorBall, 8, horizontal_camera()).unwrap();
     /// let mut rng = hw3::rng::seeded(5, 0);
     /// // π L exactly, whatever the seed: L/pdf is constant.
     /// assert!((Irradiance::new(&probe).cosine(DVec3::X, 3, &mut rng).x - std::f64::consts::PI).abs() < 1e-12);
@@ -480,12 +451,13 @@ impl<'a> Irradiance<'a> {
     ///
     /// # Examples
     /// ```
-    /// use hw3::q4_light_probe::{horizontal_camera, maps::AnalyticMap, study, Irradiance, Probe, ProbeFormat};
+    /// use hw3::envmap::{horizontal_camera, Probe, ProbeFormat};
+    /// use hw3::q4_light_probe::{maps::{self, AnalyticMap}, Irradiance};
     /// // A sub-texel sun is found by every sample.
     /// let map = AnalyticMap::sun();
-    /// let probe = Probe::from_map(&map, ProbeFormat::MirrorBall, 64, horizontal_camera()).unwrap();
+    /// let probe = map.rasterise(ProbeFormat::MirrorBall, 64, horizontal_camera()).unwrap();
     /// let mut rng = hw3::rng::seeded(5, 0);
-    /// let n = study::sun_direction();
+    /// let n = maps::sun_direction();
     /// let e = Irradiance::new(&probe).map(n, 1024, &mut rng).x;
     /// assert!((e / map.irradiance(n) - 1.0).abs() < 0.1); // a loose bound: one seed
     /// ```
@@ -502,11 +474,12 @@ impl<'a> Irradiance<'a> {
     ///
     /// # Examples
     /// ```
-    /// use hw3::q4_light_probe::{horizontal_camera, maps::AnalyticMap, study, Irradiance, Probe, ProbeFormat};
+    /// use hw3::envmap::{horizontal_camera, Probe, ProbeFormat};
+    /// use hw3::q4_light_probe::{maps::{self, AnalyticMap}, Irradiance};
     /// let map = AnalyticMap::sun();
-    /// let probe = Probe::from_map(&map, ProbeFormat::MirrorBall, 64, horizontal_camera()).unwrap();
+    /// let probe = map.rasterise(ProbeFormat::MirrorBall, 64, horizontal_camera()).unwrap();
     /// let mut rng = hw3::rng::seeded(5, 0);
-    /// let n = study::sun_direction();
+    /// let n = maps::sun_direction();
     /// let e = Irradiance::new(&probe).mis(n, 1024, &mut rng).x;
     /// assert!((e / map.irradiance(n) - 1.0).abs() < 0.1); // a loose bound: one seed
     /// ```
@@ -540,8 +513,9 @@ impl<'a> Irradiance<'a> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::envmap::{ProbeFormat, horizontal_camera};
     use crate::q4_light_probe::maps::{AnalyticMap, Term};
-    use crate::q4_light_probe::{ProbeFormat, fibonacci_normals, horizontal_camera};
+    use crate::q4_light_probe::normals::fibonacci_normals;
 
     #[test]
     fn sh_constants_match_ramamoorthi_hanrahan() {
@@ -581,8 +555,7 @@ mod tests {
 
     #[test]
     fn one_by_one_probe_gives_finite_answers_for_every_method() {
-        let probe =
-            Probe::from_map(&AnalyticMap::constant(1.0), ProbeFormat::MirrorBall, 1, horizontal_camera()).unwrap();
+        let probe = AnalyticMap::constant(1.0).rasterise(ProbeFormat::MirrorBall, 1, horizontal_camera()).unwrap();
         let prepared = Irradiance::new(&probe);
         let mut rng = crate::rng::seeded(3, 0);
         for method in Method::ALL {
@@ -598,7 +571,7 @@ mod tests {
 
     #[test]
     fn bad_normals_and_zero_samples_are_typed_errors() {
-        let probe = Probe::from_map(&AnalyticMap::sky(), ProbeFormat::MirrorBall, 4, horizontal_camera()).unwrap();
+        let probe = AnalyticMap::sky().rasterise(ProbeFormat::MirrorBall, 4, horizontal_camera()).unwrap();
         let prepared = Irradiance::new(&probe);
         let mut rng = crate::rng::seeded(3, 0);
         for bad in [DVec3::ZERO, DVec3::new(f64::NAN, 0.0, 1.0), DVec3::splat(f64::INFINITY)] {
@@ -609,8 +582,7 @@ mod tests {
 
     #[test]
     fn black_map_gives_zero_everywhere() {
-        let probe =
-            Probe::from_map(&AnalyticMap::constant(0.0), ProbeFormat::AngularMap, 8, horizontal_camera()).unwrap();
+        let probe = AnalyticMap::constant(0.0).rasterise(ProbeFormat::AngularMap, 8, horizontal_camera()).unwrap();
         let prepared = Irradiance::new(&probe);
         let mut rng = crate::rng::seeded(3, 0);
         for method in Method::ALL {
@@ -625,7 +597,7 @@ mod tests {
         let map = AnalyticMap::new(vec![Term::Linear { a: 1.0, b: 0.8, axis: DVec3::X }]);
         let grid = Probe::from_fn(ProbeFormat::LatLong, 400, 200, glam::DMat3::IDENTITY, |_| DVec3::ONE).unwrap();
         for format in [ProbeFormat::MirrorBall, ProbeFormat::AngularMap, ProbeFormat::perspective_ball(5.0).unwrap()] {
-            let probe = Probe::from_map(&map, format, 24, horizontal_camera()).unwrap();
+            let probe = map.rasterise(format, 24, horizontal_camera()).unwrap();
             let prepared = Irradiance::new(&probe);
             let total: f64 = grid.texels().iter().map(|t| prepared.map_pdf(t.direction) * t.solid_angle).sum();
             assert!((total - 1.0).abs() < 0.02, "{}: {total}", format.name());

@@ -5,7 +5,8 @@
 //! and here against an independent quadrature in the tests). Oracles add linearly, so a sky plus a
 //! sun is exact too. Radiance is grey (one number); probes store it in all three channels.
 
-use glam::DVec3;
+use crate::envmap::{Probe, ProbeError, ProbeFormat};
+use glam::{DMat3, DVec3};
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
 /// One analytic radiance term.
@@ -73,6 +74,15 @@ pub enum Term {
 
 impl Term {
     /// Radiance arriving from unit direction `omega`.
+    ///
+    /// # Examples
+    /// ```
+    /// use glam::DVec3;
+    /// use hw3::q4_light_probe::maps::Term;
+    /// let gradient = Term::Linear { a: 1.0, b: 0.5, axis: DVec3::Z };
+    /// assert_eq!(gradient.radiance(DVec3::Z), 1.5);
+    /// assert_eq!(gradient.radiance(-DVec3::Z), 0.5);
+    /// ```
     #[must_use]
     pub fn radiance(&self, omega: DVec3) -> f64 {
         match *self {
@@ -102,6 +112,16 @@ impl Term {
     }
 
     /// The exact irradiance `E(n) = ∫ L(ω) max(0, n·ω) dω` at unit normal `normal`.
+    ///
+    /// # Examples
+    /// ```
+    /// use glam::DVec3;
+    /// use hw3::q4_light_probe::maps::Term;
+    /// // E = (π/4)(1 + (n·q)²) for L = (ω·q)².
+    /// let quadratic = Term::Quadratic { axis: DVec3::Z };
+    /// assert!((quadratic.irradiance(DVec3::Z) - std::f64::consts::FRAC_PI_2).abs() < 1e-15);
+    /// assert!((quadratic.irradiance(DVec3::X) - std::f64::consts::FRAC_PI_4).abs() < 1e-15);
+    /// ```
     #[must_use]
     pub fn irradiance(&self, normal: DVec3) -> f64 {
         let angle_to = |axis: DVec3| normal.dot(axis).clamp(-1.0, 1.0).acos();
@@ -122,6 +142,15 @@ impl Term {
     }
 
     /// The solid angle of a cap term (`2π(1 − cos δ)`), `None` for the other terms.
+    ///
+    /// # Examples
+    /// ```
+    /// use glam::DVec3;
+    /// use hw3::q4_light_probe::maps::Term;
+    /// let hemisphere = Term::Cap { radiance: 1.0, centre: DVec3::Z, half_angle: std::f64::consts::FRAC_PI_2 };
+    /// assert!((hemisphere.cap_solid_angle().unwrap() - 2.0 * std::f64::consts::PI).abs() < 1e-12);
+    /// assert_eq!(Term::Constant { radiance: 1.0 }.cap_solid_angle(), None);
+    /// ```
     #[must_use]
     pub fn cap_solid_angle(&self) -> Option<f64> {
         match *self {
@@ -182,18 +211,44 @@ pub struct AnalyticMap {
 
 impl AnalyticMap {
     /// A map of the given terms.
+    ///
+    /// # Examples
+    /// ```
+    /// use glam::DVec3;
+    /// use hw3::q4_light_probe::maps::{AnalyticMap, Term};
+    /// let map = AnalyticMap::new(vec![Term::Constant { radiance: 1.0 }, Term::ClampedLobe { axis: DVec3::Z }]);
+    /// // Oracles add: π + 2π/3 facing the lobe.
+    /// assert!((map.irradiance(DVec3::Z) - 5.0 * std::f64::consts::PI / 3.0).abs() < 1e-12);
+    /// ```
     #[must_use]
     pub fn new(terms: Vec<Term>) -> Self {
         Self { terms }
     }
 
     /// Total radiance from unit direction `omega`.
+    ///
+    /// # Examples
+    /// ```
+    /// use glam::DVec3;
+    /// use hw3::q4_light_probe::maps::AnalyticMap;
+    /// let sun = AnalyticMap::sun();
+    /// let towards = hw3::q4_light_probe::maps::sun_direction();
+    /// assert!(sun.radiance(towards) > 1e4); // sky 1 plus the sun's disk
+    /// assert_eq!(sun.radiance(DVec3::Z), 1.0);
+    /// ```
     #[must_use]
     pub fn radiance(&self, omega: DVec3) -> f64 {
         self.terms.iter().map(|t| t.radiance(omega)).sum()
     }
 
     /// Radiance of the terms that are not caps (caps are splatted, not point-sampled).
+    ///
+    /// # Examples
+    /// ```
+    /// use hw3::q4_light_probe::maps::{sun_direction, AnalyticMap};
+    /// let sun = AnalyticMap::sun();
+    /// assert_eq!(sun.smooth_radiance(sun_direction()), 1.0); // the sky only: the sun is a cap
+    /// ```
     #[must_use]
     pub fn smooth_radiance(&self, omega: DVec3) -> f64 {
         self.terms.iter().filter(|t| t.cap_solid_angle().is_none()).map(|t| t.radiance(omega)).sum()
@@ -213,18 +268,45 @@ impl AnalyticMap {
     }
 
     /// `constant:L`.
+    ///
+    /// # Examples
+    /// ```
+    /// use glam::DVec3;
+    /// use hw3::q4_light_probe::maps::AnalyticMap;
+    /// let map = AnalyticMap::constant(0.5);
+    /// assert_eq!(map.radiance(-DVec3::Y), 0.5);
+    /// assert_eq!(map.irradiance(DVec3::Y), 0.5 * std::f64::consts::PI);
+    /// ```
     #[must_use]
     pub fn constant(radiance: f64) -> Self {
         Self::new(vec![Term::Constant { radiance }])
     }
 
     /// `sky`: radiance 1 above the horizon (`+z` up), 0 below.
+    ///
+    /// # Examples
+    /// ```
+    /// use glam::DVec3;
+    /// use hw3::q4_light_probe::maps::AnalyticMap;
+    /// let sky = AnalyticMap::sky();
+    /// assert_eq!((sky.radiance(DVec3::Z), sky.radiance(-DVec3::Z)), (1.0, 0.0));
+    /// assert!((sky.irradiance(DVec3::X) - std::f64::consts::FRAC_PI_2).abs() < 1e-15); // half the sky
+    /// ```
     #[must_use]
     pub fn sky() -> Self {
         Self::new(vec![Term::Hemisphere { radiance: 1.0, axis: DVec3::Z }])
     }
 
     /// `linear:A,B`: `L = A + B ω_z`.
+    ///
+    /// # Examples
+    /// ```
+    /// use glam::DVec3;
+    /// use hw3::q4_light_probe::maps::AnalyticMap;
+    /// let map = AnalyticMap::linear_z(1.0, 0.5);
+    /// assert_eq!(map.radiance(DVec3::Z), 1.5);
+    /// assert!((map.irradiance(-DVec3::Z) - std::f64::consts::PI * (1.0 - 1.0 / 3.0)).abs() < 1e-12);
+    /// ```
     #[must_use]
     pub fn linear_z(a: f64, b: f64) -> Self {
         Self::new(vec![Term::Linear { a, b, axis: DVec3::Z }])
@@ -232,6 +314,15 @@ impl AnalyticMap {
 
     /// The accuracy study's soft map: an overcast sky over a dim ground, with a broad warm glow
     /// (a 40° cap) low in the east. Smooth apart from the horizon step.
+    ///
+    /// # Examples
+    /// ```
+    /// use glam::DVec3;
+    /// use hw3::q4_light_probe::maps::AnalyticMap;
+    /// let soft = AnalyticMap::soft();
+    /// assert_eq!(soft.terms.len(), 3);
+    /// assert!(soft.irradiance(DVec3::Z) > soft.irradiance(-DVec3::Z)); // sky above, dim ground below
+    /// ```
     #[must_use]
     pub fn soft() -> Self {
         Self::new(vec![
@@ -244,6 +335,15 @@ impl AnalyticMap {
     /// The accuracy study's sun map: the [`Self::sky`] step plus a real-size sun (half-angle
     /// 0.2665°) 30° above the horizon whose direct irradiance at normal incidence is `10π`
     /// (ten times the sky's zenith irradiance), as in the reference note's experiment.
+    ///
+    /// # Examples
+    /// ```
+    /// use hw3::q4_light_probe::maps::{sun_direction, AnalyticMap};
+    /// let sun = AnalyticMap::sun();
+    /// // Facing the sun: its 10π plus the sky seen from a normal 30° above the horizon.
+    /// let sky = AnalyticMap::sky().irradiance(sun_direction());
+    /// assert!((sun.irradiance(sun_direction()) - 10.0 * std::f64::consts::PI - sky).abs() < 1e-9);
+    /// ```
     #[must_use]
     pub fn sun() -> Self {
         Self::sky_with_sun(0.2665f64.to_radians())
@@ -251,22 +351,73 @@ impl AnalyticMap {
 
     /// [`Self::sky`] plus a sun of half-angle `half_angle` at elevation 30°, with direct normal
     /// irradiance `10π` whatever its size.
+    ///
+    /// # Examples
+    /// ```
+    /// use hw3::q4_light_probe::maps::{sun_direction, AnalyticMap};
+    /// // The sun's direct irradiance is 10π whatever its size.
+    /// for degrees in [0.5_f64, 5.0] {
+    ///     let map = AnalyticMap::sky_with_sun(degrees.to_radians());
+    ///     assert!((map.terms[1].irradiance(sun_direction()) - 10.0 * std::f64::consts::PI).abs() < 1e-9);
+    /// }
+    /// ```
     #[must_use]
     pub fn sky_with_sun(half_angle: f64) -> Self {
         let mut map = Self::sky();
-        map.terms.push(Term::Cap {
-            radiance: 10.0 / half_angle.sin().powi(2),
-            centre: super::study::sun_direction(),
-            half_angle,
-        });
+        map.terms.push(Term::Cap { radiance: 10.0 / half_angle.sin().powi(2), centre: sun_direction(), half_angle });
         map
     }
+
+    /// Rasterises the map into a probe of `size` texels across (`2·size × size` for lat-long):
+    /// smooth terms by subsampling each texel ([`Probe::from_fn`]), caps by splatting `m²`
+    /// stratified points per cap ([`Probe::splat_cap`], `m = 256`), so a sub-texel sun keeps its
+    /// exact energy. Cap points in a blind cone are lost, as they are in a real photo.
+    ///
+    /// `world_from_probe` must be a rotation (see [`crate::envmap::horizontal_camera`]).
+    ///
+    /// # Errors
+    /// As [`Probe::from_fn`] (size 0, or a negative or non-finite radiance anywhere).
+    ///
+    /// # Examples
+    /// ```
+    /// use hw3::envmap::{horizontal_camera, ProbeFormat};
+    /// use hw3::q4_light_probe::maps::AnalyticMap;
+    /// let probe = AnalyticMap::sun().rasterise(ProbeFormat::MirrorBall, 32, horizontal_camera()).unwrap();
+    /// assert_eq!(probe.texels().len(), 32 * 32);
+    /// let lat_long = AnalyticMap::sky().rasterise(ProbeFormat::LatLong, 8, horizontal_camera()).unwrap();
+    /// assert_eq!((lat_long.width(), lat_long.height()), (16, 8));
+    /// ```
+    pub fn rasterise(&self, format: ProbeFormat, size: usize, world_from_probe: DMat3) -> Result<Probe, ProbeError> {
+        let (width, height) = if format == ProbeFormat::LatLong { (2 * size, size) } else { (size, size) };
+        let mut probe =
+            Probe::from_fn(format, width, height, world_from_probe, |omega| DVec3::splat(self.smooth_radiance(omega)))?;
+        for term in &self.terms {
+            if let Term::Cap { radiance, centre, half_angle } = *term {
+                probe.splat_cap(radiance, centre, half_angle, 256)?;
+            }
+        }
+        Ok(probe)
+    }
+}
+
+/// The direction of the sun in [`AnalyticMap::sun`] (elevation 30° toward `+x`).
+///
+/// # Examples
+/// ```
+/// let s = hw3::q4_light_probe::maps::sun_direction();
+/// assert!((s.z - 0.5).abs() < 1e-12);
+/// ```
+#[must_use]
+pub fn sun_direction() -> DVec3 {
+    let elevation = 30f64.to_radians();
+    DVec3::new(elevation.cos(), 0.0, elevation.sin())
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::q4_light_probe::fibonacci_normals;
+    use crate::envmap::horizontal_camera;
+    use crate::q4_light_probe::normals::fibonacci_normals;
 
     /// Brute-force `∫ L max(0, n·ω) dω` on a θφ grid in a frame around `axis` (so a cap is
     /// resolved by its own grid), midpoint rule in cos θ and φ.
@@ -332,5 +483,15 @@ mod tests {
             let sky = AnalyticMap::sky().irradiance(normal);
             assert!((cap.irradiance(normal) - sky).abs() < 1e-12, "{normal}");
         }
+    }
+
+    #[test]
+    fn splatted_caps_keep_their_energy() {
+        let map = AnalyticMap::sun();
+        let probe = map.rasterise(ProbeFormat::MirrorBall, 32, horizontal_camera()).unwrap();
+        let sky_power = 2.0 * PI; // the hemisphere step, radiance 1
+        let total: f64 = probe.texels().iter().map(|t| t.radiance.x * t.solid_angle).sum();
+        let sun_power = map.terms[1].cap_solid_angle().unwrap() * 10.0 / (0.2665f64.to_radians().sin().powi(2));
+        assert!((total - sky_power - sun_power).abs() < 2e-3 * (sky_power + sun_power), "{total}");
     }
 }

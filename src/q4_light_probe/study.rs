@@ -1,34 +1,23 @@
-//! Shared tools of the accuracy study: test normals, peak-normalised errors, and the table of
-//! methods and parameters the benchmark sweeps.
+//! Shared tools of the accuracy study: peak-normalised errors, the study's maps, and the table
+//! of methods and parameters the benchmark sweeps.
 
-use super::irradiance::{Irradiance, Method, luminance};
+use super::irradiance::{Irradiance, Method};
 use super::maps::AnalyticMap;
-use super::{Probe, ProbeError, ProbeFormat, horizontal_camera};
+use crate::envmap::{BuiltinMap, Probe, ProbeError, ProbeFormat, horizontal_camera, luminance};
 use glam::DVec3;
-
-/// `n` unit normals spread evenly over the sphere (a Fibonacci spiral), deterministic.
-///
-/// # Examples
-/// ```
-/// let normals = hw3::q4_light_probe::fibonacci_normals(64);
-/// assert_eq!(normals.len(), 64);
-/// assert!(normals.iter().all(|n| (n.length() - 1.0).abs() < 1e-12));
-/// ```
-#[must_use]
-pub fn fibonacci_normals(n: usize) -> Vec<DVec3> {
-    let golden = std::f64::consts::PI * (3.0 - 5f64.sqrt());
-    (0..n)
-        .map(|i| {
-            let z = 1.0 - (2 * i + 1) as f64 / n as f64;
-            let r = (1.0 - z * z).max(0.0).sqrt();
-            let phi = golden * i as f64;
-            DVec3::new(r * phi.cos(), r * phi.sin(), z)
-        })
-        .collect()
-}
 
 /// Error of a method over a set of normals, as percentages of the peak exact irradiance
 /// (peak-normalised, so that grazing normals where `E → 0` do not blow up a relative error).
+///
+/// # Examples
+/// ```
+/// use hw3::envmap::{horizontal_camera, ProbeFormat};
+/// use hw3::q4_light_probe::{fibonacci_normals, maps::AnalyticMap, study, Irradiance, Method};
+/// let map = AnalyticMap::sky();
+/// let probe = map.rasterise(ProbeFormat::AngularMap, 32, horizontal_camera()).unwrap();
+/// let e = study::analytic_error(&map, &Irradiance::new(&probe), Method::Weighted, 1, &[0], &fibonacci_normals(16));
+/// assert!(e.max_percent >= e.mean_percent && e.mean_percent > 0.0);
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ErrorSummary {
     /// Mean over normals (for Monte Carlo: of each normal's RMS error over seeds).
@@ -50,10 +39,11 @@ pub struct ErrorSummary {
 ///
 /// # Examples
 /// ```
-/// use hw3::q4_light_probe::{horizontal_camera, maps::AnalyticMap, study, irradiance::{Irradiance, Method}, Probe, ProbeFormat};
+/// use hw3::envmap::{horizontal_camera, Probe, ProbeFormat};
+/// use hw3::q4_light_probe::{maps::AnalyticMap, study, irradiance::{Irradiance, Method}};
 /// let map = AnalyticMap::constant(1.0);
-/// let probe = Probe::from_map(&map, ProbeFormat::MirrorBall, 16, horizontal_camera()).unwrap();
-/// let normals = study::fibonacci_normals(8);
+/// let probe = map.rasterise(ProbeFormat::MirrorBall, 16, horizontal_camera()).unwrap();
+/// let normals = hw3::q4_light_probe::fibonacci_normals(8);
 /// let exact: Vec<f64> = normals.iter().map(|n| map.irradiance(*n)).collect();
 /// let e = study::method_error(&Irradiance::new(&probe), Method::Cosine, 8, &[1, 2], &normals, &exact);
 /// assert!(e.max_percent < 1e-10);
@@ -99,10 +89,11 @@ pub fn method_error(
 ///
 /// # Examples
 /// ```
-/// use hw3::q4_light_probe::{horizontal_camera, maps::AnalyticMap, study, Irradiance, Method, Probe, ProbeFormat};
+/// use hw3::envmap::{horizontal_camera, Probe, ProbeFormat};
+/// use hw3::q4_light_probe::{maps::AnalyticMap, study, Irradiance, Method};
 /// let map = AnalyticMap::sky();
-/// let probe = Probe::from_map(&map, ProbeFormat::MirrorBall, 32, horizontal_camera()).unwrap();
-/// let e = study::analytic_error(&map, &Irradiance::new(&probe), Method::Sh9, 1, &[0], &study::fibonacci_normals(16));
+/// let probe = map.rasterise(ProbeFormat::MirrorBall, 32, horizontal_camera()).unwrap();
+/// let e = study::analytic_error(&map, &Irradiance::new(&probe), Method::Sh9, 1, &[0], &hw3::q4_light_probe::fibonacci_normals(16));
 /// assert!(e.mean_percent < 0.5 && e.max_percent >= e.mean_percent);
 /// ```
 #[must_use]
@@ -124,7 +115,7 @@ pub fn analytic_error(
 /// # Examples
 /// ```
 /// use hw3::q4_light_probe::study::{self, StudyMap};
-/// let normals = study::fibonacci_normals(4);
+/// let normals = hw3::q4_light_probe::fibonacci_normals(4);
 /// for (name, map) in study::study_maps().unwrap() {
 ///     let ball = map.ball(8).unwrap();
 ///     assert_eq!(ball.width(), 8);
@@ -146,9 +137,19 @@ impl StudyMap {
     ///
     /// # Errors
     /// [`ProbeError`] for a zero size.
+    ///
+    /// # Examples
+    /// ```
+    /// use hw3::envmap::{BuiltinMap, ProbeFormat};
+    /// use hw3::q4_light_probe::study::StudyMap;
+    /// let map = StudyMap::LatLong(BuiltinMap::Courtyard.probe().unwrap());
+    /// let ball = map.ball(16).unwrap();
+    /// assert_eq!((ball.format(), ball.width()), (ProbeFormat::MirrorBall, 16));
+    /// assert!(map.ball(0).is_err());
+    /// ```
     pub fn ball(&self, size: usize) -> Result<Probe, ProbeError> {
         match self {
-            Self::Analytic(map) => Probe::from_map(map, ProbeFormat::MirrorBall, size, horizontal_camera()),
+            Self::Analytic(map) => map.rasterise(ProbeFormat::MirrorBall, size, horizontal_camera()),
             Self::LatLong(source) => {
                 Probe::resample_lat_long(source, ProbeFormat::MirrorBall, size, horizontal_camera())
             }
@@ -156,6 +157,14 @@ impl StudyMap {
     }
 
     /// The reference irradiance (luminance) at each normal.
+    ///
+    /// # Examples
+    /// ```
+    /// use glam::DVec3;
+    /// use hw3::q4_light_probe::{maps::AnalyticMap, study::StudyMap};
+    /// let sky = StudyMap::Analytic(AnalyticMap::sky());
+    /// assert_eq!(sky.reference(&[DVec3::Z, -DVec3::Z]), [std::f64::consts::PI, 0.0]);
+    /// ```
     #[must_use]
     pub fn reference(&self, normals: &[DVec3]) -> Vec<f64> {
         match self {
@@ -168,13 +177,14 @@ impl StudyMap {
     }
 }
 
-/// Path of a vendored real map (`"courtyard"` or `"sunrise"`, see `docs/data/q4/README.md`).
-#[must_use]
-pub fn real_map_path(name: &str) -> std::path::PathBuf {
-    std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/data/q4").join(format!("{name}_256x128.hdr"))
-}
-
 /// One configuration of the accuracy-versus-time study.
+///
+/// # Examples
+/// ```
+/// use hw3::q4_light_probe::{study::Config, Method};
+/// let config = Config { method: Method::Weighted, size: 64, samples: 0 };
+/// assert_eq!(config.label(), "weighted 64²");
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Config {
     /// The method.
@@ -187,6 +197,12 @@ pub struct Config {
 
 impl Config {
     /// A label such as `weighted 64²` or `cosine N=256`.
+    ///
+    /// # Examples
+    /// ```
+    /// use hw3::q4_light_probe::{study::Config, Method};
+    /// assert_eq!(Config { method: Method::Cosine, size: 256, samples: 256 }.label(), "cosine N=256");
+    /// ```
     #[must_use]
     pub fn label(&self) -> String {
         if self.method.is_monte_carlo() {
@@ -202,26 +218,19 @@ impl Config {
 ///
 /// # Errors
 /// [`ProbeError`] if a vendored file cannot be read.
+///
+/// # Examples
+/// ```
+/// let names: Vec<_> = hw3::q4_light_probe::study::study_maps().unwrap().into_iter().map(|(name, _)| name).collect();
+/// assert_eq!(names, ["soft", "sun", "courtyard", "sunrise"]);
+/// ```
 pub fn study_maps() -> Result<Vec<(&'static str, StudyMap)>, ProbeError> {
     Ok(vec![
         ("soft", StudyMap::Analytic(AnalyticMap::soft())),
         ("sun", StudyMap::Analytic(AnalyticMap::sun())),
-        ("courtyard", StudyMap::LatLong(Probe::read_lat_long(real_map_path("courtyard"))?)),
-        ("sunrise", StudyMap::LatLong(Probe::read_lat_long(real_map_path("sunrise"))?)),
+        ("courtyard", StudyMap::LatLong(BuiltinMap::Courtyard.probe()?)),
+        ("sunrise", StudyMap::LatLong(BuiltinMap::Sunrise.probe()?)),
     ])
-}
-
-/// The direction of the sun in [`AnalyticMap::sun`] (elevation 30° toward `+x`).
-///
-/// # Examples
-/// ```
-/// let s = hw3::q4_light_probe::study::sun_direction();
-/// assert!((s.z - 0.5).abs() < 1e-12);
-/// ```
-#[must_use]
-pub fn sun_direction() -> DVec3 {
-    let elevation = 30f64.to_radians();
-    DVec3::new(elevation.cos(), 0.0, elevation.sin())
 }
 
 /// Every configuration the benchmark measures: texel sums and SH9 at each probe size, Monte Carlo

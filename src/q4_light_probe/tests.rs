@@ -4,8 +4,10 @@
 
 use super::blind_spot;
 use super::irradiance::{Irradiance, Method};
-use super::maps::{AnalyticMap, Term};
-use super::{Probe, ProbeFormat, fibonacci_normals, horizontal_camera, study};
+use super::maps::{self, AnalyticMap, Term};
+use super::normals::fibonacci_normals;
+use super::study;
+use crate::envmap::{Probe, ProbeFormat, horizontal_camera};
 use glam::DVec3;
 use std::f64::consts::PI;
 
@@ -39,7 +41,7 @@ fn oracle_maps() -> Vec<(&'static str, AnalyticMap)> {
 const SH9_EXACT: [&str; 4] = ["constant", "linear", "quadratic", "hemisphere"];
 
 fn ball(map: &AnalyticMap, size: usize) -> Probe {
-    Probe::from_map(map, ProbeFormat::MirrorBall, size, horizontal_camera()).unwrap()
+    map.rasterise(ProbeFormat::MirrorBall, size, horizontal_camera()).unwrap()
 }
 
 fn deterministic_error(map: &AnalyticMap, probe: &Probe, method: Method) -> study::ErrorSummary {
@@ -69,7 +71,7 @@ fn unweighted_sum_is_right_on_the_orthographic_ball_only() {
         (ProbeFormat::LatLong, 10.0),
         (ProbeFormat::perspective_ball(10.0).unwrap(), 3.0),
     ] {
-        let probe = Probe::from_map(&constant, format, 64, horizontal_camera()).unwrap();
+        let probe = constant.rasterise(format, 64, horizontal_camera()).unwrap();
         let unweighted = deterministic_error(&constant, &probe, Method::Unweighted);
         assert!(unweighted.mean_percent > min_mean, "{}: {unweighted:?}", format.name());
         if !matches!(format, ProbeFormat::PerspectiveBall { .. }) {
@@ -194,7 +196,7 @@ fn only_map_sampling_finds_a_real_sun() {
     let map = AnalyticMap::sun();
     let probe = ball(&map, 64);
     let prepared = Irradiance::new(&probe);
-    let sun = study::sun_direction();
+    let sun = maps::sun_direction();
     let peak = map.irradiance(sun);
     let rms_percent = |method| {
         let (mean, sd) = seed_statistics(&prepared, sun, method, 256, 64);
@@ -241,7 +243,7 @@ fn sub_texel_sun_straddling_the_horizon_is_all_or_nothing() {
     let map = AnalyticMap::sun();
     let probe = ball(&map, 64);
     let prepared = Irradiance::new(&probe);
-    let sun = study::sun_direction();
+    let sun = maps::sun_direction();
     let facing = prepared.weighted(sun).x;
     assert!((facing / map.irradiance(sun) - 1.0).abs() < 2e-3, "{facing}");
     let (t1, _) = sun.any_orthonormal_pair();
@@ -259,7 +261,7 @@ fn a_normal_into_the_blind_cone_loses_the_cap_the_ball_cannot_see() {
     // irradiance, exactly the cap oracle, 11 % for n pointing straight away from the camera.
     let map = AnalyticMap::constant(1.0);
     let d = 3.0;
-    let probe = Probe::from_map(&map, ProbeFormat::perspective_ball(d).unwrap(), 128, horizontal_camera()).unwrap();
+    let probe = map.rasterise(ProbeFormat::perspective_ball(d).unwrap(), 128, horizontal_camera()).unwrap();
     let prepared = Irradiance::new(&probe);
     let away = -horizontal_camera().col(2);
     let gamma = blind_spot::half_angle(d).unwrap();
@@ -300,6 +302,19 @@ fn answers_are_pinned() {
     crate::test_support::insta_settings().bind(|| {
         insta::assert_snapshot!("q4_answers", answers.text);
     });
+}
+
+#[test]
+fn the_answers_constants_are_the_ones_their_words_assume() {
+    // "one as wide as the ball (r_c = R)": the camera's radius is one ball radius.
+    assert_eq!(super::CAMERA_RADIUS, 1.0);
+    // "equal-area (dω = 4 dA)" is sampled at the centre; it holds across the disk.
+    for p in [glam::DVec2::new(0.3, 0.4), glam::DVec2::new(-0.9, 0.1)] {
+        assert_eq!(ProbeFormat::MirrorBall.jacobian(p), 4.0);
+    }
+    // The rim ring of a 256 px ball, independently: 180° − 2 arcsin(1 − 1/128) ≈ 14.3°.
+    let span = super::rim_ring_degrees(256);
+    assert!((span - (180.0 - 2.0 * (1.0 - 1.0 / 128.0_f64).asin().to_degrees())).abs() < 1e-9, "{span}");
 }
 
 /// The vendored real maps as (name, ball probe at 128², reference at 64 normals).
@@ -363,7 +378,7 @@ fn a_sun_inside_the_blind_cone_is_lost_entirely() {
         Term::Constant { radiance: 1.0 },
         Term::Cap { radiance: 10.0 / half_angle.sin().powi(2), centre: sun, half_angle },
     ]);
-    let probe = Probe::from_map(&map, ProbeFormat::perspective_ball(d).unwrap(), 96, horizontal_camera()).unwrap();
+    let probe = map.rasterise(ProbeFormat::perspective_ball(d).unwrap(), 96, horizontal_camera()).unwrap();
     let prepared = Irradiance::new(&probe);
     let gamma = blind_spot::half_angle(d).unwrap();
     let blind = Term::Cap { radiance: 1.0, centre: away, half_angle: gamma }.irradiance(sun);

@@ -11,7 +11,7 @@
 //!   reaches directly (the light is one-sided and the mirror is behind it), so the mirror shows
 //!   `LDS+E` and no `LS…` path.
 
-use super::experiments::{RED, WHITE};
+use super::scenes::{RED, WHITE};
 use crate::geometry::{InputError, Ray, Sphere};
 use crate::render::scene::{Camera, Material, Object, Scene};
 use glam::DVec3;

@@ -87,6 +87,12 @@ pub(super) fn read_committed<T>(
 ///
 /// # Errors
 /// [`PlotError`] when the CSV is missing or malformed, or drawing fails.
+///
+/// # Examples
+/// ```
+/// let figure = hw3::q5_effect_tables::photon_accuracy::figure().unwrap();
+/// assert_eq!(figure.file_name, "q5_photon_accuracy.svg");
+/// ```
 pub fn figure() -> Result<Figure, PlotError> {
     let name = "q5_photon_accuracy.svg";
     let rows = read_committed("q5_photon_accuracy.csv", name, parse)?;

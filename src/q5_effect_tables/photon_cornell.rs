@@ -9,8 +9,8 @@
 //! `1/√(k − 2)` of the value, set by k) and **bias** (the seed-mean's error: the kNN disc blurs the
 //! radiance over a radius `r ∝ √(k/N)`, so it grows with k and shrinks as photons are added).
 
-use super::experiments::cornell_box;
 use super::photon_accuracy::LogLogChart;
+use super::scenes::cornell_box;
 use crate::geometry::{InputError, Ray};
 use crate::plot::{Figure, PlotError};
 use crate::render::analysis::{Pass, analyze};
@@ -59,6 +59,13 @@ pub struct Reference {
 
 impl Reference {
     /// The largest relative standard error over the probes.
+    ///
+    /// # Examples
+    /// ```
+    /// use hw3::q5_effect_tables::photon_cornell::Reference;
+    /// let reference = Reference { radiance: vec![2.0, 4.0], standard_error: vec![0.1, 0.4] };
+    /// assert_eq!(reference.max_relative_error(), 0.1);
+    /// ```
     #[must_use]
     pub fn max_relative_error(&self) -> f64 {
         self.radiance.iter().zip(&self.standard_error).map(|(l, s)| s / l).fold(0.0, f64::max)
@@ -269,6 +276,12 @@ pub fn best_k(rows: &[Row]) -> Vec<Row> {
 ///
 /// # Errors
 /// [`PlotError`] when the CSV is missing or malformed, or drawing fails.
+///
+/// # Examples
+/// ```
+/// let figure = hw3::q5_effect_tables::photon_cornell::figure().unwrap();
+/// assert_eq!(figure.file_name, "q5_photon_cornell.svg");
+/// ```
 pub fn figure() -> Result<Figure, PlotError> {
     let name = "q5_photon_cornell.svg";
     let rows = super::photon_accuracy::read_committed(CSV_NAME, name, parse)?;

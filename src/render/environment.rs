@@ -20,10 +20,9 @@
 
 use super::integrator::Sampler;
 use super::scene::Scene;
+use crate::envmap::{MapDistribution, Probe, ProbeError, ProbeFormat};
 use crate::geometry::sphere::spawn_origin;
 use crate::geometry::{InputError, Ray, require_finite};
-use crate::q4_light_probe::irradiance::MapDistribution;
-use crate::q4_light_probe::{Probe, ProbeError, ProbeFormat};
 use glam::{DMat3, DVec3};
 use std::f64::consts::PI;
 use std::path::Path;
@@ -98,7 +97,7 @@ impl Environment {
     /// # Examples
     /// ```
     /// use glam::{DMat3, DVec3};
-    /// use hw3::q4_light_probe::{Probe, ProbeFormat};
+    /// use hw3::envmap::{Probe, ProbeFormat};
     /// use hw3::render::environment::Environment;
     /// let probe = Probe::from_fn(ProbeFormat::LatLong, 8, 4, DMat3::IDENTITY, |w| DVec3::splat(w.z.max(0.0))).unwrap();
     /// let env = Environment::from_probe(probe);
@@ -120,7 +119,7 @@ impl Environment {
     /// # Examples
     /// ```
     /// use glam::DVec3;
-    /// use hw3::q4_light_probe::ProbeError;
+    /// use hw3::envmap::ProbeError;
     /// use hw3::render::environment::Environment;
     /// let mut texels = vec![DVec3::ONE; 8];
     /// assert!(Environment::lat_long(4, 2, texels.clone()).is_ok());
@@ -138,9 +137,8 @@ impl Environment {
     ///
     /// # Examples
     /// ```
-    /// use hw3::q4_light_probe::study::real_map_path;
     /// use hw3::render::environment::Environment;
-    /// assert!(Environment::read_lat_long(real_map_path("courtyard")).is_ok());
+    /// assert!(Environment::read_lat_long(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/data/q4/courtyard_256x128.hdr")).is_ok());
     /// assert!(Environment::read_lat_long("no/such/map.hdr").is_err());
     /// ```
     pub fn read_lat_long(path: impl AsRef<Path>) -> Result<Self, ProbeError> {
@@ -293,9 +291,9 @@ pub(crate) fn direct_light(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::envmap::BuiltinMap;
     use crate::geometry::Sphere;
     use crate::q4_light_probe::Irradiance;
-    use crate::q4_light_probe::study::real_map_path;
     use crate::render::analysis::{Passes, analyze};
     use crate::render::integrator::{Integrator, Tracer};
     use crate::render::scene::{Camera, Material, Object};
@@ -360,7 +358,7 @@ mod tests {
     /// of the reference.
     #[test]
     fn diffuse_ball_under_a_real_map_matches_q4_irradiance() {
-        let environment = Environment::read_lat_long(real_map_path("courtyard")).unwrap();
+        let environment = Environment::from_probe(BuiltinMap::Courtyard.probe().unwrap());
         let probe = environment.probe().unwrap().clone();
         let irradiance = Irradiance::new(&probe);
         let albedo = 0.6;
@@ -377,7 +375,7 @@ mod tests {
 
     #[test]
     fn escaping_eye_and_mirror_rays_see_the_environment() {
-        let environment = Environment::read_lat_long(real_map_path("courtyard")).unwrap();
+        let environment = Environment::from_probe(BuiltinMap::Courtyard.probe().unwrap());
         let reflectance = DVec3::splat(0.9);
         let scene = ball_under(environment.clone(), Material::Mirror { reflectance });
         let tracer = Tracer::new(&scene, analyze(&scene).plan);
@@ -394,7 +392,7 @@ mod tests {
 
     #[test]
     fn sampled_pdfs_match_the_pdf_function_and_integrate_to_one() {
-        let environment = Environment::read_lat_long(real_map_path("sunrise")).unwrap();
+        let environment = Environment::from_probe(BuiltinMap::Sunrise.probe().unwrap());
         let mut sampler = Sampler::new(3, 0, 0);
         for _ in 0..200 {
             let s = environment.sample(&mut || sampler.uniform()).unwrap();

@@ -382,8 +382,8 @@ pub fn caustic_footprint(n: usize) -> (DVec3, f64, Vec<DVec3>) {
 /// assert!(scene.environment().is_some() && scene.point_lights().is_empty());
 /// ```
 pub fn probe_lit() -> Result<Scene, RenderError> {
-    let path = crate::q4_light_probe::study::real_map_path("courtyard");
-    let environment = Environment::read_lat_long(path).map_err(|e| RenderError::Environment(e.to_string()))?;
+    let probe = crate::envmap::BuiltinMap::Courtyard.probe().map_err(|e| RenderError::Environment(e.to_string()))?;
+    let environment = Environment::from_probe(probe);
     let floor = Object::quad(
         DVec3::new(-4.0, 0.0, 2.0),
         DVec3::new(8.0, 0.0, 0.0),

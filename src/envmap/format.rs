@@ -23,7 +23,7 @@ use std::f64::consts::{PI, TAU};
 ///
 /// # Examples
 /// ```
-/// use hw3::q4_light_probe::ProbeFormat;
+/// use hw3::envmap::ProbeFormat;
 /// // The four formats agree on the direction back to the camera / the zenith at θ = 0.
 /// for format in [ProbeFormat::MirrorBall, ProbeFormat::AngularMap, ProbeFormat::perspective_ball(5.0).unwrap()] {
 ///     let p = format.direction_to_image(glam::DVec3::Z).unwrap();
@@ -37,7 +37,7 @@ pub enum ProbeFormat {
     MirrorBall,
     /// A mirrored ball of radius `R` photographed by a pinhole camera at distance `D` from its
     /// centre, the image scaled so the ball's silhouette is the unit disk. A cone of half-angle
-    /// `arcsin(R/D)` behind the ball is never seen (see [`super::blind_spot`]).
+    /// `arcsin(R/D)` behind the ball is never seen: its light would have to pass through the ball.
     PerspectiveBall {
         /// `D/R`, strictly greater than 1.
         distance_over_radius: f64,
@@ -124,7 +124,7 @@ impl ProbeFormat {
     ///
     /// # Examples
     /// ```
-    /// use hw3::q4_light_probe::ProbeFormat;
+    /// use hw3::envmap::ProbeFormat;
     /// assert!(ProbeFormat::perspective_ball(10.0).is_ok());
     /// assert!(ProbeFormat::perspective_ball(1.0).is_err());
     /// ```
@@ -146,7 +146,7 @@ impl ProbeFormat {
     ///
     /// # Examples
     /// ```
-    /// assert_eq!(hw3::q4_light_probe::ProbeFormat::AngularMap.name(), "angular map");
+    /// assert_eq!(hw3::envmap::ProbeFormat::AngularMap.name(), "angular map");
     /// ```
     #[must_use]
     pub fn name(&self) -> String {
@@ -199,7 +199,7 @@ impl ProbeFormat {
     ///
     /// # Examples
     /// ```
-    /// use hw3::q4_light_probe::ProbeFormat;
+    /// use hw3::envmap::ProbeFormat;
     /// assert_eq!(ProbeFormat::MirrorBall.max_theta(), std::f64::consts::PI);
     /// let blind = std::f64::consts::PI - ProbeFormat::perspective_ball(2.0).unwrap().max_theta();
     /// assert!((blind.to_degrees() - 30.0).abs() < 1e-9); // arcsin(1/2)
@@ -250,7 +250,7 @@ impl ProbeFormat {
     /// # Examples
     /// ```
     /// use glam::{DVec2, DVec3};
-    /// use hw3::q4_light_probe::ProbeFormat;
+    /// use hw3::envmap::ProbeFormat;
     /// // The centre of a mirror ball reflects the camera; halfway out (ρ = sin 45°) looks sideways.
     /// let centre = ProbeFormat::MirrorBall.image_to_direction(DVec2::ZERO).unwrap();
     /// assert!((centre - DVec3::Z).length() < 1e-15);
@@ -286,7 +286,7 @@ impl ProbeFormat {
     /// # Examples
     /// ```
     /// use glam::{DVec2, DVec3};
-    /// use hw3::q4_light_probe::ProbeFormat;
+    /// use hw3::envmap::ProbeFormat;
     /// let p = ProbeFormat::AngularMap.direction_to_image(DVec3::X).unwrap();
     /// assert!((p - DVec2::new(0.5, 0.0)).length() < 1e-15); // θ = 90° → ρ = ½
     /// let ball = ProbeFormat::perspective_ball(3.0).unwrap();
@@ -316,7 +316,7 @@ impl ProbeFormat {
     /// # Examples
     /// ```
     /// use glam::DVec2;
-    /// use hw3::q4_light_probe::ProbeFormat;
+    /// use hw3::envmap::ProbeFormat;
     /// assert_eq!(ProbeFormat::MirrorBall.jacobian(DVec2::new(0.3, 0.2)), 4.0);
     /// let ball = ProbeFormat::perspective_ball(10.0).unwrap();
     /// assert!((ball.jacobian(DVec2::ZERO) - 19.0 * 19.0 / 99.0).abs() < 1e-9);

@@ -1,0 +1,24 @@
+//! Environment maps: radiance arriving from infinitely far away, stored as an image.
+//!
+//! This is core code shared by the light-probe question ([`crate::q4_light_probe`], which adds
+//! analytic maps, irradiance estimators and the accuracy study) and the renderer
+//! ([`crate::render::environment`], which lights scenes with a map). It never imports either.
+//!
+//! - [`format`](mod@format): how a probe image encodes directions ([`ProbeFormat`]: mirror ball, perspective
+//!   ball, angular map, latitude-longitude), the Jacobian `dω/dA` and exact texel solid angles.
+//! - [`probe`]: a [`Probe`], an image in one format with the direction, solid angle and radiance
+//!   of every texel, built from a function, a radiance buffer or a Radiance `.hdr` file.
+//! - [`distribution`]: [`MapDistribution`], importance sampling of a probe's directions in
+//!   proportion to [`luminance`] × solid angle, with its exact solid-angle pdf.
+//! - [`builtin`]: the two CC0 maps compiled into the binary ([`BuiltinMap`]), so that nothing
+//!   is read from the source tree at run time.
+
+pub mod builtin;
+pub mod distribution;
+pub mod format;
+pub mod probe;
+
+pub use builtin::BuiltinMap;
+pub use distribution::{MapDistribution, MapSample, luminance};
+pub use format::ProbeFormat;
+pub use probe::{Probe, ProbeError, Texel, horizontal_camera};
