@@ -2,9 +2,12 @@
 //! complexity and the visible fraction follow the Boolean model's transmission law.
 
 use crate::geometry::{InputError, Ray};
+use crate::render::catalogue::{self, CLUTTER_HALF_WIDTH, CLUTTER_RADIUS};
 use crate::render::integrator::Sampler;
-use crate::render::scene::{Camera, CameraFrame, Scene, Shape};
-use crate::render::scenes::{self, CLUTTER_HALF_WIDTH, CLUTTER_RADIUS};
+use crate::render::{
+    camera::{Camera, CameraFrame},
+    scene::{Scene, Shape},
+};
 use glam::DVec3;
 use std::collections::BTreeSet;
 use std::f64::consts::PI;
@@ -68,7 +71,7 @@ pub fn clutter_row(count: usize) -> Result<ClutterRow, InputError> {
     let mut pierced_total = 0.0;
     let mut visible_total = 0.0;
     for seed in 1..=CLUTTER_SEEDS {
-        let scene = scenes::clutter_forest(count, seed)?;
+        let scene = catalogue::clutter_forest(count, seed)?;
         let mut open = 0usize;
         let mut pierced = 0usize;
         for i in 0..PROBE_GRID * PROBE_GRID {

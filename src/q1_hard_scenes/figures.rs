@@ -12,8 +12,8 @@ use super::motion::{MOTION_SPEED, MotionChange, MotionNoise, motion_change, moti
 use crate::geometry::InputError;
 use crate::plot::{self, Figure, PALETTE, PlotError};
 use crate::render::analysis::analyze;
+use crate::render::catalogue;
 use crate::render::scene::Scene;
-use crate::render::scenes;
 use crate::render::{Settings, render};
 use plotters::prelude::*;
 
@@ -35,7 +35,7 @@ fn input_error(figure: &str, e: InputError) -> PlotError {
 
 /// The clutter figures: render, gap-fraction chart, table.
 fn clutter_figures(rows: &[ClutterRow]) -> Result<Vec<Figure>, PlotError> {
-    let forest = scenes::clutter_forest(1500, 1).map_err(|e| input_error("q1_clutter.png", e))?;
+    let forest = catalogue::clutter_forest(1500, 1).map_err(|e| input_error("q1_clutter.png", e))?;
     let counts: Vec<f64> = rows.iter().map(|r| r.count as f64).collect();
     let pick =
         |f: fn(&ClutterRow) -> f64| -> Vec<(f64, f64)> { counts.iter().copied().zip(rows.iter().map(f)).collect() };
@@ -65,7 +65,7 @@ fn clutter_figures(rows: &[ClutterRow]) -> Result<Vec<Figure>, PlotError> {
 }
 
 fn fog_figures(rows: &[FogRow]) -> Result<Vec<Figure>, PlotError> {
-    let scene = |sigma| scenes::fog_street(sigma).map_err(|e| input_error("q1_fog.png", e));
+    let scene = |sigma| catalogue::fog_street(sigma).map_err(|e| input_error("q1_fog.png", e));
     let mut plotted = Vec::new();
     for (k, &sigma) in FOG_SIGMAS.iter().enumerate() {
         let of_sigma = rows.iter().filter(|r| r.sigma_t == sigma);
@@ -109,7 +109,7 @@ fn fog_figures(rows: &[FogRow]) -> Result<Vec<Figure>, PlotError> {
 }
 
 fn mirror_figures(rows: &[(f64, f64, f64)], divergence: &MirrorDivergence) -> Result<Vec<Figure>, PlotError> {
-    let scene = |m| scenes::mirror_spheres(m).map_err(|e| input_error("q1_mirrors.png", e));
+    let scene = |m| catalogue::mirror_spheres(m).map_err(|e| input_error("q1_mirrors.png", e));
     let sensitivity = chart(
         "q1_mirror_sensitivity.svg",
         "Mirrors: image change per unit camera move (sphere pixels)",
@@ -131,7 +131,7 @@ fn mirror_figures(rows: &[(f64, f64, f64)], divergence: &MirrorDivergence) -> Re
 }
 
 fn motion_figures(change: &MotionChange, noise: &MotionNoise) -> Result<Vec<Figure>, PlotError> {
-    let scene = |speed| scenes::moving_ball(speed).map_err(|e| input_error("q1_motion.png", e));
+    let scene = |speed| catalogue::moving_ball(speed).map_err(|e| input_error("q1_motion.png", e));
     let law = |c: f64| -> Vec<(f64, f64)> { [1.0, 32.0].iter().map(|&s| (s, c / f64::sqrt(s))).collect() };
     let curve = chart(
         "q1_motion_noise.svg",

@@ -2,9 +2,15 @@
 //! airlight that the renderer's single-scattering quadrature reproduces (Sun et al. 2005).
 
 use crate::geometry::{InputError, Ray};
-use crate::render::analysis::{Pass, Passes, analyze};
 use crate::render::integrator::{IN_SCATTER_STEPS, Integrator, Sampler, Tracer, airlight_closed_form};
-use crate::render::scene::{Camera, Fog, Material, Object, PointLight, Scene};
+use crate::render::{
+    analysis::analyze,
+    passes::{Pass, Passes},
+};
+use crate::render::{
+    camera::Camera,
+    scene::{Fog, Material, Object, PointLight, Scene},
+};
 use glam::DVec3;
 use std::fmt::Write as _;
 
@@ -127,7 +133,7 @@ pub fn airlight_rows() -> Result<Vec<[f64; 6]>, InputError> {
 /// # Examples
 /// ```
 /// use hw3::q1_hard_scenes::airlight_traced;
-/// use hw3::render::integrator::airlight_closed_form;
+/// use hw3::render::medium::airlight_closed_form;
 /// let traced = airlight_traced(0.3, 1.0, 0.5, 20.0, 64).unwrap();
 /// let exact = airlight_closed_form(0.3, 1.0, 1.0, 0.5, 20.0).unwrap();
 /// assert!((traced / exact - 1.0).abs() < 1e-3);
@@ -214,7 +220,7 @@ pub(super) fn fog_rows() -> Result<Vec<FogRow>, InputError> {
 mod tests {
     use super::*;
     use crate::q1_hard_scenes::metric::snapshot;
-    use crate::render::scenes;
+    use crate::render::catalogue;
     use crate::render::{Settings, render};
 
     #[test]
@@ -235,7 +241,7 @@ mod tests {
 
     #[test]
     fn zero_density_fog_renders_exactly_like_no_fog() {
-        let clear = scenes::fog_street(0.0).unwrap();
+        let clear = catalogue::fog_street(0.0).unwrap();
         let zero = Scene::new(
             *clear.camera(),
             clear.objects().to_vec(),
@@ -244,13 +250,13 @@ mod tests {
             clear.background(),
         )
         .unwrap();
-        let settings = Settings::whitted(24, 18, 1, crate::render::analysis::Passes::all());
+        let settings = Settings::whitted(24, 18, 1, crate::render::passes::Passes::all());
         assert_eq!(render(&zero, &settings, &|_| {}).unwrap(), render(&clear, &settings, &|_| {}).unwrap());
     }
 
     #[test]
     fn extreme_fog_hides_everything_but_stays_finite() {
-        let scene = scenes::fog_street(1e6).unwrap();
+        let scene = catalogue::fog_street(1e6).unwrap();
         let image = render(&scene, &Settings::whitted(16, 12, 1, analyze(&scene).plan), &|_| {}).unwrap();
         assert!(image.pixels.iter().all(|p| p.is_finite() && p.min_element() >= 0.0));
         let far = fog_row(1e3, 10.0).unwrap();

@@ -24,17 +24,17 @@ pub(super) fn snapshot(name: &str, text: &str) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::render::scenes;
+    use crate::render::catalogue;
     use std::fmt::Write as _;
 
     #[test]
     fn render_thumbnails() {
         let mut text = String::new();
         for (name, scene) in [
-            ("mirrors", scenes::mirror_spheres(true).unwrap()),
-            ("fog", scenes::fog_street(0.08).unwrap()),
-            ("motion", scenes::moving_ball(2.0).unwrap()),
-            ("clutter", scenes::clutter_forest(300, 1).unwrap()),
+            ("mirrors", catalogue::mirror_spheres(true).unwrap()),
+            ("fog", catalogue::fog_street(0.08).unwrap()),
+            ("motion", catalogue::moving_ball(2.0).unwrap()),
+            ("clutter", catalogue::clutter_forest(300, 1).unwrap()),
         ] {
             let image = render_metric(&scene, 2, 1).unwrap();
             let _ = writeln!(text, "{name}:\n{}", image.thumbnail_text(8, 6));

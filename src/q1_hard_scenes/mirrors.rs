@@ -6,9 +6,12 @@ use super::metric::{METRIC_SIZE, render_metric};
 use crate::geometry::sphere::{reflect, spawn_origin};
 use crate::geometry::{InputError, Ray, Sphere};
 use crate::render::Image;
+use crate::render::catalogue;
 use crate::render::integrator::Sampler;
-use crate::render::scene::{Camera, CameraFrame, Material, Object, Scene, Shape};
-use crate::render::scenes;
+use crate::render::{
+    camera::{Camera, CameraFrame},
+    scene::{Material, Object, Scene, Shape},
+};
 use glam::DVec3;
 use std::f64::consts::PI;
 use std::fmt::Write as _;
@@ -33,19 +36,19 @@ const MIRROR_SPP: u32 = 4;
 /// assert!(rows.iter().all(|&(_, mirror, diffuse)| mirror > diffuse));
 /// ```
 pub fn mirror_sensitivity() -> Result<Vec<(f64, f64, f64)>, InputError> {
-    let mask = sphere_pixels(&scenes::mirror_spheres(true)?);
+    let mask = sphere_pixels(&catalogue::mirror_spheres(true)?);
     let masked_change = |a: &Image, b: &Image| {
         let (a, b) = (a.luminance(), b.luminance());
         let sum: f64 = (0..a.len()).filter(|&i| mask[i]).map(|i| (a[i] - b[i]).abs()).sum();
         sum / mask.iter().filter(|&&m| m).count() as f64
     };
     let sensitivity = |mirror: bool| -> Result<Vec<f64>, InputError> {
-        let scene = scenes::mirror_spheres(mirror)?;
+        let scene = catalogue::mirror_spheres(mirror)?;
         let base = render_metric(&scene, MIRROR_SPP, 1)?;
         MIRROR_STEPS
             .iter()
             .map(|&delta| {
-                let moved = scene.with_camera(scenes::mirror_camera(DVec3::X * delta))?;
+                let moved = scene.with_camera(catalogue::mirror_camera(DVec3::X * delta))?;
                 Ok(masked_change(&render_metric(&moved, MIRROR_SPP, 1)?, &base) / delta)
             })
             .collect()

@@ -4,7 +4,7 @@
 use super::metric::{METRIC_SIZE, render_metric};
 use crate::geometry::InputError;
 use crate::render::Image;
-use crate::render::scenes;
+use crate::render::catalogue;
 use glam::DVec3;
 use std::fmt::Write as _;
 
@@ -43,7 +43,7 @@ pub fn motion_change() -> Result<MotionChange, InputError> {
     let frames: Vec<Image> = (0..=MOTION_FRAMES)
         .map(|k| {
             let t = k as f64 / MOTION_FRAMES as f64;
-            let scene = scenes::moving_ball_with_shutter(MOTION_SPEED, (t, t))?;
+            let scene = catalogue::moving_ball_with_shutter(MOTION_SPEED, (t, t))?;
             render_metric(&scene, 1, 1)
         })
         .collect::<Result<_, _>>()?;
@@ -61,7 +61,7 @@ pub fn motion_change() -> Result<MotionChange, InputError> {
 /// The ball's image speed in pixels per frame at the metric size, at the depth of the image
 /// centre: geometry only, no rendering.
 pub(super) fn ball_pixels_per_frame() -> Result<f64, InputError> {
-    let camera = scenes::moving_ball(MOTION_SPEED)?.camera().to_owned();
+    let camera = catalogue::moving_ball(MOTION_SPEED)?.camera().to_owned();
     let depth = (DVec3::new(0.0, 0.5, -3.0) - camera.eye).length();
     let focal_pixels = f64::from(METRIC_SIZE.1) / 2.0 / (camera.vfov_degrees.to_radians() / 2.0).tan();
     Ok(MOTION_SPEED / MOTION_FRAMES as f64 * focal_pixels / depth)
@@ -113,7 +113,7 @@ impl MotionNoise {
 /// ```
 pub fn motion_noise() -> Result<MotionNoise, InputError> {
     let curve = |speed: f64| -> Result<Vec<f64>, InputError> {
-        let scene = scenes::moving_ball(speed)?;
+        let scene = catalogue::moving_ball(speed)?;
         let reference = render_metric(&scene, REFERENCE_SPP, 1_000_003)?;
         MOTION_SPP.iter().map(|&spp| Ok(render_metric(&scene, spp, 1)?.rms_difference(&reference))).collect()
     };
@@ -192,7 +192,7 @@ mod tests {
     fn still_frames_do_not_change() {
         let frames: Vec<Image> = [0.0, 0.5]
             .iter()
-            .map(|&t| render_metric(&scenes::moving_ball_with_shutter(0.0, (t, t)).unwrap(), 1, 1).unwrap())
+            .map(|&t| render_metric(&catalogue::moving_ball_with_shutter(0.0, (t, t)).unwrap(), 1, 1).unwrap())
             .collect();
         assert_eq!(frames[0], frames[1]);
     }

@@ -23,8 +23,11 @@ use super::scenes::{GREEN, RED, WHITE};
 use crate::geometry::{InputError, Ray};
 use crate::render::analysis::analyze;
 use crate::render::integrator::Integrator;
-use crate::render::scene::{Camera, Material, Object, Scene, Shape};
 use crate::render::{Settings, render};
+use crate::render::{
+    camera::Camera,
+    scene::{Material, Object, Scene, Shape},
+};
 use glam::DVec3;
 
 /// Radiance of the light (Mitsuba 3's RGB stand-in for the published spectrum).

@@ -7,10 +7,17 @@ use super::grammar::{EFFECTS, LightKind, METHODS, SeedAnswer, Verdict, decide, s
 use super::radiosity::{Mesh, Solver, System};
 use super::scenes::{bleeding_region, cornell_box, glow_region, grey};
 use crate::geometry::Ray;
-use crate::render::analysis::{Pass, Passes, analyze};
-use crate::render::integrator::{Integrator, Sampler, Tracer, dielectric_split, facing_normal, reflected_ray};
 use crate::render::photon::{PhotonError, PhotonMap, PhotonMaps, trace_photons};
 use crate::render::scene::{Material, Scene};
+use crate::render::{
+    analysis::analyze,
+    passes::{Pass, Passes},
+};
+use crate::render::{
+    bsdf::{dielectric_split, facing_normal, reflected_ray},
+    integrator::{Integrator, Tracer},
+    sampling::Sampler,
+};
 use glam::DVec3;
 use serde::Serialize;
 use std::sync::OnceLock;
@@ -98,7 +105,7 @@ fn mean_radiance(scene: &Scene, method: Measured, probes: &[Ray<f64>]) -> Result
             let passes = if method == Measured::PathTracing {
                 reference_passes(scene)
             } else {
-                analyze(scene).plan.for_integrator(integrator)
+                integrator.restrict(analyze(scene).plan)
             };
             let tracer = Tracer::new(scene, passes);
             probes
@@ -148,7 +155,7 @@ struct PhotonEye<'a> {
 impl<'a> PhotonEye<'a> {
     fn new(scene: &'a Scene, maps: &'a PhotonMaps, caustics: bool) -> Self {
         let direct = Integrator::Whitted { max_depth: 0 };
-        Self { scene, tracer: Tracer::new(scene, analyze(scene).plan.for_integrator(direct)), maps, caustics }
+        Self { scene, tracer: Tracer::new(scene, direct.restrict(analyze(scene).plan)), maps, caustics }
     }
 
     /// Radiance along `ray`, following at most `depth` specular bounces.
@@ -474,7 +481,7 @@ pub fn cornell_system(n: usize, samples: usize) -> Result<(Scene, System), Exper
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::render::scene::{Camera, Object};
+    use crate::render::{camera::Camera, scene::Object};
     use std::f64::consts::PI;
 
     /// Every measured verdict equals the grammar's but one, the seed's two-pass method on the

@@ -8,8 +8,8 @@ use super::experiments::{cornell_system, measured_table, measured_table_markdown
 use super::grammar::grammar_table_markdown;
 use super::radiosity::{Solver, relative_errors};
 use crate::plot::{self, Figure, PALETTE, PlotError, err};
+use crate::render::camera::Camera;
 use crate::render::integrator::Integrator;
-use crate::render::scene::Camera;
 use crate::render::{Settings, render};
 use glam::DVec3;
 use plotters::prelude::*;

@@ -13,10 +13,13 @@ use super::photon_accuracy::LogLogChart;
 use super::scenes::cornell_box;
 use crate::geometry::{InputError, Ray};
 use crate::plot::{Figure, PlotError};
-use crate::render::analysis::{Pass, analyze};
-use crate::render::integrator::{Integrator, Sampler, Tracer};
 use crate::render::photon::{PhotonError, PhotonMap};
 use crate::render::scene::Scene;
+use crate::render::{analysis::analyze, passes::Pass};
+use crate::render::{
+    integrator::{Integrator, Tracer},
+    sampling::Sampler,
+};
 use glam::DVec3;
 use plotters::prelude::SeriesLabelPosition;
 use rayon::prelude::*;

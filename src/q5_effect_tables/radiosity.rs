@@ -9,7 +9,10 @@
 use crate::geometry::Ray;
 use crate::geometry::sphere::spawn_origin;
 use crate::render::Image;
-use crate::render::scene::{CameraFrame, Material, Scene, Shape};
+use crate::render::{
+    camera::CameraFrame,
+    scene::{Material, Scene, Shape},
+};
 use glam::DVec3;
 use rayon::prelude::*;
 use std::f64::consts::PI;

@@ -2,7 +2,10 @@
 //! left wall), their wall colours, and the probe regions the measurements read.
 
 use crate::geometry::{InputError, Ray};
-use crate::render::scene::{Camera, Material, Object, Scene};
+use crate::render::{
+    camera::Camera,
+    scene::{Material, Object, Scene},
+};
 use glam::DVec3;
 
 /// Reflectances of the Cornell box walls (RGB stand-ins for the measured spectra, as in Tungsten).
