@@ -24,6 +24,7 @@ use hw3::render::{
     analysis::analyze,
     passes::{Pass, Passes},
 };
+use hw3::stats::median;
 use std::fmt::Write as _;
 use std::time::Instant;
 
@@ -114,11 +115,6 @@ fn load_average() -> f64 {
         .ok()
         .and_then(|text| text.split_whitespace().next()?.parse().ok())
         .unwrap_or(f64::NAN)
-}
-
-fn median(values: &mut [f64]) -> f64 {
-    values.sort_by(f64::total_cmp);
-    values[values.len() / 2]
 }
 
 /// Times Whitted renders of the 1500-sphere clutter scene: with the kd-tree on 1 and 2 threads
