@@ -71,7 +71,7 @@ impl Limit {
         } else if !allow_large && value <= self.max_large {
             Err(format!("{name} = {value} is over the limit of {max}; pass --allow-large to allow up to {}", self.max_large))
         } else {
-            Err(format!("{name} = {value} is over the largest allowed, {} (with --allow-large)", self.max_large))
+            Err(format!("{name} = {value} is over the limit of {}, even with --allow-large", self.max_large))
         }
     }
 }

@@ -32,8 +32,8 @@
 //! - An eye inside the sphere hits the far root (the near one is behind it).
 //! - Comparisons are written so that NaN fails them: NaN anywhere is a miss, never a NaN `t`.
 //!   Validated constructors ([`Ray::new`], [`Sphere::new`]) reject such input earlier.
-//! - Valid input can still be out of a precision's reach: a square that overflows (`r ≥ 2⁵¹¹` in
-//!   `f64`, `r ≥ 2⁶³` in `f32`), or a sphere smaller than the rounding of the coordinates around it
+//! - Valid input can still be out of a precision's reach: a square that overflows (for `|d| ≈ 1`,
+//!   `r ≥ 2⁵⁰⁹` in `f64`, `r ≥ 2⁶¹` in `f32`), or a sphere smaller than the rounding of the coordinates around it
 //!   (an eye 10¹⁶ away from a unit sphere in `f64`: `e + d t` cannot tell the sphere's two sides
 //!   apart). [`check_solvable`] refuses such cases with the reason; inside its domain every hit has
 //!   a finite `t`, a point on the sphere and a unit normal.
@@ -92,8 +92,8 @@ const RESOLUTION: f64 = 1.0 / 256.0;
 /// and the Q2 ones give a finite `t`, a point on the sphere and a unit normal for every hit.
 ///
 /// With `s = max(‖e‖∞, ‖o‖∞, ‖e − o‖∞)`, it requires:
-/// - every square and product the solvers form (`r²|d|²`, `|f × d|²`, `f·f`, `t = |f|/|d|`) to be
-///   a finite normal number, with a factor 4 to spare;
+/// - every square and product the solvers form (`r²|d|²`, `|f × d|²`, `f·f`, the homework's
+///   `4AC`, `t = |f|/|d|`) to be a finite normal number, with a factor 64 to spare;
 /// - `ε s ≤ r/256`: the rounding of coordinates of size `s` is below `r/256`, so a computed hit
 ///   point lands on the right side of the sphere and its normal is right to 2⁻⁸ (in practice to
 ///   `ε s/r`).
@@ -124,7 +124,9 @@ pub fn check_solvable<T: Real>(ray: &Ray<T>, sphere: &Sphere<T>) -> Result<(), I
     // Exponents, so that the test itself cannot overflow; log2(0) = −∞ passes every upper bound.
     let (max_exp, min_exp) = (T::MAX.to_f64().log2(), T::MIN_POSITIVE.to_f64().log2());
     let (lf, ld, lr) = (f.log2(), d.log2(), r.log2());
-    let spare = 2.0; // a factor 4: sums of three squares and the √3 between ‖·‖∞ and |·|
+    // A factor 64 to spare: the homework's `4AC` is 4 times a product of sums of three squares,
+    // and |·| is up to √3 times ‖·‖∞.
+    let spare = 6.0;
     if 2.0 * lf.max(lr) + spare >= max_exp || 2.0 * (lf.max(lr) + ld) + spare >= max_exp {
         return refuse(format!("the squares of |e − o| = {f:e} or r = {r:e} (times |d|²) overflow"));
     }
