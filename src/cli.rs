@@ -69,7 +69,10 @@ impl Limit {
         } else if value <= max {
             Ok(value)
         } else if !allow_large && value <= self.max_large {
-            Err(format!("{name} = {value} is over the limit of {max}; pass --allow-large to allow up to {}", self.max_large))
+            Err(format!(
+                "{name} = {value} is over the limit of {max}; pass --allow-large to allow up to {}",
+                self.max_large
+            ))
         } else {
             Err(format!("{name} = {value} is over the limit of {}, even with --allow-large", self.max_large))
         }
@@ -300,7 +303,11 @@ pub fn check_hdr_file(path: &std::path::Path, allow_large: bool) -> Result<(), S
             MAP_MIN_SIDES.0, MAP_MIN_SIDES.1
         ));
     }
-    MAP_TEXELS.check(&format!("--env: {name}: texels ({width}×{height})"), width.saturating_mul(height), allow_large)?;
+    MAP_TEXELS.check(
+        &format!("--env: {name}: texels ({width}×{height})"),
+        width.saturating_mul(height),
+        allow_large,
+    )?;
     Ok(())
 }
 

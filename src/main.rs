@@ -469,7 +469,8 @@ fn prepare_figures_dir(out: &Path) -> Result<(), UsageError> {
     if out.exists() && !out.is_dir() {
         return Err(UsageError(format!("--out: `{}` is a file, not a folder", shown())));
     }
-    std::fs::create_dir_all(out).map_err(|e| UsageError(format!("--out: cannot create `{}`: {}", shown(), io_reason(&e))))?;
+    std::fs::create_dir_all(out)
+        .map_err(|e| UsageError(format!("--out: cannot create `{}`: {}", shown(), io_reason(&e))))?;
     hw3::fsio::check_writable_dir(out).map_err(|e| UsageError(format!("--out: {e}")))
 }
 

@@ -33,10 +33,19 @@ fn refused(output: &Output) -> String {
 fn every_count_has_a_bound_named_in_its_message() {
     for (args, option) in [
         (&["irradiance", "--env", "sky", "--normal", "0,0,1", "--method", "sh9", "--size", "1000000000"][..], "--size"),
-        (&["irradiance", "--env", "sky", "--normal", "0,0,1", "--method", "sh9", "--size", "18446744073709551615"], "--size"),
-        (&["irradiance", "--env", "sky", "--normal", "0,0,1", "--method", "sh9", "--size", "18446744073709551616"], "--size"),
+        (
+            &["irradiance", "--env", "sky", "--normal", "0,0,1", "--method", "sh9", "--size", "18446744073709551615"],
+            "--size",
+        ),
+        (
+            &["irradiance", "--env", "sky", "--normal", "0,0,1", "--method", "sh9", "--size", "18446744073709551616"],
+            "--size",
+        ),
         (&["irradiance", "--env", "sky", "--normal", "0,0,1", "--method", "sh9", "--size", "1"], "--size"),
-        (&["irradiance", "--env", "sky", "--normal", "0,0,1", "--method", "uniform", "--samples", "1000000000000"], "--samples"),
+        (
+            &["irradiance", "--env", "sky", "--normal", "0,0,1", "--method", "uniform", "--samples", "1000000000000"],
+            "--samples",
+        ),
         (&["irradiance", "--env", "sky", "--normal", "0,0,1", "--method", "uniform", "--samples", "0"], "--samples"),
         (&["render", "still", "--size", "4096x4096", "--spp", "65536", "--out", "x.png"], "--spp"),
         (&["render", "still", "--spp", "70000"], "--spp"),
@@ -161,7 +170,8 @@ fn files_of_the_wrong_kind_are_refused() {
     let huge = dir.join("huge.hdr");
     std::fs::write(&huge, b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 100000 +X 200000\n").unwrap();
     for (file, says) in [(&png, "not a Radiance"), (&tiny, "at least"), (&huge, "limit")] {
-        let line = refused(&hw3(&["irradiance", "--env", file.to_str().unwrap(), "--normal", "0,0,1", "--method", "sh9"]));
+        let line =
+            refused(&hw3(&["irradiance", "--env", file.to_str().unwrap(), "--normal", "0,0,1", "--method", "sh9"]));
         assert!(line.contains(says), "{line}");
     }
     let map = concat!(env!("CARGO_MANIFEST_DIR"), "/docs/data/q4/courtyard_256x128.hdr");
@@ -195,7 +205,8 @@ fn usage_errors_are_one_line_and_negative_numbers_are_values() {
     let joined = sphere(&["--origin=-5,1,0"]);
     assert!(spaced.status.success() && joined.status.success());
     assert_eq!(spaced.stdout, joined.stdout);
-    let negative = refused(&hw3(&["sphere", "--origin", "-5,1,0", "--dir", "1,0,0", "--center", "0,0,0", "--radius", "-2"]));
+    let negative =
+        refused(&hw3(&["sphere", "--origin", "-5,1,0", "--dir", "1,0,0", "--center", "0,0,0", "--radius", "-2"]));
     assert!(negative.contains("radius"), "{negative}");
 }
 

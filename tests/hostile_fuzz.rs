@@ -70,7 +70,7 @@ fn answers_text() -> impl Strategy<Value = String> {
         .chain(["seed".into(), "meta".into(), "q2a".into(), "leaves".into(), "unknown".into()])
         .collect();
     let value = prop_oneof![
-        hostile_f64().prop_map(|x| format!("{x:?}").replace("NaN", "nan").replace("inf", "inf")),
+        hostile_f64().prop_map(|x| format!("{x:?}").replace("NaN", "nan")),
         any::<i64>().prop_map(|i| i.to_string()),
         "[a-z<>=0-9,\\[\\]{} \"-]{0,40}".prop_map(|s| format!("\"{s}\"")),
         Just("[1, 2, 3]".to_owned()),
@@ -108,7 +108,7 @@ fn answers_text() -> impl Strategy<Value = String> {
 #[test]
 fn fuzz_answers_reader_and_grader() {
     let seeds = prop_oneof![Just(None), (0u64..4).prop_map(Some), any::<u64>().prop_map(Some)];
-    fuzz("checker", cases(400), (answers_text(), seeds), |(text, seed)| {
+    fuzz("checker", cases(40), (answers_text(), seeds), |(text, seed)| {
         if let Ok(report) = hw3::checker::check(&text, seed) {
             let shown = hw3::checker::report_text(&report);
             prop_assert!(shown.contains("score"), "{shown}");
@@ -122,7 +122,7 @@ fn fuzz_answers_reader_and_grader() {
 #[test]
 fn fuzz_templates_and_variants_of_any_seed() {
     let question = prop::sample::select(vec!["q1", "q2", "q3", "q4", "q5", "", "Q2", "q2 "]);
-    fuzz("checker seeds", cases(100), (question, any::<u64>()), |(question, seed)| {
+    fuzz("checker seeds", cases(8), (question, any::<u64>()), |(question, seed)| {
         let template = hw3::checker::template(seed);
         if seed <= hw3::cli::MAX_SEED {
             // Every template a user can ask for reads back (all blank: nothing correct).
@@ -141,7 +141,8 @@ fn fuzz_templates_and_variants_of_any_seed() {
 /// A Radiance file: a real header (or a broken one) and random or run-length-looking pixel bytes.
 fn hdr_bytes() -> impl Strategy<Value = Vec<u8>> {
     let magic = prop::sample::select(vec!["#?RADIANCE\n", "#?RGBE\n", "#?RADIANCE", "\u{89}PNG\r\n", ""]);
-    let format = prop::sample::select(vec!["FORMAT=32-bit_rle_rgbe\n", "FORMAT=32-bit_rle_xyze\n", "", "EXPOSURE=1e400\n"]);
+    let format =
+        prop::sample::select(vec!["FORMAT=32-bit_rle_rgbe\n", "FORMAT=32-bit_rle_xyze\n", "", "EXPOSURE=1e400\n"]);
     let dims = prop_oneof![
         (1u64..40, 1u64..80).prop_map(|(h, w)| format!("-Y {h} +X {w}\n")),
         (0u64..u64::MAX, 0u64..u64::MAX).prop_map(|(h, w)| format!("-Y {h} +X {w}\n")),
@@ -150,8 +151,7 @@ fn hdr_bytes() -> impl Strategy<Value = Vec<u8>> {
     let body = prop_oneof![
         prop::collection::vec(any::<u8>(), 0..4096),
         (prop::collection::vec(any::<u8>(), 0..64), 1usize..64).prop_map(|(chunk, n)| chunk.repeat(n)),
-        (1u8..255, prop::collection::vec(any::<u8>(), 0..512))
-            .prop_map(|(w, rest)| [vec![2, 2, 0, w], rest].concat()),
+        (1u8..255, prop::collection::vec(any::<u8>(), 0..512)).prop_map(|(w, rest)| [vec![2, 2, 0, w], rest].concat()),
     ];
     (magic, format, dims, body).prop_map(|(m, f, d, b)| [m.as_bytes(), f.as_bytes(), b"\n", d.as_bytes(), &b].concat())
 }
