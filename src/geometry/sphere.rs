@@ -127,23 +127,38 @@ pub fn check_solvable<T: Real>(ray: &Ray<T>, sphere: &Sphere<T>) -> Result<(), I
     // A factor 64 to spare: the homework's `4AC` is 4 times a product of sums of three squares,
     // and |·| is up to √3 times ‖·‖∞.
     let spare = 6.0;
-    if 2.0 * lf.max(lr) + spare >= max_exp || 2.0 * (lf.max(lr) + ld) + spare >= max_exp {
-        return refuse(format!("the squares of |e − o| = {f:e} or r = {r:e} (times |d|²) overflow"));
+    let (fs, ds, rs) = (short(f), short(d), short(r));
+    if 2.0 * lr.max(lr + ld) + spare >= max_exp {
+        return refuse(format!("r² |d|² overflows for r = {rs}, |d| = {ds}"));
     }
-    if lf - ld + spare >= max_exp || lr - ld + spare >= max_exp {
-        return refuse(format!("t ≈ |e − o|/|d| overflows for |d| = {d:e}"));
+    if 2.0 * lf.max(lf + ld) + spare >= max_exp {
+        return refuse(format!("|e − o|² |d|² overflows for |e − o| = {fs}, |d| = {ds}"));
     }
-    if 2.0 * (lr + ld) - spare <= min_exp || 2.0 * lr - spare <= min_exp {
-        return refuse(format!("r² = ({r:e})² (times |d|²) underflows"));
+    if lf.max(lr) - ld + spare >= max_exp {
+        return refuse(format!("t ≈ |e − o|/|d| overflows for |e − o| = {fs}, r = {rs}, |d| = {ds}"));
+    }
+    if 2.0 * lr.min(lr + ld) - spare <= min_exp {
+        return refuse(format!("r² |d|² underflows for r = {rs}, |d| = {ds}"));
     }
     let s = f.max(size(ray.origin)).max(size(sphere.center));
-    if T::EPSILON.to_f64() * s > RESOLUTION * r {
+    let rounding = T::EPSILON.to_f64() * s;
+    if rounding > RESOLUTION * r {
         return refuse(format!(
-            "coordinates of size {s:e} are rounded by ε·{s:e} = {:e}, more than r/256 for r = {r:e}",
-            T::EPSILON.to_f64() * s
+            "coordinates of size {} are rounded by up to {}, more than r/256 for r = {rs}: the hit point \
+             cannot be told apart from the other side of the sphere",
+            short(s),
+            short(rounding)
         ));
     }
     Ok(())
+}
+
+/// `x` in scientific notation with at most 4 significant digits (`1e16`, `2.22e0`).
+fn short(x: f64) -> String {
+    let text = format!("{x:.3e}");
+    let (mantissa, exponent) = text.split_once('e').unwrap_or((&text, "0"));
+    let mantissa = if mantissa.contains('.') { mantissa.trim_end_matches('0').trim_end_matches('.') } else { mantissa };
+    format!("{mantissa}e{exponent}")
 }
 
 /// Both roots by the stable method (module docs), or `None` when the ray's line misses the sphere.
