@@ -90,6 +90,7 @@ pub fn solve(
 fn solve_in<T: Real>(ray: &Ray<f64>, sphere: &Sphere<f64>, method: Method) -> Result<SphereAnswer, InputError> {
     let ray = Ray::<T>::new(T::vec_from_f64(ray.origin), T::vec_from_f64(ray.dir))?;
     let sphere = Sphere::<T>::new(T::vec_from_f64(sphere.center), T::from_f64(sphere.radius))?;
+    crate::geometry::sphere::check_solvable(&ray, &sphere)?;
     let array = |v: T::Vec3| T::vec_to_f64(v).to_array();
     let (t, policy) = match method {
         Method::Naive => (seed_trace(&ray, &sphere).chosen, SpawnPolicy::AtComputedPoint),
