@@ -1,6 +1,7 @@
 //! Answers files written by the checker: the blank template and the key itself.
 
 use super::error::CheckError;
+use super::formula::Kind;
 use super::key::Expected;
 use super::variants::{QUESTIONS, variant};
 use std::fmt::Write as _;
@@ -40,8 +41,30 @@ pub fn template(seed: u64) -> Result<String, CheckError> {
                     format!("[x, y, z], unit length, within {angle_tol:.0e} rad")
                 }
                 Expected::Trace { .. } => "[{ path = [...], tmin = N, tmax = N or \"inf\" }, ...]".to_string(),
-                Expected::Choice { .. } => {
-                    "\"yes\", \"no\" or \"impractical\"; or { answer = ..., why = \"...\" }".to_string()
+                Expected::Planes { .. } => {
+                    "[{ node = [...], t = N or \"parallel\", first = \"x>=3\" }, ...]; node = [] is the root"
+                        .to_string()
+                }
+                Expected::Choice { options, .. } => {
+                    let words: Vec<String> = options.iter().map(|o| format!("\"{o}\"")).collect();
+                    format!("one of {}; or {{ answer = ..., why = \"...\" }}", words.join(", "))
+                }
+                Expected::Flag { .. } => "true or false".to_string(),
+                Expected::Formula { symbols, .. } => {
+                    let names: Vec<String> = symbols
+                        .iter()
+                        .map(|(name, kind)| match kind {
+                            Kind::Vector => format!("{name} (vector; {name}_x ...)"),
+                            Kind::Scalar => (*name).to_string(),
+                        })
+                        .collect();
+                    format!(
+                        "a formula in quotes in {}; + - * / ^, dot, cross, norm, sqrt, abs; write * for products",
+                        names.join(", ")
+                    )
+                }
+                Expected::Paths { .. } => {
+                    "light paths in Heckbert's notation in quotes: L D G S V E, | * + ? ( ), or \"none\"".to_string()
                 }
             };
             let _ = writeln!(out, "# {} ({shape}, {} points)\n# {name} = ", part.prompt, part.points);
@@ -90,7 +113,21 @@ pub fn answers_key_for(question: &str, seed: u64) -> Result<String, CheckError> 
             Expected::Vector { value, .. } | Expected::Direction { value, .. } | Expected::Parallel { value, .. } => {
                 format!("[{:?}, {:?}, {:?}]", value[0], value[1], value[2])
             }
-            Expected::Choice { value } => format!("{value:?}"),
+            Expected::Choice { value, .. } => format!("{value:?}"),
+            Expected::Flag { value } => value.to_string(),
+            Expected::Formula { source, .. } => format!("{source:?}"),
+            Expected::Paths { value } => format!("{value:?}"),
+            Expected::Planes { steps } => {
+                let rows: Vec<String> = steps
+                    .iter()
+                    .map(|p| {
+                        let node: Vec<String> = p.node.iter().map(|b| format!("{b:?}")).collect();
+                        let t = p.t.map_or_else(|| "\"parallel\"".to_string(), |t| format!("{t:?}"));
+                        format!("  {{ node = [{}], t = {t}, first = {:?} }},", node.join(", "), p.first)
+                    })
+                    .collect();
+                format!("[\n{}\n]", rows.join("\n"))
+            }
             Expected::Trace { leaves, .. } => {
                 let bound = |t: f64| if t.is_infinite() { "\"inf\"".to_string() } else { format!("{t:?}") };
                 let rows: Vec<String> = leaves
