@@ -5,6 +5,7 @@ mod formula;
 mod grading;
 mod key;
 mod paths;
+mod q1;
 mod q2;
 mod q3;
 mod q4;
