@@ -165,6 +165,12 @@ fn compare(expected: &Expected, given: &Given) -> (bool, String) {
             compare_formulas(key, formula, symbols, points)
         }
         (Expected::Paths { value }, Given::Paths(given)) => compare_paths(value, given),
+        (Expected::OrNone { none: true, .. }, Given::None) => (true, "right: there is none".into()),
+        (Expected::OrNone { none: true, .. }, _) => (false, "there is none: write \"none\"".into()),
+        (Expected::OrNone { none: false, .. }, Given::None) => {
+            (false, "there is one: the key is a value, not none".into())
+        }
+        (Expected::OrNone { value, none: false }, given) => compare(value, given),
         _ => (false, "answer has the wrong shape".into()),
     }
 }
@@ -181,6 +187,8 @@ fn show_expected(expected: &Expected) -> String {
         Expected::Flag { value } => value.to_string(),
         Expected::Formula { source, .. } => (*source).to_string(),
         Expected::Paths { value } => value.clone(),
+        Expected::OrNone { none: true, .. } => "none".into(),
+        Expected::OrNone { value, .. } => show_expected(value),
     }
 }
 
@@ -209,7 +217,8 @@ fn grade(part: &Part, given: Option<&Given>) -> PartResult {
         Given::Planes(steps) => steps.iter().map(show_plane).collect::<Vec<_>>().join("; "),
         Given::Choice { answer, .. } => answer.clone(),
         Given::Flag(flag) => flag.to_string(),
-        Given::Formula { source, .. } | Given::Paths(source) => source.clone(),
+        Given::Formula { source, .. } | Given::Paths(source) | Given::Something(source) => source.clone(),
+        Given::None => "none".into(),
     };
     let (ok, words) = compare(&part.expected, given);
     let trace_credit = match (&part.expected, given) {
@@ -336,7 +345,12 @@ mod tests {
             let (table, name) = part.key.split_once('.').unwrap();
             let mut doc: toml::Table = toml::from_str(&key).unwrap();
             let entry = doc.get_mut(table).unwrap().as_table_mut().unwrap().get_mut(name).unwrap();
+            let or_none = matches!(part.expected, Expected::OrNone { .. });
             *entry = match entry.clone() {
+                toml::Value::String(word) if or_none && word == "none" => toml::Value::Float(1.0),
+                _ if or_none && matches!(part.expected, Expected::OrNone { none: false, .. }) => {
+                    toml::Value::String("none".into())
+                }
                 toml::Value::Float(x) => toml::Value::Float(x * 1.5 + 1.0),
                 toml::Value::Boolean(b) => toml::Value::Boolean(!b),
                 toml::Value::String(word) => toml::Value::String(match &part.expected {

@@ -78,6 +78,16 @@ pub enum Expected {
         /// and so on).
         points: Vec<Point>,
     },
+    /// A value that may not exist (Q2's t, point, normal and reflection when the ray does not
+    /// hit): the file gives the value, or `"none"`. Every variant lists the same parts, so which
+    /// parts the template shows never gives away whether the ray hits.
+    OrNone {
+        /// The key when there is a value; when `none`, a stand-in of the same kind, for the
+        /// template's format line only.
+        value: Box<Expected>,
+        /// The key is "none".
+        none: bool,
+    },
     /// A class of light paths in Heckbert's notation (`LD+E`), graded by language equivalence:
     /// `LDD*E` and `LD+E` are the same answer. `none` is the empty class.
     Paths {

@@ -106,6 +106,11 @@ fn direction(value: DVec3) -> Expected {
     Expected::Direction { value: value.normalize().to_array(), angle_tol: 1e-3 }
 }
 
+/// A value that a ray which misses does not have.
+fn or_none(value: Expected) -> Expected {
+    Expected::OrNone { value: Box::new(value), none: false }
+}
+
 fn parallel(value: DVec3) -> Expected {
     Expected::Parallel { value: value.normalize().to_array(), angle_tol: 1e-3 }
 }
@@ -258,9 +263,9 @@ pub(super) fn variant(seed: u64) -> Variant {
     let statement = format!(
         "Q2 (variant {seed}). Ray e + d t with e = {}, d = {}; sphere with centre o = {}, radius r = {}.\n\
          (a) which case of the analysis applies (case = one of {}), whether the ray hits the sphere at some t > 0 \
-         (hit = true or false; t = 0 is the eye itself, not a hit), and if it does, the parameter t of the first \
-         intersection and the intersection point;\n\
-         (b) if it hits: the unit normal there, and the unit reflected direction;\n\
+         (hit = true or false; t = 0 is the eye itself, not a hit), the parameter t of the first intersection and \
+         the intersection point (\"none\" for each if it does not hit);\n\
+         (b) the unit normal there, and the unit reflected direction (\"none\" if it does not hit);\n\
          (c) the parameter t of the ray's closest approach to the centre.\n\
          Also as formulas (the same for every variant): A, B, C of A t^2 + B t + C = 0 in e, d, o, r; the first hit \
          from outside in A, B, C; the unit normal in p, o, r; the unit reflected direction in d, dhat = d/|d|, n; the \
@@ -311,7 +316,7 @@ pub(super) fn variant(seed: u64) -> Variant {
             key: "q2a.t",
             prompt: "first intersection parameter t",
             points: 2.0,
-            expected: number(t),
+            expected: or_none(number(t)),
             mal_rules: vec![],
             explained_in: NOTES,
         };
@@ -322,7 +327,7 @@ pub(super) fn variant(seed: u64) -> Variant {
             key: "q2a.point",
             prompt: "intersection point e + d t",
             points: 1.0,
-            expected: vector(hit.point),
+            expected: or_none(vector(hit.point)),
             mal_rules: vec![],
             explained_in: NOTES,
         };
@@ -337,7 +342,7 @@ pub(super) fn variant(seed: u64) -> Variant {
             key: "q2b.reflected_dir",
             prompt: "unit reflected direction d^ - 2 (n . d^) n",
             points: 2.0,
-            expected: direction(reflected),
+            expected: or_none(direction(reflected)),
             mal_rules: vec![],
             explained_in: NOTES,
         };
@@ -370,7 +375,7 @@ pub(super) fn variant(seed: u64) -> Variant {
                 key: "q2b.normal",
                 prompt: "unit normal (p - o)/r at the hit",
                 points: 1.0,
-                expected: direction(hit.normal),
+                expected: or_none(direction(hit.normal)),
                 mal_rules: vec![MalRule {
                     value: parallel(-hit.normal),
                     message: "the normal points inward: use p - o, not o - p",
@@ -381,7 +386,26 @@ pub(super) fn variant(seed: u64) -> Variant {
             reflected_part,
         ]);
     } else {
-        parts.extend([a, b, c, t_formula]);
+        // No hit: the same parts, each answered "none", so the template does not give it away.
+        let none = |key, prompt, points, like| Part {
+            key,
+            prompt,
+            points,
+            expected: Expected::OrNone { value: Box::new(like), none: true },
+            mal_rules: vec![],
+            explained_in: NOTES,
+        };
+        let zero = DVec3::X;
+        parts.extend([
+            none("q2a.t", "first intersection parameter t", 2.0, number(0.0)),
+            none("q2a.point", "intersection point e + d t", 1.0, vector(zero)),
+            a,
+            b,
+            c,
+            t_formula,
+            none("q2b.normal", "unit normal (p - o)/r at the hit", 1.0, direction(zero)),
+            none("q2b.reflected_dir", "unit reflected direction d^ - 2 (n . d^) n", 2.0, direction(zero)),
+        ]);
     }
     parts.extend([normal_formula, reflected_formula]);
     let mut closest = Part {
@@ -430,5 +454,22 @@ mod tests {
                 _ => assert_eq!(c, 0.0),
             }
         }
+    }
+
+    #[test]
+    fn every_variant_asks_the_same_parts_and_none_is_an_answer() {
+        let keys = |seed| variant(seed).parts.iter().map(|p| p.key).collect::<Vec<_>>();
+        for seed in 2..=6 {
+            assert_eq!(keys(seed), keys(1), "seed {seed}: the parts must not give the case away");
+        }
+        // Seed 5 misses: "none" is right, a number is wrong; seed 1 hits: "none" is wrong.
+        let miss = crate::checker::check("[meta]\nseed = 5\n[q2a]\nt = \"none\"\npoint = [1, 2, 3]", None).unwrap();
+        let part =
+            |report: &crate::checker::Report, key: &str| report.parts.iter().find(|p| p.key == key).unwrap().clone();
+        assert_eq!(part(&miss, "q2a.t").status, "correct");
+        assert_eq!(part(&miss, "q2a.point").status, "wrong");
+        assert!(part(&miss, "q2a.point").feedback.contains("write \"none\""));
+        let hit = crate::checker::check("[meta]\nseed = 1\n[q2a]\nt = \"none\"", None).unwrap();
+        assert_eq!(part(&hit, "q2a.t").status, "wrong");
     }
 }

@@ -24,11 +24,21 @@ pub(super) enum Given {
     Number(f64),
     Vector([f64; 3]),
     Trace(Vec<ExpectedLeaf>),
-    Choice { answer: String, why: Option<String> },
+    Choice {
+        answer: String,
+        why: Option<String>,
+    },
     Flag(bool),
-    Formula { formula: Formula, source: String },
+    Formula {
+        formula: Formula,
+        source: String,
+    },
     Paths(String),
     Planes(Vec<ExpectedPlane>),
+    /// `"none"` for a part that may have no value.
+    None,
+    /// Some value for a part whose key is "none" (its shape is not checked: any value is wrong).
+    Something(String),
 }
 
 fn read_choice(key: &str, value: &toml::Value, options: &[&str]) -> Result<Given, CheckError> {
@@ -129,6 +139,11 @@ pub(super) fn read_value(key: &str, value: &toml::Value, expected: &Expected) ->
             Ok(Given::Paths(source))
         }
         Expected::Planes { .. } => read_planes(key, value).map(Given::Planes),
+        Expected::OrNone { value: inner, none } => match value {
+            toml::Value::String(s) if s.trim().eq_ignore_ascii_case("none") => Ok(Given::None),
+            other if *none => Ok(Given::Something(other.to_string())),
+            other => read_value(key, other, inner),
+        },
         Expected::Vector { .. } | Expected::Direction { .. } | Expected::Parallel { .. } => {
             let bad = |problem: String| CheckError::BadValue { key: key.to_string(), problem };
             let toml::Value::Array(items) = value else {
