@@ -164,7 +164,7 @@ fn fuzz_hdr_reader() {
     fuzz("hdr reader", cases(300), hdr_bytes(), |bytes| {
         std::fs::write(&path, &bytes).unwrap();
         if hw3::cli::check_hdr_file(&path, false).is_ok()
-            && let Ok(probe) = hw3::q4_light_probe::Probe::read_lat_long(&path)
+            && let Ok(probe) = hw3::envmap::Probe::read_lat_long(&path)
         {
             let texels = probe.width() as u64 * probe.height() as u64;
             prop_assert!(texels <= hw3::cli::MAP_TEXELS.max);

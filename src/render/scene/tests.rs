@@ -93,6 +93,7 @@ fn invalid_scenes_are_typed_errors_naming_the_value() {
         InputError::NonFinite { name, .. }
         | InputError::DegenerateDirection { name, .. }
         | InputError::OutOfRange { name, .. } => name,
+        InputError::Unresolvable { precision, .. } => precision,
     };
     let scene = |camera, objects, fog| Scene::new(camera, objects, vec![], fog, DVec3::ZERO);
     let parallel_up = Camera { up: DVec3::Z, ..camera };
