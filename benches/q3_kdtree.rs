@@ -6,7 +6,8 @@
 //! `docs/data/q3_kdtree_perf.csv` and `.md`, from which the notes' plot is drawn.
 //!
 //! Peers in the same run, on the same rays (`q3_kdtree/peers.rs`): the `bvh` crate and `obvhs`
-//! BVH2 and CWBVH, each on the `f32` scene; every peer answer is checked against the kd-tree ray by
+//! BVH2 and CWBVH, each on the `f32` scene, and with `--features embree` the system's Embree 3
+//! (`q3_kdtree/embree.rs`); every peer answer is checked against the kd-tree ray by
 //! ray (a mismatch is a different sphere, or hit versus miss), and the note's ray #839 669 with
 //! direction (−0, −0, −1) is a named probe in every configuration.
 //!
@@ -14,6 +15,9 @@
 //! `HW3_Q3_KI`, `HW3_Q3_EMPTY_BONUS`, `HW3_Q3_BINS`, `HW3_Q3_MIN_N` make a tuning run that only prints);
 //! under `cargo test --benches` it runs one small smoke round and writes nothing.
 
+#[cfg(feature = "embree")]
+#[path = "q3_kdtree/embree.rs"]
+mod embree;
 #[path = "q3_kdtree/peers.rs"]
 mod peers;
 #[path = "q3_kdtree/workload.rs"]
@@ -144,6 +148,9 @@ struct Run {
     camera: Timed,
     random: Timed,
     peer_fields: String,
+    /// Embree's CSV fields (build ms, camera and random Mrays/s, mismatches, kd ÷ Embree speed
+    /// camera and random), appended after the older columns; `-` without the `embree` feature.
+    embree_fields: String,
     probe: Vec<String>,
 }
 
@@ -167,7 +174,7 @@ fn run_all(tree: &KdTree, spheres: &[Sphere<f64>], rays: &Rays<'_>, tree_probe: 
             (shapes, peer, build_secs)
         })
         .collect();
-    let time_on = |rounds: usize, kd_rays: &[Ray<f64>], peer_rays: &[peers::RayF32]| {
+    let time_on = |rounds: usize, kd_rays: &[Ray<f64>], peer_rays: &[peers::RayF32], coherent: bool| {
         let mut kd = || trace_all(tree, kd_rays);
         let mut peer_work: Vec<_> = built
             .iter()
@@ -175,7 +182,9 @@ fn run_all(tree: &KdTree, spheres: &[Sphere<f64>], rays: &Rays<'_>, tree_probe: 
                 move || -> Vec<Hit> {
                     peer_rays
                         .iter()
-                        .map(|r| peer.closest_hit(shapes, black_box(r), t_min).map(|(i, t)| (i, f64::from(t))))
+                        .map(|r| {
+                            peer.closest_hit(shapes, black_box(r), t_min, coherent).map(|(i, t)| (i, f64::from(t)))
+                        })
                         .collect()
                 }
             })
@@ -184,21 +193,31 @@ fn run_all(tree: &KdTree, spheres: &[Sphere<f64>], rays: &Rays<'_>, tree_probe: 
         contenders.extend(peer_work.iter_mut().map(|w| w as &mut dyn FnMut() -> Vec<Hit>));
         interleaved(rounds, &mut contenders)
     };
-    let camera_timed = time_on(repeats.1, camera, camera32);
-    let random_timed = time_on(repeats.1.min(3), random, random32);
-    let mut run = Run { camera: camera_timed, random: random_timed, peer_fields: String::new(), probe: Vec::new() };
-    for (p, (name, (shapes, peer, build_secs))) in peers::NAMES.iter().zip(&built).enumerate() {
+    let camera_timed = time_on(repeats.1, camera, camera32, true);
+    let random_timed = time_on(repeats.1.min(3), random, random32, false);
+    let mut run = Run {
+        camera: camera_timed,
+        random: random_timed,
+        peer_fields: String::new(),
+        embree_fields: ",-,-,-,-,-,-".into(),
+        probe: Vec::new(),
+    };
+    for (p, (&name, (shapes, peer, build_secs))) in peers::NAMES.iter().zip(&built).enumerate() {
         let c = p + 1;
         let wrong = mismatches(&run.camera.answers[c], &run.camera.answers[0])
             + mismatches(&run.random.answers[c], &run.random.answers[0]);
-        let _ = write!(
-            run.peer_fields,
+        let fields = format!(
             ",{:.3},{:.3},{:.3},{wrong}",
             build_secs * 1e3,
             mrays(camera32.len(), run.camera.best_secs[c]),
             mrays(random32.len(), run.random.best_secs[c])
         );
-        let answer = peer.closest_hit(shapes, probe32, t_min);
+        if name == peers::EMBREE {
+            run.embree_fields = format!("{fields},{:.3},{:.3}", run.camera.median_ratio[c], run.random.median_ratio[c]);
+        } else {
+            run.peer_fields.push_str(&fields);
+        }
+        let answer = peer.closest_hit(shapes, probe32, t_min, false);
         let verdict = match (answer, tree_probe) {
             (a, b) if a.map(|h| h.0) == b.map(|h| h.0) => "ok".to_string(),
             (None, Some((i, _))) => format!("MISSES sphere {i}"),
@@ -248,7 +267,7 @@ fn main() {
     let probe_ray = random_rays(PROBE + 1, 0xBEEF)[PROBE];
     let probe32 = peers::rays_f32(&[probe_ray])[0];
     let mut peer_header = String::new();
-    for name in peers::NAMES {
+    for name in peers::NAMES.iter().filter(|&&name| name != peers::EMBREE) {
         let _ = write!(peer_header, ",{name}_build_ms,{name}_camera_mrays,{name}_random_mrays,{name}_mismatches");
     }
     let mut csv = String::from(
@@ -257,7 +276,12 @@ fn main() {
          random_sum_t,brute_camera_mrays,brute_random_mrays,brute_mismatches,versus_note",
     );
     csv.push_str(&peer_header);
-    csv.push_str(",probe_839669,kd_over_cwbvh_camera,kd_over_cwbvh_random\n");
+    let e = peers::EMBREE;
+    let _ = writeln!(
+        csv,
+        ",probe_839669,kd_over_cwbvh_camera,kd_over_cwbvh_random,\
+         {e}_build_ms,{e}_camera_mrays,{e}_random_mrays,{e}_mismatches,kd_over_{e}_camera,kd_over_{e}_random"
+    );
     for density in [Density::FixedMeanFreePath, Density::FixedVolumeFraction] {
         let label = match density {
             Density::FixedMeanFreePath => "fixed_k",
@@ -306,7 +330,7 @@ fn main() {
             let note = if measuring { versus_note(n, density, (ch, ct), (rh, rt)) } else { "-".into() };
             let line = format!(
                 "{label},{n},{:.3},{},{},{:.3},{:.2},{:.2},{ch},{ct:.2},{:.3},{:.2},{:.2},{rh},{rt:.2},\
-                 {brute_camera},{brute_random},{mismatches},{note}{},{probe},{:.3},{:.3}\n",
+                 {brute_camera},{brute_random},{mismatches},{note}{},{probe},{:.3},{:.3}{}\n",
                 build_secs * 1e3,
                 tree.node_count(),
                 tree.reference_count(),
@@ -319,6 +343,7 @@ fn main() {
                 run.peer_fields,
                 run.camera.median_ratio[CWBVH],
                 run.random.median_ratio[CWBVH],
+                run.embree_fields,
             );
             eprint!("{line}");
             csv.push_str(&line);
@@ -390,6 +415,19 @@ fn markdown(csv: &str) -> String {
         let mut row = cells(&f, &columns);
         row.insert(row.len() - 1, ratio);
         let _ = writeln!(md, "| {} |", row.join(" | "));
+    }
+    md.push_str(
+        "\nEmbree 3 (system library 3.13.5, native sphere points, `rtcIntersect1`, 1 thread; `-` where the \
+         run was made without the `embree` feature), same run, same rays; kd ÷ Embree is the median of the \
+         per-round speed ratios:\n\n\
+         | density | N | kd build ms | Embree build ms | kd camera | Embree camera | kd ÷ Embree camera | \
+         kd random | Embree random | kd ÷ Embree random | mismatches Embree |\n\
+         |---|---|---|---|---|---|---|---|---|---|---|\n",
+    );
+    for line in csv.lines().skip(1) {
+        let f: Vec<&str> = line.split(',').collect();
+        let columns: [&[usize]; 11] = [&[0], &[1], &[2], &[34], &[5], &[35], &[38], &[10], &[36], &[39], &[37]];
+        let _ = writeln!(md, "| {} |", cells(&f, &columns).join(" | "));
     }
     md.push_str("\nProbe, the note's random ray #839 669 with direction (−0, −0, −1), per scene:\n\n");
     for line in csv.lines().skip(1) {
