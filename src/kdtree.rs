@@ -38,10 +38,12 @@
 mod build;
 mod node;
 mod tree;
+mod tree_f32;
 
 pub use build::{BuildError, SahCosts};
 pub(crate) use tree::moved;
 pub use tree::{HitStats, KdTree, brute_force_closest_hit};
+pub use tree_f32::KdTreeF32;
 
 /// Which child of a split a piece of the ray lies in: `Lower` holds `p_a < s`, `Upper` holds
 /// `p_a ≥ s`.

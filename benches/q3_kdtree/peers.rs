@@ -36,8 +36,8 @@ pub struct SphereF32 {
 /// A ray in `f32` (unit direction) with its component-wise reciprocal for slab tests.
 #[derive(Debug, Clone, Copy)]
 pub struct RayF32 {
-    origin: Vec3A,
-    dir: Vec3A,
+    pub origin: Vec3A,
+    pub dir: Vec3A,
     inv_dir: Vec3A,
 }
 

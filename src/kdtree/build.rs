@@ -126,14 +126,34 @@ pub(super) fn max_depth(n: usize) -> usize {
     ((8.0 + 1.3 * n.log2()).round() as usize).min(60)
 }
 
-/// The recursive builder's state: the output arrays and the inputs it reads.
+/// The recursive builder's inputs.
 pub(super) struct Builder<'a> {
     pub boxes: &'a [Aabb],
     pub costs: SahCosts,
     pub max_depth: usize,
+}
+
+/// A built subtree: its nodes in pre-order (an interior node's lower child directly follows it) and
+/// its leaves' concatenated sphere lists, with node and list positions relative to these arrays.
+#[derive(Debug, Default)]
+pub(super) struct Subtree {
     pub nodes: Vec<Node>,
     pub indices: Vec<u32>,
 }
+
+impl Subtree {
+    /// Appends `other`, shifting its upper-child and first-index fields by where it lands.
+    fn append(&mut self, other: Self) {
+        let node_offset = u32::try_from(self.nodes.len()).expect("node count fits u32");
+        let index_offset = u32::try_from(self.indices.len()).expect("index count fits u32");
+        self.nodes.extend(other.nodes.into_iter().map(|node| node.shifted(node_offset, index_offset)));
+        self.indices.extend(other.indices);
+    }
+}
+
+/// Spheres from which a node builds its two subtrees on two threads (`rayon::join`): below it the
+/// per-subtree bookkeeping costs more than the second thread saves.
+const PARALLEL_MIN: usize = 8_192;
 
 /// The best split found for one node.
 struct Candidate {
@@ -143,9 +163,10 @@ struct Candidate {
 }
 
 impl Builder<'_> {
-    /// Builds the subtree of `cell` holding `prims`, appending it to `nodes` (pre-order: the lower
-    /// child directly follows its parent).
-    pub fn build(&mut self, cell: Aabb, prims: Vec<u32>, depth: usize) {
+    /// Builds the subtree of `cell` holding `prims`, appending it to `out` (pre-order: the lower
+    /// child directly follows its parent). Large nodes build their children in parallel; the
+    /// result is the same tree as a serial build.
+    pub fn build(&self, cell: Aabb, prims: Vec<u32>, depth: usize, out: &mut Subtree) {
         let leaf_cost = self.costs.intersection * prims.len() as f64;
         let best = if prims.len() <= 1 || depth >= self.max_depth {
             None
@@ -153,51 +174,74 @@ impl Builder<'_> {
             self.best_split(&cell, &prims).filter(|c| c.cost < leaf_cost)
         };
         let Some(Candidate { axis, split, .. }) = best else {
-            let first = u32::try_from(self.indices.len()).expect("index count fits u32");
+            let first = u32::try_from(out.indices.len()).expect("index count fits u32");
             let count = u32::try_from(prims.len()).expect("sphere count fits u32");
-            self.indices.extend_from_slice(&prims);
-            self.nodes.push(Node::leaf(first, count));
+            out.indices.extend_from_slice(&prims);
+            out.nodes.push(Node::leaf(first, count));
             return;
         };
+        let parallel = prims.len() >= PARALLEL_MIN;
         let (lower, upper): (Vec<u32>, Vec<u32>) = (
             prims.iter().copied().filter(|&i| self.boxes[i as usize].min[axis] <= split).collect(),
             prims.iter().copied().filter(|&i| self.boxes[i as usize].max[axis] >= split).collect(),
         );
         drop(prims);
-        let here = self.nodes.len();
-        self.nodes.push(Node::leaf(0, 0));
+        let here = out.nodes.len();
+        out.nodes.push(Node::leaf(0, 0));
         let (mut lower_cell, mut upper_cell) = (cell, cell);
         lower_cell.max[axis] = split;
         upper_cell.min[axis] = split;
-        self.build(lower_cell, lower, depth + 1);
-        let upper_index = u32::try_from(self.nodes.len()).expect("node count fits u32");
-        self.build(upper_cell, upper, depth + 1);
-        self.nodes[here] = Node::interior(split as f32, axis, upper_index);
+        let upper_index = if parallel {
+            let subtree = |cell, prims| {
+                let mut part = Subtree::default();
+                self.build(cell, prims, depth + 1, &mut part);
+                part
+            };
+            let (lower_part, upper_part) = rayon::join(|| subtree(lower_cell, lower), || subtree(upper_cell, upper));
+            out.append(lower_part);
+            let upper_index = out.nodes.len();
+            out.append(upper_part);
+            upper_index
+        } else {
+            self.build(lower_cell, lower, depth + 1, out);
+            let upper_index = out.nodes.len();
+            self.build(upper_cell, upper, depth + 1, out);
+            upper_index
+        };
+        let upper_index = u32::try_from(upper_index).expect("node count fits u32");
+        out.nodes[here] = Node::interior(split as f32, axis, upper_index);
     }
 
-    /// The cheapest binned plane over the three axes, if any axis has extent.
+    /// The cheapest binned plane over the three axes, if any axis has extent. One pass over the
+    /// spheres bins all three axes; a candidate's child areas are linear in its plane, so each
+    /// costs a few flops.
     fn best_split(&self, cell: &Aabb, prims: &[u32]) -> Option<Candidate> {
         let bins = self.costs.bins;
         let area = cell.surface_area();
-        let mut starts = vec![0u32; bins];
-        let mut ends = vec![0u32; bins];
+        let (lo, hi) = (cell.min.to_array(), cell.max.to_array());
+        let extent = [hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]];
+        let scale = extent.map(|e| bins as f64 / e);
+        // starts of axis a in [2a·bins, (2a+1)·bins), ends in the next `bins`.
+        let mut counts = vec![0u32; 6 * bins];
+        let bin_of = |a: usize, x: f64| (((x - lo[a]) * scale[a]).max(0.0) as usize).min(bins - 1);
+        for &i in prims {
+            let b = &self.boxes[i as usize];
+            let (min, max) = (b.min.to_array(), b.max.to_array());
+            for a in 0..3 {
+                counts[2 * a * bins + bin_of(a, min[a])] += 1;
+                counts[(2 * a + 1) * bins + bin_of(a, max[a])] += 1;
+            }
+        }
+        let n = prims.len() as f64;
         let mut best: Option<Candidate> = None;
         for axis in 0..3 {
-            let (lo, hi) = (cell.min[axis], cell.max[axis]);
-            let extent = hi - lo;
-            if !(extent > 0.0) {
+            if !(extent[axis] > 0.0) {
                 continue;
             }
-            let scale = bins as f64 / extent;
-            let bin_of = |x: f64| (((x - lo) * scale).max(0.0) as usize).min(bins - 1);
-            starts.fill(0);
-            ends.fill(0);
-            for &i in prims {
-                let b = &self.boxes[i as usize];
-                starts[bin_of(b.min[axis])] += 1;
-                ends[bin_of(b.max[axis])] += 1;
-            }
-            let n = prims.len() as f64;
+            let (starts, ends) = counts[2 * axis * bins..(2 * axis + 2) * bins].split_at(bins);
+            // A child's area is 2 (e_b e_c + e_axis (e_b + e_c)) with e_axis its extent on the axis.
+            let (eb, ec) = (extent[(axis + 1) % 3], extent[(axis + 2) % 3]);
+            let (cap, side) = (2.0 * eb * ec, 2.0 * (eb + ec));
             let (mut n_lower, mut n_ended) = (0.0, 0.0);
             for k in 1..bins {
                 n_lower += f64::from(starts[k - 1]);
@@ -205,15 +249,12 @@ impl Builder<'_> {
                 let n_upper = n - n_ended;
                 // Only planes representable in `f32` (the node stores the split as `f32`), strictly
                 // inside the cell; rounding may push a plane of a tiny or far-away cell out.
-                let split = f64::from((lo + extent * k as f64 / bins as f64) as f32);
-                if !(lo < split && split < hi) {
+                let split = f64::from((lo[axis] + extent[axis] * k as f64 / bins as f64) as f32);
+                if !(lo[axis] < split && split < hi[axis]) {
                     continue;
                 }
-                let (mut lower_cell, mut upper_cell) = (*cell, *cell);
-                lower_cell.max[axis] = split;
-                upper_cell.min[axis] = split;
                 let (p_lower, p_upper) = if area > 0.0 {
-                    (lower_cell.surface_area() / area, upper_cell.surface_area() / area)
+                    ((cap + side * (split - lo[axis])) / area, (cap + side * (hi[axis] - split)) / area)
                 } else {
                     let f = k as f64 / bins as f64;
                     (f, 1.0 - f)
