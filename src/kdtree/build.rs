@@ -131,6 +131,8 @@ pub(super) struct Builder<'a> {
     pub boxes: &'a [Aabb],
     pub costs: SahCosts,
     pub max_depth: usize,
+    /// Nodes of at most this many spheres try every box face ([`EXACT_MAX`] in the crate's trees).
+    pub exact_max: usize,
 }
 
 /// A built subtree: its nodes in pre-order (an interior node's lower child directly follows it) and
@@ -149,6 +151,21 @@ impl Subtree {
         self.nodes.extend(other.nodes.into_iter().map(|node| node.shifted(node_offset, index_offset)));
         self.indices.extend(other.indices);
     }
+}
+
+/// Spheres up to which a node tries every box face as its plane instead of binned planes.
+pub(super) const EXACT_MAX: usize = 32;
+
+/// The largest `f32` strictly below `x` (as `f64`).
+fn f32_below(x: f64) -> f64 {
+    let y = x as f32;
+    f64::from(if f64::from(y) < x { y } else { y.next_down() })
+}
+
+/// The smallest `f32` strictly above `x` (as `f64`).
+fn f32_above(x: f64) -> f64 {
+    let y = x as f32;
+    f64::from(if f64::from(y) > x { y } else { y.next_up() })
 }
 
 /// Spheres from which a node builds its two subtrees on two threads (`rayon::join`): below it the
@@ -171,7 +188,12 @@ impl Builder<'_> {
         let best = if prims.len() <= 1 || depth >= self.max_depth {
             None
         } else {
-            self.best_split(&cell, &prims).filter(|c| c.cost < leaf_cost)
+            let best = if prims.len() <= self.exact_max {
+                self.best_exact_split(&cell, &prims)
+            } else {
+                self.best_split(&cell, &prims)
+            };
+            best.filter(|c| c.cost < leaf_cost)
         };
         let Some(Candidate { axis, split, .. }) = best else {
             let first = u32::try_from(out.indices.len()).expect("index count fits u32");
@@ -210,6 +232,70 @@ impl Builder<'_> {
         };
         let upper_index = u32::try_from(upper_index).expect("node count fits u32");
         out.nodes[here] = Node::interior(split as f32, axis, upper_index);
+    }
+
+    /// The cost of splitting `cell` (area `area`) on `axis` at `split` with `n_lower` and `n_upper`
+    /// spheres on the two sides.
+    fn split_cost(&self, cell: &Aabb, area: f64, axis: usize, split: f64, n_lower: f64, n_upper: f64) -> f64 {
+        let (lo, hi) = (cell.min[axis], cell.max[axis]);
+        let (p_lower, p_upper) = if area > 0.0 {
+            let e = cell.max - cell.min;
+            let (eb, ec) = (e[(axis + 1) % 3], e[(axis + 2) % 3]);
+            let (cap, side) = (2.0 * eb * ec, 2.0 * (eb + ec));
+            ((cap + side * (split - lo)) / area, (cap + side * (hi - split)) / area)
+        } else {
+            let f = (split - lo) / (hi - lo);
+            (f, 1.0 - f)
+        };
+        let bonus = if n_lower == 0.0 || n_upper == 0.0 { 1.0 - self.costs.empty_bonus } else { 1.0 };
+        self.costs.traversal + self.costs.intersection * bonus * (p_lower * n_lower + p_upper * n_upper)
+    }
+
+    /// The cheapest plane among every sphere's box faces (Wald & Havran's candidates, for a node
+    /// small enough that sorting them costs less than binning): each face is moved to the nearest
+    /// `f32` just outside its box, so that a plane at a box's start leaves that box wholly above it
+    /// (the cut-off side really is empty and earns the bonus) and one at its end wholly below.
+    /// The two sides' counts come from one sweep over the sorted starts and ends.
+    fn best_exact_split(&self, cell: &Aabb, prims: &[u32]) -> Option<Candidate> {
+        let area = cell.surface_area();
+        let n = prims.len() as f64;
+        let mut best: Option<Candidate> = None;
+        let (mut starts, mut ends, mut planes) = (Vec::new(), Vec::new(), Vec::new());
+        for axis in 0..3 {
+            let (lo, hi) = (cell.min[axis], cell.max[axis]);
+            if !(hi - lo > 0.0) {
+                continue;
+            }
+            starts.clear();
+            ends.clear();
+            planes.clear();
+            for &i in prims {
+                let b = &self.boxes[i as usize];
+                starts.push(b.min[axis]);
+                ends.push(b.max[axis]);
+                planes.push(f32_below(b.min[axis]));
+                planes.push(f32_above(b.max[axis]));
+            }
+            starts.sort_unstable_by(f64::total_cmp);
+            ends.sort_unstable_by(f64::total_cmp);
+            planes.sort_unstable_by(f64::total_cmp);
+            planes.dedup();
+            // n_lower = #(start ≤ split), n_upper = n − #(end < split): the builder's closed tests.
+            let (mut started, mut ended) = (0, 0);
+            for &split in planes.iter().filter(|&&s| lo < s && s < hi) {
+                while started < starts.len() && starts[started] <= split {
+                    started += 1;
+                }
+                while ended < ends.len() && ends[ended] < split {
+                    ended += 1;
+                }
+                let cost = self.split_cost(cell, area, axis, split, started as f64, n - ended as f64);
+                if best.as_ref().is_none_or(|b| cost < b.cost) {
+                    best = Some(Candidate { axis, split, cost });
+                }
+            }
+        }
+        best
     }
 
     /// The cheapest binned plane over the three axes, if any axis has extent. One pass over the
