@@ -11,6 +11,11 @@
 //! ray (a mismatch is a different sphere, or hit versus miss), and the note's ray #839 669 with
 //! direction (−0, −0, −1) is a named probe in every configuration.
 //!
+//! Beside the crate's `f64` tree runs its `f32` copy ([`KdTreeF32`], on the `f32` rays); its
+//! accuracy cost is counted twice per scene: rays where it names another sphere than the `f64`
+//! tree, and, on those rays, which of the two answers a double-double evaluation of both
+//! candidates confirms.
+//!
 //! `cargo bench --bench q3_kdtree` measures and writes (`HW3_Q3_MAX_N=1000000` adds N = 10⁶;
 //! `HW3_Q3_KI`, `HW3_Q3_EMPTY_BONUS`, `HW3_Q3_BINS`, `HW3_Q3_MIN_N` make a tuning run that only prints);
 //! under `cargo test --benches` it runs one small smoke round and writes nothing.
