@@ -9,9 +9,10 @@ use super::formula::{Formula, Kind, Point};
 /// ```
 /// use hw3::checker::Expected;
 /// let q2 = hw3::checker::variant("q2", 0).unwrap();
-/// // Seed 0's first hit is t = 5 − √3, compared as a number within 10⁻³ relative.
+/// // Seed 0's first hit is t = 5 − √3 (a value, not "none"), compared within 10⁻³ relative.
 /// let t = q2.parts.iter().find(|p| p.key == "q2a.t").unwrap();
-/// let Expected::Number { value, rtol, .. } = t.expected else { panic!() };
+/// let Expected::OrNone { value, none: false } = &t.expected else { panic!() };
+/// let Expected::Number { value, rtol, .. } = **value else { panic!() };
 /// assert!((value - (5.0 - 3f64.sqrt())).abs() < 1e-12 && rtol == 1e-3);
 /// ```
 #[derive(Debug, Clone, PartialEq)]
