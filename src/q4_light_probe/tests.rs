@@ -115,9 +115,7 @@ fn seed_statistics(prepared: &Irradiance<'_>, n: DVec3, method: Method, samples:
             prepared.estimate(n, method, samples, &mut rng).unwrap().x
         })
         .collect();
-    let mean = values.iter().sum::<f64>() / values.len() as f64;
-    let variance = values.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (values.len() - 1) as f64;
-    (mean, variance.sqrt())
+    (crate::stats::mean(&values), crate::stats::sample_sd(&values))
 }
 
 #[test]
