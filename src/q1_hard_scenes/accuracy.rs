@@ -2,7 +2,7 @@
 //! and its two charts.
 
 use super::chart::{Series, chart, series};
-use crate::plot::{Figure, PALETTE, PlotError};
+use crate::plot::{Axis, Figure, PALETTE, PlotError};
 use plotters::prelude::*;
 
 /// One measurement of the accuracy-versus-time benchmark (`benches/render.rs`).
@@ -67,7 +67,7 @@ fn accuracy_figures(rows: &[AccuracyRow]) -> Result<Vec<Figure>, PlotError> {
     let range = |values: Vec<f64>| {
         let low = values.iter().copied().fold(f64::INFINITY, f64::min);
         let high = values.iter().copied().fold(0.0, f64::max);
-        (low * 0.8)..(high * 1.25)
+        Axis::log(low * 0.8, high * 1.25, "")
     };
     let rmse_range = || range(rows.iter().map(|r| r.rmse).collect());
     Ok(vec![
@@ -75,7 +75,7 @@ fn accuracy_figures(rows: &[AccuracyRow]) -> Result<Vec<Figure>, PlotError> {
             "q1_accuracy_spp.svg",
             "Error against a converged path-traced reference vs samples per pixel",
             ("samples per pixel", "RMS luminance error"),
-            (range(rows.iter().map(|r| r.spp).collect()).log_scale(), rmse_range().log_scale()),
+            (range(rows.iter().map(|r| r.spp).collect()), rmse_range()),
             SeriesLabelPosition::LowerLeft,
             &by(|r| r.spp),
         )?,
@@ -83,7 +83,7 @@ fn accuracy_figures(rows: &[AccuracyRow]) -> Result<Vec<Figure>, PlotError> {
             "q1_accuracy_seconds.svg",
             "Error vs render time (benchmark machine, 48×36 pixels)",
             ("seconds", "RMS luminance error"),
-            (range(rows.iter().map(|r| r.seconds).collect()).log_scale(), rmse_range().log_scale()),
+            (range(rows.iter().map(|r| r.seconds).collect()), rmse_range()),
             SeriesLabelPosition::LowerLeft,
             &by(|r| r.seconds),
         )?,
