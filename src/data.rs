@@ -13,6 +13,22 @@ pub const Q2_COST: &str = include_str!("../docs/data/q2_cost.csv");
 /// peers against scene size (written by `cargo bench --bench q3_kdtree`).
 pub const Q3_KDTREE_PERF: &str = include_str!("../docs/data/q3_kdtree_perf.csv");
 
+/// `docs/data/q1_accuracy.csv`: RMS error and seconds per scene, integrator and samples per pixel
+/// (written by `cargo bench --bench render`).
+pub const Q1_ACCURACY: &str = include_str!("../docs/data/q1_accuracy.csv");
+
+/// `docs/data/q4_accuracy_time.csv`: error and nanoseconds per normal of every irradiance estimator
+/// (written by `cargo bench --bench q4_irradiance`).
+pub const Q4_ACCURACY_TIME: &str = include_str!("../docs/data/q4_accuracy_time.csv");
+
+/// `docs/data/q5_photon_accuracy.csv`: the photon map's error in the white furnace against k and
+/// photon count (written by `cargo bench --bench q5_photon`).
+pub const Q5_PHOTON_ACCURACY: &str = include_str!("../docs/data/q5_photon_accuracy.csv");
+
+/// `docs/data/q5_photon_cornell.csv`: the photon map's error in the Cornell box against k and photon
+/// count (written by `cargo bench --bench q5_photon`).
+pub const Q5_PHOTON_CORNELL: &str = include_str!("../docs/data/q5_photon_cornell.csv");
+
 /// A committed CSV file, split: its `#` comment lines, its header and its records.
 ///
 /// The committed files are plain comma-separated fields, with no quoting (no field holds a comma).
@@ -57,7 +73,14 @@ mod tests {
 
     #[test]
     fn committed_files_have_a_header_and_records() {
-        for (text, first) in [(Q2_COST, "kind"), (Q3_KDTREE_PERF, "density")] {
+        for (text, first) in [
+            (Q1_ACCURACY, "scene"),
+            (Q2_COST, "kind"),
+            (Q3_KDTREE_PERF, "density"),
+            (Q4_ACCURACY_TIME, "map"),
+            (Q5_PHOTON_ACCURACY, "photons"),
+            (Q5_PHOTON_CORNELL, "photons"),
+        ] {
             let csv = csv(text);
             assert_eq!(csv.header[0], first);
             assert!(!csv.records.is_empty());

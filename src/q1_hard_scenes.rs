@@ -15,7 +15,7 @@ pub use fog::{FOG_DISTANCES, FOG_SIGMAS, FogRow, airlight_rows, airlight_traced,
 pub use mirrors::{DIVERGENCE_TRIALS, MIRROR_STEPS, MirrorDivergence, mirror_divergence, mirror_sensitivity};
 pub use motion::{MOTION_SPP, MotionChange, MotionNoise, NOISE_TARGET, motion_change, motion_noise};
 
-use crate::Answers;
+use crate::answers::Answers;
 
 /// Median growth of a ray pair's separation per bounce between the four mirror spheres
 /// ([`mirror_divergence`] at [`DIVERGENCE_TRIALS`]), as [`answers`] prints it. Measured, not

@@ -16,7 +16,7 @@ pub use grammar::{
     grammar_table_markdown, seed_answer,
 };
 
-use crate::Answers;
+use crate::answers::Answers;
 use crate::plot::{Figure, PlotError};
 use grammar::agreement;
 

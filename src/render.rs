@@ -18,10 +18,6 @@ pub mod scene;
 
 pub use error::{MAX_PIXELS, MAX_SIDE, MAX_SPP, RenderError};
 
-// The chapters link the catalogue by its former name.
-#[doc(no_inline)]
-pub use catalogue as scenes;
-
 use camera::CameraFrame;
 use glam::DVec3;
 use integrator::{Integrator, Tracer};

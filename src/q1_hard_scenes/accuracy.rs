@@ -2,7 +2,7 @@
 //! and its two charts.
 
 use super::chart::{Series, chart, series};
-use crate::plot::{Figure, PALETTE, PlotError};
+use crate::plot::{Axis, Figure, PALETTE, PlotError};
 use plotters::prelude::*;
 
 /// One measurement of the accuracy-versus-time benchmark (`benches/render.rs`).
@@ -17,16 +17,15 @@ struct AccuracyRow {
 
 /// Parses `docs/data/q1_accuracy.csv` (header `scene,integrator,spp,seconds,rmse`).
 fn parse_accuracy(csv: &str) -> Result<Vec<AccuracyRow>, String> {
-    csv.lines()
-        .skip(1)
-        .filter(|line| !line.trim().is_empty())
-        .map(|line| {
-            let fields: Vec<&str> = line.split(',').collect();
+    crate::data::csv(csv)
+        .records
+        .into_iter()
+        .map(|fields| {
             let number = |i: usize| -> Result<f64, String> {
                 fields
                     .get(i)
                     .and_then(|f| f.trim().parse().ok())
-                    .ok_or_else(|| format!("q1_accuracy.csv: bad field {i} in `{line}`"))
+                    .ok_or_else(|| format!("q1_accuracy.csv: bad field {i} in `{}`", fields.join(",")))
             };
             Ok(AccuracyRow {
                 scene: fields.first().unwrap_or(&"").to_string(),
@@ -68,7 +67,7 @@ fn accuracy_figures(rows: &[AccuracyRow]) -> Result<Vec<Figure>, PlotError> {
     let range = |values: Vec<f64>| {
         let low = values.iter().copied().fold(f64::INFINITY, f64::min);
         let high = values.iter().copied().fold(0.0, f64::max);
-        (low * 0.8)..(high * 1.25)
+        Axis::log(low * 0.8, high * 1.25, "")
     };
     let rmse_range = || range(rows.iter().map(|r| r.rmse).collect());
     Ok(vec![
@@ -76,7 +75,7 @@ fn accuracy_figures(rows: &[AccuracyRow]) -> Result<Vec<Figure>, PlotError> {
             "q1_accuracy_spp.svg",
             "Error against a converged path-traced reference vs samples per pixel",
             ("samples per pixel", "RMS luminance error"),
-            (range(rows.iter().map(|r| r.spp).collect()).log_scale(), rmse_range().log_scale()),
+            (range(rows.iter().map(|r| r.spp).collect()), rmse_range()),
             SeriesLabelPosition::LowerLeft,
             &by(|r| r.spp),
         )?,
@@ -84,7 +83,7 @@ fn accuracy_figures(rows: &[AccuracyRow]) -> Result<Vec<Figure>, PlotError> {
             "q1_accuracy_seconds.svg",
             "Error vs render time (benchmark machine, 48×36 pixels)",
             ("seconds", "RMS luminance error"),
-            (range(rows.iter().map(|r| r.seconds).collect()).log_scale(), rmse_range().log_scale()),
+            (range(rows.iter().map(|r| r.seconds).collect()), rmse_range()),
             SeriesLabelPosition::LowerLeft,
             &by(|r| r.seconds),
         )?,
@@ -93,13 +92,8 @@ fn accuracy_figures(rows: &[AccuracyRow]) -> Result<Vec<Figure>, PlotError> {
 
 /// The two accuracy charts from the committed CSV.
 pub(super) fn committed_accuracy_figures() -> Result<Vec<Figure>, PlotError> {
-    let csv_path = concat!(env!("CARGO_MANIFEST_DIR"), "/docs/data/q1_accuracy.csv");
-    let csv = std::fs::read_to_string(csv_path).map_err(|e| PlotError::Draw {
-        figure: "q1_accuracy_spp.svg".into(),
-        message: format!("{csv_path}: {e} (run `cargo bench --bench render`)"),
-    })?;
-    let rows =
-        parse_accuracy(&csv).map_err(|message| PlotError::Draw { figure: "q1_accuracy_spp.svg".into(), message })?;
+    let rows = parse_accuracy(crate::data::Q1_ACCURACY)
+        .map_err(|message| PlotError::Draw { figure: "q1_accuracy_spp.svg".into(), message })?;
     accuracy_figures(&rows)
 }
 

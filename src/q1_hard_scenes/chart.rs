@@ -1,7 +1,8 @@
-//! The chapter's chart engine: markers or lines on linear or log axes, with a legend.
+//! The chapter's charts, drawn by the plotting module's one chart helper ([`crate::plot::Chart`]):
+//! markers or lines on linear or log axes, with a legend, in the chapter's one style.
 
-use crate::plot::{self, Figure, PlotError, err};
-use plotters::prelude::*;
+use crate::plot::{self, Axis, Chart, Figure, Legend, LegendMark, PlotError};
+use plotters::prelude::{RGBColor, SeriesLabelPosition};
 
 /// One series of a chart: points (markers) or a line.
 pub(super) struct Series {
@@ -11,66 +12,37 @@ pub(super) struct Series {
     color: RGBColor,
 }
 
-/// Draws `series` in a chart with the given axes (linear or log ranges).
-pub(super) fn chart<X, Y>(
+/// Draws `series` in a 640×420 chart on the axes `x`, `y` (linear or log; [`Axis::linear`],
+/// [`Axis::log`]), titled by `x_label`, `y_label`, with 12 and 8 tick labels and no light grid.
+pub(super) fn chart(
     file_name: &str,
     caption: &str,
     (x_label, y_label): (&str, &str),
-    (x_range, y_range): (X, Y),
+    (x, y): (Axis<'_>, Axis<'_>),
     legend: SeriesLabelPosition,
     series: &[Series],
-) -> Result<Figure, PlotError>
-where
-    X: plotters::coord::ranged1d::AsRangedCoord<Value = f64>,
-    Y: plotters::coord::ranged1d::AsRangedCoord<Value = f64>,
-    X::CoordDescType: plotters::coord::ranged1d::ValueFormatter<f64>,
-    Y::CoordDescType: plotters::coord::ranged1d::ValueFormatter<f64>,
-{
-    plot::svg_figure(file_name, (640, 420), |root| {
-        let mut chart = ChartBuilder::on(root)
-            .caption(caption, ("sans-serif", 18))
-            .margin(12)
-            .x_label_area_size(40)
-            .y_label_area_size(60)
-            .build_cartesian_2d(x_range, y_range)
-            .map_err(err)?;
-        chart
-            .configure_mesh()
-            .x_desc(x_label)
-            .y_desc(y_label)
-            .label_style(("sans-serif", 13))
-            .light_line_style(TRANSPARENT)
-            .x_labels(12)
-            .y_labels(8)
-            .x_label_formatter(&tick)
-            .y_label_formatter(&tick)
-            .draw()
-            .map_err(err)?;
-        for s in series {
-            let color = s.color;
-            if s.line {
-                chart
-                    .draw_series(LineSeries::new(s.points.iter().copied(), color.stroke_width(2)))
-                    .map_err(err)?
-                    .label(s.label.as_str())
-                    .legend(move |(x, y)| PathElement::new([(x, y), (x + 16, y)], color));
-            } else {
-                chart
-                    .draw_series(s.points.iter().map(|&p| Circle::new(p, 4, color.filled())))
-                    .map_err(err)?
-                    .label(s.label.as_str())
-                    .legend(move |(x, y)| Circle::new((x + 8, y), 4, color.filled()));
-            }
-        }
-        chart
-            .configure_series_labels()
-            .position(legend)
-            .label_font(("sans-serif", 13))
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK)
-            .draw()
-            .map_err(err)
-    })
+) -> Result<Figure, PlotError> {
+    let ticks = |axis: Axis<'_>, desc, labels| Axis { desc, labels: Some(labels), format: Some(tick), ..axis };
+    Chart {
+        label_size: 13,
+        light_grid: false,
+        series: series
+            .iter()
+            .map(|s| {
+                if s.line {
+                    plot::Series {
+                        legend: LegendMark::Line { length: 16, width: 1 },
+                        ..plot::Series::line(s.label.as_str(), s.points.clone(), s.color, 2)
+                    }
+                } else {
+                    plot::Series::dots(s.label.as_str(), s.points.clone(), s.color, 4)
+                }
+            })
+            .collect(),
+        legend: Some(Legend { position: Some(legend), font: 13, opacity: 0.85 }),
+        ..Chart::new(caption, ticks(x, x_label, 12), ticks(y, y_label, 8))
+    }
+    .svg(file_name, (640, 420))
 }
 
 pub(super) fn series(label: impl Into<String>, points: Vec<(f64, f64)>, line: bool, color: RGBColor) -> Series {

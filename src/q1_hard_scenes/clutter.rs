@@ -3,7 +3,7 @@
 
 use crate::geometry::{InputError, Ray};
 use crate::render::catalogue::{self, CLUTTER_HALF_WIDTH, CLUTTER_RADIUS};
-use crate::render::integrator::Sampler;
+use crate::render::sampling::Sampler;
 use crate::render::{
     camera::{Camera, CameraFrame},
     scene::{Scene, Shape},

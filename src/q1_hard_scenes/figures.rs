@@ -10,7 +10,7 @@ use super::mirrors::{
 };
 use super::motion::{MOTION_SPEED, MotionChange, MotionNoise, motion_change, motion_noise, motion_tables};
 use crate::geometry::InputError;
-use crate::plot::{self, Figure, PALETTE, PlotError};
+use crate::plot::{self, Axis, Figure, PALETTE, PlotError};
 use crate::render::analysis::analyze;
 use crate::render::catalogue;
 use crate::render::scene::Scene;
@@ -43,7 +43,7 @@ fn clutter_figures(rows: &[ClutterRow]) -> Result<Vec<Figure>, PlotError> {
         "q1_clutter_gap.svg",
         "Clutter: gap fraction and visible fraction vs sphere count",
         ("spheres N in the slab", "fraction"),
-        ((200.0..5000.0).log_scale(), 0.0..1.05),
+        (Axis::log(200.0, 5000.0, ""), Axis::linear(0.0, 1.05, "")),
         SeriesLabelPosition::LowerLeft,
         &[
             series("gap fraction, measured", pick(|r| r.gap_fraction), false, PALETTE[0]),
@@ -92,7 +92,7 @@ fn fog_figures(rows: &[FogRow]) -> Result<Vec<Figure>, PlotError> {
         "q1_fog_transmittance.svg",
         "Fog: contrast (transmittance) vs distance",
         ("target distance d", "transmittance T = ΔL / L_emitted"),
-        (0.0..41.0, (1e-4..1.2).log_scale()),
+        (Axis::linear(0.0, 41.0, ""), Axis::log(1e-4, 1.2, "")),
         SeriesLabelPosition::LowerLeft,
         &plotted,
     )?;
@@ -114,7 +114,7 @@ fn mirror_figures(rows: &[(f64, f64, f64)], divergence: &MirrorDivergence) -> Re
         "q1_mirror_sensitivity.svg",
         "Mirrors: image change per unit camera move (sphere pixels)",
         ("camera displacement δ", "S(δ) = mean |ΔI| / δ"),
-        ((0.004..0.12).log_scale(), 0.0..0.6),
+        (Axis::log(0.004, 0.12, ""), Axis::linear(0.0, 0.6, "")),
         SeriesLabelPosition::LowerRight,
         &[
             series("mirror spheres", rows.iter().map(|r| (r.0, r.1)).collect(), true, PALETTE[0]),
@@ -137,7 +137,7 @@ fn motion_figures(change: &MotionChange, noise: &MotionNoise) -> Result<Vec<Figu
         "q1_motion_noise.svg",
         "Motion blur: RMS error vs samples per pixel",
         ("samples per pixel", "RMS luminance error"),
-        ((0.8..40.0).log_scale(), (4e-3..5e-2).log_scale()),
+        (Axis::log(0.8, 40.0, ""), Axis::log(4e-3, 5e-2, "")),
         SeriesLabelPosition::LowerLeft,
         &[
             series("moving ball", noise.rows.iter().map(|r| (f64::from(r.0), r.1)).collect(), false, PALETTE[0]),

@@ -2,7 +2,9 @@
 //! airlight that the renderer's single-scattering quadrature reproduces (Sun et al. 2005).
 
 use crate::geometry::{InputError, Ray};
-use crate::render::integrator::{IN_SCATTER_STEPS, Integrator, Sampler, Tracer, airlight_closed_form};
+use crate::render::integrator::{IN_SCATTER_STEPS, Integrator, Tracer};
+use crate::render::medium::airlight_closed_form;
+use crate::render::sampling::Sampler;
 use crate::render::{
     analysis::analyze,
     passes::{Pass, Passes},

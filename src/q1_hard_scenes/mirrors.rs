@@ -7,7 +7,7 @@ use crate::geometry::sphere::{reflect, spawn_origin};
 use crate::geometry::{InputError, Ray, Sphere};
 use crate::render::Image;
 use crate::render::catalogue;
-use crate::render::integrator::Sampler;
+use crate::render::sampling::Sampler;
 use crate::render::{
     camera::{Camera, CameraFrame},
     scene::{Material, Object, Scene, Shape},

@@ -287,7 +287,7 @@ pub fn best_k(rows: &[Row]) -> Vec<Row> {
 /// ```
 pub fn figure() -> Result<Figure, PlotError> {
     let name = "q5_photon_cornell.svg";
-    let rows = super::photon_accuracy::read_committed(CSV_NAME, name, parse)?;
+    let rows = super::photon_accuracy::read_committed(crate::data::Q5_PHOTON_CORNELL, name, parse)?;
     let mut ks: Vec<f64> = rows.iter().map(|r| r.k).collect();
     ks.sort_by(f64::total_cmp);
     ks.dedup();
@@ -326,7 +326,8 @@ mod tests {
     /// −1/3 that the bias–variance balance of a 2-D density estimate predicts).
     #[test]
     fn committed_cornell_accuracy_is_judged_by_a_converged_reference_and_falls_with_photons() {
-        let rows = super::super::photon_accuracy::read_committed(CSV_NAME, "test", parse).unwrap();
+        let rows =
+            super::super::photon_accuracy::read_committed(crate::data::Q5_PHOTON_CORNELL, "test", parse).unwrap();
         assert!(rows.len() >= 12);
         for r in &rows {
             assert!(r.reference_error < r.error.rms / 3.0, "{r:?}");

@@ -12,7 +12,7 @@
 
 pub mod grammar;
 
-use super::passes::Pass;
+use super::passes::{Pass, Passes};
 use super::sampling::fibonacci_sphere;
 use super::scene::{Material, Scene, Shape};
 use crate::geometry::Ray;
@@ -20,10 +20,6 @@ use crate::geometry::sphere::spawn_origin;
 use glam::DVec3;
 use grammar::{Lang, Letter, common_word};
 use serde::Serialize;
-
-// Former path of the plan's type, kept because the renderer chapter (`docs/render.md`) links it.
-#[doc(no_inline)]
-pub use super::passes::Passes;
 
 /// One light-path class in Heckbert's notation and whether it can carry energy in the scene.
 #[derive(Debug, Clone, PartialEq, Eq, Serialize)]

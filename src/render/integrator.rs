@@ -6,26 +6,17 @@
 //! pass that is switched on for a scene that does not need it consumes no random number that would
 //! shift the others: that is what makes "forced on, image identical" testable bit for bit.
 
-use super::bsdf::{brdf, facing_normal, front_side, reflected_ray};
+use super::bsdf::{brdf, dielectric_split, facing_normal, front_side, reflected_ray};
 use super::environment::ENVIRONMENT_SAMPLES;
 use super::medium;
 use super::passes::{Pass, Passes};
 use super::photon::{Gather, PhotonMap};
-use super::sampling::cosine_direction;
+use super::sampling::{Sampler, cosine_direction};
 use super::scene::{Hit, Material, Scene};
 use crate::geometry::Ray;
 use crate::geometry::sphere::spawn_origin;
 use glam::DVec3;
 use std::f64::consts::PI;
-
-// Former paths of items that moved below the integrator, kept because the chapters
-// (`docs/render.md`, `docs/q1_hard_scenes.md`) link them there.
-#[doc(no_inline)]
-pub use super::bsdf::dielectric_split;
-#[doc(no_inline)]
-pub use super::medium::airlight_closed_form;
-#[doc(no_inline)]
-pub use super::sampling::Sampler;
 
 /// Which light transport algorithm a render uses.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
@@ -394,6 +385,7 @@ mod tests {
     use super::*;
     use crate::geometry::Sphere;
     use crate::render::camera::Camera;
+    use crate::render::medium::airlight_closed_form;
     use crate::render::photon::Photon;
     use crate::render::scene::{Fog, Object, PointLight};
 

@@ -4,16 +4,13 @@
 //! infinite numbers, negative albedos or densities, degenerate quads and cameras, and an inverted
 //! shutter, so the integrators never see input that could turn into a silent NaN.
 
+use super::camera::Camera;
 use super::environment::Environment;
 use crate::geometry::sphere::{first_hit_stable, surface_hit};
 use crate::geometry::{InputError, Ray, Sphere, require_finite};
 use crate::kdtree::{BuildError, KdTree};
 use glam::DVec3;
 use std::sync::Arc;
-
-// Former path of the camera, kept because the renderer chapter (`docs/render.md`) links it.
-#[doc(no_inline)]
-pub use super::camera::Camera;
 
 /// The surface's reflection model. Each material is one letter of Heckbert's path notation.
 #[derive(Debug, Clone, Copy, PartialEq)]
