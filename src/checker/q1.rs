@@ -3,7 +3,7 @@
 //! shift of a moving object per frame), and the built-in scenes matched to the difficulties.
 
 use super::key::{Expected, MalRule, Part, Variant};
-use crate::render::scenes::{CATALOGUE, CLUTTER_COUNT, CLUTTER_HALF_WIDTH, CLUTTER_RADIUS};
+use crate::render::catalogue::{CATALOGUE, CLUTTER_COUNT, CLUTTER_HALF_WIDTH, CLUTTER_RADIUS};
 use crate::rng;
 use rand_core::Rng;
 use std::f64::consts::PI;
