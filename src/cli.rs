@@ -187,8 +187,12 @@ fn cut(text: &str, max: usize) -> String {
     kept
 }
 
+/// Longest line of a report on stdout ([`terminal_text`]). A report's feedback teaches, so it is cut
+/// far later than an error message; the answers file behind it is bounded anyway (256 KiB).
+pub const REPORT_LINE_CHARS: usize = 2000;
+
 /// Multi-line text for a terminal (a report on stdout): control characters other than line breaks
-/// are shown as `\u{…}`, and each line longer than [`MESSAGE_CHARS`] is cut.
+/// are shown as `\u{…}`, and each line longer than [`REPORT_LINE_CHARS`] is cut.
 ///
 /// # Examples
 /// ```
@@ -196,7 +200,7 @@ fn cut(text: &str, max: usize) -> String {
 /// ```
 #[must_use]
 pub fn terminal_text(text: &str) -> String {
-    let lines: Vec<String> = text.split('\n').map(|line| cut(&escape_controls(line), MESSAGE_CHARS)).collect();
+    let lines: Vec<String> = text.split('\n').map(|line| cut(&escape_controls(line), REPORT_LINE_CHARS)).collect();
     lines.join("\n")
 }
 
