@@ -47,14 +47,36 @@ pub fn all_answers() -> Vec<Answers> {
     ]
 }
 
-/// Every figure of the course notes, in homework order (deterministic bytes).
+/// Every figure of the course notes: [`drawn_figures`] and [`rendered_figures`].
 ///
 /// # Errors
 /// [`plot::PlotError`] if a figure cannot be drawn.
 pub fn all_figures() -> Result<Vec<plot::Figure>, plot::PlotError> {
+    let mut figures = drawn_figures()?;
+    figures.extend(rendered_figures()?);
+    Ok(figures)
+}
+
+/// The renders of the course notes (Q1, the renderer chapter, Q5), the expensive figures:
+/// deterministic bytes, seeded per pixel.
+///
+/// # Errors
+/// [`plot::PlotError`] if a render cannot be drawn.
+pub fn rendered_figures() -> Result<Vec<plot::Figure>, plot::PlotError> {
+    let mut figures = q1_hard_scenes::renders()?;
+    figures.extend(render::figures::figures()?);
+    figures.extend(q5_effect_tables::renders()?);
+    Ok(figures)
+}
+
+/// The drawn figures of the course notes, in homework order: charts, diagrams, tables and the
+/// small analytic images (deterministic bytes, cheap to regenerate).
+///
+/// # Errors
+/// [`plot::PlotError`] if a figure cannot be drawn.
+pub fn drawn_figures() -> Result<Vec<plot::Figure>, plot::PlotError> {
     let mut figures: Vec<plot::Figure> = Vec::new();
     figures.extend(q1_hard_scenes::figures()?);
-    figures.extend(render::figures::figures()?);
     figures.extend(q2_ray_sphere::figures()?);
     figures.extend(q3_kd_traversal::figures()?);
     figures.extend(q4_light_probe::figures()?);

@@ -132,6 +132,136 @@ fn draw_error<E: std::fmt::Display>(figure: &str, e: E) -> PlotError {
     PlotError::Draw { figure: figure.into(), message: e.to_string() }
 }
 
+/// One picture of a [`panel_grid`]: an image and the label drawn onto its top-left corner (one
+/// line per `\n`: say what differs between the panels, e.g. method, samples per pixel, error).
+#[derive(Debug, Clone)]
+pub struct Panel {
+    /// The picture (every panel of a grid has the same size).
+    pub image: image::RgbImage,
+    /// The label, drawn white on a dark strip so it reads on bright and dark pictures alike.
+    pub label: String,
+}
+
+/// Height in pixels of the labels' text of [`panel_grid`].
+const LABEL_PX: u32 = 15;
+
+/// Draws `label` (lines split at `\n`) white on a dark box at `(x, y)` of `root`.
+fn draw_label<DB: DrawingBackend>(
+    root: &DrawingArea<DB, plotters::coord::Shift>,
+    label: &str,
+    (x, y): (i32, i32),
+) -> Result<(), String> {
+    let font = ("sans-serif", LABEL_PX).into_font().color(&WHITE);
+    let line_height = LABEL_PX as i32 + 3;
+    let mut width = 0;
+    for line in label.lines() {
+        width = width.max(root.estimate_text_size(line, &font).map_err(err)?.0 as i32);
+    }
+    let lines = label.lines().count() as i32;
+    root.draw(&Rectangle::new(
+        [(x, y), (x + width + 8, y + lines * line_height + 5)],
+        RGBColor(0, 0, 0).mix(0.65).filled(),
+    ))
+    .map_err(err)?;
+    for (k, line) in label.lines().enumerate() {
+        root.draw(&Text::new(line.to_string(), (x + 4, y + 3 + k as i32 * line_height), font.clone())).map_err(err)?;
+    }
+    Ok(())
+}
+
+/// Lays `panels` out in rows of `columns` (left to right, top to bottom), draws each panel's
+/// label onto it, and encodes the grid as a PNG [`Figure`]; a missing last panel stays black.
+/// Compared panels must share one exposure: this only places pixels, it never rescales them.
+///
+/// # Errors
+/// [`PlotError::Draw`] when `panels` is empty, `columns` is 0, the panels differ in size, or the
+/// text cannot be drawn; [`PlotError::Encode`] when encoding fails.
+///
+/// # Examples
+/// ```
+/// use hw3::plot::{Panel, panel_grid};
+/// let grey = |v| Panel { image: image::RgbImage::from_pixel(40, 30, image::Rgb([v; 3])), label: format!("v = {v}") };
+/// let figure = panel_grid("grid.png", &[grey(20), grey(200), grey(90)], 2).unwrap();
+/// let grid = image::load_from_memory(&figure.bytes).unwrap().to_rgb8();
+/// assert_eq!(grid.dimensions(), (80, 60));
+/// ```
+pub fn panel_grid(file_name: &str, panels: &[Panel], columns: usize) -> Result<Figure, PlotError> {
+    init_fonts();
+    let Some(first) = panels.first() else {
+        return Err(PlotError::Draw { figure: file_name.into(), message: "no panels".into() });
+    };
+    let (width, height) = first.image.dimensions();
+    if columns == 0 || panels.iter().any(|p| p.image.dimensions() != (width, height)) {
+        let message = "panels must share one size and columns must be at least 1".into();
+        return Err(PlotError::Draw { figure: file_name.into(), message });
+    }
+    let rows = panels.len().div_ceil(columns) as u32;
+    let (grid_width, grid_height) = (width * columns.min(panels.len()) as u32, height * rows);
+    let mut grid = image::RgbImage::new(grid_width, grid_height);
+    let corner = |k: usize| ((k % columns) as u32 * width, (k / columns) as u32 * height);
+    for (k, panel) in panels.iter().enumerate() {
+        let (x, y) = corner(k);
+        image::imageops::replace(&mut grid, &panel.image, i64::from(x), i64::from(y));
+    }
+    let mut rgb = grid.into_raw();
+    {
+        let root = BitMapBackend::with_buffer(&mut rgb, (grid_width, grid_height)).into_drawing_area();
+        for (k, panel) in panels.iter().enumerate() {
+            let (x, y) = corner(k);
+            draw_label(&root, &panel.label, (x as i32 + 4, y as i32 + 4))
+                .map_err(|message| PlotError::Draw { figure: file_name.into(), message })?;
+        }
+        root.present().map_err(|e| draw_error(file_name, e))?;
+    }
+    let grid = image::RgbImage::from_raw(grid_width, grid_height, rgb).expect("buffer has width*height*3 bytes");
+    png_bytes(file_name, &grid)
+}
+
+/// Draws a vertical colour bar on `root`: `colour(v)` for `v` from 0 (bottom) to 1 (top) in a
+/// box of `size` (width, height) pixels whose top-left corner is `at`, with the labels `ticks`
+/// (`(v, text)`) to its right in black (so place it over a light background).
+///
+/// # Errors
+/// The drawing backend's error, as text (the `Err` of the closures [`png_figure`] and
+/// [`svg_figure`] take).
+///
+/// # Examples
+/// ```
+/// let ramp = |v: f64| plotters::style::RGBColor((255.0 * v) as u8, 0, 0);
+/// let figure = hw3::plot::png_figure("bar.png", (120, 100), |root| {
+///     hw3::plot::color_bar(root, (10, 10), (12, 80), &ramp, &[(0.0, "0"), (1.0, "10 %")])
+/// })
+/// .unwrap();
+/// let image = image::load_from_memory(&figure.bytes).unwrap().to_rgb8();
+/// assert_eq!(image.get_pixel(15, 89).0, [0, 0, 0]);
+/// assert!(image.get_pixel(15, 10).0[0] > 250);
+/// ```
+pub fn color_bar<DB: DrawingBackend>(
+    root: &DrawingArea<DB, plotters::coord::Shift>,
+    at: (i32, i32),
+    (width, height): (i32, i32),
+    colour: &dyn Fn(f64) -> RGBColor,
+    ticks: &[(f64, &str)],
+) -> Result<(), String> {
+    init_fonts();
+    let span = f64::from((height - 1).max(1));
+    for row in 0..height {
+        let v = 1.0 - f64::from(row) / span;
+        let c = colour(v);
+        for column in 0..width {
+            root.draw_pixel((at.0 + column, at.1 + row), &c).map_err(err)?;
+        }
+    }
+    root.draw(&Rectangle::new([(at.0 - 1, at.1 - 1), (at.0 + width, at.1 + height)], BLACK)).map_err(err)?;
+    for &(v, text) in ticks {
+        let y = at.1 + ((1.0 - v) * span).round() as i32;
+        let x = at.0 + width;
+        root.draw(&PathElement::new(vec![(x, y), (x + 3, y)], BLACK)).map_err(err)?;
+        root.draw(&Text::new(text.to_string(), (x + 5, y - 6), ("sans-serif", 12))).map_err(err)?;
+    }
+    Ok(())
+}
+
 /// A colour-blind-safe palette (Okabe & Ito, 2008) for series that must stay distinguishable.
 pub const PALETTE: [RGBColor; 8] = [
     RGBColor(0, 114, 178),   // blue
@@ -180,5 +310,24 @@ mod tests {
         assert_eq!(a, b);
         let decoded = image::load_from_memory(&a.bytes).unwrap().to_rgb8();
         assert!(decoded.pixels().any(|p| p.0 != [255, 255, 255]), "text drew some pixels");
+    }
+
+    #[test]
+    fn panel_grid_is_byte_identical_and_labels_every_panel() {
+        let panel = |v| Panel { image: image::RgbImage::from_pixel(80, 60, image::Rgb([v; 3])), label: "a\nb".into() };
+        let panels = [panel(255), panel(255), panel(255)];
+        let a = panel_grid("g.png", &panels, 2).unwrap();
+        assert_eq!(a, panel_grid("g.png", &panels, 2).unwrap());
+        let grid = image::load_from_memory(&a.bytes).unwrap().to_rgb8();
+        assert_eq!(grid.dimensions(), (160, 120));
+        for (x, y) in [(0, 0), (80, 0), (0, 60)] {
+            let darkened = (x..x + 40).any(|i| (y..y + 30).any(|j| grid.get_pixel(i, j).0[0] < 200));
+            assert!(darkened, "the label of the panel at ({x}, {y}) was drawn");
+        }
+        assert_eq!(grid.get_pixel(120, 90).0, [0, 0, 0], "the missing fourth panel stays black");
+        assert!(
+            panel_grid("g.png", &[panel(1), Panel { image: image::RgbImage::new(2, 2), label: String::new() }], 2)
+                .is_err()
+        );
     }
 }

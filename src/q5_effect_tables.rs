@@ -5,6 +5,7 @@ pub mod effect_scenes;
 pub mod error;
 pub mod experiments;
 mod figures;
+pub use figures::{PATH_SPP, renders};
 mod grammar;
 pub mod photon_accuracy;
 pub mod photon_cornell;

@@ -22,11 +22,28 @@ fn table_figure(file_name: &str, text: String) -> Figure {
     Figure { file_name: file_name.into(), bytes: text.into_bytes() }
 }
 
-/// Renders `scene` (Whitted, its own plan) at the figure size and encodes it as a PNG figure.
-fn render_figure(file_name: &str, scene: &Scene, spp: u32) -> Result<Figure, PlotError> {
-    let settings = Settings::whitted(160, 120, spp, analyze(scene).plan);
-    let image = render(scene, &settings, &|_| {}).expect("the figure settings are within limits");
-    plot::png_bytes(file_name, &image.to_rgb8())
+/// Width and height of a render shown alone (a pair shows two panels of half this width and height).
+const FULL: (u32, u32) = (640, 480);
+/// Width and height of each panel of a side-by-side pair.
+const HALF: (u32, u32) = (320, 240);
+
+/// Renders `scene` (Whitted, its own plan, seed 1: the same bytes on every run and thread count).
+fn render_image(scene: &Scene, (width, height): (u32, u32), spp: u32) -> image::RgbImage {
+    let settings = Settings::whitted(width, height, spp, analyze(scene).plan);
+    render(scene, &settings, &|_| {}).expect("the figure settings are within limits").to_rgb8()
+}
+
+/// A pair of renders side by side at `size` each ([`HALF`] in the notes), labelled, as one PNG.
+fn pair_figure(
+    file_name: &str,
+    size: (u32, u32),
+    [left, right]: [(&Scene, u32, &str); 2],
+) -> Result<Figure, PlotError> {
+    let panel = |(scene, spp, what): (&Scene, u32, &str)| plot::Panel {
+        image: render_image(scene, size, spp),
+        label: format!("{what}\nWhitted, {spp} spp"),
+    };
+    plot::panel_grid(file_name, &[panel(left), panel(right)], 2)
 }
 
 fn input_error(figure: &str, e: InputError) -> PlotError {
@@ -35,7 +52,6 @@ fn input_error(figure: &str, e: InputError) -> PlotError {
 
 /// The clutter figures: render, gap-fraction chart, table.
 fn clutter_figures(rows: &[ClutterRow]) -> Result<Vec<Figure>, PlotError> {
-    let forest = catalogue::clutter_forest(1500, 1).map_err(|e| input_error("q1_clutter.png", e))?;
     let counts: Vec<f64> = rows.iter().map(|r| r.count as f64).collect();
     let pick =
         |f: fn(&ClutterRow) -> f64| -> Vec<(f64, f64)> { counts.iter().copied().zip(rows.iter().map(f)).collect() };
@@ -57,15 +73,10 @@ fn clutter_figures(rows: &[ClutterRow]) -> Result<Vec<Figure>, PlotError> {
             ),
         ],
     )?;
-    Ok(vec![
-        render_figure("q1_clutter.png", &forest, 4)?,
-        gap,
-        table_figure("q1_clutter_table.md", clutter_table(rows)),
-    ])
+    Ok(vec![gap, table_figure("q1_clutter_table.md", clutter_table(rows))])
 }
 
 fn fog_figures(rows: &[FogRow]) -> Result<Vec<Figure>, PlotError> {
-    let scene = |sigma| catalogue::fog_street(sigma).map_err(|e| input_error("q1_fog.png", e));
     let mut plotted = Vec::new();
     for (k, &sigma) in FOG_SIGMAS.iter().enumerate() {
         let of_sigma = rows.iter().filter(|r| r.sigma_t == sigma);
@@ -97,8 +108,6 @@ fn fog_figures(rows: &[FogRow]) -> Result<Vec<Figure>, PlotError> {
         &plotted,
     )?;
     Ok(vec![
-        render_figure("q1_fog.png", &scene(0.08)?, 2)?,
-        render_figure("q1_fog_clear.png", &scene(0.0)?, 2)?,
         transmittance,
         table_figure("q1_fog_table.md", fog_table(rows)),
         table_figure(
@@ -109,7 +118,6 @@ fn fog_figures(rows: &[FogRow]) -> Result<Vec<Figure>, PlotError> {
 }
 
 fn mirror_figures(rows: &[(f64, f64, f64)], divergence: &MirrorDivergence) -> Result<Vec<Figure>, PlotError> {
-    let scene = |m| catalogue::mirror_spheres(m).map_err(|e| input_error("q1_mirrors.png", e));
     let sensitivity = chart(
         "q1_mirror_sensitivity.svg",
         "Mirrors: image change per unit camera move (sphere pixels)",
@@ -122,8 +130,6 @@ fn mirror_figures(rows: &[(f64, f64, f64)], divergence: &MirrorDivergence) -> Re
         ],
     )?;
     Ok(vec![
-        render_figure("q1_mirrors.png", &scene(true)?, 4)?,
-        render_figure("q1_mirrors_diffuse.png", &scene(false)?, 4)?,
         sensitivity,
         table_figure("q1_mirror_table.md", mirror_table(rows)),
         table_figure("q1_mirror_divergence_table.md", divergence_table(divergence)),
@@ -131,7 +137,6 @@ fn mirror_figures(rows: &[(f64, f64, f64)], divergence: &MirrorDivergence) -> Re
 }
 
 fn motion_figures(change: &MotionChange, noise: &MotionNoise) -> Result<Vec<Figure>, PlotError> {
-    let scene = |speed| catalogue::moving_ball(speed).map_err(|e| input_error("q1_motion.png", e));
     let law = |c: f64| -> Vec<(f64, f64)> { [1.0, 32.0].iter().map(|&s| (s, c / f64::sqrt(s))).collect() };
     let curve = chart(
         "q1_motion_noise.svg",
@@ -146,16 +151,11 @@ fn motion_figures(change: &MotionChange, noise: &MotionNoise) -> Result<Vec<Figu
             series("c/√spp, at rest", law(noise.constant_resting), true, PALETTE[1]),
         ],
     )?;
-    Ok(vec![
-        render_figure("q1_motion.png", &scene(MOTION_SPEED)?, 64)?,
-        render_figure("q1_motion_still.png", &scene(0.0)?, 4)?,
-        curve,
-        table_figure("q1_motion_table.md", motion_tables(change, noise)),
-    ])
+    Ok(vec![curve, table_figure("q1_motion_table.md", motion_tables(change, noise))])
 }
 
-/// Every Q1 figure: renders of the four scenes and their easy twins (PNG), one chart per metric
-/// (SVG), and the measured tables (Markdown, included by the chapter).
+/// Q1's drawn figures: one chart per metric (SVG) and the measured tables (Markdown, included by
+/// the chapter); the renders are [`renders`].
 ///
 /// # Errors
 /// [`PlotError`] if a chart cannot be drawn.
@@ -187,9 +187,82 @@ pub fn figures() -> Result<Vec<Figure>, PlotError> {
     Ok(figures)
 }
 
+/// Samples per pixel of each Q1 render, chosen from the measured error against samples per pixel
+/// (`docs/data/q1_accuracy.md`, Whitted): where the error stops falling fast, so that more samples
+/// would cost time without changing what the picture shows.
+pub const RENDER_SPP: [(&str, u32); 4] = [("clutter", 16), ("fog", 8), ("mirrors", 16), ("motion", 64)];
+
+fn spp_of(scene: &str) -> u32 {
+    RENDER_SPP.iter().find(|(name, _)| *name == scene).map_or(1, |&(_, spp)| spp)
+}
+
+/// Q1's renders (PNG): the cluttered slab alone at 640×480, and each other scene beside its easy
+/// twin (fog beside no medium, mirror spheres beside diffuse ones, the moving ball beside the ball
+/// at rest) at 320×240 per panel, labelled with the scene, the method and the samples per pixel.
+/// Whitted tracing with seed 1, so the bytes are the same on every run and thread count.
+///
+/// # Errors
+/// [`PlotError`] if a scene cannot be built or a label cannot be drawn.
+///
+/// # Examples
+/// ```no_run
+/// // Not run here: four renders; CI's release run compares them with the committed figures.
+/// let renders = hw3::q1_hard_scenes::renders().unwrap();
+/// assert!(renders.iter().any(|f| f.file_name == "q1_clutter.png"));
+/// ```
+pub fn renders() -> Result<Vec<Figure>, PlotError> {
+    let forest = catalogue::clutter_forest(1500, 1).map_err(|e| input_error("q1_clutter.png", e))?;
+    let clutter = plot::panel_grid(
+        "q1_clutter.png",
+        &[plot::Panel {
+            image: render_image(&forest, FULL, spp_of("clutter")),
+            label: format!("1500 spheres, τ = 0.70\nWhitted, {} spp", spp_of("clutter")),
+        }],
+        1,
+    )?;
+    let fog = |sigma| catalogue::fog_street(sigma).map_err(|e| input_error("q1_fog.png", e));
+    let (clear, foggy) = (fog(0.0)?, fog(0.08)?);
+    let mirrors = |m| catalogue::mirror_spheres(m).map_err(|e| input_error("q1_mirrors.png", e));
+    let (mirror, diffuse) = (mirrors(true)?, mirrors(false)?);
+    let ball = |speed| catalogue::moving_ball(speed).map_err(|e| input_error("q1_motion.png", e));
+    let (moving, still) = (ball(MOTION_SPEED)?, ball(0.0)?);
+    let (f, m, b) = (spp_of("fog"), spp_of("mirrors"), spp_of("motion"));
+    Ok(vec![
+        clutter,
+        pair_figure("q1_fog.png", HALF, [(&clear, f, "no medium"), (&foggy, f, "fog, σ_s = 0.08")])?,
+        pair_figure(
+            "q1_mirrors.png",
+            HALF,
+            [(&mirror, m, "mirror spheres"), (&diffuse, m, "the same spheres, diffuse")],
+        )?,
+        pair_figure(
+            "q1_motion.png",
+            HALF,
+            [(&moving, b, "ball moving during the shutter"), (&still, b, "ball at rest")],
+        )?,
+    ])
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The labelled pairs are the same bytes on one thread and on two (per-pixel seeds), at a
+    /// size the test profile renders quickly, through the code path of the notes' renders.
+    #[test]
+    fn labelled_renders_are_byte_identical_across_thread_counts() {
+        let moving = catalogue::moving_ball(MOTION_SPEED).unwrap();
+        let still = catalogue::moving_ball(0.0).unwrap();
+        let on = |threads| {
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+            pool.install(|| pair_figure("t.png", (48, 36), [(&moving, 4, "moving"), (&still, 4, "still")]).unwrap())
+        };
+        let one = on(1);
+        assert_eq!(one, on(2));
+        assert_eq!(one, on(1), "and from run to run");
+        let image = image::load_from_memory(&one.bytes).unwrap().to_rgb8();
+        assert_eq!(image.dimensions(), (96, 36));
+    }
 
     #[test]
     fn charts_are_deterministic() {
@@ -198,6 +271,6 @@ mod tests {
         let a = mirror_figures(&rows, &divergence).unwrap();
         let b = mirror_figures(&rows, &divergence).unwrap();
         assert_eq!(a, b);
-        assert!(String::from_utf8_lossy(&a[2].bytes).contains("mirror spheres"));
+        assert!(String::from_utf8_lossy(&a[0].bytes).contains("mirror spheres"));
     }
 }

@@ -31,6 +31,7 @@ pub fn figures() -> Result<Vec<Figure>, PlotError> {
     let mut figures = vec![
         plot::svg_figure("q2_reflection.svg", (560, 360), draw_reflection)?,
         plot::svg_figure("q2_closest_approach.svg", (560, 360), draw_closest_approach)?,
+        plot::svg_figure("q2_cases.svg", (900, 520), draw_cases)?,
         Figure { file_name: "q2_catalogue.md".into(), bytes: catalogue::catalogue_table().into_bytes() },
         Figure {
             file_name: "q2_far_sweep.md".into(),
@@ -97,6 +98,77 @@ fn label(chart: &mut Diagram<'_, '_>, at: (f64, f64), text: &str, color: RGBColo
 
 fn dot(chart: &mut Diagram<'_, '_>, at: DVec3, color: RGBColor) -> Result<(), String> {
     chart.draw_series(std::iter::once(Circle::new((at.x, at.y), 4, color.filled()))).map_err(err)?;
+    Ok(())
+}
+
+/// The cases of the homework's root analysis, one panel each: (name, eye, direction), all
+/// against the worked example's sphere (centre 0, radius 2).
+const CASES: [(&str, [f64; 3], [f64; 3]); 6] = [
+    ("outside, two roots", [-5.0, 1.0, 0.0], [1.0, 0.0, 0.0]),
+    ("inside", [-0.5, 0.5, 0.0], [1.0, 0.0, 0.0]),
+    ("behind", [4.0, 1.0, 0.0], [1.0, 0.0, 0.0]),
+    ("tangent", [-5.0, 2.0, 0.0], [1.0, 0.0, 0.0]),
+    ("miss", [-5.0, 3.0, 0.0], [1.0, 0.0, 0.0]),
+    ("origin on the surface", [-2.0, 0.0, 0.0], [1.0, 0.0, 0.0]),
+];
+
+/// The six cases of the root analysis as a small multiple: in each panel the sphere, the ray
+/// from its eye (the part with t < 0 dashed grey), both roots as computed by
+/// [`roots_stable`], and the first hit with t ≥ 0 by [`first_hit_stable`] (ringed).
+fn draw_cases(root: &DrawingArea<SVGBackend<'_>, Shift>) -> Result<(), String> {
+    let (_, sphere) = worked_example();
+    for (area, &(name, origin, dir)) in root.split_evenly((2, 3)).iter().zip(CASES.iter()) {
+        let ray = crate::geometry::Ray::<f64>::new(DVec3::from(origin), DVec3::from(dir)).map_err(err)?;
+        let roots = roots_stable(&ray, &sphere);
+        let hit = first_hit_stable(&ray, &sphere);
+        let numbers = match roots {
+            Some(r) if r.near == r.far => format!("one double root t = {:.3}", r.near),
+            Some(r) => format!("roots t = {:.3}, {:.3}", r.near, r.far),
+            None => "no real root".into(),
+        };
+        let verdict = hit.map_or("no hit".into(), |t| format!("first hit t = {t:.3}"));
+        let area = area.margin(4, 4, 4, 4).titled(&format!("{name}: {verdict}"), ("sans-serif", 14)).map_err(err)?;
+        let (width, height) = area.dim_in_pixel();
+        let (x_min, x_max, y_min) = (-6.0, 6.0, -3.5);
+        let y_max = y_min + (x_max - x_min) * f64::from(height.saturating_sub(22)) / f64::from(width.max(1));
+        let mut chart =
+            ChartBuilder::on(&area).margin_bottom(22).build_cartesian_2d(x_min..x_max, y_min..y_max).map_err(err)?;
+        let circle = (0..=180).map(|i| {
+            let a = f64::from(i) / 180.0 * std::f64::consts::TAU;
+            (sphere.radius * a.cos(), sphere.radius * a.sin())
+        });
+        chart.draw_series(LineSeries::new(circle, PALETTE[7].stroke_width(2))).map_err(err)?;
+        let behind = ray.at(-12.0);
+        chart
+            .draw_series(DashedLineSeries::new(
+                [(behind.x, behind.y), (ray.origin.x, ray.origin.y)],
+                4,
+                4,
+                RGBColor(150, 150, 150).stroke_width(1),
+            ))
+            .map_err(err)?;
+        let ahead = ray.at(12.0);
+        chart
+            .draw_series(LineSeries::new(
+                [(ray.origin.x, ray.origin.y), (ahead.x, ahead.y)],
+                PALETTE[0].stroke_width(1),
+            ))
+            .map_err(err)?;
+        arrow(&mut chart, ray.origin, ray.at(1.2), PALETTE[0])?;
+        dot(&mut chart, ray.origin, PALETTE[0])?;
+        label(&mut chart, (ray.origin.x - 0.3, ray.origin.y + 0.9), "e", PALETTE[0])?;
+        if let Some(r) = roots {
+            for t in [r.near, r.far] {
+                dot(&mut chart, ray.at(t), if t < 0.0 { PALETTE[5] } else { PALETTE[1] })?;
+            }
+        }
+        if let Some(t) = hit {
+            let p = ray.at(t);
+            chart.draw_series(std::iter::once(Circle::new((p.x, p.y), 8, PALETTE[1].stroke_width(2)))).map_err(err)?;
+        }
+        let style = TextStyle::from(("sans-serif", 12)).color(&PALETTE[7]);
+        area.draw(&Text::new(numbers, (6, i32::try_from(height).unwrap_or(0) - 18), style)).map_err(err)?;
+    }
     Ok(())
 }
 

@@ -19,6 +19,7 @@ pub(super) fn figures() -> Result<Vec<Figure>, PlotError> {
     for case in seed::cases() {
         let title = format!("case ({}): {}", case.label, RayText(&case.ray));
         figures.push(diagram(&format!("q3_case_{}.svg", case.label), &title, &case.ray)?);
+        figures.push(steps(&format!("q3_steps_{}.svg", case.label), &case.ray)?);
     }
     let title = format!("general case: {}", RayText(&GENERAL_RAY));
     figures.push(diagram("q3_general.svg", &title, &GENERAL_RAY)?);
@@ -111,10 +112,27 @@ impl fmt::Display for PathText<'_> {
 }
 
 fn diagram(file_name: &str, title: &str, ray: &Ray2) -> Result<Figure, PlotError> {
-    svg_figure(file_name, (560, 640), |root| draw(root, title, ray))
+    svg_figure(file_name, (560, 640), |root| draw(root, title, ray, None))
 }
 
-fn draw(root: &DrawingArea<SVGBackend<'_>, Shift>, title: &str, ray: &Ray2) -> Result<(), String> {
+/// The traversal of `ray` cell by cell: one panel per visited leaf, in the order the traversal
+/// visits them, the current leaf's cell shaded and the ray drawn only as far as that leaf.
+fn steps(file_name: &str, ray: &Ray2) -> Result<Figure, PlotError> {
+    let leaves = traverse(&Node2::homework(), ray).leaves();
+    let count = leaves.len().max(1);
+    svg_figure(file_name, (560 * count as u32, 640), |root| {
+        for (k, area) in root.split_evenly((1, count)).iter().enumerate() {
+            let Some(leaf) = leaves.get(k) else { continue };
+            let title = format!("step {} of {count}: leaf {}, t in {}", k + 1, PathText(&leaf.path), leaf.interval);
+            draw(area, &title, ray, Some(k))?;
+        }
+        Ok(())
+    })
+}
+
+/// Draws the tree, the ray and the visited leaves' pieces; with `step = Some(k)`, only the first
+/// `k + 1` leaves, the `k`-th one's cell shaded in its colour.
+fn draw(root: &DrawingArea<SVGBackend<'_>, Shift>, title: &str, ray: &Ray2, step: Option<usize>) -> Result<(), String> {
     let tree = Node2::homework();
     let [(x0, x1), (y0, y1)] = WINDOW;
     let (plot_area, legend_area) = root.split_vertically(560);
@@ -137,6 +155,19 @@ fn draw(root: &DrawingArea<SVGBackend<'_>, Shift>, title: &str, ray: &Ray2) -> R
         .draw()
         .map_err(err)?;
 
+    let leaves = traverse(&tree, ray).leaves();
+    if let Some(leaf) = step.and_then(|k| leaves.get(k)) {
+        let cell = super::Cell { path: leaf.path.clone() };
+        let [(a0, a1), (b0, b1)] = [Axis2::X, Axis2::Y].map(|axis| {
+            let (lo, hi) = cell.bounds(axis);
+            let (wlo, whi) = WINDOW[axis.index()];
+            (lo.max(wlo), hi.min(whi))
+        });
+        let colour = PALETTE[step.unwrap_or(0) % PALETTE.len()];
+        chart
+            .draw_series(std::iter::once(Rectangle::new([(a0, b0), (a1, b1)], colour.mix(0.15).filled())))
+            .map_err(err)?;
+    }
     let grey = RGBColor(110, 110, 110);
     let mut lines = Vec::new();
     split_lines(&tree, WINDOW, &mut lines);
@@ -159,8 +190,8 @@ fn draw(root: &DrawingArea<SVGBackend<'_>, Shift>, title: &str, ray: &Ray2) -> R
     }
 
     chart.draw_series(std::iter::once(PathElement::new(drawn_ray.to_vec(), BLACK.stroke_width(1)))).map_err(err)?;
-    let leaves = traverse(&tree, ray).leaves();
-    for (i, leaf) in leaves.iter().enumerate() {
+    let shown = step.map_or(leaves.len(), |k| k + 1);
+    for (i, leaf) in leaves.iter().take(shown).enumerate() {
         let colour = PALETTE[i % PALETTE.len()];
         let Interval { t_min, t_max } = leaf.interval;
         let (from, to) = (t_min.min(t_exit), t_max.min(t_exit));
@@ -183,7 +214,7 @@ fn draw(root: &DrawingArea<SVGBackend<'_>, Shift>, title: &str, ray: &Ray2) -> R
         .draw_series(std::iter::once(Text::new("e", (ray.origin[0] + 0.12, ray.origin[1] + 0.35), ("sans-serif", 15))))
         .map_err(err)?;
     // The legend sits below the chart, two entries per row, so it never hides a cell.
-    for (i, leaf) in leaves.iter().enumerate() {
+    for (i, leaf) in leaves.iter().take(shown).enumerate() {
         let colour = PALETTE[i % PALETTE.len()];
         let (x, y) = (60 + 250 * (i as i32 % 2), 12 + 26 * (i as i32 / 2));
         legend_area.draw(&PathElement::new(vec![(x, y + 7), (x + 22, y + 7)], colour.stroke_width(5))).map_err(err)?;

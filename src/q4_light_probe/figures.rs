@@ -32,7 +32,83 @@ pub fn figures() -> Result<Vec<Figure>, PlotError> {
         pareto_figure("courtyard")?,
         pareto_figure("sunrise")?,
         sphere_render_figure()?,
+        unwrap_figure()?,
     ])
+}
+
+/// `D/R` of the probe photographed in [`unwrap_figure`]: close enough that the blind cone
+/// (half-angle `arcsin(R/D)` = 19.5°) is large enough to see.
+const UNWRAP_DISTANCE: f64 = 3.0;
+
+/// The courtyard map as a perspective mirror-ball probe (`D/R` = [`UNWRAP_DISTANCE`], camera on
+/// the `+x` horizon), beside that probe unwrapped to latitude-longitude: every direction looked
+/// up in the probe's own texels, the blind cone behind the ball (directions no ball texel sees)
+/// marked in vermillion with its outline. One exposure for both (Reinhard `L/(1 + L)`, gamma 2.2).
+fn unwrap_figure() -> Result<Figure, PlotError> {
+    let name = "q4_probe_unwrap.png";
+    let failed = |message: String| PlotError::Draw { figure: name.into(), message };
+    let format = ProbeFormat::perspective_ball(UNWRAP_DISTANCE).map_err(|e| failed(e.to_string()))?;
+    let camera = horizontal_camera();
+    let courtyard = BuiltinMap::Courtyard.probe().map_err(|e| failed(e.to_string()))?;
+    let probe = Probe::resample_lat_long(&courtyard, format, 256, camera).map_err(|e| failed(e.to_string()))?;
+    let exposure = |radiance: DVec3| {
+        let byte = |c: f64| (255.0 * (c / (1.0 + c)).max(0.0).powf(1.0 / 2.2)).round() as u8;
+        RGBColor(byte(radiance.x), byte(radiance.y), byte(radiance.z))
+    };
+    let (ball_size, band) = (320_i32, 26_i32);
+    let (long_width, long_height) = (640_i32, 320_i32);
+    let blind = PALETTE[1];
+    let half_angle = blind_spot::half_angle(UNWRAP_DISTANCE).map_err(|e| failed(e.to_string()))?;
+    crate::plot::png_figure(name, ((ball_size + 12 + long_width) as u32, (long_height + band) as u32), |root| {
+        let ball_label = format!("perspective mirror ball, D/R = {UNWRAP_DISTANCE}");
+        root.draw(&Text::new(ball_label, (4, 5), ("sans-serif", 14))).map_err(err)?;
+        for y in 0..ball_size {
+            for x in 0..ball_size {
+                let p = glam::DVec2::new(
+                    (f64::from(x) + 0.5) / f64::from(ball_size) * 2.0 - 1.0,
+                    1.0 - (f64::from(y) + 0.5) / f64::from(ball_size) * 2.0,
+                );
+                if let Some(direction) = format.image_to_direction(p) {
+                    root.draw_pixel((x, y + band), &exposure(probe.radiance_toward(camera * direction)))
+                        .map_err(err)?;
+                }
+            }
+        }
+        let x0 = ball_size + 12;
+        let long_label = format!("unwrapped to lat-long; vermillion: the blind cone, {:.1}°", half_angle.to_degrees());
+        root.draw(&Text::new(long_label, (x0 + 4, 5), ("sans-serif", 14))).map_err(err)?;
+        let seen = |u: f64, v: f64| -> Option<DVec3> {
+            let omega = ProbeFormat::LatLong.image_to_direction(glam::DVec2::new(u, v))?;
+            format.direction_to_image(camera.transpose() * omega).map(|_| omega)
+        };
+        for y in 0..long_height {
+            for x in 0..long_width {
+                let (u, v) =
+                    ((f64::from(x) + 0.5) / f64::from(long_width), (f64::from(y) + 0.5) / f64::from(long_height));
+                let colour = match seen(u, v) {
+                    Some(omega) => exposure(probe.radiance_toward(omega)),
+                    None => blind,
+                };
+                root.draw_pixel((x0 + x, y + band), &colour).map_err(err)?;
+            }
+        }
+        // The cone's outline: the pixels that see the probe while a neighbour does not.
+        for y in 0..long_height {
+            for x in 0..long_width {
+                let at = |dx: i32, dy: i32| {
+                    let (u, v) = (
+                        (f64::from(x + dx) + 0.5) / f64::from(long_width),
+                        (f64::from(y + dy).clamp(0.0, f64::from(long_height - 1)) + 0.5) / f64::from(long_height),
+                    );
+                    seen(u.rem_euclid(1.0), v).is_some()
+                };
+                if at(0, 0) && !(at(1, 0) && at(-1, 0) && at(0, 1) && at(0, -1)) {
+                    root.draw_pixel((x0 + x, y + band), &BLACK).map_err(err)?;
+                }
+            }
+        }
+        Ok(())
+    })
 }
 
 /// A labelled function of D/R.
@@ -185,7 +261,8 @@ fn render_row(title: &'static str, probe: &Probe, reference: &(dyn Fn(DVec3) -> 
 
 /// A white diffuse sphere lit through a 128² mirror-ball probe by the analytic sun map (top row)
 /// and by the real sunrise map (bottom row): reference, SH9, MIS with 16 samples per pixel, and
-/// the two methods' errors as a fraction of the peak irradiance (white 0 → vermillion ≥ 10 %).
+/// the two methods' errors as a fraction of the peak irradiance (white 0 → vermillion ≥ 10 %,
+/// with the colour bar and its scale beside each row).
 fn sphere_render_figure() -> Result<Figure, PlotError> {
     let name = "q4_sphere_render.png";
     let failed = |message: String| PlotError::Draw { figure: name.into(), message };
@@ -208,7 +285,8 @@ fn sphere_render_figure() -> Result<Figure, PlotError> {
     let gap = 8_usize;
     let label_band = 22_usize;
     let panels = 5;
-    let width = panels * (RENDER_SIZE + gap) - gap;
+    let bar_band = 80_usize;
+    let width = panels * (RENDER_SIZE + gap) - gap + bar_band;
     let height = rows.len() * (RENDER_SIZE + label_band);
     crate::plot::png_figure(name, (width as u32, height as u32), |root| {
         for (row_index, row) in rows.iter().enumerate() {
@@ -235,6 +313,11 @@ fn sphere_render_figure() -> Result<Figure, PlotError> {
             };
             let labels = [row.title, "SH9", "MIS, 16 samples", "SH9 error", "MIS error"];
             let y0 = row_index * (RENDER_SIZE + label_band);
+            let ramp = |v: f64| heat(v * 0.1 * row.peak);
+            let bar_at = ((panels * (RENDER_SIZE + gap)) as i32 + 4, (y0 + label_band) as i32 + 8);
+            let ticks = [(0.0, "0"), (0.5, "5 %"), (1.0, "≥ 10 %")];
+            root.draw(&Text::new("|error|/peak", (bar_at.0 - 4, y0 as i32 + 4), ("sans-serif", 12))).map_err(err)?;
+            crate::plot::color_bar(root, bar_at, (14, RENDER_SIZE as i32 - 16), &ramp, &ticks)?;
             for (panel, label) in labels.iter().enumerate() {
                 let x0 = panel * (RENDER_SIZE + gap);
                 root.draw(&Text::new(*label, (x0 as i32 + 4, y0 as i32 + 4), ("sans-serif", 13))).map_err(err)?;

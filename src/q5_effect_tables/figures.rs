@@ -7,26 +7,22 @@ use super::error::ExperimentError;
 use super::experiments::{cornell_system, measured_table, measured_table_markdown, reference_passes};
 use super::grammar::grammar_table_markdown;
 use super::radiosity::{Solver, relative_errors};
-use crate::plot::{self, Figure, PALETTE, PlotError, err};
+use crate::plot::{self, Figure, PALETTE, Panel, PlotError, err};
 use crate::render::camera::Camera;
 use crate::render::integrator::Integrator;
 use crate::render::{Settings, render};
 use glam::DVec3;
 use plotters::prelude::*;
 
-/// Figures: the radiosity Cornell box (PNG), solver convergence (SVG), the experiment scenes and
-/// the published Cornell box (PNG), its validation, the measured table and the grammar tables
-/// (markdown).
+/// The drawn figures: solver convergence (SVG), the published Cornell box's validation, the
+/// measured table and the grammar tables (markdown); the renders are [`renders`].
 ///
 /// # Errors
 /// [`PlotError`] if drawing fails.
 pub(super) fn figures() -> Result<Vec<Figure>, PlotError> {
     let draw_error =
         |figure: &str, e: &dyn std::fmt::Display| PlotError::Draw { figure: figure.into(), message: e.to_string() };
-    let (scene, system) = cornell_system(8, 2).map_err(|e| draw_error("q5_radiosity_cornell.png", &e))?;
-    let solution = system.solve(Solver::GaussSeidel, 60).pop().unwrap_or_default();
-    let image = system.render(&scene, &solution, 200, 200);
-    let mut figures = vec![plot::png_bytes("q5_radiosity_cornell.png", &image.to_rgb8())?];
+    let mut figures = Vec::new();
     let (_, small) = cornell_system(4, 1).map_err(|e| draw_error("q5_radiosity_convergence.svg", &e))?;
     let reference = small.solve(Solver::GaussSeidel, 200).pop().unwrap_or_default();
     let curves: Vec<(Solver, Vec<f64>)> =
@@ -65,9 +61,6 @@ pub(super) fn figures() -> Result<Vec<Figure>, PlotError> {
             .draw()
             .map_err(err)
     })?);
-    figures.push(effect_scenes_figure().map_err(|e| draw_error(EFFECT_SCENES_PNG, &e))?);
-    let published = cornell_published::side_by_side(200).map_err(|e| draw_error(PUBLISHED_PNG, &e))?;
-    figures.push(plot::png_bytes(PUBLISHED_PNG, &published)?);
     let validation = cornell_published::validation_table().map_err(|e| draw_error("q5_cornell_published.md", &e))?;
     figures.push(Figure { file_name: "q5_cornell_published.md".into(), bytes: validation.into_bytes() });
     let measured = measured_table().map_err(|e| draw_error("q5_measured_table.md", &e))?;
@@ -86,29 +79,73 @@ const PUBLISHED_PNG: &str = "q5_cornell_published.png";
 /// File name of the experiment-scene montage.
 const EFFECT_SCENES_PNG: &str = "q5_effect_scenes.png";
 
-/// The four open experiment scenes side by side, path-traced (160 × 120, 32 samples per pixel,
-/// every bounce on, seed 1: byte-identical run to run): the glossy floor's highlight, the white
-/// floor's cosine falloff, the red panel in the mirror, the caustic under the glass ball.
-fn effect_scenes_figure() -> Result<Figure, ExperimentError> {
-    let (width, height) = (160, 120);
+/// Samples per pixel of the path-traced renders of Q5's figures.
+pub const PATH_SPP: u32 = 32;
+
+/// Q5's renders (PNG, seeded: the same bytes on every run and thread count): the radiosity
+/// Cornell box at 640×640 (the box is square); the four open experiment scenes as a labelled 2 × 2 grid of
+/// 320×240 panels; the published Cornell box by radiosity beside the path tracer, 320×320 each,
+/// labelled.
+///
+/// # Errors
+/// [`PlotError`] if a scene cannot be built, rendered or labelled.
+///
+/// # Examples
+/// ```no_run
+/// // Not run here: three path-traced and radiosity renders; CI's release run compares them with
+/// // the committed figures.
+/// let renders = hw3::q5_effect_tables::renders().unwrap();
+/// assert!(renders.iter().any(|f| f.file_name == "q5_effect_scenes.png"));
+/// ```
+pub fn renders() -> Result<Vec<Figure>, PlotError> {
+    let draw_error =
+        |figure: &str, e: &dyn std::fmt::Display| PlotError::Draw { figure: figure.into(), message: e.to_string() };
+    let radiosity_png = "q5_radiosity_cornell.png";
+    let (scene, system) = cornell_system(8, 2).map_err(|e| draw_error(radiosity_png, &e))?;
+    let solution = system.solve(Solver::GaussSeidel, 60).pop().unwrap_or_default();
+    let image = system.render(&scene, &solution, 640, 640).to_rgb8();
+    let label = "radiosity, 8 × 8 patches per quad\n2 × 2 form-factor samples, Gauss–Seidel".to_string();
+    let mut figures = vec![plot::panel_grid(radiosity_png, &[Panel { image, label }], 1)?];
+    figures.push(effect_scenes_figure()?);
+    let size = 320;
+    let both = cornell_published::side_by_side(size).map_err(|e| draw_error(PUBLISHED_PNG, &e))?;
+    let half = |x| image::imageops::crop_imm(&both, x, 0, size, size).to_image();
+    let panels = [
+        Panel { image: half(0), label: "radiosity\n12 × 12 patches per quad, interpolated".into() },
+        Panel { image: half(size), label: format!("path tracing\n{PATH_SPP} spp") },
+    ];
+    figures.push(plot::panel_grid(PUBLISHED_PNG, &panels, 2)?);
+    Ok(figures)
+}
+
+/// The four open experiment scenes, path-traced (320 × 240 each, [`PATH_SPP`] samples per pixel,
+/// every bounce on, seed 1): the glossy floor's highlight, the white floor's cosine falloff, the
+/// red panel in the mirror, the caustic under the glass ball, as a labelled 2 × 2 grid.
+fn effect_scenes_figure() -> Result<Figure, PlotError> {
+    let render_error =
+        |e: &dyn std::fmt::Display| PlotError::Draw { figure: EFFECT_SCENES_PNG.into(), message: e.to_string() };
+    let (width, height) = (320, 240);
     let highlight_view =
         Camera::looking_at(effect_scenes::HIGHLIGHT_EYE, effect_scenes::HIGHLIGHT_POINT + DVec3::X * 0.6, 45.0);
-    let scenes = [
-        lit_floor(GLOSSY_FLOOR, false)?.with_camera(highlight_view)?,
-        lit_floor(WHITE_FLOOR, false)?,
-        mirror_room()?,
-        lit_floor(WHITE_FLOOR, true)?,
-    ];
-    let mut montage = image::RgbImage::new(width * scenes.len() as u32, height);
-    for (k, scene) in scenes.iter().enumerate() {
+    let scenes = (|| -> Result<_, ExperimentError> {
+        Ok([
+            (lit_floor(GLOSSY_FLOOR, false)?.with_camera(highlight_view)?, "(a) highlight on a glossy floor"),
+            (lit_floor(WHITE_FLOOR, false)?, "direct light on a white floor"),
+            (mirror_room()?, "the lit red panel in a mirror"),
+            (lit_floor(WHITE_FLOOR, true)?, "caustic under a glass ball"),
+        ])
+    })()
+    .map_err(|e| render_error(&e))?;
+    let mut panels = Vec::new();
+    for (scene, what) in &scenes {
         let settings = Settings {
             integrator: Integrator::PathTracer { max_depth: 12 },
-            ..Settings::whitted(width, height, 32, reference_passes(scene))
+            ..Settings::whitted(width, height, PATH_SPP, reference_passes(scene))
         };
-        let image = render(scene, &settings, &|_| {}).map_err(|e| ExperimentError::Render(e.to_string()))?;
-        image::imageops::replace(&mut montage, &image.to_rgb8(), i64::from(width) * k as i64, 0);
+        let image = render(scene, &settings, &|_| {}).map_err(|e| render_error(&e))?.to_rgb8();
+        panels.push(Panel { image, label: format!("{what}\npath tracing, {PATH_SPP} spp") });
     }
-    plot::png_bytes(EFFECT_SCENES_PNG, &montage).map_err(|e| ExperimentError::Render(e.to_string()))
+    plot::panel_grid(EFFECT_SCENES_PNG, &panels, 2)
 }
 
 /// Plotters' white (the crate's [`WHITE`](super::scenes::WHITE) is a reflectance).

@@ -3,35 +3,60 @@
 
 use super::{Settings, catalogue, render};
 use super::{analysis::analyze, passes::Pass};
-use crate::plot::{self, Figure, PlotError};
+use crate::plot::{self, Figure, Panel, PlotError};
 
-/// Samples per pixel of the renderer chapter's images (Whitted tracing, 160×120).
-const SPP: u32 = 16;
+/// Samples per pixel of the renderer chapter's images (Whitted tracing).
+pub const SPP: u32 = 16;
 
-/// `render_probe_lit.png` (the `probe-lit` scene, lit only by Q4's courtyard map),
-/// `render_fog_panel.png` (the `fog-panel` scene: a panel light's glow in fog), and
-/// `render_caustic.png` / `render_caustic_off.png` (the `caustic` scene with its plan, and with
-/// the caustic pass forced off), all rendered Whitted-style, seeded, so the bytes are the same
-/// on every run.
+/// Renders the built-in scene `name` (Whitted, its plan with `switched_off` forced off) at
+/// `width`×`height`.
+fn render_scene(
+    file_name: &str,
+    name: &str,
+    switched_off: Option<Pass>,
+    (width, height): (u32, u32),
+) -> Result<image::RgbImage, PlotError> {
+    let scene =
+        catalogue::by_name(name).map_err(|e| PlotError::Draw { figure: file_name.into(), message: e.to_string() })?;
+    let plan = analyze(&scene).plan;
+    let plan = switched_off.map_or(plan, |pass| plan.with(pass, false));
+    let image = render(&scene, &Settings::whitted(width, height, SPP, plan), &|_| {})
+        .expect("the figure settings are within limits");
+    Ok(image.to_rgb8())
+}
+
+/// `render_probe_lit.png` (the `probe-lit` scene, lit only by Q4's courtyard map) and
+/// `render_fog_panel.png` (the `fog-panel` scene: a panel light's glow in fog), 640×480 each,
+/// and `render_caustic.png` (the `caustic` scene with its plan beside the same render with the
+/// caustic pass forced off, 320×240 per panel, labelled), all rendered Whitted-style with
+/// [`SPP`] samples per pixel and seed 1, so the bytes are the same on every run and thread count.
 ///
 /// # Errors
 /// [`PlotError::Draw`] if a scene cannot be built (the vendored map is missing).
 pub fn figures() -> Result<Vec<Figure>, PlotError> {
     let mut figures = Vec::new();
-    let renders = [
-        ("render_probe_lit.png", "probe-lit", None),
-        ("render_fog_panel.png", "fog-panel", None),
-        ("render_caustic.png", "caustic", None),
-        ("render_caustic_off.png", "caustic", Some(Pass::Caustics)),
-    ];
-    for (file_name, name, switched_off) in renders {
-        let scene = catalogue::by_name(name)
-            .map_err(|e| PlotError::Draw { figure: file_name.into(), message: e.to_string() })?;
-        let plan = analyze(&scene).plan;
-        let plan = switched_off.map_or(plan, |pass| plan.with(pass, false));
-        let image = render(&scene, &Settings::whitted(160, 120, SPP, plan), &|_| {})
-            .expect("the figure settings are within limits");
-        figures.push(plot::png_bytes(file_name, &image.to_rgb8())?);
+    for (file_name, name, label) in [
+        ("render_probe_lit.png", "probe-lit", "lit by the courtyard map only"),
+        ("render_fog_panel.png", "fog-panel", "panel light in fog, σ_s = 0.15"),
+    ] {
+        let image = render_scene(file_name, name, None, (640, 480))?;
+        figures.push(plot::panel_grid(
+            file_name,
+            &[Panel { image, label: format!("{label}\nWhitted, {SPP} spp") }],
+            1,
+        )?);
     }
+    let caustic = "render_caustic.png";
+    let panels = [
+        Panel {
+            image: render_scene(caustic, "caustic", None, (320, 240))?,
+            label: format!("the plan: caustic pass on\nWhitted + caustic map, {SPP} spp"),
+        },
+        Panel {
+            image: render_scene(caustic, "caustic", Some(Pass::Caustics), (320, 240))?,
+            label: format!("caustic pass forced off\nWhitted, {SPP} spp"),
+        },
+    ];
+    figures.push(plot::panel_grid(caustic, &panels, 2)?);
     Ok(figures)
 }
