@@ -1,14 +1,14 @@
-//! Q3 cost versus scene size: builds the crate's SAH kd-tree for the reference note's workload
+//! Q3 cost versus scene size: builds the crate's SAH kd-tree for the benchmark workload
 //! (`kdtree-perf.md` §5: N = 10² … 10⁵ random spheres, both density scalings, 512×512 camera rays
 //! and 10⁶ random rays, t_min = 10⁻⁴), measures build time and closest-hit rays per second on one
-//! thread, counts nodes and sphere tests per ray, checks the note's checksums, times brute force
+//! thread, counts nodes and sphere tests per ray, checks the benchmark's checksums, times brute force
 //! as a peer where it is affordable (and checks the tree against it ray by ray there), and writes
 //! `docs/data/q3_kdtree_perf.csv` and `.md`, from which the notes' plot is drawn.
 //!
 //! Peers in the same run, on the same rays (`q3_kdtree/peers.rs`): the `bvh` crate and `obvhs`
 //! BVH2 and CWBVH, each on the `f32` scene, and with `--features embree` the system's Embree 3
 //! (`q3_kdtree/embree.rs`); every peer answer is checked against the kd-tree ray by
-//! ray (a mismatch is a different sphere, or hit versus miss), and the note's ray #839 669 with
+//! ray (a mismatch is a different sphere, or hit versus miss), and the benchmark's ray #839 669 with
 //! direction (−0, −0, −1) is a named probe in every configuration.
 //!
 //! Beside the crate's `f64` tree runs its `f32` copy ([`KdTreeF32`], on the `f32` rays); its
@@ -40,7 +40,7 @@ type Hit = Option<(usize, f64)>;
 /// The contender index of obvhs's CWBVH in the interleaved timings (the kd-tree is 0).
 const CWBVH: usize = 3;
 
-/// The note's ray with direction exactly (−0, −0, −1), on which obvhs 0.4's CWBVH can miss.
+/// The benchmark's ray with direction exactly (−0, −0, −1), on which obvhs 0.4's CWBVH can miss.
 const PROBE: usize = 839_669;
 
 /// Seconds of the fastest of `repeats` runs of `work`, and its last result.
@@ -75,7 +75,7 @@ fn work_per_ray(tree: &KdTree, rays: &[Ray<f64>]) -> (f64, f64) {
     (stats.nodes_visited as f64 / n, stats.sphere_tests as f64 / n)
 }
 
-/// The note's checksums (f32, fixed k): (N, camera hits, camera Σt, random hits, random Σt).
+/// The benchmark's checksums (f32, fixed k): (N, camera hits, camera Σt, random hits, random Σt).
 const NOTE: [(usize, usize, f64, usize, f64); 5] = [
     (100, 184_983, 223_855.88, 727_694, 96_248.64),
     (1_000, 172_545, 215_827.48, 676_168, 104_288.96),
@@ -84,7 +84,7 @@ const NOTE: [(usize, usize, f64, usize, f64); 5] = [
     (1_000_000, 175_441, 221_645.86, 647_497, 119_375.47),
 ];
 
-/// "ok" when within the note's tolerance for an independent implementation (3 hits, 2·10⁻⁵
+/// "ok" when within the benchmark's tolerance for an independent implementation (3 hits, 2·10⁻⁵
 /// relative on Σt), else the differences; "-" when the note has no checksum.
 fn versus_note(n: usize, density: Density, camera: (usize, f64), random: (usize, f64)) -> String {
     let Some(&(_, ch, ct, rh, rt)) = NOTE.iter().find(|row| row.0 == n) else {
@@ -605,7 +605,7 @@ fn markdown(csv: &str) -> String {
         row.push(format!("{} / {}", per_million(46, all), per_million(47, all)));
         let _ = writeln!(md, "| {} |", row.join(" | "));
     }
-    md.push_str("\nProbe, the note's random ray #839 669 with direction (−0, −0, −1), per scene:\n\n");
+    md.push_str("\nProbe, the benchmark's random ray #839 669 with direction (−0, −0, −1), per scene:\n\n");
     for line in csv.lines().skip(1) {
         let f: Vec<&str> = line.split(',').collect();
         let _ = writeln!(md, "- {} N = {}: {}", f[0].replace('_', " "), f[1], f[31]);

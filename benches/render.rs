@@ -1,7 +1,7 @@
 //! Renderer benchmarks.
 //!
 //! - divan: camera samples per second of Whitted tracing on the mirror scene and on the
-//!   1500-sphere clutter forest, with 1 and 2 rayon threads (the scaling the issue asks for), and
+//!   1500-sphere clutter forest, with 1 and 2 rayon threads, and
 //!   on the clutter forest with and without the kd-tree on one thread (the speed-up of
 //!   acceleration; both renders are bit-identical, see `render::tests`).
 //! - `cargo bench --bench render` also measures accuracy against time for each Q1 scene and writes

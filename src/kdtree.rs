@@ -25,7 +25,7 @@
 //! So no zero-length interval is ever produced, each child interval is a sub-interval of its
 //! parent's, and the near/far choice is by the *sign* of `d_a`, read only after the parallel
 //! case is out of the way (`−0.0` counts as zero, and `1/−0.0 = −∞` is never read as "moving
-//! down": the trap the reference note found in a peer). Overflow is harmless: `t = ±∞` compares
+//! down": the trap that makes obvhs 0.4's CWBVH miss a hit). Overflow is harmless: `t = ±∞` compares
 //! correctly with any finite bound. The rule never reads `t_min ≥ 0`; it is correct for any
 //! `t_min < t_max`.
 //!

@@ -59,7 +59,7 @@ pub fn answers() -> Answers {
     let text = format!(
         "(a) clutter: the gap fraction of a random forest falls as (1−p)^N ≈ e^(−nπa²Z) and the depth complexity grows as nπa²Z; measured within {CLUTTER_STANDARD_ERRORS} standard errors over N = {first_count}…{last_count} (table q1_clutter_table).\n\
          (b) fog: contrast to an object falls as e^(−σ_t d) (the renderer reproduces it to rounding, below {:e}), visual range ln 50/σ_t = {ranges} units for σ_t = {sigmas}, and the lamp's glow adds airlight that matches Sun et al.'s closed form ({coarse:e} at {} steps, < {fine:e} at 4096).\n\
-         (c) mirrors: nearby rays separate ×{MIRROR_GROWTH} per bounce between four mirror spheres (reference note ×2.45) but only linearly between flat mirrors; over the pixels that see the spheres, the image changes {low}–{high}× faster per unit camera move than the same spheres made diffuse (Whitted, {width}×{height}).\n\
+         (c) mirrors: nearby rays separate ×{MIRROR_GROWTH} per bounce between four mirror spheres (an independent implementation: ×2.45) but only linearly between flat mirrors; over the pixels that see the spheres, the image changes {low}–{high}× faster per unit camera move than the same spheres made diffuse (Whitted, {width}×{height}).\n\
          (d) change over time: the moving ball shifts {pixels_per_frame:.1} px per frame (above the 0.5 px/frame limit for a 1-px feature), and its motion blur needs more samples per pixel than the still scene for the same noise (table q1_motion_table).",
         fog::ROUNDING_LEVEL,
         crate::render::integrator::IN_SCATTER_STEPS,

@@ -1,8 +1,8 @@
 //! The peers of the crate's kd-tree, measured in the same run on the same rays: the `bvh` crate
-//! (0.13, svenstaro) and `obvhs` (0.4: BVH2 and CWBVH). Both need an `f32` scene; the note's
+//! (0.13, svenstaro) and `obvhs` (0.4: BVH2 and CWBVH). Both need an `f32` scene; the benchmark's
 //! scenes and rays are generated in `f32` and widened exactly, so narrowing them back is exact.
 //!
-//! Every peer answers with the same `f32` ray/sphere test ([`sphere_t`], the note's
+//! Every peer answers with the same `f32` ray/sphere test ([`sphere_t`], the benchmark's
 //! `r² − |oc − b d|²` form), so the peers differ only in their acceleration structure.
 //!
 //! The `bvh` crate has no pruned closest-hit query (its ray APIs yield AABB candidates), so it is
@@ -41,7 +41,7 @@ pub struct RayF32 {
     inv_dir: Vec3A,
 }
 
-/// The narrowing is exact for the note's workload (generated in `f32`, widened to `f64`).
+/// The narrowing is exact for the benchmark's workload (generated in `f32`, widened to `f64`).
 pub fn spheres_f32(spheres: &[Sphere<f64>]) -> Vec<SphereF32> {
     spheres.iter().map(|s| SphereF32 { center: s.center.as_vec3a(), radius: s.radius as f32, bvh_node: 0 }).collect()
 }

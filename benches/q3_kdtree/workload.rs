@@ -4,7 +4,7 @@
 //!
 //! Every draw is made in `f32` exactly as the note specifies (SplitMix64; a draw is the top 24
 //! bits over 2²⁴; scene seed `0x5EED ^ N`; ray seed `0xBEEF`), then widened to `f64` (exactly) for
-//! the crate's `f64` kd-tree. The note's checksums were computed in `f32`; an `f64` tree lands
+//! the crate's `f64` kd-tree. The benchmark's checksums were computed in `f32`; an `f64` tree lands
 //! within a few hits and about 2·10⁻⁵ relative on the sum of t, not bit-identically (grazing rays).
 
 use glam::DVec3;
@@ -17,7 +17,7 @@ pub const T_MIN: f64 = 1e-4;
 /// Expected spheres met per unit length of ray under [`Density::FixedMeanFreePath`].
 const K: f32 = 3.0;
 
-/// SplitMix64 (Steele, Lea & Flood 2014), the note's generator.
+/// SplitMix64 (Steele, Lea & Flood 2014), the benchmark's generator.
 #[derive(Debug, Clone)]
 pub struct SplitMix64(pub u64);
 
@@ -46,7 +46,7 @@ pub enum Density {
     FixedVolumeFraction,
 }
 
-/// The note's scene: N spheres, centres uniform in `[0, 1]³`, radius `r₀ (0.5 + u)`.
+/// The benchmark's scene: N spheres, centres uniform in `[0, 1]³`, radius `r₀ (0.5 + u)`.
 #[must_use]
 pub fn scene(n: usize, density: Density) -> Vec<Sphere<f64>> {
     let pi = std::f32::consts::PI;
@@ -78,7 +78,7 @@ fn ray(origin: [f32; 3], dir: [f32; 3]) -> Ray<f64> {
     Ray { origin: widen(origin), dir: widen(dir) }
 }
 
-/// The note's camera: eye (0.5, 0.5, −1) looking along +z, tan(half fov) = 0.5, one ray through
+/// The benchmark's camera: eye (0.5, 0.5, −1) looking along +z, tan(half fov) = 0.5, one ray through
 /// each pixel centre of a `width`×`height` image, row by row.
 #[must_use]
 pub fn camera_rays(width: usize, height: usize) -> Vec<Ray<f64>> {
@@ -93,7 +93,7 @@ pub fn camera_rays(width: usize, height: usize) -> Vec<Ray<f64>> {
     rays
 }
 
-/// The note's incoherent rays: origin uniform in the unit cube, direction uniform on the sphere
+/// The benchmark's incoherent rays: origin uniform in the unit cube, direction uniform on the sphere
 /// (z uniform in [−1, 1], azimuth uniform), `count` rays from seed `seed` (the note uses
 /// `0xBEEF`).
 #[must_use]
@@ -110,7 +110,7 @@ pub fn random_rays(count: usize, seed: u64) -> Vec<Ray<f64>> {
         .collect()
 }
 
-/// The note's checksum of a batch of answers: number of hits and the sum of their t.
+/// The benchmark's checksum of a batch of answers: number of hits and the sum of their t.
 #[must_use]
 pub fn checksum(hits: &[Option<(usize, f64)>]) -> (usize, f64) {
     hits.iter().flatten().fold((0, 0.0), |(n, sum), &(_, t)| (n + 1, sum + t))

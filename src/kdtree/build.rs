@@ -37,7 +37,7 @@ pub struct SahCosts {
 
 impl Default for SahCosts {
     /// `K_T = 1`, `K_I = 0.5`, `b = 0.2`, 32 bins. The constants are *measured* costs, not
-    /// textbook ones: on the reference note's workload a node step costs several times a
+    /// textbook ones: on the Q3 benchmark workload a node step costs several times a
     /// ray/sphere test (a node step is a dependent load from a tree that outgrows the cache, a
     /// sphere test a dozen flops on data that sits next to its leaf's other spheres), so a ray
     /// should rather test a few more spheres than walk many small cells. A sweep of `K_I` over

@@ -115,7 +115,7 @@ fn mirror_path(scene: &Scene, mut ray: Ray<f64>, bounces: usize) -> Vec<DVec3> {
 }
 
 /// Measures [`MirrorDivergence`]: `trials` ray pairs `1e-12` rad apart aimed from 6 units away
-/// at four mirror spheres (radius 1, tetrahedron with edge 2.2, the reference note's set-up),
+/// at four mirror spheres (radius 1, tetrahedron with edge 2.2, the set-up of an independent implementation),
 /// and one pair at 30° between two parallel mirrors 1 apart.
 ///
 /// # Errors
@@ -192,7 +192,7 @@ fn flat_mirror_separation(mirror: Material) -> Result<Vec<(usize, f64, f64)>, In
 
 pub(super) fn divergence_table(result: &MirrorDivergence) -> String {
     let mut text = format!(
-        "four mirror spheres: {} of {} pairs trapped ≥ 4 bounces; median growth ×{:.2} per bounce (reference note: ×2.45)\n\n| flat mirrors, bounces | separation | law k δ / cos²θ |\n|---|---|---|\n",
+        "four mirror spheres: {} of {} pairs trapped ≥ 4 bounces; median growth ×{:.2} per bounce (an independent implementation: ×2.45)\n\n| flat mirrors, bounces | separation | law k δ / cos²θ |\n|---|---|---|\n",
         result.trapped, result.trials, result.median_factor
     );
     for (k, measured, law) in &result.flat {

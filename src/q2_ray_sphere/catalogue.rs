@@ -545,7 +545,7 @@ pub const SWEEP_DISTANCES: [f64; 5] = [1e2, 1e3, 4096.0, 1e4, 1e5];
 mod tests {
     use super::*;
 
-    /// The bar: wherever the homework's f32 formula is off by more than 1 % (or gets hit/miss
+    /// The rescue bar: wherever the homework's f32 formula is off by more than 1 % (or gets hit/miss
     /// wrong), the stable f32 solver is within 1e-5 — except on the cases marked `beyond_f32`, where
     /// f64 must deliver instead.
     #[test]

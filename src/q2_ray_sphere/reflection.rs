@@ -238,7 +238,7 @@ pub fn self_hit_rate<T: Real>(scenario: Scenario, policy: SpawnPolicy, rays: u64
 mod tests {
     use super::*;
 
-    /// The bar: 0 self-intersections over 10⁶ random hits per scenario, in both precisions.
+    /// The robustness bar: 0 self-intersections over 10⁶ random hits per scenario, in both precisions.
     #[test]
     fn robust_spawn_never_self_intersects_in_a_million_hits_per_scenario() {
         for scenario in Scenario::ALL {

@@ -82,7 +82,7 @@ fn panel<DB: DrawingBackend>(
         Rays::Camera => "camera rays 512×512: µs per ray vs N (1 thread)",
         Rays::Random => "10⁶ random rays: µs per ray vs N (1 thread)",
     };
-    // Every method at fixed k (the note's main workload); the kd-tree also at fixed volume
+    // Every method at fixed k (the main workload); the kd-tree also at fixed volume
     // fraction, thinner and in sky blue, to show the density scaling.
     let methods = METHODS.iter().map(|m| (m, "fixed_k")).chain(std::iter::once((&METHODS[0], "fixed_volume")));
     let series = methods

@@ -136,7 +136,7 @@ mod tests {
 
     #[test]
     fn the_reference_table_is_reproduced() {
-        // Reference note §1: D/R, half-angle (deg), solid angle (sr), loss at n = away.
+        // The chapter's table: D/R, half-angle (deg), solid angle (sr), loss at n = away.
         for (d, degrees, sr, loss) in [
             (3.0, 19.47, 0.359, 0.111),
             (5.0, 11.54, 0.127, 0.040),

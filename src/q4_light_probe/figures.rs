@@ -399,7 +399,7 @@ fn pareto_figure(map: &str) -> Result<Figure, PlotError> {
                 .label(*method)
                 .legend(move |(x, y)| Circle::new((x + 8, y), 4, colour.filled()));
         }
-        // Name the SH9 and 256² weighted points, the target pair.
+        // Name the SH9 and 256² weighted points, the chapter's comparison pair.
         for r in rows.iter().filter(|r| r.label == "sh9 256²" || r.label == "weighted 256²") {
             chart
                 .draw_series(std::iter::once(Text::new(

@@ -117,7 +117,7 @@ pub fn outgoing_radiance(albedo: f64, irradiance: DVec3) -> DVec3 {
 }
 
 /// The spherical-harmonic basis `Y_lm(ω)` for l ≤ 2, ordered (0,0), (1,−1), (1,0), (1,1),
-/// (2,−2), (2,−1), (2,0), (2,1), (2,2) (reference note §2).
+/// (2,−2), (2,−1), (2,0), (2,1), (2,2) (Ramamoorthi & Hanrahan 2001).
 ///
 /// # Examples
 /// ```

@@ -1,8 +1,8 @@
 //! Analytic environment maps whose irradiance is known in closed form: the test oracles.
 //!
 //! Every map is a sum of [`Term`]s, each with radiance `L(ω)` and exact irradiance
-//! `E(n) = ∫ L(ω) max(0, n·ω) dω` (reference note §4, checked there against brute-force quadrature
-//! and here against an independent quadrature in the tests). Oracles add linearly, so a sky plus a
+//! `E(n) = ∫ L(ω) max(0, n·ω) dω` (closed forms, checked against an independent quadrature in the
+//! tests). Oracles add linearly, so a sky plus a
 //! sun is exact too. Radiance is grey (one number); probes store it in all three channels.
 
 use crate::envmap::{Probe, ProbeError, ProbeFormat};
@@ -166,7 +166,7 @@ fn clamped_lobe(alpha: f64) -> f64 {
 }
 
 /// `E / L_s` for a uniform cap of half-angle `δ` whose centre is at angle `α` from the normal,
-/// clipped by the normal's horizon (Lagarde & de Rousiers 2014; reference note §4).
+/// clipped by the normal's horizon (Lagarde & de Rousiers 2014, "Moving Frostbite to physically based rendering").
 ///
 /// # Examples
 /// ```
@@ -334,7 +334,7 @@ impl AnalyticMap {
 
     /// The accuracy study's sun map: the [`Self::sky`] step plus a real-size sun (half-angle
     /// 0.2665°) 30° above the horizon whose direct irradiance at normal incidence is `10π`
-    /// (ten times the sky's zenith irradiance), as in the reference note's experiment.
+    /// (ten times the sky's zenith irradiance), the accuracy study's hardest case.
     ///
     /// # Examples
     /// ```

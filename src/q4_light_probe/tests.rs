@@ -1,4 +1,4 @@
-//! Every irradiance method against the closed-form oracles of the reference note (§4), plus the
+//! Every irradiance method against the closed-form oracles of [`super::maps`], plus the
 //! hard cases. Monte Carlo tests are statistical: many seeds, a bound from the measured spread,
 //! and the slope of the error against N; none relies on one seed.
 
@@ -190,7 +190,7 @@ fn monte_carlo_error_falls_as_one_over_root_n() {
 fn only_map_sampling_finds_a_real_sun() {
     // Sky + 0.27° sun at 64²: the sun is one texel. RMS over 64 seeds at N = 256, as % of peak E,
     // at the normal facing the sun. Cosine and uniform sampling mostly miss the sun (heavy-tailed
-    // error, reference note §5); sampling the map finds it every time.
+    // error); sampling the map finds it every time.
     let map = AnalyticMap::sun();
     let probe = ball(&map, 64);
     let prepared = Irradiance::new(&probe);
@@ -341,10 +341,10 @@ fn real_maps_resampled_into_a_ball_keep_their_irradiance() {
 
 #[test]
 fn sh9_meets_the_target_on_the_soft_real_map_and_not_on_the_sunrise() {
-    // The target, ≤ 3 % mean error on the soft map, holds peak-normalised (measured
+    // The 3 % bar, ≤ 3 % mean error on the soft map, holds peak-normalised (measured
     // 1.6 % mean / 3.8 % max on the courtyard) but not relative to each normal's own irradiance
     // (4.8 % mean). On the sunrise (61 % of its light in 0.1 % of the sphere) the relative error
-    // is 23.5 % (reference note: 27 % on the same map at full resolution) and the worst normal is
+    // is 23.5 % (an independent implementation: 27 % on the same map at full resolution) and the worst normal is
     // off by 7 % of the peak.
     let normals = fibonacci_normals(64);
     let errors: Vec<(&str, study::ErrorSummary)> = real_maps()

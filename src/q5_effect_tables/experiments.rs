@@ -246,7 +246,7 @@ pub fn highlight(method: Measured) -> Result<f64, ExperimentError> {
 
 /// (c) Direct diffuse shading: the cosine falloff across the white floor of [`lit_floor`], the
 /// radiance under the light minus the radiance 1.5 units aside (16 probes each; the law is
-/// `L = ρ/π · L_e A cosθ cosθ' / r²`, 0.74 of the peak there).
+/// `L = ρ/π · L_e A cosθ cosθ' / r²`, (16/18.25)² ≈ 0.77 of the peak there).
 ///
 /// # Errors
 /// As [`highlight`].

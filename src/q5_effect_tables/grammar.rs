@@ -79,7 +79,7 @@ pub enum LightKind {
 }
 
 impl LightKind {
-    /// Both kinds, area first (the seed's setting).
+    /// Both kinds, area first (the seed names no light; an area light is the general case).
     pub const ALL: [LightKind; 2] = [LightKind::Area, LightKind::Point];
 
     /// Paths that carry energy from this kind of light: all of `L…E` for area lights, those with
@@ -189,8 +189,6 @@ pub enum SeedAnswer {
     Yes,
     /// The seed wrote No.
     No,
-    /// The seed's answer is cut off in the transcription (Q5(b)(e)).
-    NotTranscribed,
     /// The seed has no such column.
     NotAsked,
 }
@@ -201,20 +199,20 @@ impl SeedAnswer {
     /// # Examples
     /// ```
     /// use hw3::q5_effect_tables::SeedAnswer;
-    /// assert_eq!((SeedAnswer::NotTranscribed.text(), SeedAnswer::NotAsked.text()), ("lost", "–"));
+    /// assert_eq!((SeedAnswer::Yes.text(), SeedAnswer::NotAsked.text()), ("Yes", "–"));
     /// ```
     #[must_use]
     pub fn text(self) -> &'static str {
         match self {
             SeedAnswer::Yes => "Yes",
             SeedAnswer::No => "No",
-            SeedAnswer::NotTranscribed => "lost",
             SeedAnswer::NotAsked => "–",
         }
     }
 }
 
-/// The seed's answers, as transcribed: Q5(a) radiosity a–e, Q5(b) two-pass a–d ((e) is lost).
+/// The seed's answers, as transcribed: Q5(a) radiosity a–e, Q5(b) two-pass a–e (the last line of
+/// the homework is (b)(e), "Yes - as in (b)").
 pub const SEED_ANSWERS: [(char, char, SeedAnswer); 10] = [
     ('a', 'a', SeedAnswer::No),
     ('a', 'b', SeedAnswer::Yes),
@@ -225,7 +223,7 @@ pub const SEED_ANSWERS: [(char, char, SeedAnswer); 10] = [
     ('b', 'b', SeedAnswer::Yes),
     ('b', 'c', SeedAnswer::Yes),
     ('b', 'd', SeedAnswer::No),
-    ('b', 'e', SeedAnswer::NotTranscribed),
+    ('b', 'e', SeedAnswer::Yes),
 ];
 
 /// The seed's answer for `effect` under `method`.
@@ -328,7 +326,6 @@ pub(super) fn agreement(cell: &Cell) -> &'static str {
     match (cell.seed, cell.verdict) {
         (SeedAnswer::Yes, Verdict::Yes) | (SeedAnswer::No, Verdict::No) => "agrees",
         (SeedAnswer::No, Verdict::Impractical) => "agrees (possible but impractical)",
-        (SeedAnswer::NotTranscribed, _) => "seed answer lost",
         (SeedAnswer::NotAsked, _) => "",
         _ => "DISAGREES",
     }
@@ -355,7 +352,7 @@ fn cell_text(cell: &Cell) -> String {
 /// # Examples
 /// ```
 /// let markdown = hw3::q5_effect_tables::grammar_table_markdown().unwrap();
-/// assert!(markdown.starts_with("**Area light (the seed's setting)**"));
+/// assert!(markdown.starts_with("**Area light**"));
 /// assert!(markdown.contains("No `LGE` (seed: No)"));
 /// ```
 pub fn grammar_table_markdown() -> Result<String, GrammarError> {
@@ -363,7 +360,7 @@ pub fn grammar_table_markdown() -> Result<String, GrammarError> {
     let mut out = String::new();
     for light in LightKind::ALL {
         let title = match light {
-            LightKind::Area => "Area light (the seed's setting)",
+            LightKind::Area => "Area light",
             LightKind::Point => "Point light",
         };
         out.push_str(&format!("**{title}**\n\n| effect | paths |"));

