@@ -243,3 +243,25 @@ fn messages_name_the_right_option_and_quote_little_input() {
     assert!(!all.chars().any(|c| c.is_control() && c != '\n'), "{all:?}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// Defect class: an answers file whose sections have the wrong shape (`meta = 3`, `q2 = [1, 2]`) is
+/// refused as bad input, never graded as if the section were absent; with `--seed` too.
+#[test]
+fn sections_of_the_wrong_shape_are_refused_not_graded() {
+    let dir = scratch("shapes");
+    for (name, text, says) in [
+        ("meta-int", "meta = 3\n[q2]\na_t = 1.0\n", "`meta`: must be a table"),
+        ("meta-array", "meta = [1, 2, 3]\n", "`meta`: must be a table"),
+        ("question-string", "q2 = \"all of it\"\n", "`q2`: must be a table"),
+    ] {
+        let file = dir.join(format!("{name}.toml"));
+        std::fs::write(&file, text).unwrap();
+        for extra in [&[][..], &["--seed", "1"][..]] {
+            let mut args = vec!["check", file.to_str().unwrap()];
+            args.extend_from_slice(extra);
+            let line = refused(&hw3(&args));
+            assert!(line.contains(says), "{name}: {line}");
+        }
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -22,7 +22,7 @@ pub enum CheckError {
         problem: String,
     },
     /// `[meta] seed` is not a non-negative integer.
-    #[error("`meta.seed` must be an integer from 0 to 2^63, got {0}")]
+    #[error("`meta.seed` must be an integer from 0 to 2^63 − 1, got {0}")]
     BadSeed(String),
     /// A question id the checker does not know.
     #[error("unknown question `{0}`; known: q1, q2, q3, q4, q5")]

@@ -4,7 +4,7 @@ use super::error::CheckError;
 use super::formula::compare_formulas;
 use super::key::{Expected, Part, Variant};
 use super::paths::compare_paths;
-use super::reading::{Given, lookup, read_seed, read_value};
+use super::reading::{Given, lookup, read_seed, read_value, require_tables};
 use super::suggest::unknown_keys;
 use super::traces::{grade_planes, grade_trace, show_leaf, show_plane};
 use super::variants::{QUESTIONS, variant};
@@ -91,6 +91,7 @@ impl Report {
 /// ```
 pub fn check(text: &str, seed_override: Option<u64>) -> Result<Report, CheckError> {
     let table: toml::Table = toml::from_str(text).map_err(|e| CheckError::Syntax(e.to_string()))?;
+    require_tables(&table)?;
     let seed = match seed_override {
         Some(seed) => seed,
         None => read_seed(&table)?,

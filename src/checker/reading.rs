@@ -13,6 +13,25 @@ pub(super) fn read_seed(table: &toml::Table) -> Result<u64, CheckError> {
     }
 }
 
+/// The sections an answers file may have: `[meta]` and one per question. Each must be a table:
+/// `meta = 3` or `q2 = [1, 2]` is a wrong shape, refused rather than graded as if it were absent.
+const SECTIONS: [&str; 6] = ["meta", "q1", "q2", "q3", "q4", "q5"];
+
+/// Refuses a known section that is not a table (before any grading).
+pub(super) fn require_tables(table: &toml::Table) -> Result<(), CheckError> {
+    for section in SECTIONS {
+        if let Some(value) = table.get(section)
+            && !value.is_table()
+        {
+            return Err(CheckError::BadValue {
+                key: section.into(),
+                problem: format!("must be a table (`[{section}]`), got {}", value.type_str()),
+            });
+        }
+    }
+    Ok(())
+}
+
 pub(super) fn lookup<'a>(table: &'a toml::Table, key: &str) -> Option<&'a toml::Value> {
     let (section, name) = key.split_once('.')?;
     table.get(section)?.get(name)
