@@ -23,6 +23,7 @@ pub mod q5_effect_tables;
 
 pub mod checker;
 pub mod notes;
+pub mod solution;
 
 /// One question's printed answers, as `hw3 answers` shows them.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -65,6 +66,7 @@ pub fn all_figures() -> Result<Vec<plot::Figure>, plot::PlotError> {
     figures.extend(q3_kd_traversal::figures()?);
     figures.extend(q4_light_probe::figures()?);
     figures.extend(q5_effect_tables::figures()?);
+    figures.extend(solution::figures()?);
     Ok(figures)
 }
 
