@@ -90,43 +90,45 @@ pub(super) fn solution(s: &Solution, format: Format) -> String {
     out
 }
 
-/// TOML for one value, with the digits [`num`] prints.
-fn toml_value(value: &Value) -> String {
-    let bound = |t: f64| if t.is_infinite() { "\"inf\"".to_string() } else { num(t) };
+/// One value as TOML, with the digits [`num`] prints (so a file built from it is what a student
+/// copying the solution hands in).
+fn toml_value(value: &Value) -> toml::Value {
+    let printed = |x: f64| match num(x).parse::<f64>() {
+        Ok(y) if y.is_finite() => toml::Value::Float(y),
+        _ => toml::Value::String(num(x)),
+    };
     match value {
-        Value::Number(x) => num(*x),
-        Value::Vector(v) => format!("[{}, {}, {}]", num(v[0]), num(v[1]), num(v[2])),
-        Value::Word(w) => format!("{w:?}"),
-        Value::Leaves(leaves) => {
-            let rows: Vec<String> = leaves
+        Value::Number(x) => printed(*x),
+        Value::Vector(v) => toml::Value::Array(v.iter().map(|&x| printed(x)).collect()),
+        Value::Word(w) => toml::Value::String(w.clone()),
+        Value::Leaves(leaves) => toml::Value::Array(
+            leaves
                 .iter()
                 .map(|l| {
-                    let path: Vec<String> = l.path.iter().map(|p| format!("{p:?}")).collect();
-                    format!(
-                        "  {{ path = [{}], tmin = {}, tmax = {} }},",
-                        path.join(", "),
-                        bound(l.t_min),
-                        bound(l.t_max)
-                    )
+                    let mut row = toml::Table::new();
+                    row.insert(
+                        "path".into(),
+                        toml::Value::Array(l.path.iter().cloned().map(toml::Value::String).collect()),
+                    );
+                    row.insert("tmin".into(), printed(l.t_min));
+                    row.insert("tmax".into(), printed(l.t_max));
+                    toml::Value::Table(row)
                 })
-                .collect();
-            format!("[\n{}\n]", rows.join("\n"))
-        }
+                .collect(),
+        ),
     }
 }
 
 pub(super) fn answers_toml(s: &Solution) -> String {
-    let mut out = String::new();
-    let mut table = "";
+    let mut file = toml::Table::new();
     for answer in s.answers() {
         let (section, name) = answer.key.split_once('.').unwrap_or((answer.key, ""));
-        if section != table {
-            let _ = writeln!(out, "\n[{section}]");
-            table = section;
+        let table = file.entry(section).or_insert_with(|| toml::Value::Table(toml::Table::new()));
+        if let toml::Value::Table(table) = table {
+            table.insert(name.into(), toml_value(&answer.value));
         }
-        let _ = writeln!(out, "{name} = {}", toml_value(&answer.value));
     }
-    out
+    toml::to_string(&file).expect("a table of numbers, strings and arrays serialises")
 }
 
 #[cfg(test)]
