@@ -11,6 +11,7 @@ use hw3::q2_ray_sphere::catalogue::camera_batch;
 use hw3::q2_ray_sphere::reflection::{SpawnPolicy, reflect_at_hit};
 use hw3::q2_ray_sphere::seed_solver::first_hit_naive;
 use hw3::real::Real;
+use hw3::stats::median;
 use std::hint::black_box;
 use std::time::Instant;
 
@@ -58,11 +59,6 @@ fn spawn(pairs: &[(Ray<f32>, Sphere<f32>)], policy: SpawnPolicy) -> f64 {
     })
 }
 
-fn median(mut values: Vec<f64>) -> f64 {
-    values.sort_by(f64::total_cmp);
-    values[values.len() / 2]
-}
-
 fn main() {
     let measuring = std::env::args().any(|a| a == "--bench");
     let (rounds, repeats) = if measuring { (41, 20) } else { (1, 1) };
@@ -94,7 +90,8 @@ fn main() {
     );
     csv.push_str("kind,variant,median_ns,ratio\n");
     for (i, (kind, label, _, _)) in jobs.iter().enumerate() {
-        let line = format!("{kind},{label},{:.3},{:.3}\n", median(samples[i].clone()), median(ratios[i].clone()));
+        let line =
+            format!("{kind},{label},{:.3},{:.3}\n", median(&mut samples[i].clone()), median(&mut ratios[i].clone()));
         print!("{line}");
         csv.push_str(&line);
     }

@@ -6,21 +6,30 @@
 //! `docs/data/q3_kdtree_perf.csv` and `.md`, from which the notes' plot is drawn.
 //!
 //! Peers in the same run, on the same rays (`q3_kdtree/peers.rs`): the `bvh` crate and `obvhs`
-//! BVH2 and CWBVH, each on the `f32` scene; every peer answer is checked against the kd-tree ray by
+//! BVH2 and CWBVH, each on the `f32` scene, and with `--features embree` the system's Embree 3
+//! (`q3_kdtree/embree.rs`); every peer answer is checked against the kd-tree ray by
 //! ray (a mismatch is a different sphere, or hit versus miss), and the note's ray #839 669 with
 //! direction (−0, −0, −1) is a named probe in every configuration.
+//!
+//! Beside the crate's `f64` tree runs its `f32` copy ([`KdTreeF32`], on the `f32` rays); its
+//! accuracy cost is counted twice per scene: rays where it names another sphere than the `f64`
+//! tree, and, on those rays, which of the two answers a double-double evaluation of both
+//! candidates confirms.
 //!
 //! `cargo bench --bench q3_kdtree` measures and writes (`HW3_Q3_MAX_N=1000000` adds N = 10⁶;
 //! `HW3_Q3_KI`, `HW3_Q3_EMPTY_BONUS`, `HW3_Q3_BINS`, `HW3_Q3_MIN_N` make a tuning run that only prints);
 //! under `cargo test --benches` it runs one small smoke round and writes nothing.
 
+#[cfg(feature = "embree")]
+#[path = "q3_kdtree/embree.rs"]
+mod embree;
 #[path = "q3_kdtree/peers.rs"]
 mod peers;
 #[path = "q3_kdtree/workload.rs"]
 mod workload;
 
 use hw3::geometry::{Ray, Sphere};
-use hw3::kdtree::{HitStats, KdTree, SahCosts, brute_force_closest_hit};
+use hw3::kdtree::{HitStats, KdTree, KdTreeF32, SahCosts, brute_force_closest_hit};
 use std::fmt::Write as _;
 use std::hint::black_box;
 use std::time::Instant;
@@ -112,7 +121,22 @@ fn mismatches(peer: &[Hit], tree: &[Hit]) -> usize {
 struct Timed {
     best_secs: Vec<f64>,
     median_ratio: Vec<f64>,
+    /// Seconds of every round, per contender.
+    secs: Vec<Vec<f64>>,
     answers: Vec<Vec<Hit>>,
+}
+
+impl Timed {
+    /// The median over rounds of `secs[slower] / secs[faster]`: how many times faster contender
+    /// `faster` ran than `slower` in the same round.
+    fn speedup(&self, faster: usize, slower: usize) -> f64 {
+        median(self.secs[slower].iter().zip(&self.secs[faster]).map(|(s, f)| s / f).collect())
+    }
+}
+
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(f64::total_cmp);
+    v[v.len() / 2]
 }
 
 /// Times every contender on the same rays in interleaved rounds (round r runs the kd-tree, then
@@ -129,13 +153,9 @@ fn interleaved(rounds: usize, contenders: &mut [&mut dyn FnMut() -> Vec<Hit>]) -
             answers[c] = hits;
         }
     }
-    let median = |mut v: Vec<f64>| {
-        v.sort_by(f64::total_cmp);
-        v[v.len() / 2]
-    };
     let best_secs = secs.iter().map(|s| s.iter().copied().fold(f64::INFINITY, f64::min)).collect();
     let median_ratio = secs.iter().map(|s| median(s.iter().zip(&secs[0]).map(|(t, kd)| t / kd).collect())).collect();
-    Timed { best_secs, median_ratio, answers }
+    Timed { best_secs, median_ratio, secs, answers }
 }
 
 /// The camera and random timings of the kd-tree and every peer, with the peers' CSV fields (build
@@ -144,7 +164,61 @@ struct Run {
     camera: Timed,
     random: Timed,
     peer_fields: String,
+    /// Embree's CSV fields (build ms, camera and random Mrays/s, mismatches, kd ÷ Embree speed
+    /// camera and random), appended after the older columns; `-` without the `embree` feature.
+    embree_fields: String,
+    /// The `f32` tree's CSV fields: camera and random Mrays/s; rays where it names another sphere
+    /// than the `f64` tree, camera and random; rays where the `f64` tree and where the `f32` tree
+    /// differ from the double-double verdict; its speed ÷ Embree's, camera and random; camera and
+    /// random rays compared; its speed ÷ the `f64` tree's, camera and random.
+    f32_fields: String,
     probe: Vec<String>,
+}
+
+/// The high-precision verdict on the rays where the two trees disagree: each tree's candidate
+/// sphere is intersected in double-double arithmetic (`twofloat`), and the closer true hit in
+/// `(t_min, ∞)` is the right answer. Returns how many of those rays each tree (`f64`, `f32`)
+/// got wrong. Rays where the trees agree are not re-checked (the `f64` tree equals `f64` brute
+/// force, which the benchmark checks where it is affordable).
+fn reference_verdicts(spheres: &[Sphere<f64>], rays: &[Ray<f64>], exact: &[Hit], narrow: &[Hit]) -> (usize, usize) {
+    let mut wrong = (0, 0);
+    for ((ray, a), b) in rays.iter().zip(exact).zip(narrow) {
+        let (a, b) = (a.map(|h| h.0), b.map(|h| h.0));
+        if a == b {
+            continue;
+        }
+        let t_of = |i: Option<usize>| i.and_then(|i| double_double_hit(ray, &spheres[i], T_MIN));
+        let (ta, tb) = (t_of(a), t_of(b));
+        let verdict = match (ta, tb) {
+            (Some(x), Some(y)) => Some(if x <= y { a } else { b }),
+            (Some(_), None) => Some(a),
+            (None, Some(_)) => Some(b),
+            (None, None) => None,
+        }
+        .flatten();
+        wrong.0 += usize::from(a != verdict);
+        wrong.1 += usize::from(b != verdict);
+    }
+    wrong
+}
+
+/// The first root in `(t_min, ∞)` of the ray/sphere quadratic in double-double arithmetic (inputs
+/// exact, `f − o` and every product carried to about 106 bits), rounded to `f64`; `None` on a miss.
+fn double_double_hit(ray: &Ray<f64>, sphere: &Sphere<f64>, t_min: f64) -> Option<f64> {
+    use twofloat::TwoFloat;
+    let zero = TwoFloat::from(0.0);
+    let (e, d, o) = (ray.origin.to_array(), ray.dir.to_array(), sphere.center.to_array());
+    let f: Vec<TwoFloat> = (0..3).map(|k| TwoFloat::new_add(e[k], -o[k])).collect();
+    let a = d.iter().fold(zero, |acc, &x| acc + TwoFloat::new_mul(x, x));
+    let b_half = -f.iter().zip(d).fold(zero, |acc, (&fk, dk)| acc + fk * dk);
+    let c = f.iter().fold(zero, |acc, &fk| acc + fk * fk) - TwoFloat::new_mul(sphere.radius, sphere.radius);
+    let disc = b_half * b_half - a * c;
+    if disc < zero {
+        return None;
+    }
+    let root = disc.sqrt();
+    let (near, far) = ((b_half - root) / a, (b_half + root) / a);
+    [near, far].into_iter().map(|t| t.hi() + t.lo()).find(|&t| t > t_min)
 }
 
 /// The rays every contender traces: `f64` for the kd-tree, the same rays narrowed (exactly) to
@@ -157,8 +231,21 @@ struct Rays<'a> {
     probe32: &'a peers::RayF32,
 }
 
-fn run_all(tree: &KdTree, spheres: &[Sphere<f64>], rays: &Rays<'_>, tree_probe: Hit, repeats: (usize, usize)) -> Run {
+/// The trees of this crate under test: the `f64` tree (contender 0) and its `f32` copy (the last).
+struct Trees<'a> {
+    f64: &'a KdTree,
+    f32: &'a KdTreeF32,
+}
+
+fn run_all(
+    trees: &Trees<'_>,
+    spheres: &[Sphere<f64>],
+    rays: &Rays<'_>,
+    tree_probe: Hit,
+    repeats: (usize, usize),
+) -> Run {
     let Rays { camera, random, camera32, random32, probe32 } = *rays;
+    let tree = trees.f64;
     let t_min = T_MIN as f32;
     let built: Vec<(Vec<peers::SphereF32>, peers::Peer, f64)> = (0..peers::NAMES.len())
         .map(|index| {
@@ -167,7 +254,7 @@ fn run_all(tree: &KdTree, spheres: &[Sphere<f64>], rays: &Rays<'_>, tree_probe: 
             (shapes, peer, build_secs)
         })
         .collect();
-    let time_on = |rounds: usize, kd_rays: &[Ray<f64>], peer_rays: &[peers::RayF32]| {
+    let time_on = |rounds: usize, kd_rays: &[Ray<f64>], peer_rays: &[peers::RayF32], coherent: bool| {
         let mut kd = || trace_all(tree, kd_rays);
         let mut peer_work: Vec<_> = built
             .iter()
@@ -175,30 +262,78 @@ fn run_all(tree: &KdTree, spheres: &[Sphere<f64>], rays: &Rays<'_>, tree_probe: 
                 move || -> Vec<Hit> {
                     peer_rays
                         .iter()
-                        .map(|r| peer.closest_hit(shapes, black_box(r), t_min).map(|(i, t)| (i, f64::from(t))))
+                        .map(|r| {
+                            peer.closest_hit(shapes, black_box(r), t_min, coherent).map(|(i, t)| (i, f64::from(t)))
+                        })
                         .collect()
                 }
             })
             .collect();
+        let mut kd32 = || -> Vec<Hit> {
+            peer_rays
+                .iter()
+                .map(|r| {
+                    let r = black_box(r);
+                    trees
+                        .f32
+                        .closest_hit(r.origin.into(), r.dir.into(), t_min, f32::INFINITY)
+                        .map(|(i, t)| (i, f64::from(t)))
+                })
+                .collect()
+        };
         let mut contenders: Vec<&mut dyn FnMut() -> Vec<Hit>> = vec![&mut kd];
         contenders.extend(peer_work.iter_mut().map(|w| w as &mut dyn FnMut() -> Vec<Hit>));
+        contenders.push(&mut kd32);
         interleaved(rounds, &mut contenders)
     };
-    let camera_timed = time_on(repeats.1, camera, camera32);
-    let random_timed = time_on(repeats.1.min(3), random, random32);
-    let mut run = Run { camera: camera_timed, random: random_timed, peer_fields: String::new(), probe: Vec::new() };
-    for (p, (name, (shapes, peer, build_secs))) in peers::NAMES.iter().zip(&built).enumerate() {
+    let camera_timed = time_on(repeats.1, camera, camera32, true);
+    let random_timed = time_on(repeats.1.min(3), random, random32, false);
+    let mut run = Run {
+        camera: camera_timed,
+        random: random_timed,
+        peer_fields: String::new(),
+        embree_fields: ",-,-,-,-,-,-".into(),
+        f32_fields: String::new(),
+        probe: Vec::new(),
+    };
+    let kd32 = 1 + peers::NAMES.len();
+    let embree = peers::NAMES.iter().position(|&name| name == peers::EMBREE).map(|p| p + 1);
+    let (camera_wrong, random_wrong) = (
+        reference_verdicts(spheres, camera, &run.camera.answers[0], &run.camera.answers[kd32]),
+        reference_verdicts(spheres, random, &run.random.answers[0], &run.random.answers[kd32]),
+    );
+    let versus_embree = |timed: &Timed| embree.map_or("-".into(), |e| format!("{:.3}", timed.speedup(kd32, e)));
+    run.f32_fields = format!(
+        ",{:.3},{:.3},{},{},{},{},{},{},{},{},{:.3},{:.3}",
+        mrays(camera.len(), run.camera.best_secs[kd32]),
+        mrays(random.len(), run.random.best_secs[kd32]),
+        mismatches(&run.camera.answers[kd32], &run.camera.answers[0]),
+        mismatches(&run.random.answers[kd32], &run.random.answers[0]),
+        camera_wrong.0 + random_wrong.0,
+        camera_wrong.1 + random_wrong.1,
+        versus_embree(&run.camera),
+        versus_embree(&run.random),
+        camera.len(),
+        random.len(),
+        run.camera.speedup(kd32, 0),
+        run.random.speedup(kd32, 0),
+    );
+    for (p, (&name, (shapes, peer, build_secs))) in peers::NAMES.iter().zip(&built).enumerate() {
         let c = p + 1;
         let wrong = mismatches(&run.camera.answers[c], &run.camera.answers[0])
             + mismatches(&run.random.answers[c], &run.random.answers[0]);
-        let _ = write!(
-            run.peer_fields,
+        let fields = format!(
             ",{:.3},{:.3},{:.3},{wrong}",
             build_secs * 1e3,
             mrays(camera32.len(), run.camera.best_secs[c]),
             mrays(random32.len(), run.random.best_secs[c])
         );
-        let answer = peer.closest_hit(shapes, probe32, t_min);
+        if name == peers::EMBREE {
+            run.embree_fields = format!("{fields},{:.3},{:.3}", run.camera.median_ratio[c], run.random.median_ratio[c]);
+        } else {
+            run.peer_fields.push_str(&fields);
+        }
+        let answer = peer.closest_hit(shapes, probe32, t_min, false);
         let verdict = match (answer, tree_probe) {
             (a, b) if a.map(|h| h.0) == b.map(|h| h.0) => "ok".to_string(),
             (None, Some((i, _))) => format!("MISSES sphere {i}"),
@@ -215,7 +350,36 @@ fn env_override<T: std::str::FromStr>(name: &str) -> Option<T> {
     std::env::var(name).ok().and_then(|v| v.parse().ok())
 }
 
+/// `HW3_Q3_PROFILE=kd|kd32|build` (with `HW3_Q3_PROFILE_N`, default 10⁵, fixed k, and
+/// `HW3_Q3_PROFILE_RAYS`, default 10⁵ random rays): one contender alone, for a profiler
+/// (`valgrind --tool=callgrind`, whose counts do not depend on the machine's load). Prints the
+/// checksum so the work cannot be optimised away.
+fn profile(what: &str) {
+    let n = env_override("HW3_Q3_PROFILE_N").unwrap_or(100_000);
+    let rays = random_rays(env_override("HW3_Q3_PROFILE_RAYS").unwrap_or(100_000), 0xBEEF);
+    let spheres = scene(n, Density::FixedMeanFreePath);
+    let tree = KdTree::build(&spheres).unwrap();
+    let answers: Vec<Hit> = match what {
+        "kd" => trace_all(&tree, &rays),
+        "kd32" => {
+            let tree32 = KdTreeF32::from_tree(&tree);
+            rays.iter()
+                .map(|r| {
+                    let (o, d) = (r.origin.as_vec3(), r.dir.as_vec3());
+                    tree32.closest_hit(o, d, T_MIN as f32, f32::INFINITY).map(|(i, t)| (i, f64::from(t)))
+                })
+                .collect()
+        }
+        _ => Vec::new(),
+    };
+    eprintln!("{what} N = {n}: nodes {}, checksum {:?}", tree.node_count(), checksum(&answers));
+}
+
 fn main() {
+    if let Ok(what) = std::env::var("HW3_Q3_PROFILE") {
+        profile(&what);
+        return;
+    }
     let measuring = std::env::args().any(|a| a == "--bench");
     assert_eq!(peers::NAMES[CWBVH - 1], "obvhs_cwbvh", "CWBVH's contender index");
     workload::self_checks();
@@ -248,7 +412,7 @@ fn main() {
     let probe_ray = random_rays(PROBE + 1, 0xBEEF)[PROBE];
     let probe32 = peers::rays_f32(&[probe_ray])[0];
     let mut peer_header = String::new();
-    for name in peers::NAMES {
+    for name in peers::NAMES.iter().filter(|&&name| name != peers::EMBREE) {
         let _ = write!(peer_header, ",{name}_build_ms,{name}_camera_mrays,{name}_random_mrays,{name}_mismatches");
     }
     let mut csv = String::from(
@@ -257,7 +421,15 @@ fn main() {
          random_sum_t,brute_camera_mrays,brute_random_mrays,brute_mismatches,versus_note",
     );
     csv.push_str(&peer_header);
-    csv.push_str(",probe_839669,kd_over_cwbvh_camera,kd_over_cwbvh_random\n");
+    let e = peers::EMBREE;
+    let _ = writeln!(
+        csv,
+        ",probe_839669,kd_over_cwbvh_camera,kd_over_cwbvh_random,\
+         {e}_build_ms,{e}_camera_mrays,{e}_random_mrays,{e}_mismatches,kd_over_{e}_camera,kd_over_{e}_random,\
+         kd32_build_ms,sah_cost,kd32_camera_mrays,kd32_random_mrays,kd32_camera_mismatches,kd32_random_mismatches,\
+         kd_wrong_vs_double_double,kd32_wrong_vs_double_double,kd32_over_{e}_camera,kd32_over_{e}_random,\
+         camera_rays,random_rays,kd32_over_kd_camera,kd32_over_kd_random"
+    );
     for density in [Density::FixedMeanFreePath, Density::FixedVolumeFraction] {
         let label = match density {
             Density::FixedMeanFreePath => "fixed_k",
@@ -267,9 +439,10 @@ fn main() {
             let spheres = scene(n, density);
             let build_repeats = if n >= 100_000 { 1 } else { repeats };
             let (build_secs, tree) = best_of(build_repeats, || KdTree::build_with(&spheres, costs).unwrap());
+            let (narrow_secs, tree32) = best_of(build_repeats, || KdTreeF32::from_tree(&tree));
             let tree_probe = tree.closest_hit(&probe_ray, T_MIN, f64::INFINITY);
             let run = run_all(
-                &tree,
+                &Trees { f64: &tree, f32: &tree32 },
                 &spheres,
                 &Rays { camera: &camera, random: &random, camera32: &camera32, random32: &random32, probe32: &probe32 },
                 tree_probe,
@@ -306,7 +479,7 @@ fn main() {
             let note = if measuring { versus_note(n, density, (ch, ct), (rh, rt)) } else { "-".into() };
             let line = format!(
                 "{label},{n},{:.3},{},{},{:.3},{:.2},{:.2},{ch},{ct:.2},{:.3},{:.2},{:.2},{rh},{rt:.2},\
-                 {brute_camera},{brute_random},{mismatches},{note}{},{probe},{:.3},{:.3}\n",
+                 {brute_camera},{brute_random},{mismatches},{note}{},{probe},{:.3},{:.3}{},{:.3},{:.3}{}\n",
                 build_secs * 1e3,
                 tree.node_count(),
                 tree.reference_count(),
@@ -319,6 +492,10 @@ fn main() {
                 run.peer_fields,
                 run.camera.median_ratio[CWBVH],
                 run.random.median_ratio[CWBVH],
+                run.embree_fields,
+                (build_secs + narrow_secs) * 1e3,
+                tree.sah_cost(&costs),
+                run.f32_fields,
             );
             eprint!("{line}");
             csv.push_str(&line);
@@ -389,6 +566,43 @@ fn markdown(csv: &str) -> String {
         ];
         let mut row = cells(&f, &columns);
         row.insert(row.len() - 1, ratio);
+        let _ = writeln!(md, "| {} |", row.join(" | "));
+    }
+    md.push_str(
+        "\nEmbree 3 (system library 3.13.5, native sphere points, `rtcIntersect1`, 1 thread; `-` where the \
+         run was made without the `embree` feature), same run, same rays; kd ÷ Embree is the median of the \
+         per-round speed ratios:\n\n\
+         | density | N | kd build ms | Embree build ms | kd camera | Embree camera | kd ÷ Embree camera | \
+         kd random | Embree random | kd ÷ Embree random | mismatches Embree |\n\
+         |---|---|---|---|---|---|---|---|---|---|---|\n",
+    );
+    for line in csv.lines().skip(1) {
+        let f: Vec<&str> = line.split(',').collect();
+        let columns: [&[usize]; 11] = [&[0], &[1], &[2], &[34], &[5], &[35], &[38], &[10], &[36], &[39], &[37]];
+        let _ = writeln!(md, "| {} |", cells(&f, &columns).join(" | "));
+    }
+    md.push_str(
+        "\nThe `f32` tree (the `f64` tree's nodes, leaf spheres rounded to `f32`, four to a cache line, \
+         traversed in `f32`) beside the `f64` tree and Embree, same run, same rays; build = the `f64` build + \
+         narrowing; speed ratios are medians of per-round ratios; accuracy per 10⁶ rays: rays where the `f32` \
+         tree names another sphere than the `f64` tree (camera / random), and, on those rays, answers that \
+         differ from the double-double verdict (`f64` tree / `f32` tree):\n\n\
+         | density | N | SAH cost | f32 build ms | f32 camera | f32 random | f32 ÷ f64 camera / random | \
+         f32 ÷ Embree camera / random | differ from f64, per 10⁶ camera / random | wrong vs double-double per 10⁶, f64 / f32 |\n\
+         |---|---|---|---|---|---|---|---|---|---|\n",
+    );
+    for line in csv.lines().skip(1) {
+        let f: Vec<&str> = line.split(',').collect();
+        if f.len() < 54 {
+            continue;
+        }
+        let count = |c: usize| f[c].parse::<f64>().unwrap_or(f64::NAN);
+        let per_million = |c: usize, rays: f64| format!("{:.1}", count(c) / rays * 1e6);
+        let (camera_rays, random_rays) = (count(50), count(51));
+        let mut row = cells(&f, &[&[0], &[1], &[41], &[40], &[42], &[43], &[52, 53], &[48, 49]]);
+        row.push(format!("{} / {}", per_million(44, camera_rays), per_million(45, random_rays)));
+        let all = camera_rays + random_rays;
+        row.push(format!("{} / {}", per_million(46, all), per_million(47, all)));
         let _ = writeln!(md, "| {} |", row.join(" | "));
     }
     md.push_str("\nProbe, the note's random ray #839 669 with direction (−0, −0, −1), per scene:\n\n");

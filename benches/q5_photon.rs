@@ -21,7 +21,11 @@
 
 use glam::DVec3;
 use hw3::q5_effect_tables::photon_cornell::{self, ErrorSplit};
-use hw3::render::photon::{PhotonMap, fibonacci_sphere, furnace_sphere, trace_photons};
+use hw3::render::{
+    catalogue::furnace_sphere,
+    photon::{PhotonMap, trace_photons},
+    sampling::fibonacci_sphere,
+};
 use std::fmt::Write as _;
 use std::time::Instant;
 

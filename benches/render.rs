@@ -16,11 +16,15 @@
 //! - The tables are written only by a run without a name filter: `cargo bench --bench render --
 //!   caustic` runs the matching divan benchmarks and nothing else.
 
-use hw3::render::analysis::{Pass, Passes, analyze};
 use hw3::render::integrator::Integrator;
 use hw3::render::photon;
 use hw3::render::scene::Scene;
-use hw3::render::{Image, Settings, render, scenes};
+use hw3::render::{Image, Settings, catalogue, render};
+use hw3::render::{
+    analysis::analyze,
+    passes::{Pass, Passes},
+};
+use hw3::stats::median;
 use std::fmt::Write as _;
 use std::time::Instant;
 
@@ -39,7 +43,7 @@ const SPP: u32 = 4;
 
 #[divan::bench(args = [1, 2])]
 fn whitted_mirrors_camera_samples(bencher: divan::Bencher, threads: usize) {
-    bench_whitted(bencher, &scenes::mirror_spheres(true).expect("built-in scene"), threads);
+    bench_whitted(bencher, &catalogue::mirror_spheres(true).expect("built-in scene"), threads);
 }
 
 /// Whitted tracing of one scene at [`SIZE`] and [`SPP`] on a pool of `threads` rayon threads.
@@ -54,14 +58,14 @@ fn bench_whitted(bencher: divan::Bencher, scene: &Scene, threads: usize) {
 
 #[divan::bench(args = [1, 2])]
 fn whitted_clutter_camera_samples(bencher: divan::Bencher, threads: usize) {
-    bench_whitted(bencher, &scenes::by_name("clutter").expect("built-in scene"), threads);
+    bench_whitted(bencher, &catalogue::by_name("clutter").expect("built-in scene"), threads);
 }
 
 /// Whitted tracing of the `caustic` scene on one thread with its plan (caustic map traced and
 /// read) and with the caustic pass forced off: the difference is the pass's cost.
 #[divan::bench(args = ["planned", "caustics off"])]
 fn whitted_caustic_scene(bencher: divan::Bencher, plan: &str) {
-    let scene = scenes::by_name("caustic").expect("built-in scene");
+    let scene = catalogue::by_name("caustic").expect("built-in scene");
     let planned = analyze(&scene).plan;
     let passes = if plan == "planned" { planned } else { planned.with(Pass::Caustics, false) };
     let settings = Settings::whitted(SIZE.0, SIZE.1, SPP, passes);
@@ -73,7 +77,7 @@ fn whitted_caustic_scene(bencher: divan::Bencher, plan: &str) {
 /// thread).
 #[divan::bench]
 fn caustic_map_trace(bencher: divan::Bencher) {
-    let scene = scenes::by_name("caustic").expect("built-in scene");
+    let scene = catalogue::by_name("caustic").expect("built-in scene");
     let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build().expect("a rayon pool");
     bencher.bench(|| {
         pool.install(|| photon::trace_caustic_photons(&scene, photon::CAUSTIC_PHOTONS, 1).expect("valid count"))
@@ -84,7 +88,7 @@ fn caustic_map_trace(bencher: divan::Bencher) {
 /// by one.
 #[divan::bench(args = ["kd-tree", "brute force"])]
 fn whitted_clutter_acceleration(bencher: divan::Bencher, queries: &str) {
-    let scene = scenes::by_name("clutter").expect("built-in scene");
+    let scene = catalogue::by_name("clutter").expect("built-in scene");
     let scene = if queries == "kd-tree" { scene } else { scene.without_kd_tree() };
     bench_whitted(bencher, &scene, 1);
 }
@@ -113,17 +117,12 @@ fn load_average() -> f64 {
         .unwrap_or(f64::NAN)
 }
 
-fn median(values: &mut [f64]) -> f64 {
-    values.sort_by(f64::total_cmp);
-    values[values.len() / 2]
-}
-
 /// Times Whitted renders of the 1500-sphere clutter scene: with the kd-tree on 1 and 2 threads
 /// and by brute force on 1 thread, interleaved over [`SPEED_ROUNDS`] rounds; writes the medians
 /// of wall time and of the cores the process got (CPU time / wall time) to
 /// `docs/data/render_speed.md`.
 fn write_speed_tables() {
-    let scene = scenes::by_name("clutter").expect("built-in scene");
+    let scene = catalogue::by_name("clutter").expect("built-in scene");
     let brute = scene.without_kd_tree();
     let (width, height, spp) = SPEED_SIZE;
     let settings = Settings::whitted(width, height, spp, analyze(&scene).plan);
@@ -170,7 +169,7 @@ const LEVELS: [u32; 7] = [1, 2, 4, 8, 16, 32, 64];
 const PATH_DEPTH: u32 = 4;
 
 fn timed_render(scene: &Scene, integrator: Integrator, spp: u32, seed: u64) -> (Image, f64) {
-    let plan: Passes = analyze(scene).plan.for_integrator(integrator);
+    let plan: Passes = integrator.restrict(analyze(scene).plan);
     let settings = Settings { integrator, seed, ..Settings::whitted(ACCURACY_SIZE.0, ACCURACY_SIZE.1, spp, plan) };
     let start = Instant::now();
     let image = render(scene, &settings, &|_| {}).expect("valid settings");
@@ -181,10 +180,10 @@ fn timed_render(scene: &Scene, integrator: Integrator, spp: u32, seed: u64) -> (
 /// tracing at 1…64 spp, with wall times; writes the CSV and a Markdown table.
 fn write_accuracy_tables() {
     let cases = [
-        ("clutter", scenes::clutter_forest(scenes::CLUTTER_COUNT, 1)),
-        ("fog", scenes::fog_street(0.08)),
-        ("mirrors", scenes::mirror_spheres(true)),
-        ("motion", scenes::moving_ball(2.0)),
+        ("clutter", catalogue::clutter_forest(catalogue::CLUTTER_COUNT, 1)),
+        ("fog", catalogue::fog_street(0.08)),
+        ("mirrors", catalogue::mirror_spheres(true)),
+        ("motion", catalogue::moving_ball(2.0)),
     ];
     let path = Integrator::PathTracer { max_depth: PATH_DEPTH };
     let whitted = Integrator::Whitted { max_depth: 8 };

@@ -3,7 +3,7 @@
 //! - divan: 1000 caustic radiance gathers (k = 50 within 0.1) on the `caustic` scene's floor.
 //! - `cargo bench --bench render_caustic` also measures the bias/noise trade-off of the caustic
 //!   gather on the `caustic` scene: the floor radiance at 200 points of the caustic's footprint
-//!   ([`hw3::render::scenes::caustic_footprint`]) from maps of 12 500, 50 000 (the render
+//!   ([`hw3::render::catalogue::caustic_footprint`]) from maps of 12 500, 50 000 (the render
 //!   default) and 200 000 aimed photons, each with eight seeds, for k = 8…800 within the
 //!   default maximum radius 0.1, against a reference map of 4·10⁶ photons at k = 400 (its blur
 //!   radius is that of k = 5 at 5·10⁴ photons; its noise, 1/√398 = 5 % per point, is known and
@@ -14,9 +14,9 @@
 //!   `cargo test --benches` runs the divan bench once and skips that measurement.
 
 use glam::DVec3;
+use hw3::render::catalogue;
 use hw3::render::photon::{CAUSTIC_GATHER, Gather, PhotonMap, trace_caustic_photons};
 use hw3::render::scene::{Material, Scene};
-use hw3::render::scenes;
 use std::fmt::Write as _;
 use std::time::Instant;
 
@@ -31,7 +31,7 @@ fn main() {
 const FLOOR: Material = Material::Diffuse { albedo: DVec3::splat(0.7) };
 
 fn caustic_scene() -> Scene {
-    scenes::glass_ball_caustic().expect("built-in scene")
+    catalogue::glass_ball_caustic().expect("built-in scene")
 }
 
 /// Radiance toward +y at each floor point (red channel; the scene is grey).
@@ -42,7 +42,7 @@ fn gather(map: &PhotonMap, points: &[DVec3], gather: Gather) -> Vec<f64> {
 #[divan::bench]
 fn caustic_gathers(bencher: divan::Bencher) {
     let map = trace_caustic_photons(&caustic_scene(), 50_000, 1).expect("valid count");
-    let (_, _, points) = scenes::caustic_footprint(1000);
+    let (_, _, points) = catalogue::caustic_footprint(1000);
     bencher.bench_local(|| gather(&map, &points, CAUSTIC_GATHER).iter().sum::<f64>());
 }
 
@@ -54,7 +54,7 @@ const REFERENCE_NEIGHBOURS: usize = 400;
 
 fn write_accuracy_table() {
     let scene = caustic_scene();
-    let (_, _, points) = scenes::caustic_footprint(200);
+    let (_, _, points) = catalogue::caustic_footprint(200);
     let reference_map = trace_caustic_photons(&scene, REFERENCE_PHOTONS, 1_000_003).expect("valid count");
     let reference_gather = Gather::new(REFERENCE_NEIGHBOURS, CAUSTIC_GATHER.max_radius()).expect("k ≥ 2");
     let reference = gather(&reference_map, &points, reference_gather);

@@ -1,8 +1,11 @@
 #![doc = include_str!(concat!(env!("OUT_DIR"), "/checker.md"))]
 
 mod error;
+mod formula;
 mod grading;
 mod key;
+mod paths;
+mod q1;
 mod q2;
 mod q3;
 mod q4;
@@ -11,11 +14,13 @@ mod reading;
 mod reports;
 mod suggest;
 mod template;
+mod traces;
 mod variants;
 
 pub use error::CheckError;
+pub use formula::{Formula, FormulaError, Kind, Point, Value};
 pub use grading::{PartResult, Report, check};
-pub use key::{Expected, ExpectedLeaf, MalRule, Part, Variant};
+pub use key::{Expected, ExpectedLeaf, ExpectedPlane, MalRule, Part, Variant};
 pub use reports::{report_gradescope, report_text};
 pub use template::{answers_key, answers_key_for, template};
 pub use variants::{QUESTIONS, variant};

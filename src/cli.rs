@@ -5,6 +5,8 @@
 //! README's table "Exit statuses and limits" lists each with its measured worst case);
 //! `--allow-large` raises them to what the program can still do without overflowing.
 
+use crate::fsio::io_reason;
+
 /// Largest variant seed: answers files store it as a TOML integer, which is an `i64`.
 pub const MAX_SEED: u64 = i64::MAX as u64;
 
@@ -69,9 +71,12 @@ impl Limit {
         } else if value <= max {
             Ok(value)
         } else if !allow_large && value <= self.max_large {
-            Err(format!("{name} = {value} is over the limit of {max}; pass --allow-large to allow up to {}", self.max_large))
+            Err(format!(
+                "{name} = {value} is over the limit of {max}; pass --allow-large to allow up to {}",
+                self.max_large
+            ))
         } else {
-            Err(format!("{name} = {value} is over the limit of {max}, even with --allow-large"))
+            Err(format!("{name} = {value} is over the limit of {}, even with --allow-large", self.max_large))
         }
     }
 }
@@ -142,12 +147,10 @@ pub fn parse_size(text: &str, max_side: u32) -> Result<(u32, u32), String> {
 /// ```
 #[must_use]
 pub fn quote(text: &str) -> String {
-    let mut out = escape_controls(&text.chars().take(QUOTE_CHARS).collect::<String>());
-    let rest = text.chars().count().saturating_sub(QUOTE_CHARS);
-    if rest > 0 {
-        out.push_str(&format!("… ({rest} more characters)"));
-    }
-    out
+    // Cut before escaping, so that the limit counts the user's characters.
+    let kept = cut(text, QUOTE_CHARS);
+    let (head, tail) = kept.split_at(kept.char_indices().nth(QUOTE_CHARS).map_or(kept.len(), |(i, _)| i));
+    escape_controls(head) + tail
 }
 
 /// A message made safe for one line of a terminal: line breaks become spaces, other control
@@ -170,15 +173,18 @@ pub fn one_line(message: &str) -> String {
         .enumerate()
         .map(|(i, piece)| if i % 2 == 1 { quote(piece) } else { escape_controls(piece) })
         .collect();
-    let joined = clipped.join("`");
-    let total = joined.chars().count();
-    if total <= MESSAGE_CHARS {
-        joined
-    } else {
-        let mut cut: String = joined.chars().take(MESSAGE_CHARS).collect();
-        cut.push_str(&format!("… ({} more characters)", total - MESSAGE_CHARS));
-        cut
+    cut(&clipped.join("`"), MESSAGE_CHARS)
+}
+
+/// `text` cut to `max` characters, saying how many were cut.
+fn cut(text: &str, max: usize) -> String {
+    let total = text.chars().count();
+    if total <= max {
+        return text.to_owned();
     }
+    let mut kept: String = text.chars().take(max).collect();
+    kept.push_str(&format!("… ({} more characters)", total - max));
+    kept
 }
 
 /// Multi-line text for a terminal (a report on stdout): control characters other than line breaks
@@ -190,20 +196,7 @@ pub fn one_line(message: &str) -> String {
 /// ```
 #[must_use]
 pub fn terminal_text(text: &str) -> String {
-    let lines: Vec<String> = text
-        .split('\n')
-        .map(|line| {
-            let line = escape_controls(line);
-            let total = line.chars().count();
-            if total <= MESSAGE_CHARS {
-                line
-            } else {
-                let mut cut: String = line.chars().take(MESSAGE_CHARS).collect();
-                cut.push_str(&format!("… ({} more characters)", total - MESSAGE_CHARS));
-                cut
-            }
-        })
-        .collect();
+    let lines: Vec<String> = text.split('\n').map(|line| cut(&escape_controls(line), MESSAGE_CHARS)).collect();
     lines.join("\n")
 }
 
@@ -300,14 +293,12 @@ pub fn check_hdr_file(path: &std::path::Path, allow_large: bool) -> Result<(), S
             MAP_MIN_SIDES.0, MAP_MIN_SIDES.1
         ));
     }
-    MAP_TEXELS.check(&format!("--env: {name}: texels ({width}×{height})"), width.saturating_mul(height), allow_large)?;
+    MAP_TEXELS.check(
+        &format!("--env: {name}: texels ({width}×{height})"),
+        width.saturating_mul(height),
+        allow_large,
+    )?;
     Ok(())
-}
-
-/// An I/O error's description without the `(os error N)` suffix.
-fn io_reason(error: &std::io::Error) -> String {
-    let text = error.to_string();
-    text.split(" (os error").next().unwrap_or(&text).to_owned()
 }
 
 #[cfg(test)]

@@ -19,6 +19,6 @@ pub mod format;
 pub mod probe;
 
 pub use builtin::BuiltinMap;
-pub use distribution::{MapDistribution, MapSample, luminance};
+pub use distribution::{LUMINANCE_WEIGHTS, MapDistribution, MapSample, luminance};
 pub use format::ProbeFormat;
 pub use probe::{Probe, ProbeError, Texel, horizontal_camera};

@@ -80,7 +80,7 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
 /// ```
 pub fn check_writable_dir(dir: &Path) -> Result<(), String> {
     match std::fs::metadata(dir) {
-        Err(e) => return Err(format!("{}: {}", dir.display(), short_io(&e))),
+        Err(e) => return Err(format!("{}: {}", dir.display(), io_reason(&e))),
         Ok(meta) if !meta.is_dir() => return Err(format!("{} is not a directory", dir.display())),
         Ok(_) => {}
     }
@@ -91,12 +91,19 @@ pub fn check_writable_dir(dir: &Path) -> Result<(), String> {
             let _ = std::fs::remove_file(&probe);
             Ok(())
         }
-        Err(e) => Err(format!("cannot write in {}: {}", dir.display(), short_io(&e))),
+        Err(e) => Err(format!("cannot write in {}: {}", dir.display(), io_reason(&e))),
     }
 }
 
-/// An I/O error's description without the `(os error N)` suffix.
-fn short_io(error: &std::io::Error) -> String {
+/// An I/O error's description without the `(os error N)` suffix, for a one-line message.
+///
+/// # Examples
+/// ```
+/// let error = std::fs::read("/no/such/file").unwrap_err();
+/// assert_eq!(hw3::fsio::io_reason(&error), "No such file or directory");
+/// ```
+#[must_use]
+pub fn io_reason(error: &std::io::Error) -> String {
     let text = error.to_string();
     text.split(" (os error").next().unwrap_or(&text).to_owned()
 }

@@ -39,6 +39,16 @@ pub enum InputError {
         /// The allowed range in words.
         expected: &'static str,
     },
+    /// Valid input whose answer this precision cannot compute: a square that overflows or
+    /// underflows, or a sphere smaller than the rounding of the coordinates around it
+    /// ([`sphere::check_solvable`]).
+    #[error("{precision} cannot solve this case: {reason}")]
+    Unresolvable {
+        /// `"f32"` or `"f64"`.
+        precision: &'static str,
+        /// Which quantity is out of reach, with the values that put it there.
+        reason: String,
+    },
 }
 
 /// Checks that every component of `v` is finite.
@@ -61,8 +71,7 @@ pub fn require_finite<T: Real>(name: &'static str, v: T::Vec3) -> Result<T::Vec3
 pub fn require_direction<T: Real>(name: &'static str, v: T::Vec3) -> Result<T::Vec3, InputError> {
     require_finite::<T>(name, v)?;
     let a = T::dot(v, v);
-    let smallest_normal = T::from_f64(if T::NAME == "f32" { f32::MIN_POSITIVE as f64 } else { f64::MIN_POSITIVE });
-    if a.is_finite() && a >= smallest_normal {
+    if a.is_finite() && a >= T::MIN_POSITIVE {
         Ok(v)
     } else {
         Err(InputError::DegenerateDirection { name, value: format!("{v:?}") })

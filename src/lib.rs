@@ -5,7 +5,9 @@
     reason = "`!(x >= 0)` is how the numerics say 'negative or NaN': NaN must fail every test"
 )]
 
+pub mod answers;
 pub mod cli;
+pub mod data;
 pub mod envmap;
 pub mod fsio;
 pub mod geometry;
@@ -14,6 +16,7 @@ pub mod plot;
 pub mod real;
 pub mod render;
 pub mod rng;
+pub mod stats;
 
 pub mod q1_hard_scenes;
 pub mod q2_ray_sphere;
@@ -25,16 +28,7 @@ pub mod checker;
 pub mod notes;
 pub mod solution;
 
-/// One question's printed answers, as `hw3 answers` shows them.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct Answers {
-    /// The question id (`"q2"`).
-    pub question: &'static str,
-    /// The homework's title for it.
-    pub title: &'static str,
-    /// The answers, as plain text with one claim per line.
-    pub text: String,
-}
+pub use answers::Answers;
 
 /// Every question's answers, in homework order.
 ///

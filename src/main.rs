@@ -6,6 +6,7 @@
 
 use clap::{Parser, Subcommand};
 use hw3::cli::{self as limits, one_line};
+use hw3::fsio::io_reason;
 use std::io::Write as _;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -280,12 +281,6 @@ fn emit(text: &str) -> anyhow::Result<()> {
 /// [`emit`] with a line break.
 fn emit_line(text: &str) -> anyhow::Result<()> {
     emit(&format!("{text}\n"))
-}
-
-/// An I/O error's description without the `(os error N)` suffix.
-fn io_reason(error: &std::io::Error) -> String {
-    let text = error.to_string();
-    text.split(" (os error").next().unwrap_or(&text).to_owned()
 }
 
 fn main() -> ExitCode {

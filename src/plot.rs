@@ -1,10 +1,17 @@
-//! Shared plotting core: an embedded font, deterministic SVG/PNG figures, and the [`Figure`] type
-//! every question module returns from its `figures()` function.
+//! Shared plotting core: an embedded font, deterministic SVG/PNG figures, the [`Figure`] type
+//! every question module returns from its `figures()` function, one chart helper ([`Chart`]) and
+//! one markdown-table writer ([`markdown_table`]).
 //!
 //! Figures must be byte-identical from run to run (they are committed under `docs/figures/` and
 //! pinned by snapshots), so nothing here reads the clock, the locale or the system's fonts: text is
 //! laid out with DejaVu Sans, compiled into the binary by the `dejavu` crate and registered with
 //! plotters under the family name `"sans-serif"` (the name plotters' default labels ask for).
+
+mod chart;
+mod table;
+
+pub use chart::{Axis, Chart, Dots, Legend, LegendMark, Note, Series, Stroke, TickFormat};
+pub use table::markdown_table;
 
 use plotters::prelude::*;
 use plotters::style::FontStyle;
@@ -43,7 +50,8 @@ pub enum PlotError {
 
 static FONTS: Once = Once::new();
 
-/// Registers the embedded DejaVu Sans (regular and bold) as plotters' `"sans-serif"`.
+/// Registers the embedded DejaVu Sans (regular, bold and oblique, the last as plotters' italic) as
+/// plotters' `"sans-serif"`.
 ///
 /// Idempotent and thread-safe; every drawing helper here calls it, so callers rarely need to.
 ///

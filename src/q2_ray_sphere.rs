@@ -6,7 +6,7 @@ mod figures;
 pub mod reflection;
 pub mod seed_solver;
 
-use crate::Answers;
+use crate::answers::Answers;
 use crate::geometry::sphere::{closest_approach_t, first_hit_stable, surface_hit};
 use crate::geometry::{InputError, Ray, Sphere};
 use crate::real::Real;
@@ -35,6 +35,16 @@ pub fn worked_example() -> (Ray<f64>, Sphere<f64>) {
 
 /// Everything Q2 asks for one ray and sphere: the first hit, point, normal, reflection, and the
 /// closest-approach parameter. This is what `hw3 sphere --json` prints.
+///
+/// # Examples
+/// ```
+/// use hw3::q2_ray_sphere::catalogue::{Method, Precision};
+/// use hw3::q2_ray_sphere::{solve, worked_example};
+/// let (ray, sphere) = worked_example();
+/// let answer = solve(&ray, &sphere, Method::Stable, Precision::F64).unwrap();
+/// assert!(answer.hit);
+/// assert_eq!(answer.closest_approach_t, 5.0);
+/// ```
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct SphereAnswer {
     /// Whether the ray hits (`t > 0`).
@@ -80,6 +90,7 @@ pub fn solve(
 fn solve_in<T: Real>(ray: &Ray<f64>, sphere: &Sphere<f64>, method: Method) -> Result<SphereAnswer, InputError> {
     let ray = Ray::<T>::new(T::vec_from_f64(ray.origin), T::vec_from_f64(ray.dir))?;
     let sphere = Sphere::<T>::new(T::vec_from_f64(sphere.center), T::from_f64(sphere.radius))?;
+    crate::geometry::sphere::check_solvable(&ray, &sphere)?;
     let array = |v: T::Vec3| T::vec_to_f64(v).to_array();
     let (t, policy) = match method {
         Method::Naive => (seed_trace(&ray, &sphere).chosen, SpawnPolicy::AtComputedPoint),
@@ -138,6 +149,13 @@ pub fn worked_trace(ray: &Ray<f64>, sphere: &Sphere<f64>) -> String {
 }
 
 /// The rays the snapshot traces cover: the worked example and one per policy the notes state.
+///
+/// # Examples
+/// ```
+/// let cases = hw3::q2_ray_sphere::trace_cases();
+/// assert_eq!(cases[0].0, "worked example");
+/// assert!(cases.iter().any(|(name, ..)| *name == "tangent"));
+/// ```
 #[must_use]
 pub fn trace_cases() -> Vec<(&'static str, Ray<f64>, Sphere<f64>)> {
     let (ray, sphere) = worked_example();

@@ -12,6 +12,12 @@ use crate::kdtree::{QuotientAxis, Side, split_interval};
 use std::fmt;
 
 /// A coordinate axis of the homework's plane.
+///
+/// # Examples
+/// ```
+/// use hw3::q3_kd_traversal::Axis2;
+/// assert_eq!(Axis2::Y.to_string(), "y");
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum Axis2 {
     /// The horizontal axis.
@@ -78,6 +84,13 @@ impl fmt::Display for Branch {
 
 /// A parameter interval `[t_min, t_max]` of the ray (closed for printing; cells are half-open, so
 /// the end point of one leaf's interval is the start of the next).
+///
+/// # Examples
+/// ```
+/// use hw3::q3_kd_traversal::Interval;
+/// let beyond_the_root_plane = Interval { t_min: 2.0, t_max: f64::INFINITY };
+/// assert_eq!(beyond_the_root_plane.to_string(), "[2, inf]");
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Interval {
     /// Where the ray enters.
@@ -114,6 +127,13 @@ impl fmt::Display for Number {
 }
 
 /// A 2-D ray `e + d t`, validated: finite coordinates and a non-zero direction.
+///
+/// # Examples
+/// ```
+/// use hw3::q3_kd_traversal::Ray2;
+/// let case_d = Ray2::new([5.0, 0.0], [-1.0, 1.0]).unwrap();
+/// assert_eq!(case_d.dir, [-1.0, 1.0]);
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Ray2 {
     /// The eye `e`.
@@ -172,6 +192,13 @@ impl fmt::Display for RayText<'_> {
 }
 
 /// A node of a 2-D kd-tree: a leaf, or a split with its two children.
+///
+/// # Examples
+/// ```
+/// use hw3::q3_kd_traversal::{Axis2, Node2};
+/// let Node2::Split { axis, split, .. } = Node2::homework() else { panic!("the root splits") };
+/// assert_eq!((axis, split), (Axis2::X, 3.0));
+/// ```
 #[derive(Debug, Clone, PartialEq)]
 pub enum Node2 {
     /// A cell with no further split.
@@ -254,6 +281,12 @@ impl Node2 {
 }
 
 /// A leaf cell, known by its path from the root; its box is the intersection of the half-planes.
+///
+/// # Examples
+/// ```
+/// let cells = hw3::q3_kd_traversal::Node2::homework().cells();
+/// assert!(cells.iter().all(|cell| cell.path.len() == 2)); // every leaf is a grandchild
+/// ```
 #[derive(Debug, Clone, PartialEq)]
 pub struct Cell {
     /// The branch conditions from the root.
@@ -281,6 +314,14 @@ impl Cell {
     }
 
     /// Whether the point `p` lies in the cell (half-open bounds).
+    ///
+    /// # Examples
+    /// ```
+    /// use hw3::q3_kd_traversal::Node2;
+    /// let lower_left = &Node2::homework().cells()[0]; // x < 3, y < 1
+    /// assert!(lower_left.contains([0.0, 0.0]));
+    /// assert!(!lower_left.contains([0.0, 1.0])); // y = 1 belongs to the upper cell
+    /// ```
     #[must_use]
     pub fn contains(&self, p: [f64; 2]) -> bool {
         [Axis2::X, Axis2::Y].into_iter().all(|axis| {
@@ -291,6 +332,14 @@ impl Cell {
 }
 
 /// One step of a traversal trace, in the order the traversal takes it.
+///
+/// # Examples
+/// ```
+/// use hw3::q3_kd_traversal::{Node2, Ray2, Step, traverse};
+/// let trace = traverse(&Node2::homework(), &Ray2::new([5.0, 0.0], [-1.0, 1.0]).unwrap());
+/// assert!(matches!(trace.steps[0], Step::Plane { t: Some(_), .. }));
+/// assert_eq!(trace.steps[0].to_string(), "plane x = 3 at root: t = 2");
+/// ```
 #[derive(Debug, Clone, PartialEq)]
 pub enum Step {
     /// At the node reached by `path`, the plane `p_axis = split` was intersected: `t` is
@@ -361,6 +410,14 @@ impl fmt::Display for Step {
 }
 
 /// A leaf reached by a traversal, with the part of the ray inside it.
+///
+/// # Examples
+/// ```
+/// use hw3::q3_kd_traversal::{Node2, Ray2, traverse};
+/// let leaves = traverse(&Node2::homework(), &Ray2::new([5.0, 0.0], [-1.0, 1.0]).unwrap()).leaves();
+/// assert_eq!(leaves.len(), 2);
+/// assert_eq!(leaves[1].interval.to_string(), "[2, inf]");
+/// ```
 #[derive(Debug, Clone, PartialEq)]
 pub struct LeafVisit {
     /// The leaf's path from the root.
@@ -370,6 +427,13 @@ pub struct LeafVisit {
 }
 
 /// The full record of one traversal: every plane parameter, branch and leaf, in order.
+///
+/// # Examples
+/// ```
+/// use hw3::q3_kd_traversal::{Node2, Ray2, traverse};
+/// let trace = traverse(&Node2::homework(), &Ray2::new([5.0, 0.0], [-1.0, 1.0]).unwrap());
+/// assert!(trace.to_string().starts_with("plane x = 3 at root: t = 2\ndescend x>=3 with t in [0, 2]\n"));
+/// ```
 #[derive(Debug, Clone, PartialEq)]
 pub struct Trace {
     /// The steps, in order.
@@ -500,8 +564,15 @@ fn clip_to_cell(cell: &Cell, ray: &Ray2) -> Option<Interval> {
 
 /// Q3's printed answers: the reconstructed tree, the rules, and the traces of (d) and (e) with
 /// their comparison against the seed.
+///
+/// # Examples
+/// ```
+/// let answers = hw3::q3_kd_traversal::answers();
+/// assert_eq!(answers.question, "q3");
+/// assert!(answers.text.contains("seed error in (d)"));
+/// ```
 #[must_use]
-pub fn answers() -> crate::Answers {
+pub fn answers() -> crate::answers::Answers {
     use std::fmt::Write as _;
     let tree = Node2::homework();
     let mut text = String::from(
@@ -526,7 +597,7 @@ pub fn answers() -> crate::Answers {
         "seed error in (d): x<3 starts at the root plane's t = 2, not at the y = 3 plane's t = 3 \
          (at t = 2.5 the ray is at (2.5, 2.5), in leaf x<3, y>=1).\n",
     );
-    crate::Answers {
+    crate::answers::Answers {
         question: "q3",
         title: "kd-tree traversal with parameter intervals",
         text: text.trim_end().to_owned(),
@@ -539,6 +610,12 @@ pub fn answers() -> crate::Answers {
 ///
 /// # Errors
 /// [`crate::plot::PlotError`] if a diagram cannot be drawn.
+///
+/// # Examples
+/// ```
+/// let figures = hw3::q3_kd_traversal::figures().unwrap();
+/// assert!(figures.iter().any(|f| f.file_name == "q3_kdtree_cost.svg"));
+/// ```
 pub fn figures() -> Result<Vec<crate::plot::Figure>, crate::plot::PlotError> {
     let mut figures = diagram::figures()?;
     figures.push(perf::figure()?);

@@ -13,7 +13,7 @@ pub use figures::figures;
 pub use irradiance::{Irradiance, Method, Sh9};
 pub use normals::fibonacci_normals;
 
-use crate::Answers;
+use crate::answers::Answers;
 use crate::envmap::{Probe, ProbeError, ProbeFormat, horizontal_camera};
 use glam::{DVec2, DVec3};
 use maps::AnalyticMap;

@@ -2,364 +2,23 @@
 
 pub mod cornell_published;
 pub mod effect_scenes;
+pub mod error;
 pub mod experiments;
+mod figures;
+mod grammar;
 pub mod photon_accuracy;
 pub mod photon_cornell;
 pub mod radiosity;
+pub mod scenes;
 
-use crate::Answers;
+pub use grammar::{
+    Cell, EFFECTS, Effect, LightKind, METHODS, Method, SEED_ANSWERS, SeedAnswer, Verdict, decide, grammar_table,
+    grammar_table_markdown, seed_answer,
+};
+
+use crate::answers::Answers;
 use crate::plot::{Figure, PlotError};
-use crate::render::analysis::grammar::{GrammarError, Lang, shortest_word, word_text};
-use serde::Serialize;
-
-/// A lighting effect of Q5, reconstructed from the seed's reasons (the effect list itself is
-/// missing from the transcription).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
-pub struct Effect {
-    /// Row id: `a` … `e`; the seed's (d) "a specular effect" is split into `d_mirror` and `d_caustic`.
-    pub id: &'static str,
-    /// The seed's letter this row is compared with.
-    pub seed_letter: char,
-    /// What the effect looks like.
-    pub name: &'static str,
-    /// Its paths in Heckbert's notation (light first).
-    pub paths: &'static str,
-    /// The seed's reason that the reconstruction rests on.
-    pub evidence: &'static str,
-}
-
-/// The reconstructed effects, in table order.
-pub const EFFECTS: [Effect; 6] = [
-    Effect {
-        id: "a",
-        seed_letter: 'a',
-        name: "specular highlight on a glossy surface",
-        paths: "LGE",
-        evidence: "radiosity: \"No - only diffuse effects\"; two-pass: \"Yes - through direct lighting calculation\"",
-    },
-    Effect {
-        id: "b",
-        seed_letter: 'b',
-        name: "colour bleeding",
-        paths: "LDD+E",
-        evidence: "\"effect of light transfer from one diffuse surface to another\"",
-    },
-    Effect {
-        id: "c",
-        seed_letter: 'c',
-        name: "diffuse shading that varies with the surface normal",
-        paths: "LDE",
-        evidence: "\"diffuse reflection varies w/ surface normal\"",
-    },
-    Effect {
-        id: "d_mirror",
-        seed_letter: 'd',
-        name: "a specular effect: a diffuse object seen in a mirror",
-        paths: "LDS+E",
-        evidence: "\"this is a specular effect\"; \"rays are only cast from eye, not traced further\"",
-    },
-    Effect {
-        id: "d_caustic",
-        seed_letter: 'd',
-        name: "a specular effect: a caustic (light focused by a mirror or glass onto a diffuse surface)",
-        paths: "LS+DE",
-        evidence: "\"photon tracing does not capture this specular effect well\"",
-    },
-    Effect {
-        id: "e",
-        seed_letter: 'e',
-        name: "ambient glow (light in regions no light sees directly)",
-        paths: "LDD+E",
-        evidence: "\"most ambient glow is due to diffuse surface interreflections\"",
-    },
-];
-
-/// The kind of light the table assumes; it changes which paths exist and which a method samples.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "snake_case")]
-pub enum LightKind {
-    /// An area light (a quad emitter): every path class has positive measure.
-    Area,
-    /// A point light: paths `LS*E` (the light seen directly or in mirrors) have measure zero, and
-    /// a path tracer can reach the light only by a shadow ray from a non-delta vertex.
-    Point,
-}
-
-impl LightKind {
-    /// Both kinds, area first (the seed's setting).
-    pub const ALL: [LightKind; 2] = [LightKind::Area, LightKind::Point];
-
-    /// Paths that carry energy from this kind of light: all of `L…E` for area lights, those with
-    /// a non-delta vertex for point lights.
-    fn paths(self) -> &'static str {
-        match self {
-            LightKind::Area => "L…E",
-            LightKind::Point => "L…[DGV]…E",
-        }
-    }
-}
-
-/// A rendering method as two languages: the paths it can produce at all, and the ones it samples
-/// efficiently (the rest are "possible but impractical": noise, not missing paths).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
-pub struct Method {
-    /// Column id.
-    pub id: &'static str,
-    /// Display name.
-    pub name: &'static str,
-    /// The seed's column letter (`Some('a')` = Q5(a) radiosity, `Some('b')` = Q5(b) two-pass).
-    pub seed_part: Option<char>,
-    /// Paths the method can produce with an area light / a point light.
-    pub paths: [&'static str; 2],
-    /// Paths it samples efficiently with an area light / a point light.
-    pub efficient: [&'static str; 2],
-}
-
-/// The methods (columns): the seed's two, then three more.
-pub const METHODS: [Method; 5] = [
-    Method {
-        id: "radiosity",
-        name: "radiosity",
-        seed_part: Some('a'),
-        paths: ["LD*E", "LD*E"],
-        efficient: ["LD*E", "LD*E"],
-    },
-    Method {
-        // Eye rays stop at the first hit (direct light by shadow rays, L(D|G)E); photons bounce
-        // diffusely and through mirrors and are read at the eye ray's diffuse hit.
-        id: "two_pass",
-        name: "two-pass (eye rays + photon tracing)",
-        seed_part: Some('b'),
-        paths: ["L(D|G)E|L(D|S)*DE", "L(D|G)E|L(D|S)*DE"],
-        efficient: ["L(D|G)E|LD+DE", "L(D|G)E|LD+DE"],
-    },
-    Method {
-        id: "whitted",
-        name: "Whitted ray tracing",
-        seed_part: None,
-        paths: ["L(D|G)?S*E", "L(D|G)?S*E"],
-        efficient: ["L(D|G)?S*E", "L(D|G)?S*E"],
-    },
-    Method {
-        // With an area light a caustic path is found only when a bounce after S happens to hit
-        // the light; with a point light never.
-        id: "path_tracing",
-        name: "path tracing",
-        seed_part: None,
-        paths: ["L(D|G|S)*E", "L(D|G)(D|G|S)*E"],
-        efficient: ["LS*E|L(D|G)(D|G|S)*E", "L(D|G)(D|G|S)*E"],
-    },
-    Method {
-        id: "photon_mapping",
-        name: "photon mapping (global + caustic map)",
-        seed_part: None,
-        paths: ["L(D|G|S)*E", "L(D|G|S)*E"],
-        efficient: ["L(D|G|S)*E", "L(D|G|S)*E"],
-    },
-];
-
-/// A cell's verdict.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Verdict {
-    /// Every path of the effect is in the method's efficient language.
-    Yes,
-    /// In the method's language, but some paths only by chance: possible but impractical (noise).
-    Impractical,
-    /// Some path of the effect is not in the method's language.
-    No,
-}
-
-impl Verdict {
-    /// The word the table prints.
-    #[must_use]
-    pub fn text(self) -> &'static str {
-        match self {
-            Verdict::Yes => "Yes",
-            Verdict::Impractical => "Impractical",
-            Verdict::No => "No",
-        }
-    }
-}
-
-/// The seed's answer for a cell.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "snake_case")]
-pub enum SeedAnswer {
-    /// The seed wrote Yes.
-    Yes,
-    /// The seed wrote No.
-    No,
-    /// The seed's answer is cut off in the transcription (Q5(b)(e)).
-    NotTranscribed,
-    /// The seed has no such column.
-    NotAsked,
-}
-
-impl SeedAnswer {
-    /// The word the tables print (`–` for a column the seed does not have).
-    #[must_use]
-    pub fn text(self) -> &'static str {
-        match self {
-            SeedAnswer::Yes => "Yes",
-            SeedAnswer::No => "No",
-            SeedAnswer::NotTranscribed => "lost",
-            SeedAnswer::NotAsked => "–",
-        }
-    }
-}
-
-/// The seed's answers, as transcribed: Q5(a) radiosity a–e, Q5(b) two-pass a–d ((e) is lost).
-pub const SEED_ANSWERS: [(char, char, SeedAnswer); 10] = [
-    ('a', 'a', SeedAnswer::No),
-    ('a', 'b', SeedAnswer::Yes),
-    ('a', 'c', SeedAnswer::Yes),
-    ('a', 'd', SeedAnswer::No),
-    ('a', 'e', SeedAnswer::Yes),
-    ('b', 'a', SeedAnswer::Yes),
-    ('b', 'b', SeedAnswer::Yes),
-    ('b', 'c', SeedAnswer::Yes),
-    ('b', 'd', SeedAnswer::No),
-    ('b', 'e', SeedAnswer::NotTranscribed),
-];
-
-/// The seed's answer for `effect` under `method`.
-#[must_use]
-pub fn seed_answer(method: &Method, effect: &Effect) -> SeedAnswer {
-    method
-        .seed_part
-        .and_then(|part| {
-            SEED_ANSWERS.iter().find(|(p, letter, _)| *p == part && *letter == effect.seed_letter).map(|c| c.2)
-        })
-        .unwrap_or(SeedAnswer::NotAsked)
-}
-
-/// One cell of the derived table.
-#[derive(Debug, Clone, PartialEq, Eq, Serialize)]
-pub struct Cell {
-    /// Effect id (row).
-    pub effect: &'static str,
-    /// Method id (column).
-    pub method: &'static str,
-    /// Light kind.
-    pub light: LightKind,
-    /// The grammar's verdict.
-    pub verdict: Verdict,
-    /// For No: the shortest effect path outside the method's language; for Impractical: the
-    /// shortest one outside its efficient language.
-    pub witness: Option<String>,
-    /// The seed's answer (area-light table only; `NotAsked` for the point-light table).
-    pub seed: SeedAnswer,
-}
-
-/// Decides one cell: effect ∩ light paths ⊆ efficient → Yes, ⊆ paths → Impractical, else No.
-///
-/// # Errors
-/// [`GrammarError`] if a built-in expression fails to parse or the search overflows (never for
-/// the built-in tables; tested).
-pub fn decide(effect: &Effect, method: &Method, light: LightKind) -> Result<Cell, GrammarError> {
-    let column = usize::from(light == LightKind::Point);
-    let languages = [
-        Lang::parse(effect.paths)?,
-        Lang::parse(light.paths())?,
-        Lang::parse(method.paths[column])?,
-        Lang::parse(method.efficient[column])?,
-    ];
-    let missing = shortest_word(&languages, |a| a[0] && a[1] && !a[2])?;
-    let slow = shortest_word(&languages, |a| a[0] && a[1] && !a[3])?;
-    let (verdict, witness) = match (missing, slow) {
-        (Some(path), _) => (Verdict::No, Some(path)),
-        (None, Some(path)) => (Verdict::Impractical, Some(path)),
-        (None, None) => (Verdict::Yes, None),
-    };
-    let seed = if light == LightKind::Area { seed_answer(method, effect) } else { SeedAnswer::NotAsked };
-    Ok(Cell { effect: effect.id, method: method.id, light, verdict, witness: witness.map(|w| word_text(&w)), seed })
-}
-
-/// Every cell: both light kinds × [`EFFECTS`] × [`METHODS`], in that order.
-///
-/// # Errors
-/// As [`decide`].
-///
-/// # Examples
-/// ```
-/// use hw3::q5_effect_tables::{grammar_table, LightKind, Verdict};
-/// let cells = grammar_table().unwrap();
-/// let cell = cells.iter().find(|c| c.effect == "a" && c.method == "radiosity" && c.light == LightKind::Area).unwrap();
-/// assert_eq!((cell.verdict, cell.witness.as_deref()), (Verdict::No, Some("LGE")));
-/// ```
-pub fn grammar_table() -> Result<Vec<Cell>, GrammarError> {
-    let mut cells = Vec::new();
-    for light in LightKind::ALL {
-        for effect in &EFFECTS {
-            for method in &METHODS {
-                cells.push(decide(effect, method, light)?);
-            }
-        }
-    }
-    Ok(cells)
-}
-
-/// Whether the grammar's verdict agrees with the seed's: Impractical counts as the seed's No
-/// when the seed's reason says "not … well".
-fn agreement(cell: &Cell) -> &'static str {
-    match (cell.seed, cell.verdict) {
-        (SeedAnswer::Yes, Verdict::Yes) | (SeedAnswer::No, Verdict::No) => "agrees",
-        (SeedAnswer::No, Verdict::Impractical) => "agrees (possible but impractical)",
-        (SeedAnswer::NotTranscribed, _) => "seed answer lost",
-        (SeedAnswer::NotAsked, _) => "",
-        _ => "DISAGREES",
-    }
-}
-
-fn cell_text(cell: &Cell) -> String {
-    let seed = match cell.seed {
-        SeedAnswer::NotAsked => String::new(),
-        answer => format!(" (seed: {})", answer.text()),
-    };
-    match &cell.witness {
-        Some(w) => format!("{} `{w}`{seed}", cell.verdict.text()),
-        None => format!("{}{seed}", cell.verdict.text()),
-    }
-}
-
-/// The grammar table as markdown, one table per light kind; a No or Impractical cell prints the
-/// shortest path the method misses (or samples only by chance) as code, and the seed's answer
-/// beside it.
-///
-/// # Errors
-/// As [`decide`].
-pub fn grammar_table_markdown() -> Result<String, GrammarError> {
-    let cells = grammar_table()?;
-    let mut out = String::new();
-    for light in LightKind::ALL {
-        let title = match light {
-            LightKind::Area => "Area light (the seed's setting)",
-            LightKind::Point => "Point light",
-        };
-        out.push_str(&format!("**{title}**\n\n| effect | paths |"));
-        for method in &METHODS {
-            out.push_str(&format!(" {} |", method.name));
-        }
-        out.push_str("\n|---|---|");
-        out.push_str(&"---|".repeat(METHODS.len()));
-        out.push('\n');
-        for effect in &EFFECTS {
-            out.push_str(&format!("| ({}) {} | `{}` |", effect.id.replace('_', " "), effect.name, effect.paths));
-            for method in &METHODS {
-                let cell = cells
-                    .iter()
-                    .find(|c| c.light == light && c.effect == effect.id && c.method == method.id)
-                    .map(cell_text)
-                    .unwrap_or_default();
-                out.push_str(&format!(" {cell} |"));
-            }
-            out.push('\n');
-        }
-        out.push('\n');
-    }
-    Ok(out)
-}
+use grammar::agreement;
 
 /// The cell-by-cell comparison with the seed (area light, the seed's two columns): the seed's
 /// answer, the grammar's verdict with the shortest missed path, and the measured verdict with
@@ -367,6 +26,13 @@ pub fn grammar_table_markdown() -> Result<String, GrammarError> {
 ///
 /// # Errors
 /// A message when the grammar ([`decide`]) or an experiment fails (never for the built-in tables).
+///
+/// # Examples
+/// ```no_run
+/// // Not run here: it needs the measured table; `tests::grammar_tables_snapshot` pins the output.
+/// let markdown = hw3::q5_effect_tables::seed_comparison_markdown().unwrap();
+/// assert!(markdown.contains("| 5(a)(a) |"));
+/// ```
 pub fn seed_comparison_markdown() -> Result<String, String> {
     let measured = experiments::measured_table().map_err(|e| e.to_string())?;
     let mut out = String::from(
@@ -398,6 +64,15 @@ pub fn seed_comparison_markdown() -> Result<String, String> {
 ///
 /// # Errors
 /// A message when a table cannot be built (a grammar overflow or a scene error).
+///
+/// # Examples
+/// ```no_run
+/// // Not run here: it needs the measured table; `tests::effects_table_json_has_every_cell_with_its_seed_answer`
+/// // runs both forms.
+/// let json: serde_json::Value =
+///     serde_json::from_str(&hw3::q5_effect_tables::effects_table_command(true).unwrap()).unwrap();
+/// assert_eq!(json["measured"].as_array().unwrap().len(), 24);
+/// ```
 pub fn effects_table_command(json: bool) -> Result<String, String> {
     let cells = grammar_table().map_err(|e| e.to_string())?;
     let measured = experiments::measured_table().map_err(|e| e.to_string())?;
@@ -413,6 +88,12 @@ pub fn effects_table_command(json: bool) -> Result<String, String> {
     }
 }
 
+/// Percentage of the path-traced caustic that the seed's two-pass method captures (two
+/// decimals) and that photon mapping captures (no decimals), as [`answers`] prints them. Measured
+/// by [`experiments::measured_table`], too slow for `answers`; pinned by
+/// `tests::printed_caustic_fractions_are_the_measured_ones`.
+const CAUSTIC_PERCENT: (&str, &str) = ("0.03", "100");
+
 /// Q5's answers.
 ///
 /// # Examples
@@ -421,13 +102,16 @@ pub fn effects_table_command(json: bool) -> Result<String, String> {
 /// ```
 #[must_use]
 pub fn answers() -> Answers {
-    let text = "(a) radiosity, LD*E: (a) highlight No (misses LGE), (b) colour bleeding Yes, (c) diffuse shading Yes, (d) specular effects No (misses LDSE, LSDE), (e) ambient glow Yes — all five as the seed says, and all five measured so against the path tracer (table q5_measured).\n\
-                (b) two-pass (direct light from eye rays + photon tracing): (a) Yes, (b) Yes, (c) Yes, (d) mirror images No (misses LDSE: eye rays are not traced further), caustics possible but impractical by the grammar (LSDE only in the diffuse photon map) and No when measured (a photon pass that stores photons only after a diffuse bounce never holds LS+D photons: 0.03 % of the path-traced caustic; photon mapping with a caustic map: 100 %), (e) Yes (the seed's answer is lost in the transcription).\n\
-                With a point light the path tracer loses caustics altogether (No: LSDE), photon mapping keeps them.";
+    let (two_pass, photon_mapping) = CAUSTIC_PERCENT;
+    let text = format!(
+        "(a) radiosity, LD*E: (a) highlight No (misses LGE), (b) colour bleeding Yes, (c) diffuse shading Yes, (d) specular effects No (misses LDSE, LSDE), (e) ambient glow Yes — all five as the seed says, and all five measured so against the path tracer (table q5_measured).\n\
+         (b) two-pass (direct light from eye rays + photon tracing): (a) Yes, (b) Yes, (c) Yes, (d) mirror images No (misses LDSE: eye rays are not traced further), caustics possible but impractical by the grammar (LSDE only in the diffuse photon map) and No when measured (a photon pass that stores photons only after a diffuse bounce never holds LS+D photons: {two_pass} % of the path-traced caustic; photon mapping with a caustic map: {photon_mapping} %), (e) Yes (the seed's answer is lost in the transcription).\n\
+         With a point light the path tracer loses caustics altogether (No: LSDE), photon mapping keeps them."
+    );
     Answers {
         question: "q5",
         title: "Which effects radiosity and a two-pass method capture (grammar + experiment)",
-        text: text.to_string(),
+        text,
     }
 }
 
@@ -435,8 +119,19 @@ pub fn answers() -> Answers {
 ///
 /// # Errors
 /// [`PlotError`] if a figure cannot be drawn or a scene fails.
+///
+/// # Examples
+/// ```no_run
+/// // Not run here: it runs every Q5 measurement; `tests/docs.rs` compares its output with the
+/// // committed figures byte for byte.
+/// let figures = hw3::q5_effect_tables::figures().unwrap();
+/// assert!(figures.iter().any(|f| f.file_name == "q5_measured_table.md"));
+/// ```
 pub fn figures() -> Result<Vec<Figure>, PlotError> {
-    let mut figures = experiments::figures()?;
+    let mut figures = figures::figures()?;
+    let comparison = seed_comparison_markdown()
+        .map_err(|message| PlotError::Draw { figure: "q5_seed_comparison.md".into(), message })?;
+    figures.push(Figure { file_name: "q5_seed_comparison.md".into(), bytes: comparison.into_bytes() });
     figures.push(photon_accuracy::figure()?);
     figures.push(photon_cornell::figure()?);
     Ok(figures)
@@ -445,6 +140,7 @@ pub fn figures() -> Result<Vec<Figure>, PlotError> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::render::analysis::grammar::{Lang, shortest_word};
 
     #[test]
     fn every_built_in_expression_parses() {
@@ -508,5 +204,20 @@ mod tests {
             insta::assert_snapshot!("q5_grammar_tables", grammar_table_markdown().unwrap());
             insta::assert_snapshot!("q5_seed_comparison", seed_comparison_markdown().unwrap());
         });
+    }
+
+    /// The caustic percentages [`answers`] prints are the measured table's, and every radiosity
+    /// cell is measured as the seed answers it ("all five measured so").
+    #[test]
+    fn printed_caustic_fractions_are_the_measured_ones() {
+        let cells = experiments::measured_table().unwrap();
+        let fraction = |method: &str| {
+            cells.iter().find(|c| c.effect == "d_caustic" && c.method == method).map(|c| 100.0 * c.fraction).unwrap()
+        };
+        let printed = (format!("{:.2}", fraction("two_pass")), format!("{:.0}", fraction("photon_mapping")));
+        assert_eq!((printed.0.as_str(), printed.1.as_str()), CAUSTIC_PERCENT);
+        for c in cells.iter().filter(|c| c.method == "radiosity") {
+            assert_eq!(c.verdict.text(), c.seed.text(), "{c:?}");
+        }
     }
 }

@@ -50,6 +50,8 @@ pub trait Real:
     const EPSILON: Self;
     /// Largest finite value.
     const MAX: Self;
+    /// Smallest positive normal value: 2⁻¹²⁶ or 2⁻¹⁰²².
+    const MIN_POSITIVE: Self;
     /// +∞.
     const INFINITY: Self;
     /// A quiet NaN (marks "no value" in traces).
@@ -101,6 +103,7 @@ impl Real for f32 {
     const FOUR: Self = 4.0;
     const EPSILON: Self = f32::EPSILON;
     const MAX: Self = f32::MAX;
+    const MIN_POSITIVE: Self = f32::MIN_POSITIVE;
     const INFINITY: Self = f32::INFINITY;
     const NAN: Self = f32::NAN;
 
@@ -148,6 +151,7 @@ impl Real for f64 {
     const FOUR: Self = 4.0;
     const EPSILON: Self = f64::EPSILON;
     const MAX: Self = f64::MAX;
+    const MIN_POSITIVE: Self = f64::MIN_POSITIVE;
     const INFINITY: Self = f64::INFINITY;
     const NAN: Self = f64::NAN;
 

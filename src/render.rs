@@ -1,61 +1,30 @@
 #![doc = include_str!(concat!(env!("OUT_DIR"), "/render.md"))]
 
 pub mod analysis;
+pub mod bsdf;
+pub mod camera;
+pub mod catalogue;
+pub mod color;
 pub mod command;
 pub mod environment;
+mod error;
 pub mod figures;
 pub mod integrator;
 pub mod medium;
+pub mod passes;
 pub mod photon;
+pub mod sampling;
 pub mod scene;
-pub mod scenes;
 
-use crate::geometry::InputError;
-use analysis::Passes;
+pub use error::{MAX_PIXELS, MAX_SIDE, MAX_SPP, RenderError};
+
+use camera::CameraFrame;
 use glam::DVec3;
-use integrator::{Integrator, Sampler, Tracer};
+use integrator::{Integrator, Tracer};
+use passes::Passes;
 use rayon::prelude::*;
-use scene::{CameraFrame, Scene};
-
-/// Largest accepted image side, in pixels.
-pub const MAX_SIDE: u32 = 8192;
-/// Largest accepted pixel count (a 4096² image).
-pub const MAX_PIXELS: u64 = 1 << 24;
-/// Largest accepted number of samples per pixel.
-pub const MAX_SPP: u32 = 1 << 16;
-
-/// Why a render was refused. Nothing is rendered or written when one is returned.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-pub enum RenderError {
-    /// The scene or a camera setting is invalid.
-    #[error(transparent)]
-    Input(#[from] InputError),
-    /// The image is empty or too large.
-    #[error("image size {width}×{height} refused: each side must be 1…{MAX_SIDE} and the pixel count ≤ {MAX_PIXELS}")]
-    ImageSize {
-        /// Requested width.
-        width: u32,
-        /// Requested height.
-        height: u32,
-    },
-    /// Zero or too many samples per pixel.
-    #[error("samples per pixel must be 1…{MAX_SPP}, got {0}")]
-    SamplesPerPixel(u32),
-    /// A scene's environment map could not be read (a missing file, a NaN texel, …).
-    #[error("environment map: {0}")]
-    Environment(String),
-    /// Caustic settings out of range (photon count).
-    #[error("caustic pass: {0}")]
-    Caustics(#[from] photon::PhotonError),
-    /// A scene name that is not built in.
-    #[error("unknown scene `{name}`; known: {known}")]
-    UnknownScene {
-        /// The name given.
-        name: String,
-        /// The built-in names, comma-separated.
-        known: String,
-    },
-}
+use sampling::Sampler;
+use scene::Scene;
 
 /// How to render: size, samples, integrator, passes and seed.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -72,7 +41,7 @@ pub struct Settings {
     pub passes: Passes,
     /// Seed of every pixel's random streams (and of the caustic photons).
     pub seed: u64,
-    /// Photons and gather of the caustic pass ([`analysis::Pass::Caustics`]).
+    /// Photons and gather of the caustic pass ([`passes::Pass::Caustics`]).
     pub caustics: CausticSettings,
 }
 
@@ -125,10 +94,17 @@ impl Image {
         image::RgbImage::from_raw(self.width, self.height, bytes).expect("width × height × 3 bytes")
     }
 
-    /// Per-pixel luminance (Rec. 709 weights) of the linear radiance.
+    /// The [`color::luminance`] of every pixel, in pixel order.
+    ///
+    /// # Examples
+    /// ```
+    /// use glam::DVec3;
+    /// let image = hw3::render::Image { width: 2, height: 1, pixels: vec![DVec3::ONE, DVec3::X] };
+    /// assert_eq!(image.luminance(), vec![hw3::render::color::luminance(DVec3::ONE), 0.2126]);
+    /// ```
     #[must_use]
     pub fn luminance(&self) -> Vec<f64> {
-        self.pixels.iter().map(|p| p.dot(DVec3::new(0.2126, 0.7152, 0.0722))).collect()
+        self.pixels.iter().map(|&p| color::luminance(p)).collect()
     }
 
     /// Mean absolute luminance difference to `other` (same size), the image-change measure of Q1.
@@ -203,7 +179,7 @@ pub fn check_settings(settings: &Settings) -> Result<(), RenderError> {
 /// streams seeded by `settings.seed` and its index, so the result is bit-identical for any
 /// thread count. `progress` is called with the number of finished rows after each row.
 ///
-/// With [`analysis::Pass::Caustics`] on and Whitted tracing, a caustic photon map
+/// With [`passes::Pass::Caustics`] on and Whitted tracing, a caustic photon map
 /// ([`photon::trace_caustic_photons`], seed `settings.seed`) is traced first, once, and read at
 /// every diffuse or glossy hit.
 ///
@@ -212,8 +188,8 @@ pub fn check_settings(settings: &Settings) -> Result<(), RenderError> {
 ///
 /// # Examples
 /// ```
-/// use hw3::render::{analysis::analyze, render, scenes, Settings};
-/// let scene = scenes::mirror_spheres(true).unwrap();
+/// use hw3::render::{analysis::analyze, render, catalogue, Settings};
+/// let scene = catalogue::mirror_spheres(true).unwrap();
 /// let settings = Settings::whitted(16, 12, 1, analyze(&scene).plan);
 /// let image = render(&scene, &settings, &|_| {}).unwrap();
 /// assert_eq!(image.pixels.len(), 16 * 12);
@@ -266,8 +242,8 @@ pub fn render(scene: &Scene, settings: &Settings, progress: &(dyn Fn(u32) + Sync
 
 #[cfg(test)]
 mod tests {
-    use super::analysis::{Pass, analyze};
     use super::*;
+    use super::{analysis::analyze, passes::Pass};
 
     fn small(scene: &Scene, passes: Passes, spp: u32) -> Image {
         render(scene, &Settings::whitted(48, 36, spp, passes), &|_| {}).unwrap()
@@ -279,9 +255,11 @@ mod tests {
 
     #[test]
     fn image_bytes_are_identical_for_one_and_two_threads() {
-        for scene in
-            [scenes::moving_ball(2.0).unwrap(), scenes::fog_street(0.1).unwrap(), scenes::glass_ball_caustic().unwrap()]
-        {
+        for scene in [
+            catalogue::moving_ball(2.0).unwrap(),
+            catalogue::fog_street(0.1).unwrap(),
+            catalogue::glass_ball_caustic().unwrap(),
+        ] {
             let plan = analyze(&scene).plan;
             let one = in_pool(1, || small(&scene, plan, 3));
             let two = in_pool(2, || small(&scene, plan, 3));
@@ -292,7 +270,7 @@ mod tests {
 
     #[test]
     fn path_tracer_is_deterministic_across_thread_counts() {
-        let scene = scenes::cornell_mirror().unwrap();
+        let scene = catalogue::cornell_mirror().unwrap();
         let settings = Settings {
             integrator: Integrator::PathTracer { max_depth: 4 },
             ..Settings::whitted(24, 18, 2, analyze(&scene).plan)
@@ -307,23 +285,23 @@ mod tests {
     #[test]
     fn the_plan_skips_only_passes_that_change_nothing_and_keeps_those_that_matter() {
         let scenes = [
-            scenes::mirror_spheres(true).unwrap(),
-            scenes::mirror_spheres(false).unwrap(),
-            scenes::fog_street(0.15).unwrap(),
-            scenes::fog_street(0.0).unwrap(),
-            scenes::moving_ball(2.0).unwrap(),
-            scenes::moving_ball(0.0).unwrap(),
-            scenes::cornell_mirror().unwrap(),
-            scenes::probe_lit().unwrap(),
-            scenes::fog_panel(0.15).unwrap(),
-            scenes::fog_panel(0.0).unwrap(),
-            scenes::glass_ball_caustic().unwrap(),
+            catalogue::mirror_spheres(true).unwrap(),
+            catalogue::mirror_spheres(false).unwrap(),
+            catalogue::fog_street(0.15).unwrap(),
+            catalogue::fog_street(0.0).unwrap(),
+            catalogue::moving_ball(2.0).unwrap(),
+            catalogue::moving_ball(0.0).unwrap(),
+            catalogue::cornell_mirror().unwrap(),
+            catalogue::probe_lit().unwrap(),
+            catalogue::fog_panel(0.15).unwrap(),
+            catalogue::fog_panel(0.0).unwrap(),
+            catalogue::glass_ball_caustic().unwrap(),
         ];
         let mut skipped_checked = 0;
         let mut needed_checked = 0;
         for scene in &scenes {
             for integrator in [Integrator::Whitted { max_depth: 8 }, Integrator::PathTracer { max_depth: 3 }] {
-                let plan = analyze(scene).plan.for_integrator(integrator);
+                let plan = integrator.restrict(analyze(scene).plan);
                 let run = |passes| {
                     let settings = Settings { integrator, ..Settings::whitted(32, 24, 2, passes) };
                     render(scene, &settings, &|_| {}).unwrap()
@@ -369,7 +347,7 @@ mod tests {
     }
 
     /// The caustic pass on the `caustic` scene, measured on the floor under the glass ball (mean
-    /// radiance over [`scenes::caustic_footprint`], rays straight down):
+    /// radiance over [`catalogue::caustic_footprint`], rays straight down):
     /// - without the pass Whitted tracing leaves the footprint exactly black (its shadow rays to
     ///   the light are blocked by the glass), with it the footprint is more than 20× as bright
     ///   as the open floor beside the ball;
@@ -381,15 +359,15 @@ mod tests {
     ///   area (no blur at all; the 2 % is light moved across the disc's rim by the 0.1 gather).
     #[test]
     fn the_caustic_pass_lights_the_shadow_under_the_glass_ball_as_the_path_tracer_does() {
-        let scene = scenes::glass_ball_caustic().unwrap();
+        let scene = catalogue::glass_ball_caustic().unwrap();
         let plan = analyze(&scene).plan;
         assert!(plan.caustics);
         let map = photon::trace_caustic_photons(&scene, photon::CAUSTIC_PHOTONS, 1).unwrap();
         let with = Tracer::new(&scene, plan).with_caustics(&map, photon::CAUSTIC_GATHER);
-        let without = Tracer::new(&scene, plan.with(analysis::Pass::Caustics, false));
-        let reference = Tracer::new(&scene, plan.with(analysis::Pass::IndirectBounces, true));
+        let without = Tracer::new(&scene, plan.with(passes::Pass::Caustics, false));
+        let reference = Tracer::new(&scene, plan.with(passes::Pass::IndirectBounces, true));
         let whitted = Integrator::Whitted { max_depth: 8 };
-        let (center, radius, points) = scenes::caustic_footprint(400);
+        let (center, radius, points) = catalogue::caustic_footprint(400);
         let (lit, _) = footprint_radiance(&with, whitted, &points, 1);
         let (dark, _) = footprint_radiance(&without, whitted, &points, 1);
         let (path, standard_error) =
@@ -412,12 +390,12 @@ mod tests {
     /// brute-force loop, for both integrators (so every closest-hit and shadow query agreed).
     #[test]
     fn kd_tree_renders_are_identical_to_brute_force_on_every_built_in_scene() {
-        for (name, _) in scenes::CATALOGUE {
-            let scene = scenes::by_name(name).unwrap();
+        for (name, _) in catalogue::CATALOGUE {
+            let scene = catalogue::by_name(name).unwrap();
             let brute = scene.without_kd_tree();
             assert_eq!(brute.kd_tree_spheres(), 0);
             for integrator in [Integrator::Whitted { max_depth: 8 }, Integrator::PathTracer { max_depth: 3 }] {
-                let plan = analyze(&scene).plan.for_integrator(integrator);
+                let plan = integrator.restrict(analyze(&scene).plan);
                 let settings = Settings { integrator, ..Settings::whitted(24, 18, 2, plan) };
                 let fast = render(&scene, &settings, &|_| {}).unwrap();
                 let slow = render(&brute, &settings, &|_| {}).unwrap();
@@ -428,7 +406,7 @@ mod tests {
 
     #[test]
     fn bad_sizes_and_sample_counts_are_refused() {
-        let scene = scenes::moving_ball(0.0).unwrap();
+        let scene = catalogue::moving_ball(0.0).unwrap();
         let plan = analyze(&scene).plan;
         for (w, h) in [(0, 10), (10, 0), (MAX_SIDE + 1, 1), (5000, 5000)] {
             assert_eq!(
@@ -449,7 +427,8 @@ mod tests {
     #[test]
     fn enclosed_lights_and_cameras_stay_dark_and_finite() {
         use crate::geometry::Sphere;
-        use scene::{Camera, Material, Object, PointLight};
+        use camera::Camera;
+        use scene::{Material, Object, PointLight};
         let camera = Camera::looking_at(DVec3::new(0.0, 0.0, 4.0), DVec3::ZERO, 40.0);
         let shell = |material| Object::sphere(Sphere::new(DVec3::ZERO, 1.0).unwrap(), material);
         let lamp = PointLight { position: DVec3::ZERO, intensity: DVec3::splat(100.0) };

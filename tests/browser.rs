@@ -10,8 +10,9 @@
 //! it fails with the command to install it. For every page of the notes (the crate root and every
 //! module) it asserts that math rendered (MathML present, no TeX left in the prose), every image
 //! loaded, no figure placeholder is left, and no relative link points at a missing file or anchor;
-//! it saves
-//! a screenshot of each page under `target/browser/` for review.
+//! it saves a screenshot of the top of each chapter and notes page under `target/browser/`, and one
+//! per section (each `h2`/`h3` heading, 1280×2400 from the heading down) under
+//! `target/browser/sections/`, so that every chapter can be read whole, as a student sees it.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -67,6 +68,41 @@ fn pages() -> Vec<PathBuf> {
     }
     pages.sort();
     pages
+}
+
+/// The ids of a page's section headings (`h2` and `h3`), in page order.
+fn section_ids(html: &str) -> Vec<String> {
+    let mut ids = Vec::new();
+    for piece in html.split("<h").skip(1) {
+        let level = piece.as_bytes().first().copied();
+        if !matches!(level, Some(b'2' | b'3')) {
+            continue;
+        }
+        if let Some(rest) = piece[1..].trim_start().strip_prefix("id=\"")
+            && let Some(id) = rest.split('"').next()
+        {
+            ids.push(id.to_string());
+        }
+    }
+    ids
+}
+
+/// Screenshots of every section of `page`: a wrapper page loads it in a frame and scrolls the
+/// frame to the heading (headless Chromium does not honour `#fragment` in a screenshot).
+fn section_screenshots(browser: &Path, page: &Path, name: &str, out_dir: &Path) {
+    let html = std::fs::read_to_string(page).unwrap();
+    let dir = out_dir.join("sections");
+    std::fs::create_dir_all(&dir).unwrap();
+    let wrapper = dir.join("wrapper.html");
+    std::fs::write(&wrapper, include_str!("browser/section.html")).unwrap();
+    for (number, id) in section_ids(&html).iter().enumerate() {
+        let shot = dir.join(format!("{}__{number:02}_{id}.png", name.replace('/', "_").replace(".html", "")));
+        let _ = headless(browser)
+            .args(["--allow-file-access-from-files", "--window-size=1280,2400", "--virtual-time-budget=5000"])
+            .arg(format!("--screenshot={}", shot.display()))
+            .arg(format!("file://{}?page={}&id={id}", wrapper.display(), page.display()))
+            .output();
+    }
 }
 
 /// Relative `href`s of a page that point at files, or `#anchors`, that do not exist.
@@ -128,7 +164,8 @@ fn notes_render_in_a_real_browser() {
         let name = page.strip_prefix(doc_root()).unwrap().display().to_string();
         let html = std::fs::read_to_string(page).unwrap();
         let is_chapter = html.contains("class=\"math-display\"") || html.contains("<figure>");
-        if is_chapter || page.ends_with("hw3/index.html") {
+        let is_notes = name.starts_with("hw3/notes/") && name != "hw3/notes/index.html";
+        if is_chapter || is_notes || page.ends_with("hw3/index.html") {
             // A screenshot of every chapter (and the table of contents) for review by eye.
             let shot = out_dir.join(name.replace('/', "_").replace(".html", ".png"));
             let _ = headless(&browser)
@@ -136,6 +173,7 @@ fn notes_render_in_a_real_browser() {
                 .arg(format!("--screenshot={}", shot.display()))
                 .arg(format!("file://{}", page.display()))
                 .output();
+            section_screenshots(&browser, page, &name, &out_dir);
         }
         if result.get("error").is_some() {
             problems.push(format!("{name}: {}", result["error"]));

@@ -20,6 +20,9 @@ fn wrong_answers_get_per_part_feedback_and_exit_1() {
     assert!(text.contains("that is the larger root"), "{text}");
     assert!(text.contains("sign error"), "{text}");
     assert!(text.contains("did you mean `q2c.t_closest`"), "{text}");
+    assert!(text.contains("the factor 2 is missing: B = 2 (e - o) . d"), "{text}");
+    assert!(text.contains("|d| for |d|^2"), "{text}");
+    assert!(text.contains("the key says outside"), "{text}");
     common::insta_settings().bind(|| insta::assert_snapshot!("checker_feedback_wrong", text));
 }
 
@@ -41,7 +44,8 @@ fn template_then_key_round_trip() {
     let perfect = hw3(&["check", key.to_str().unwrap(), "--format", "gradescope"]);
     assert_eq!(perfect.status.code(), Some(0));
     let results: serde_json::Value = serde_json::from_slice(&perfect.stdout).unwrap();
-    assert_eq!(results["score"], 32.0);
+    let available: f64 = results["tests"].as_array().unwrap().iter().map(|t| t["max_score"].as_f64().unwrap()).sum();
+    assert_eq!(results["score"], available);
     assert!(results["tests"].as_array().unwrap().iter().all(|t| t["status"] == "passed"));
     std::fs::remove_dir_all(&dir).ok();
 }
@@ -90,4 +94,71 @@ fn the_seeds_own_answers_graded() {
     let chapter = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/checker.md")).unwrap();
     assert!(chapter.contains(&format!("**{score}**")), "docs/checker.md should quote the seed's score {score}");
     common::insta_settings().bind(|| insta::assert_snapshot!("checker_seed_graded", text));
+}
+
+/// One variant per case of each question, worked outside the crate
+/// (`tests/answers/fixtures/keys.py`, output committed as `keys.json`): the checker's key agrees.
+#[test]
+fn keys_agree_with_the_independent_script() {
+    use hw3::checker::Expected;
+    let text = std::fs::read_to_string(answers("fixtures/keys.json")).unwrap();
+    let cases: Vec<serde_json::Value> = serde_json::from_str(&text).unwrap();
+    let close = |a: f64, b: f64, rel: f64| (a - b).abs() <= rel * b.abs().max(1.0);
+    let mut checked = 0;
+    for case in &cases {
+        let question = case["question"].as_str().unwrap();
+        let seed = case["seed"].as_u64().unwrap();
+        let variant = hw3::checker::variant(question, seed).unwrap();
+        let what = format!("{question} seed {seed} ({})", case["case"]);
+        assert!(variant.statement.contains(case["statement"].as_str().unwrap()), "{what}: {}", variant.statement);
+        // The quadrature of Q4 is good to about 1e-6; everything else is the same arithmetic.
+        let rel = if question == "q4" { 1e-5 } else { 1e-9 };
+        let rel = if question == "q1" { 1e-12 } else { rel };
+        for (key, want) in case["key"].as_object().unwrap() {
+            let part = variant.parts.iter().find(|p| p.key == key).unwrap_or_else(|| panic!("{what}: no part {key}"));
+            let expected = match &part.expected {
+                Expected::OrNone { value, none: false } => value.as_ref(),
+                other => other,
+            };
+            match expected {
+                Expected::Number { value, .. } => {
+                    assert!(close(*value, want.as_f64().unwrap(), rel), "{what} {key}: {value} vs {want}")
+                }
+                Expected::Vector { value, .. } | Expected::Direction { value, .. } => {
+                    for (v, w) in value.iter().zip(want.as_array().unwrap()) {
+                        assert!(close(*v, w.as_f64().unwrap(), rel), "{what} {key}: {value:?} vs {want}");
+                    }
+                }
+                Expected::Choice { value, .. } => assert_eq!(*value, want.as_str().unwrap(), "{what} {key}"),
+                Expected::Flag { value } => assert_eq!(*value, want.as_bool().unwrap(), "{what} {key}"),
+                Expected::Trace { leaves, .. } => {
+                    let want = want.as_array().unwrap();
+                    assert_eq!(leaves.len(), want.len(), "{what} {key}: {leaves:?} vs {want:?}");
+                    for (leaf, w) in leaves.iter().zip(want) {
+                        let path: Vec<&str> =
+                            w["path"].as_array().unwrap().iter().map(|p| p.as_str().unwrap()).collect();
+                        assert_eq!(leaf.path, path, "{what} {key}");
+                        let bound = |v: &serde_json::Value| v.as_f64().unwrap_or(f64::INFINITY);
+                        assert!(close(leaf.t_min, bound(&w["tmin"]), rel), "{what} {key}: {leaf:?} vs {w}");
+                        assert!(
+                            leaf.t_max == bound(&w["tmax"]) || close(leaf.t_max, bound(&w["tmax"]), rel),
+                            "{what} {key}: {leaf:?} vs {w}"
+                        );
+                    }
+                }
+                other => panic!("{what} {key}: the script has no value for {other:?}"),
+            }
+            checked += 1;
+        }
+        if question == "q2" {
+            // A ray that misses has no t to give ("none"): the script and the checker agree on which.
+            let t = variant.parts.iter().find(|p| p.key == "q2a.t").unwrap();
+            let asked = matches!(t.expected, Expected::OrNone { none: false, .. });
+            assert_eq!(asked, case["key"].get("q2a.t").is_some(), "{what}");
+        }
+    }
+    // Two Q1 variants, seven Q2 cases (the worked example and one seed per case), five Q3 rays,
+    // three Q4 skies.
+    assert_eq!(cases.len(), 17);
+    assert_eq!(checked, 65, "values compared");
 }

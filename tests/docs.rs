@@ -233,9 +233,12 @@ fn q3_cost_table_and_growth_law_match_the_benchmark_csv() {
     let (s0, s1): (f64, f64) = (first.2.parse().unwrap(), last.2.parse().unwrap());
     let exponent = (s1 / s0).ln() / (n1 / n0).ln();
     let per_decade = (s1 / s0).powf(1.0 / (n1 / n0).log10());
-    assert!(q3.contains(&format!("×{per_decade:.1} per decade (~N^{exponent:.2})")), "×{per_decade:.1}, N^{exponent:.2}");
+    assert!(
+        q3.contains(&format!("×{per_decade:.1} per decade ($\\sim N^{{{exponent:.2}}}$)")),
+        "×{per_decade:.1}, N^{exponent:.2}"
+    );
     let engineering = chapter("engineering_q3.md");
-    assert!(engineering.contains(&format!("×{per_decade:.1} per decade (~N^{exponent:.2})")));
+    assert!(engineering.contains(&format!("×{per_decade:.1} per decade ($\\sim N^{{{exponent:.2}}}$)")));
     // What helped and what did not: a change that made anything faster is not listed as not helping.
     let section = |title: &str| {
         let start = engineering.find(title).unwrap_or_else(|| panic!("{title}"));
@@ -257,7 +260,7 @@ fn q4_cost_table_matches_the_benchmark_csv() {
     for line in q4.lines().filter(|l| l.starts_with("| ") && (l.contains("²") || l.contains("N="))) {
         let cells: Vec<&str> = line.split('|').map(str::trim).collect();
         let (label, mean, worst) = (cells[1], cells[2], cells[3]);
-        let Some(row) = csv.lines().find(|r| r.starts_with(&format!("sun,")) && r.split(',').nth(2) == Some(label)) else {
+        let Some(row) = csv.lines().find(|r| r.starts_with("sun,") && r.split(',').nth(2) == Some(label)) else {
             continue;
         };
         let fields: Vec<&str> = row.split(',').collect();
@@ -278,7 +281,9 @@ fn q4_states_its_assumptions_before_the_derivation() {
     let derivation = q4.find("## Derivation").expect("a Derivation section");
     assert!(assumptions < derivation);
     let section = &q4[assumptions..derivation];
-    for needed in ["Distant lighting", "only at the ball's position", "self-shadowing", "max(0, \\mathbf{n}\\cdot\\mathbf{l})"] {
+    for needed in
+        ["Distant lighting", "only at the ball's position", "self-shadowing", "max(0, \\mathbf{n}\\cdot\\mathbf{l})"]
+    {
         assert!(section.contains(needed), "Q4 assumptions must say: {needed}");
     }
 }
@@ -313,7 +318,7 @@ fn q4_worked_probe_sums_are_right() {
 #[test]
 fn q5_cosine_falloff_is_the_point_source_law_and_matches_the_measurement() {
     use hw3::q5_effect_tables::effect_scenes::{FLOOR_LIGHT_HEIGHT, FLOOR_LIGHT_SIZE, OPEN_LIGHT_RADIANCE};
-    use hw3::q5_effect_tables::experiments::WHITE;
+    use hw3::q5_effect_tables::scenes::WHITE;
     let q5 = chapter("q5_effect_tables.md");
     let aside = 1.5;
     assert!(q5.contains("1.5 units aside"));
@@ -382,10 +387,11 @@ fn every_error_table_states_the_accuracy_of_its_reference() {
                 continue;
             };
             let table = std::fs::read_to_string(Path::new(DOCS).join(target)).unwrap();
-            let header_lines: Vec<String> = table.lines().filter(|l| l.starts_with('|')).map(str::to_lowercase).collect();
-            let is_error_table = header_lines
-                .iter()
-                .any(|l| ["err", "rmse", "rel. diff", "reference"].iter().any(|w| l.contains(w)) && !l.starts_with("|---"));
+            let header_lines: Vec<String> =
+                table.lines().filter(|l| l.starts_with('|')).map(str::to_lowercase).collect();
+            let is_error_table = header_lines.iter().any(|l| {
+                ["err", "rmse", "rel. diff", "reference"].iter().any(|w| l.contains(w)) && !l.starts_with("|---")
+            });
             if !is_error_table {
                 continue;
             }
@@ -422,11 +428,40 @@ fn every_chapter_links_the_glossary_and_its_engineering_notes() {
                 let id: String = title
                     .to_lowercase()
                     .chars()
-                    .filter_map(|c| if c == ' ' { Some('-') } else if c.is_alphanumeric() || c == '-' { Some(c) } else { None })
+                    .filter_map(|c| {
+                        if c == ' ' {
+                            Some('-')
+                        } else if c.is_alphanumeric() || c == '-' {
+                            Some(c)
+                        } else {
+                            None
+                        }
+                    })
                     .collect();
                 id == anchor
             });
             assert!(defined, "glossary has no entry for #{anchor}");
         }
+    }
+}
+
+/// Q1: the chapter's mirror-scene cost table is the benchmark's data.
+#[test]
+fn q1_cost_table_matches_the_benchmark_csv() {
+    let q1 = chapter("q1_hard_scenes.md");
+    let csv = std::fs::read_to_string(Path::new(DOCS).join("data/q1_accuracy.csv")).unwrap();
+    let value = |integrator: &str, spp: u32| -> (f64, f64) {
+        let row = csv
+            .lines()
+            .find(|l| l.starts_with(&format!("mirrors,{integrator},{spp},")))
+            .unwrap_or_else(|| panic!("{integrator} {spp}"));
+        let f: Vec<f64> = row.split(',').skip(3).map(|x| x.parse().unwrap()).collect();
+        (f[1], f[0])
+    };
+    for spp in [1, 4, 16, 64] {
+        let (path_rmse, path_s) = value("path", spp);
+        let (whitted_rmse, whitted_s) = value("whitted", spp);
+        let row = format!("| {spp} | {path_rmse:.2e} | {path_s:.2e} | {whitted_rmse:.2e} | {whitted_s:.2e} |");
+        assert!(q1.contains(&row), "Q1 table row missing or stale: {row}");
     }
 }

@@ -36,8 +36,8 @@ pub struct SphereF32 {
 /// A ray in `f32` (unit direction) with its component-wise reciprocal for slab tests.
 #[derive(Debug, Clone, Copy)]
 pub struct RayF32 {
-    origin: Vec3A,
-    dir: Vec3A,
+    pub origin: Vec3A,
+    pub dir: Vec3A,
     inv_dir: Vec3A,
 }
 
@@ -81,6 +81,10 @@ pub type HitF32 = Option<(usize, f32)>;
 
 /// The structures measured. Each is built from the same `f32` spheres.
 pub enum Peer {
+    /// Embree 3 (system library, `embree` feature): native sphere points, `rtcIntersect1`, one
+    /// thread. Its ray/sphere test is its own, not [`sphere_t`].
+    #[cfg(feature = "embree")]
+    Embree(crate::embree::Embree),
     /// `bvh` 0.13 (binary SAH BVH, one shape per leaf), own front-to-back loop over its nodes.
     BvhCrate(Bvh<f32, 3>),
     /// `obvhs` 0.4 BVH2 (PLOC + reinsertion + leaf collapse), `medium_build` preset.
@@ -89,8 +93,16 @@ pub enum Peer {
     ObvhsCwbvh(CwBvh),
 }
 
-/// The peers' names, in [`Peer::build_all`] order (also the CSV column prefixes).
-pub const NAMES: [&str; 3] = ["bvh", "obvhs_bvh2", "obvhs_cwbvh"];
+/// The peers' names, in [`Peer::build`] order (also the CSV column prefixes). Embree is last and
+/// present only with the `embree` feature; its CSV columns are written either way (`-` without it).
+#[cfg(not(feature = "embree"))]
+pub const NAMES: &[&str] = &["bvh", "obvhs_bvh2", "obvhs_cwbvh"];
+/// As above, with Embree.
+#[cfg(feature = "embree")]
+pub const NAMES: &[&str] = &["bvh", "obvhs_bvh2", "obvhs_cwbvh", EMBREE];
+
+/// The name (and CSV column prefix) of the Embree peer.
+pub const EMBREE: &str = "embree3";
 
 impl Peer {
     /// Builds the peer `index` of [`NAMES`] (single thread: `bvh`'s serial `build`, `obvhs`
@@ -101,13 +113,22 @@ impl Peer {
         match index {
             0 => Self::BvhCrate(Bvh::build(spheres)),
             1 => Self::ObvhsBvh2(obvhs::bvh2::builder::build_bvh2(spheres, params, &mut core_time)),
-            _ => Self::ObvhsCwbvh(obvhs::cwbvh::builder::build_cwbvh(spheres, params, &mut core_time)),
+            2 => Self::ObvhsCwbvh(obvhs::cwbvh::builder::build_cwbvh(spheres, params, &mut core_time)),
+            #[cfg(feature = "embree")]
+            3 => Self::Embree(crate::embree::Embree::new(
+                &spheres.iter().map(|s| [s.center.x, s.center.y, s.center.z, s.radius]).collect::<Vec<_>>(),
+            )),
+            _ => unreachable!("peer index {index} out of range"),
         }
     }
 
-    /// The closest hit in `(t_min, ∞)`.
-    pub fn closest_hit(&self, spheres: &[SphereF32], ray: &RayF32, t_min: f32) -> HitF32 {
+    /// The closest hit in `(t_min, ∞)`; `coherent` tells a peer that takes the hint (Embree) that
+    /// the rays come from a camera.
+    pub fn closest_hit(&self, spheres: &[SphereF32], ray: &RayF32, t_min: f32, coherent: bool) -> HitF32 {
+        let _ = coherent;
         match self {
+            #[cfg(feature = "embree")]
+            Self::Embree(scene) => scene.closest_hit(ray.origin.into(), ray.dir.into(), t_min, coherent),
             Self::BvhCrate(bvh) => bvh_closest_hit(bvh, spheres, ray, t_min),
             Self::ObvhsBvh2(bvh) => {
                 let mut hit = RayHit::none();

@@ -25,6 +25,6 @@ pub enum CheckError {
     #[error("`meta.seed` must be an integer from 0 to 2^63, got {0}")]
     BadSeed(String),
     /// A question id the checker does not know.
-    #[error("unknown question `{0}`; known: q2, q3, q4, q5")]
+    #[error("unknown question `{0}`; known: q1, q2, q3, q4, q5")]
     UnknownQuestion(String),
 }

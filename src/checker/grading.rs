@@ -1,9 +1,12 @@
 //! Grading: each part's answer against its key, with partial credit and feedback.
 
 use super::error::CheckError;
-use super::key::{Expected, ExpectedLeaf, Part, Variant};
+use super::formula::compare_formulas;
+use super::key::{Expected, Part, Variant};
+use super::paths::compare_paths;
 use super::reading::{Given, lookup, read_seed, read_value};
 use super::suggest::unknown_keys;
+use super::traces::{grade_planes, grade_trace, show_leaf, show_plane};
 use super::variants::{QUESTIONS, variant};
 use serde::Serialize;
 
@@ -104,62 +107,6 @@ pub fn check(text: &str, seed_override: Option<u64>) -> Result<Report, CheckErro
     let max_score = round2(results.iter().map(|r| r.max_score).sum());
     Ok(Report { seed, score, max_score, parts: results, unknown_keys })
 }
-fn same_bound(a: f64, b: f64) -> bool {
-    a == b || (a - b).abs() <= 1e-6 * (1.0 + b.abs())
-}
-
-fn show_bound(t: f64) -> String {
-    if t.is_infinite() { "inf".into() } else { format!("{t}") }
-}
-
-fn show_leaf(leaf: &ExpectedLeaf) -> String {
-    format!("[{}] t in [{}, {}]", leaf.path.join(", "), show_bound(leaf.t_min), show_bound(leaf.t_max))
-}
-
-/// Credit for a trace: the share of leaves right before the first divergence, and why it diverged.
-fn grade_trace(expected: &[ExpectedLeaf], planes: &[(String, f64)], given: &[ExpectedLeaf]) -> (f64, String) {
-    let agree = |e: &ExpectedLeaf, g: &ExpectedLeaf| {
-        e.path == g.path && same_bound(g.t_min, e.t_min) && same_bound(g.t_max, e.t_max)
-    };
-    let prefix = expected.iter().zip(given).take_while(|(e, g)| agree(e, g)).count();
-    let credit = prefix as f64 / expected.len().max(given.len()).max(1) as f64;
-    if prefix == expected.len() && prefix == given.len() {
-        return (1.0, format!("all {prefix} leaves right"));
-    }
-    let plane_at = |t: f64| planes.iter().find(|(_, pt)| same_bound(t, *pt)).map(|(name, _)| name.clone());
-    let reason = match (expected.get(prefix), given.get(prefix)) {
-        (Some(e), None) => format!("leaf {} missing: the ray goes on into {}", prefix + 1, show_leaf(e)),
-        (None, Some(g)) => {
-            format!("leaf {} is extra: the ray has left the tree's last cell ({})", prefix + 1, show_leaf(g))
-        }
-        (Some(e), Some(g)) if e.path != g.path => {
-            format!("leaf {}: wrong cell: the ray is in {}, not [{}]", prefix + 1, show_leaf(e), g.path.join(", "))
-        }
-        (Some(e), Some(g)) if !same_bound(g.t_min, e.t_min) => {
-            let why = if g.t_min == 0.0 {
-                "you kept tmin at 0 after crossing the plane".to_string()
-            } else if let Some(name) = plane_at(g.t_min) {
-                format!("t = {} is where the ray crosses {name}, not where it enters this cell", g.t_min)
-            } else {
-                "tmin is where the ray enters this cell".to_string()
-            };
-            format!("leaf {} [{}]: tmin should be {}: {why}", prefix + 1, e.path.join(", "), show_bound(e.t_min))
-        }
-        (Some(e), Some(g)) => {
-            let why = if g.t_max.is_infinite() {
-                "the interval was not clipped at the plane the ray leaves by".to_string()
-            } else if let Some(name) = plane_at(g.t_max) {
-                format!("t = {} is where the ray crosses {name}, not where it leaves this cell", g.t_max)
-            } else {
-                "tmax is where the ray leaves this cell".to_string()
-            };
-            format!("leaf {} [{}]: tmax should be {}: {why}", prefix + 1, e.path.join(", "), show_bound(e.t_max))
-        }
-        (None, None) => unreachable!("a divergence exists when the lengths or a leaf differ"),
-    };
-    (credit, format!("first {prefix} leaves right; {reason}"))
-}
-
 fn norm(v: [f64; 3]) -> f64 {
     v.iter().map(|x| x * x).sum::<f64>().sqrt()
 }
@@ -196,14 +143,34 @@ fn compare(expected: &Expected, given: &Given) -> (bool, String) {
             let words = format!("angle {angle:.2e} rad (accepted ≤ {angle_tol:.0e}), length {length:.4}");
             (angle <= *angle_tol && unit, words)
         }
-        (Expected::Trace { leaves, planes }, Given::Trace(given)) => {
-            let (credit, words) = grade_trace(leaves, planes, given);
+        (Expected::Trace { leaves, planes, descents }, Given::Trace(given)) => {
+            let (credit, words) = grade_trace(leaves, planes, given, *descents);
             (credit == 1.0, words)
         }
-        (Expected::Choice { value }, Given::Choice { answer, why }) => {
-            let echo = why.as_ref().map_or(String::new(), |w| format!(" (your reason, not graded: {w})"));
-            (answer == value, format!("the key says {value}{echo}"))
+        (Expected::Planes { steps }, Given::Planes(given)) => {
+            let (credit, words) = grade_planes(steps, given);
+            (credit == 1.0, words)
         }
+        (Expected::Choice { value, options }, Given::Choice { answer, why }) => {
+            let echo = why.as_ref().map_or(String::new(), |w| format!(" (your reason, not graded: {w})"));
+            let listed = if options.contains(&answer.as_str()) {
+                String::new()
+            } else {
+                format!("; `{answer}` is not one of {}", options.join(", "))
+            };
+            (answer == value, format!("the key says {value}{echo}{listed}"))
+        }
+        (Expected::Flag { value }, Given::Flag(flag)) => (flag == value, format!("the key says {value}")),
+        (Expected::Formula { key, symbols, points, .. }, Given::Formula { formula, .. }) => {
+            compare_formulas(key, formula, symbols, points)
+        }
+        (Expected::Paths { value }, Given::Paths(given)) => compare_paths(value, given),
+        (Expected::OrNone { none: true, .. }, Given::None) => (true, "right: there is none".into()),
+        (Expected::OrNone { none: true, .. }, _) => (false, "there is none: write \"none\"".into()),
+        (Expected::OrNone { none: false, .. }, Given::None) => {
+            (false, "there is one: the key is a value, not none".into())
+        }
+        (Expected::OrNone { value, none: false }, given) => compare(value, given),
         _ => (false, "answer has the wrong shape".into()),
     }
 }
@@ -215,7 +182,13 @@ fn show_expected(expected: &Expected) -> String {
             show_vector(*value)
         }
         Expected::Trace { leaves, .. } => leaves.iter().map(show_leaf).collect::<Vec<_>>().join("; "),
-        Expected::Choice { value } => (*value).to_string(),
+        Expected::Planes { steps } => steps.iter().map(show_plane).collect::<Vec<_>>().join("; "),
+        Expected::Choice { value, .. } => (*value).to_string(),
+        Expected::Flag { value } => value.to_string(),
+        Expected::Formula { source, .. } => (*source).to_string(),
+        Expected::Paths { value } => value.clone(),
+        Expected::OrNone { none: true, .. } => "none".into(),
+        Expected::OrNone { value, .. } => show_expected(value),
     }
 }
 
@@ -241,11 +214,18 @@ fn grade(part: &Part, given: Option<&Given>) -> PartResult {
         Given::Number(x) => format!("{x}"),
         Given::Vector(v) => show_vector(*v),
         Given::Trace(leaves) => leaves.iter().map(show_leaf).collect::<Vec<_>>().join("; "),
+        Given::Planes(steps) => steps.iter().map(show_plane).collect::<Vec<_>>().join("; "),
         Given::Choice { answer, .. } => answer.clone(),
+        Given::Flag(flag) => flag.to_string(),
+        Given::Formula { source, .. } | Given::Paths(source) | Given::Something(source) => source.clone(),
+        Given::None => "none".into(),
     };
     let (ok, words) = compare(&part.expected, given);
     let trace_credit = match (&part.expected, given) {
-        (Expected::Trace { leaves, planes }, Given::Trace(g)) => Some(grade_trace(leaves, planes, g).0),
+        (Expected::Trace { leaves, planes, descents }, Given::Trace(g)) => {
+            Some(grade_trace(leaves, planes, g, *descents).0)
+        }
+        (Expected::Planes { steps }, Given::Planes(g)) => Some(grade_planes(steps, g).0),
         _ => None,
     };
     let (score, status, feedback) = if ok {
@@ -277,7 +257,7 @@ fn round2(x: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::checker::{answers_key, report_text};
+    use crate::checker::{Kind, answers_key, report_text};
     use proptest::prelude::*;
 
     #[test]
@@ -310,14 +290,18 @@ mod tests {
     #[test]
     fn trace_feedback_names_the_first_divergence() {
         let key = answers_key(0).unwrap();
+        // Edit case (d)'s leaves only (its descents come first and hold the same intervals).
+        let at = key.find("[q3d]").unwrap();
+        let at = at + key[at..].find("\nleaves").unwrap();
+        let in_leaves = |from: &str, to: &str| format!("{}{}", &key[..at], key[at..].replacen(from, to, 1));
         // Case (d) with tmin kept at 0 in the second leaf.
-        let wrong = key.replacen("tmin = 2.0", "tmin = 0.0", 1);
+        let wrong = in_leaves("tmin = 2.0", "tmin = 0.0");
         let report = check(&wrong, None).unwrap();
         let d = report.parts.iter().find(|p| p.key == "q3d.leaves").unwrap();
         assert_eq!((d.status, d.score), ("partial", 1.5));
         assert!(d.feedback.contains("you kept tmin at 0 after crossing the plane"), "{}", d.feedback);
         // An unclipped interval.
-        let unclipped = key.replacen("tmax = 2.0", "tmax = \"inf\"", 1);
+        let unclipped = in_leaves("tmax = 2.0", "tmax = \"inf\"");
         let d = check(&unclipped, None).unwrap().parts.into_iter().find(|p| p.key == "q3d.leaves").unwrap();
         assert_eq!(d.score, 0.0);
         assert!(d.feedback.contains("not clipped"), "{}", d.feedback);
@@ -354,21 +338,40 @@ mod tests {
 
         /// Perturbing one answer beyond its tolerance loses exactly that part's points.
         #[test]
-        fn perturbing_one_part_loses_exactly_its_points(seed in 0u64..1_000_000, question in 0usize..4, which in 0usize..12) {
+        fn perturbing_one_part_loses_exactly_its_points(seed in 0u64..1_000_000, question in 0usize..QUESTIONS.len(), which in 0usize..64) {
             let variant = variant(QUESTIONS[question], seed).unwrap();
             let part = &variant.parts[which % variant.parts.len()];
             let key = answers_key(seed).unwrap();
             let (table, name) = part.key.split_once('.').unwrap();
             let mut doc: toml::Table = toml::from_str(&key).unwrap();
             let entry = doc.get_mut(table).unwrap().as_table_mut().unwrap().get_mut(name).unwrap();
+            let or_none = matches!(part.expected, Expected::OrNone { .. });
             *entry = match entry.clone() {
+                toml::Value::String(word) if or_none && word == "none" => toml::Value::Float(1.0),
+                _ if or_none && matches!(part.expected, Expected::OrNone { none: false, .. }) => {
+                    toml::Value::String("none".into())
+                }
                 toml::Value::Float(x) => toml::Value::Float(x * 1.5 + 1.0),
-                toml::Value::String(word) => toml::Value::String(if word == "yes" { "no" } else { "yes" }.into()),
+                toml::Value::Boolean(b) => toml::Value::Boolean(!b),
+                toml::Value::String(word) => toml::Value::String(match &part.expected {
+                    Expected::Choice { options, .. } => options.iter().find(|o| **o != word).unwrap().to_string(),
+                    Expected::Formula { key, .. } if key.kind() == Kind::Vector => format!("2*({word})"),
+                    Expected::Formula { .. } => format!("({word}) + 1"),
+                    Expected::Paths { .. } if word == "none" => "LGE".into(),
+                    Expected::Paths { .. } => "none".into(),
+                    other => unreachable!("a string answer for {other:?}"),
+                }),
                 toml::Value::Array(mut items) if items[0].is_table() => {
-                    // A trace: move where the ray enters its last leaf.
                     let last = items.last_mut().unwrap().as_table_mut().unwrap();
-                    let t_min = last["tmin"].as_float().unwrap();
-                    last.insert("tmin".into(), toml::Value::Float(t_min + 0.25));
+                    if let Some(t_min) = last.get("tmin").and_then(toml::Value::as_float) {
+                        // A trace: move where the ray enters its last leaf.
+                        last.insert("tmin".into(), toml::Value::Float(t_min + 0.25));
+                    } else if let Some(t) = last.get("t").and_then(toml::Value::as_float) {
+                        // Planes: move the last plane's parameter.
+                        last.insert("t".into(), toml::Value::Float(t + 0.25));
+                    } else {
+                        last.insert("t".into(), toml::Value::Float(1.0));
+                    }
                     toml::Value::Array(items)
                 }
                 toml::Value::Array(mut items) => {

@@ -1,14 +1,18 @@
 //! The key: what each part of a question expects, how it is compared, and the wrong answers it
 //! recognises.
 
+use super::formula::{Formula, Kind, Point};
+
 /// The answer a part expects, with how it is compared.
 ///
 /// # Examples
 /// ```
 /// use hw3::checker::Expected;
 /// let q2 = hw3::checker::variant("q2", 0).unwrap();
-/// // Seed 0's first hit is t = 5 − √3, compared as a number within 10⁻³ relative.
-/// let Expected::Number { value, rtol, .. } = q2.parts[0].expected else { panic!() };
+/// // Seed 0's first hit is t = 5 − √3 (a value, not "none"), compared within 10⁻³ relative.
+/// let t = q2.parts.iter().find(|p| p.key == "q2a.t").unwrap();
+/// let Expected::OrNone { value, none: false } = &t.expected else { panic!() };
+/// let Expected::Number { value, rtol, .. } = **value else { panic!() };
 /// assert!((value - (5.0 - 3f64.sqrt())).abs() < 1e-12 && rtol == 1e-3);
 /// ```
 #[derive(Debug, Clone, PartialEq)]
@@ -41,17 +45,61 @@ pub enum Expected {
     /// A kd-tree traversal: the leaves reached, in order, graded leaf by leaf up to the first
     /// divergence (numbers within 10⁻⁶, `inf` exactly).
     Trace {
-        /// The key's leaves.
+        /// The key's leaves (or, when `descents`, every child descended, with its interval).
         leaves: Vec<ExpectedLeaf>,
+        /// The entries are every descent into a child, not only the leaves.
+        descents: bool,
         /// The plane crossings of the key's trace (`"y = 3"`, t), used to explain a wrong bound.
         planes: Vec<(String, f64)>,
     },
-    /// One word out of a few (`"yes"`, `"no"`, `"impractical"`), compared case-insensitively.
-    /// The file may give it as `a = "no"` or `a = { answer = "no", why = "..." }`; the `why` is
-    /// echoed in the feedback, never graded.
+    /// One word out of a few (`"yes"`, `"no"`, `"impractical"`; Q2's cases), compared
+    /// case-insensitively. The file may give it as `a = "no"` or
+    /// `a = { answer = "no", why = "..." }`; the `why` is echoed in the feedback, never graded.
     Choice {
         /// The key's word.
         value: &'static str,
+        /// Every word the part accepts as an answer (the template lists them).
+        options: &'static [&'static str],
+    },
+    /// `true` or `false` (does the ray hit?).
+    Flag {
+        /// The key's value.
+        value: bool,
+    },
+    /// A formula in the part's symbols, graded by evaluating it and the key at the same random
+    /// points (agreement to 10⁻⁶ relative at every point).
+    Formula {
+        /// The key's formula as text (shown after an answer).
+        source: &'static str,
+        /// The key, parsed.
+        key: Formula,
+        /// The symbols a formula may use, each a number or a vector.
+        symbols: &'static [(&'static str, Kind)],
+        /// The points both are evaluated at (drawn so that every symbol is consistent: `A = d·d`
+        /// and so on).
+        points: Vec<Point>,
+    },
+    /// A value that may not exist (Q2's t, point, normal and reflection when the ray does not
+    /// hit): the file gives the value, or `"none"`. Every variant lists the same parts, so which
+    /// parts the template shows never gives away whether the ray hits.
+    OrNone {
+        /// The key when there is a value; when `none`, a stand-in of the same kind, for the
+        /// template's format line only.
+        value: Box<Expected>,
+        /// The key is "none".
+        none: bool,
+    },
+    /// A class of light paths in Heckbert's notation (`LD+E`), graded by language equivalence:
+    /// `LDD*E` and `LD+E` are the same answer. `none` is the empty class.
+    Paths {
+        /// The key's expression.
+        value: String,
+    },
+    /// The planes met in a kd-tree traversal, in order: at each node, the plane parameter (or
+    /// parallel) and the child descended first. Graded step by step up to the first divergence.
+    Planes {
+        /// The key's steps.
+        steps: Vec<ExpectedPlane>,
     },
     /// Any vector pointing within `angle_tol` radians of `value`, whatever its length (for
     /// recognising wrong answers whose length is also off).
@@ -69,7 +117,8 @@ pub enum Expected {
 /// ```
 /// use hw3::checker::Expected;
 /// let q3 = hw3::checker::variant("q3", 0).unwrap();
-/// let Expected::Trace { leaves, .. } = &q3.parts[0].expected else { panic!() };
+/// let part = q3.parts.iter().find(|p| p.key == "q3d.leaves").unwrap();
+/// let Expected::Trace { leaves, .. } = &part.expected else { panic!() };
 /// assert_eq!(leaves[0].path, ["x>=3", "y<3"]);
 /// assert_eq!((leaves[0].t_min, leaves[0].t_max), (0.0, 2.0));
 /// ```
@@ -88,7 +137,8 @@ pub struct ExpectedLeaf {
 /// # Examples
 /// ```
 /// let q2 = hw3::checker::variant("q2", 0).unwrap();
-/// let rule = &q2.parts[0].mal_rules[0];
+/// let t = q2.parts.iter().find(|p| p.key == "q2a.t").unwrap();
+/// let rule = &t.mal_rules[0];
 /// assert!(rule.message.contains("larger root") && rule.credit == 0.0);
 /// ```
 #[derive(Debug, Clone, PartialEq)]
@@ -106,8 +156,8 @@ pub struct MalRule {
 /// # Examples
 /// ```
 /// let q2 = hw3::checker::variant("q2", 0).unwrap();
-/// let part = &q2.parts[0];
-/// assert_eq!((part.key, part.points), ("q2a.t", 2.0));
+/// let part = q2.parts.iter().find(|p| p.key == "q2a.t").unwrap();
+/// assert_eq!(part.points, 2.0);
 /// assert!(part.explained_in.starts_with("hw3/q2_ray_sphere"));
 /// ```
 #[derive(Debug, Clone, PartialEq)]
@@ -144,4 +194,56 @@ pub struct Variant {
     pub statement: String,
     /// Its parts, in order.
     pub parts: Vec<Part>,
+}
+
+/// One plane of a traversal: the node, where the ray crosses its plane, and which child comes first.
+///
+/// # Examples
+/// ```
+/// use hw3::checker::Expected;
+/// let q3 = hw3::checker::variant("q3", 0).unwrap();
+/// let planes = q3.parts.iter().find(|p| p.key == "q3d.planes").unwrap();
+/// let Expected::Planes { steps } = &planes.expected else { panic!() };
+/// assert_eq!((steps[0].node.len(), steps[0].t, steps[0].first.as_str()), (0, Some(2.0), "x>=3"));
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct ExpectedPlane {
+    /// The node's path from the root (empty for the root).
+    pub node: Vec<String>,
+    /// The plane parameter, `None` for a ray parallel to the plane.
+    pub t: Option<f64>,
+    /// The child descended first (`"x>=3"`).
+    pub first: String,
+}
+
+/// A formula part: the key `source` in `symbols`, compared at `points`; each slip is a formula
+/// with its message and credit.
+///
+/// # Panics
+/// If the key or a slip does not parse (a bug in the question, caught by every test).
+#[allow(clippy::too_many_arguments)]
+pub(super) fn formula_part(
+    key: &'static str,
+    prompt: &'static str,
+    points_worth: f64,
+    source: &'static str,
+    symbols: &'static [(&'static str, Kind)],
+    points: &[Point],
+    slips: &[(&'static str, &'static str, f64)],
+    explained_in: &'static str,
+) -> Part {
+    let formula = |text: &str| Formula::parse(text, symbols).unwrap_or_else(|e| panic!("{key}: `{text}`: {e}"));
+    let expected =
+        |source: &'static str| Expected::Formula { source, key: formula(source), symbols, points: points.to_vec() };
+    Part {
+        key,
+        prompt,
+        points: points_worth,
+        expected: expected(source),
+        mal_rules: slips
+            .iter()
+            .map(|&(slip, message, credit)| MalRule { value: expected(slip), message, credit })
+            .collect(),
+        explained_in,
+    }
 }

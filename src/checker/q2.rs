@@ -1,7 +1,8 @@
 //! Q2 variants: a ray and a sphere with small integer coordinates, and the parts a–c.
 
-use super::key::{Expected, MalRule, Part, Variant};
-use crate::geometry::sphere::{closest_approach_t, first_hit_stable, roots_stable, surface_hit};
+use super::formula::{Kind, Point, Value};
+use super::key::{Expected, MalRule, Part, Variant, formula_part};
+use crate::geometry::sphere::{Roots, closest_approach_t, first_hit_stable, roots_stable, surface_hit};
 use crate::geometry::{Ray, Sphere};
 use crate::q2_ray_sphere::worked_example;
 use crate::rng;
@@ -19,29 +20,76 @@ fn integer(g: &mut rng::Generator, low: i64, high: i64) -> f64 {
     (low + (g.next_u64() % (high - low + 1) as u64) as i64) as f64
 }
 
-/// A ray/sphere pair for `seed`: seed 0 is the notes' worked example; others are drawn with
-/// integer coordinates until the ray starts outside and meets the sphere at two distinct
-/// positive roots, with a discriminant large enough that hand arithmetic is not a lottery.
-pub(super) fn scene(seed: u64) -> (Ray<f64>, Sphere<f64>) {
-    if seed == 0 {
-        return worked_example();
+/// The cases of the homework's analysis of Q2(a), in the order seeds cycle through them
+/// (`(seed − 1) mod 6`, so seeds 1, 7, 13, … are "outside"; seed 0 is the notes' worked example, an eye outside).
+pub(super) const CASES: [&str; 6] = ["outside", "inside", "behind", "tangent", "miss", "on_surface"];
+
+/// Why each case is what it is, for the feedback on a wrong `case` or `hit`.
+fn case_reason(case: &str) -> &'static str {
+    match case {
+        "outside" => {
+            "C = |e - o|^2 - r^2 > 0 (eye outside) and B^2 - 4AC > 0 with both roots positive: the hit is the smaller root"
+        }
+        "inside" => "C = |e - o|^2 - r^2 < 0: the eye is inside, one root is negative and the hit is the larger root",
+        "behind" => "C > 0 and B^2 - 4AC > 0, but both roots are negative: the sphere is behind the eye, no hit",
+        "tangent" => "B^2 - 4AC = 0: one double root t = -B/2A > 0, the ray grazes the sphere (a hit)",
+        "miss" => "B^2 - 4AC < 0: no real root, the ray's line misses the sphere",
+        _ => {
+            "C = 0: the eye is on the sphere, one root is t = 0 (the eye itself, not a hit); the other, -B/A, is the hit if positive"
+        }
     }
+}
+
+/// An axis-aligned unit vector drawn from the six.
+fn axis(g: &mut rng::Generator) -> DVec3 {
+    let sign = if g.next_u64().is_multiple_of(2) { 1.0 } else { -1.0 };
+    [DVec3::X, DVec3::Y, DVec3::Z][(g.next_u64() % 3) as usize] * sign
+}
+
+/// A ray/sphere pair for `seed` and its case: seed 0 is the notes' worked example; others are
+/// drawn with integer coordinates in the case `CASES[(seed − 1) mod 6]`. "outside" redraws until the
+/// ray meets the sphere at two well-separated positive roots (a discriminant large enough that
+/// hand arithmetic is not a lottery); the tangent and on-surface cases are built exactly (a
+/// tangent point or an eye at `o ± r` along an axis), so their discriminant or `C` is exactly 0.
+pub(super) fn scene(seed: u64) -> (Ray<f64>, Sphere<f64>, &'static str) {
+    if seed == 0 {
+        let (ray, sphere) = worked_example();
+        return (ray, sphere, "outside");
+    }
+    let case = CASES[((seed - 1) % 6) as usize];
     let mut g = rng::seeded(seed, STREAM);
     loop {
         let origin = DVec3::new(integer(&mut g, -6, 6), integer(&mut g, -6, 6), integer(&mut g, -6, 6));
         let dir = DVec3::new(integer(&mut g, -3, 3), integer(&mut g, -3, 3), integer(&mut g, -3, 3));
         let center = DVec3::new(integer(&mut g, -6, 6), integer(&mut g, -6, 6), integer(&mut g, -6, 6));
         let radius = integer(&mut g, 1, 4);
-        let Ok(ray) = Ray::new(origin, dir) else {
+        let (origin, dir) = match case {
+            "tangent" => {
+                // Touch at p = o + r n; d ⟂ n; the eye k steps back along d.
+                let n = axis(&mut g);
+                let dir = dir - n * dir.dot(n);
+                (center + n * radius - dir * integer(&mut g, 1, 3), dir)
+            }
+            "on_surface" => (center + axis(&mut g) * radius, dir),
+            _ => (origin, dir),
+        };
+        let (Ok(ray), Ok(sphere)) = (Ray::new(origin, dir), Sphere::new(center, radius)) else {
             continue;
         };
-        let Ok(sphere) = Sphere::new(center, radius) else {
-            continue;
-        };
-        let outside = (origin - center).length_squared() > radius * radius;
+        let c = (origin - center).length_squared() - radius * radius;
         let roots = roots_stable(&ray, &sphere);
-        if outside && roots.is_some_and(|r| r.near > 0.0 && r.far - r.near > 0.25 * radius / dir.length()) {
-            return (ray, sphere);
+        let separated = |r: &Roots<f64>| r.far - r.near > 0.25 * radius / dir.length();
+        let wanted = match case {
+            "outside" => c > 0.0 && roots.is_some_and(|r| r.near > 0.0 && separated(&r)),
+            "inside" => c < 0.0,
+            "behind" => c > 0.0 && roots.is_some_and(|r| r.far < 0.0 && separated(&r)),
+            "tangent" => roots.is_some_and(|r| r.near == r.far && r.near > 0.0),
+            // A clear miss: the line passes at least half a radius outside.
+            "miss" => (origin - center).cross(dir).length() > 1.5 * radius * dir.length(),
+            _ => c == 0.0 && (origin - center).dot(dir) != 0.0,
+        };
+        if wanted {
+            return (ray, sphere, case);
         }
     }
 }
@@ -58,107 +106,324 @@ fn direction(value: DVec3) -> Expected {
     Expected::Direction { value: value.normalize().to_array(), angle_tol: 1e-3 }
 }
 
+/// A value that a ray which misses does not have.
+fn or_none(value: Expected) -> Expected {
+    Expected::OrNone { value: Box::new(value), none: false }
+}
+
 fn parallel(value: DVec3) -> Expected {
     Expected::Parallel { value: value.normalize().to_array(), angle_tol: 1e-3 }
 }
 
+/// Symbols of the formula parts.
+const RAY_SPHERE: [(&str, Kind); 4] =
+    [("e", Kind::Vector), ("d", Kind::Vector), ("o", Kind::Vector), ("r", Kind::Scalar)];
+const QUADRATIC: [(&str, Kind); 3] = [("A", Kind::Scalar), ("B", Kind::Scalar), ("C", Kind::Scalar)];
+const AT_HIT: [(&str, Kind); 3] = [("p", Kind::Vector), ("o", Kind::Vector), ("r", Kind::Scalar)];
+const REFLECTION: [(&str, Kind); 3] = [("d", Kind::Vector), ("dhat", Kind::Vector), ("n", Kind::Vector)];
+const RAY_CENTRE: [(&str, Kind); 3] = [("e", Kind::Vector), ("d", Kind::Vector), ("o", Kind::Vector)];
+
+/// Where formulas are compared: 40 rays from outside that hit a sphere, real numbers (not the
+/// variant's integers, so a formula cannot agree by coincidence), every symbol consistent with
+/// the others (`A = d·d`, `t` the smaller root, `p = e + d t`, `n = (p − o)/r`, `dhat = d/|d|`).
+pub(super) fn formula_points() -> Vec<Point> {
+    let mut g = rng::seeded(0, STREAM + 100);
+    let mut points = Vec::new();
+    while points.len() < 40 {
+        let mut v = || {
+            DVec3::new(
+                rng::uniform_in(&mut g, -4.0, 4.0),
+                rng::uniform_in(&mut g, -4.0, 4.0),
+                rng::uniform_in(&mut g, -4.0, 4.0),
+            )
+        };
+        let (e, d, o) = (v(), v(), v());
+        let r = 0.5 + 2.0 * rng::uniform(&mut g);
+        let (a, b, c) = (d.dot(d), 2.0 * (e - o).dot(d), (e - o).length_squared() - r * r);
+        let disc = b * b - 4.0 * a * c;
+        if c <= 0.1 || disc <= 0.1 * a || a < 0.1 {
+            continue;
+        }
+        let t = (-b - disc.sqrt()) / (2.0 * a);
+        let p = e + d * t;
+        let n = (p - o) / r;
+        let values = [
+            ("e", Value::Vector(e)),
+            ("d", Value::Vector(d)),
+            ("o", Value::Vector(o)),
+            ("r", Value::Scalar(r)),
+            ("A", Value::Scalar(a)),
+            ("B", Value::Scalar(b)),
+            ("C", Value::Scalar(c)),
+            ("t", Value::Scalar(t)),
+            ("p", Value::Vector(p)),
+            ("n", Value::Vector(n)),
+            ("dhat", Value::Vector(d.normalize())),
+        ];
+        points.push(values.into_iter().collect());
+    }
+    points
+}
+
+fn formula_parts(points: &[Point]) -> [Part; 7] {
+    let part =
+        |key, prompt, source, symbols, slips| formula_part(key, prompt, 1.0, source, symbols, points, slips, NOTES);
+    [
+        part(
+            "q2a.A",
+            "A of A t^2 + B t + C = 0, in e, d, o, r",
+            "dot(d, d)",
+            &RAY_SPHERE,
+            &[("norm(d)", "|d| for |d|^2: A = d . d", 0.0)],
+        ),
+        part(
+            "q2a.B",
+            "B, in e, d, o, r",
+            "2*dot(e - o, d)",
+            &RAY_SPHERE,
+            &[
+                ("dot(e - o, d)", "the factor 2 is missing: B = 2 (e - o) . d", 0.5),
+                ("2*dot(o - e, d)", "sign error: B = 2 (e - o) . d", 0.0),
+                ("2*dot(e, d)", "the centre is missing: (e - o), not e", 0.0),
+            ],
+        ),
+        part(
+            "q2a.C",
+            "C, in e, d, o, r",
+            "dot(e - o, e - o) - r^2",
+            &RAY_SPHERE,
+            &[
+                ("dot(e - o, e - o) - r", "r for r^2: C = |e - o|^2 - r^2", 0.0),
+                ("dot(e, e) - r^2", "the centre is missing: C = |e - o|^2 - r^2", 0.0),
+                ("r^2 - dot(e - o, e - o)", "sign error: C = |e - o|^2 - r^2", 0.0),
+            ],
+        ),
+        part(
+            "q2a.t_formula",
+            "the first hit from outside, in A, B, C",
+            "(-B - sqrt(B^2 - 4*A*C))/(2*A)",
+            &QUADRATIC,
+            &[
+                (
+                    "(-B + sqrt(B^2 - 4*A*C))/(2*A)",
+                    "that is the larger root: from outside, the first hit is the smaller",
+                    0.0,
+                ),
+                ("(-B - sqrt(B^2 - 4*A*C))/A", "the factor 2 is missing: divide by 2A", 0.5),
+                ("(B - sqrt(B^2 - 4*A*C))/(2*A)", "sign error: the roots are (-B ± sqrt(B^2 - 4AC))/2A", 0.0),
+                ("(-B - sqrt(B^2 - A*C))/(2*A)", "the factor 4 is missing: B^2 - 4AC", 0.5),
+            ],
+        ),
+        part(
+            "q2b.normal_formula",
+            "the unit normal at the hit, in p, o, r",
+            "(p - o)/r",
+            &AT_HIT,
+            &[
+                ("(o - p)/r", "the normal points inward: p - o, not o - p", 0.0),
+                ("p - o", "not unit length: divide by r", 0.5),
+            ],
+        ),
+        part(
+            "q2b.reflected_formula",
+            "the unit reflected direction, in d, dhat, n",
+            "dhat - 2*dot(n, dhat)*n",
+            &REFLECTION,
+            &[
+                ("dhat + 2*dot(n, dhat)*n", "sign error: r = d - 2 (n . d) n (the normal component flips)", 0.0),
+                ("dhat - dot(n, dhat)*n", "the factor 2 is missing: that only removes the normal component", 0.0),
+                ("d - 2*dot(n, d)*n", "right direction, but not unit length: use dhat = d/norm(d)", 0.5),
+            ],
+        ),
+        part(
+            "q2c.t_formula",
+            "the closest-approach parameter, in e, d, o",
+            "-dot(e - o, d)/dot(d, d)",
+            &RAY_CENTRE,
+            &[
+                (
+                    "-dot(e - o, d)/norm(d)",
+                    "|d| for |d|^2: that is the distance along the ray; divide by |d| once more for t",
+                    0.5,
+                ),
+                ("dot(e - o, d)/dot(d, d)", "sign error: t = -(e - o) . d / |d|^2", 0.0),
+                ("-dot(e - o, d)", "divide by |d|^2 (t is in units of d)", 0.0),
+            ],
+        ),
+    ]
+}
+
 pub(super) fn variant(seed: u64) -> Variant {
-    let (ray, sphere) = scene(seed);
-    let roots = roots_stable(&ray, &sphere).expect("variants are drawn to hit");
-    let t = first_hit_stable(&ray, &sphere).expect("variants are drawn to hit");
-    let hit = surface_hit(&ray, &sphere, t);
-    let d_hat = ray.dir.normalize();
-    let reflected = d_hat - hit.normal * (2.0 * hit.normal.dot(d_hat));
+    let (ray, sphere, case) = scene(seed);
+    let roots = roots_stable(&ray, &sphere);
+    let first = first_hit_stable(&ray, &sphere);
     let t_closest = closest_approach_t(&ray, sphere.center);
     let length = ray.dir.length();
     let v = |v: DVec3| format!("({}, {}, {})", v.x, v.y, v.z);
     let statement = format!(
         "Q2 (variant {seed}). Ray e + d t with e = {}, d = {}; sphere with centre o = {}, radius r = {}.\n\
-         (a) the parameter t of the first intersection, and the intersection point;\n\
-         (b) the unit normal there, and the unit reflected direction;\n\
-         (c) the parameter t of the ray's closest approach to the centre.",
+         (a) which case of the analysis applies (case = one of {}), whether the ray hits the sphere at some t > 0 \
+         (hit = true or false; t = 0 is the eye itself, not a hit), the parameter t of the first intersection and \
+         the intersection point (\"none\" for each if it does not hit);\n\
+         (b) the unit normal there, and the unit reflected direction (\"none\" if it does not hit);\n\
+         (c) the parameter t of the ray's closest approach to the centre.\n\
+         Also as formulas (the same for every variant): A, B, C of A t^2 + B t + C = 0 in e, d, o, r; the first hit \
+         from outside in A, B, C; the unit normal in p, o, r; the unit reflected direction in d, dhat = d/|d|, n; the \
+         closest-approach parameter in e, d, o.",
         v(ray.origin),
         v(ray.dir),
         v(sphere.center),
-        sphere.radius
+        sphere.radius,
+        CASES.join(", ")
     );
+    let reason = case_reason(case);
+    let wrong_cases: Vec<MalRule> = CASES
+        .iter()
+        .filter(|c| **c != case)
+        .map(|c| MalRule { value: Expected::Choice { value: c, options: &CASES }, message: reason, credit: 0.0 })
+        .collect();
     let mut parts = vec![
         Part {
-            key: "q2a.t",
-            prompt: "first intersection parameter t",
-            points: 2.0,
-            expected: number(t),
-            mal_rules: vec![MalRule {
-                value: number(roots.far),
-                message: "that is the larger root: the first hit is the smallest positive root",
-                credit: 0.0,
-            }],
-            explained_in: NOTES,
-        },
-        Part {
-            key: "q2a.point",
-            prompt: "intersection point e + d t",
+            key: "q2a.case",
+            prompt: "which case of the analysis applies",
             points: 1.0,
-            expected: vector(hit.point),
-            mal_rules: vec![MalRule {
-                value: vector(ray.at(roots.far)),
-                message: "that is the far intersection: use the smallest positive root",
-                credit: 0.0,
-            }],
+            expected: Expected::Choice { value: case, options: &CASES },
+            mal_rules: wrong_cases,
             explained_in: NOTES,
         },
         Part {
-            key: "q2b.normal",
-            prompt: "unit normal (p - o)/r at the hit",
+            key: "q2a.hit",
+            prompt: "does the ray hit the sphere at some t > 0",
             points: 1.0,
-            expected: direction(hit.normal),
-            mal_rules: vec![MalRule {
-                value: parallel(-hit.normal),
-                message: "the normal points inward: use p - o, not o - p",
-                credit: 0.0,
-            }],
-            explained_in: NOTES,
-        },
-        Part {
-            key: "q2b.reflected_dir",
-            prompt: "unit reflected direction d^ - 2 (n . d^) n",
-            points: 2.0,
-            expected: direction(reflected),
-            mal_rules: vec![MalRule {
-                value: parallel(d_hat + hit.normal * (2.0 * hit.normal.dot(d_hat))),
-                message: "sign error: r = d - 2 (n . d) n (the normal component flips)",
-                credit: 0.0,
-            }],
-            explained_in: NOTES,
-        },
-        Part {
-            key: "q2c.t_closest",
-            prompt: "closest-approach parameter -(e - o) . d / |d|^2",
-            points: 2.0,
-            expected: number(t_closest),
-            mal_rules: vec![],
+            expected: Expected::Flag { value: first.is_some() },
+            mal_rules: vec![MalRule { value: Expected::Flag { value: first.is_none() }, message: reason, credit: 0.0 }],
             explained_in: NOTES,
         },
     ];
+    let points = formula_points();
+    let [a, b, c, t_formula, normal_formula, reflected_formula, t_closest_formula] = formula_parts(&points);
+    if let (Some(t), Some(roots)) = (first, roots) {
+        let hit = surface_hit(&ray, &sphere, t);
+        let d_hat = ray.dir.normalize();
+        let reflected = d_hat - hit.normal * (2.0 * hit.normal.dot(d_hat));
+        let other = if t == roots.far { roots.near } else { roots.far };
+        let other_message = match case {
+            "inside" => "that root is negative (behind the eye): from inside, the first hit is the larger root",
+            "on_surface" => "t = 0 is the eye itself on the sphere, not a hit: the first hit is the other root",
+            _ => "that is the larger root: the first hit is the smallest positive root",
+        };
+        let mut t_part = Part {
+            key: "q2a.t",
+            prompt: "first intersection parameter t",
+            points: 2.0,
+            expected: or_none(number(t)),
+            mal_rules: vec![],
+            explained_in: NOTES,
+        };
+        if other != t {
+            t_part.mal_rules.push(MalRule { value: number(other), message: other_message, credit: 0.0 });
+        }
+        let mut point_part = Part {
+            key: "q2a.point",
+            prompt: "intersection point e + d t",
+            points: 1.0,
+            expected: or_none(vector(hit.point)),
+            mal_rules: vec![],
+            explained_in: NOTES,
+        };
+        if other != t {
+            point_part.mal_rules.push(MalRule {
+                value: vector(ray.at(other)),
+                message: "that is the other intersection: use the smallest positive root",
+                credit: 0.0,
+            });
+        }
+        let mut reflected_part = Part {
+            key: "q2b.reflected_dir",
+            prompt: "unit reflected direction d^ - 2 (n . d^) n",
+            points: 2.0,
+            expected: or_none(direction(reflected)),
+            mal_rules: vec![],
+            explained_in: NOTES,
+        };
+        if case != "tangent" {
+            // At a grazing hit n . d = 0: the sign slip gives the same direction.
+            reflected_part.mal_rules.push(MalRule {
+                value: parallel(d_hat + hit.normal * (2.0 * hit.normal.dot(d_hat))),
+                message: "sign error: r = d - 2 (n . d) n (the normal component flips)",
+                credit: 0.0,
+            });
+        }
+        if (length - 1.0).abs() > 1e-3 {
+            // Mal-rules that only differ from the key when |d| ≠ 1.
+            t_part.mal_rules.push(MalRule {
+                value: number(t * length),
+                message: "that is the distance to the hit; t is the distance divided by |d|",
+                credit: 0.0,
+            });
+            let unnormalised = ray.dir - hit.normal * (2.0 * hit.normal.dot(ray.dir));
+            reflected_part.mal_rules.push(MalRule {
+                value: Expected::Vector { value: unnormalised.to_array(), rtol: 1e-3, atol: 1e-6 },
+                message: "right direction, but not unit length: normalise d first",
+                credit: 0.5,
+            });
+        }
+        parts.extend([t_part, point_part]);
+        parts.extend([a, b, c, t_formula]);
+        parts.extend([
+            Part {
+                key: "q2b.normal",
+                prompt: "unit normal (p - o)/r at the hit",
+                points: 1.0,
+                expected: or_none(direction(hit.normal)),
+                mal_rules: vec![MalRule {
+                    value: parallel(-hit.normal),
+                    message: "the normal points inward: use p - o, not o - p",
+                    credit: 0.0,
+                }],
+                explained_in: NOTES,
+            },
+            reflected_part,
+        ]);
+    } else {
+        // No hit: the same parts, each answered "none", so the template does not give it away.
+        let none = |key, prompt, points, like| Part {
+            key,
+            prompt,
+            points,
+            expected: Expected::OrNone { value: Box::new(like), none: true },
+            mal_rules: vec![],
+            explained_in: NOTES,
+        };
+        let zero = DVec3::X;
+        parts.extend([
+            none("q2a.t", "first intersection parameter t", 2.0, number(0.0)),
+            none("q2a.point", "intersection point e + d t", 1.0, vector(zero)),
+            a,
+            b,
+            c,
+            t_formula,
+            none("q2b.normal", "unit normal (p - o)/r at the hit", 1.0, direction(zero)),
+            none("q2b.reflected_dir", "unit reflected direction d^ - 2 (n . d^) n", 2.0, direction(zero)),
+        ]);
+    }
+    parts.extend([normal_formula, reflected_formula]);
+    let mut closest = Part {
+        key: "q2c.t_closest",
+        prompt: "closest-approach parameter -(e - o) . d / |d|^2",
+        points: 2.0,
+        expected: number(t_closest),
+        mal_rules: vec![],
+        explained_in: NOTES,
+    };
     if (length - 1.0).abs() > 1e-3 {
-        // Mal-rules that only differ from the key when |d| ≠ 1.
-        parts[0].mal_rules.push(MalRule {
-            value: number(t * length),
-            message: "that is the distance to the hit; t is the distance divided by |d|",
-            credit: 0.0,
-        });
-        parts[4].mal_rules.push(MalRule {
+        closest.mal_rules.push(MalRule {
             value: number(t_closest * length),
             message: "that is the distance along the ray, (o - e) . d^; divide by |d| once more for t",
             credit: 0.5,
         });
-        let unnormalised = ray.dir - hit.normal * (2.0 * hit.normal.dot(ray.dir));
-        parts[3].mal_rules.push(MalRule {
-            value: Expected::Vector { value: unnormalised.to_array(), rtol: 1e-3, atol: 1e-6 },
-            message: "right direction, but not unit length: normalise d first",
-            credit: 0.5,
-        });
     }
+    parts.extend([closest, t_closest_formula]);
     Variant { question: "q2", seed, statement, parts }
 }
 
@@ -173,12 +438,38 @@ mod tests {
     }
 
     #[test]
-    fn variants_start_outside_and_hit_twice() {
-        for seed in 1..200 {
-            let (ray, sphere) = scene(seed);
-            assert!((ray.origin - sphere.center).length() > sphere.radius);
-            let roots = roots_stable(&ray, &sphere).unwrap();
-            assert!(roots.near > 0.0 && roots.far > roots.near, "seed {seed}");
+    fn every_seed_is_in_its_case() {
+        for seed in 1..300 {
+            let (ray, sphere, case) = scene(seed);
+            assert_eq!(case, CASES[((seed - 1) % 6) as usize]);
+            let c = (ray.origin - sphere.center).length_squared() - sphere.radius * sphere.radius;
+            let roots = roots_stable(&ray, &sphere);
+            let hit = first_hit_stable(&ray, &sphere);
+            match case {
+                "outside" => assert!(c > 0.0 && roots.unwrap().near > 0.0 && roots.unwrap().far > roots.unwrap().near),
+                "inside" => assert!(c < 0.0 && hit == Some(roots.unwrap().far)),
+                "behind" => assert!(c > 0.0 && roots.unwrap().far < 0.0 && hit.is_none()),
+                "tangent" => assert!(roots.unwrap().near == roots.unwrap().far && hit.is_some()),
+                "miss" => assert!(roots.is_none() && hit.is_none()),
+                _ => assert_eq!(c, 0.0),
+            }
         }
+    }
+
+    #[test]
+    fn every_variant_asks_the_same_parts_and_none_is_an_answer() {
+        let keys = |seed| variant(seed).parts.iter().map(|p| p.key).collect::<Vec<_>>();
+        for seed in 2..=6 {
+            assert_eq!(keys(seed), keys(1), "seed {seed}: the parts must not give the case away");
+        }
+        // Seed 5 misses: "none" is right, a number is wrong; seed 1 hits: "none" is wrong.
+        let miss = crate::checker::check("[meta]\nseed = 5\n[q2a]\nt = \"none\"\npoint = [1, 2, 3]", None).unwrap();
+        let part =
+            |report: &crate::checker::Report, key: &str| report.parts.iter().find(|p| p.key == key).unwrap().clone();
+        assert_eq!(part(&miss, "q2a.t").status, "correct");
+        assert_eq!(part(&miss, "q2a.point").status, "wrong");
+        assert!(part(&miss, "q2a.point").feedback.contains("write \"none\""));
+        let hit = crate::checker::check("[meta]\nseed = 1\n[q2a]\nt = \"none\"", None).unwrap();
+        assert_eq!(part(&hit, "q2a.t").status, "wrong");
     }
 }

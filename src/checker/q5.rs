@@ -2,7 +2,7 @@
 //! verdicts (area light, the homework's setting). Q5 has one variant: the seed is ignored.
 
 use super::key::{Expected, MalRule, Part, Variant};
-use crate::q5_effect_tables::{LightKind, Verdict, grammar_table};
+use crate::q5_effect_tables::{EFFECTS, LightKind, Verdict, grammar_table};
 
 const NOTES: &str = "hw3/q5_effect_tables/index.html";
 
@@ -22,6 +22,28 @@ const KEYS: [&str; 12] = [
     "q5b.e",
 ];
 
+/// The reason parts: per cell, the effect's paths the method misses (or samples only by chance).
+const MISSED: [&str; 12] = [
+    "q5a.a_missed",
+    "q5a.b_missed",
+    "q5a.c_missed",
+    "q5a.d_mirror_missed",
+    "q5a.d_caustic_missed",
+    "q5a.e_missed",
+    "q5b.a_missed",
+    "q5b.b_missed",
+    "q5b.c_missed",
+    "q5b.d_mirror_missed",
+    "q5b.d_caustic_missed",
+    "q5b.e_missed",
+];
+
+/// The row parts: each effect's class of light paths.
+const ROWS: [&str; 6] = ["q5paths.a", "q5paths.b", "q5paths.c", "q5paths.d_mirror", "q5paths.d_caustic", "q5paths.e"];
+
+/// The words a Q5 cell accepts.
+const VERDICTS: [&str; 3] = ["yes", "no", "impractical"];
+
 fn word(verdict: Verdict) -> &'static str {
     match verdict {
         Verdict::Yes => "yes",
@@ -34,18 +56,20 @@ pub(super) fn variant(seed: u64) -> Variant {
     let cells = grammar_table().expect("the built-in grammar tables parse (tested in q5_effect_tables)");
     let mut parts = Vec::new();
     for (table, method) in [("q5a", "radiosity"), ("q5b", "two_pass")] {
+        let mut cell_parts = Vec::new();
+        let mut missed_parts = Vec::new();
         for cell in cells.iter().filter(|c| c.method == method && c.light == LightKind::Area) {
             let name = format!("{table}.{}", cell.effect);
             let key = *KEYS.iter().find(|k| **k == name).expect("every Q5 effect row has a key");
             let mal_rules = if cell.verdict == Verdict::Impractical {
                 vec![
                     MalRule {
-                        value: Expected::Choice { value: "yes" },
+                        value: Expected::Choice { value: "yes", options: &VERDICTS },
                         message: "possible in principle, but only by chance (noise): impractical, not a practical yes",
                         credit: 0.5,
                     },
                     MalRule {
-                        value: Expected::Choice { value: "no" },
+                        value: Expected::Choice { value: "no", options: &VERDICTS },
                         message: "the method can produce these paths, only by chance (noise): impractical, not impossible",
                         credit: 0.5,
                     },
@@ -53,22 +77,84 @@ pub(super) fn variant(seed: u64) -> Variant {
             } else {
                 vec![]
             };
-            parts.push(Part {
+            cell_parts.push(Part {
                 key,
                 prompt: "yes, no or impractical (a `why` is shown, not graded)",
                 points: 1.0,
-                expected: Expected::Choice { value: word(cell.verdict) },
+                expected: Expected::Choice { value: word(cell.verdict), options: &VERDICTS },
                 mal_rules,
                 explained_in: NOTES,
             });
+            let name = format!("{table}.{}_missed", cell.effect);
+            let effect = EFFECTS.iter().find(|e| e.id == cell.effect).expect("every cell has an effect");
+            // The effects are narrow classes: a method misses all of one or none of it (tested below).
+            let missed = if cell.verdict == Verdict::Yes { "none" } else { effect.paths };
+            missed_parts.push(Part {
+                key: MISSED.iter().find(|k| **k == name).expect("every Q5 cell has a reason key"),
+                prompt: "the effect's light paths the method misses or gets only by chance (Heckbert's notation, or none)",
+                points: 0.5,
+                expected: Expected::Paths { value: missed.to_string() },
+                mal_rules: vec![],
+                explained_in: NOTES,
+            });
         }
+        parts.extend(cell_parts);
+        parts.extend(missed_parts);
+    }
+    for (effect, key) in EFFECTS.iter().zip(ROWS) {
+        parts.push(Part {
+            key,
+            prompt: "the effect's class of light paths, in Heckbert's notation (light first)",
+            points: 0.5,
+            expected: Expected::Paths { value: effect.paths.to_string() },
+            mal_rules: vec![],
+            explained_in: NOTES,
+        });
     }
     let statement = format!(
         "Q5 (one variant; seed {seed} ignored). Effects: (a) a specular highlight on a glossy surface; (b) colour \
          bleeding; (c) diffuse shading that varies with the normal; (d) a specular effect, split into d_mirror (a \
          diffuse object seen in a mirror) and d_caustic (light focused by a mirror or glass); (e) ambient glow.\n\
          For an area light, does (q5a) radiosity, and (q5b) the two-pass method (eye rays not traced further, \
-         plus photon tracing of diffuse transport), capture each? Answer yes, no or impractical."
+         plus photon tracing of diffuse transport), capture each? Answer yes, no or impractical, and give the reason \
+         as the effect's light paths the method misses or gets only by chance, in Heckbert's notation (L D G S V E, \
+         with | * + ? and parentheses; none if it misses nothing): e.g. \"LS+E\" for a mirror seen directly. Equivalent expressions \
+         are the same answer (LDD*E = LD+E).\n\
+         q5paths: each effect's own class of light paths, light first and eye last."
     );
     Variant { question: "q5", seed, statement, parts }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::q5_effect_tables::METHODS;
+    use crate::render::analysis::grammar::{Lang, shortest_word};
+
+    /// The reason key is the effect's paths outside the method's language (Impractical: outside
+    /// its efficient language), decided by the grammar: for the built-in effects that is all of
+    /// the effect or none of it.
+    #[test]
+    fn reason_keys_are_the_grammars_difference() {
+        let v = variant(0);
+        for (table, method) in [("q5a", "radiosity"), ("q5b", "two_pass")] {
+            let method = METHODS.iter().find(|m| m.id == method).unwrap();
+            for effect in &EFFECTS {
+                let key = format!("{table}.{}_missed", effect.id);
+                let part = v.parts.iter().find(|p| p.key == key).unwrap();
+                let Expected::Paths { value } = &part.expected else { unreachable!() };
+                let cell = v.parts.iter().find(|p| p.key == format!("{table}.{}", effect.id)).unwrap();
+                let Expected::Choice { value: verdict, .. } = cell.expected else { unreachable!() };
+                let language = if verdict == "impractical" { method.efficient[0] } else { method.paths[0] };
+                let langs = [
+                    Lang::parse(effect.paths).unwrap(),
+                    Lang::parse(language).unwrap(),
+                    super::super::paths::paths(value).unwrap(),
+                ];
+                // A path is in the key iff it is an effect path the method's language lacks.
+                let differs = shortest_word(&langs, |x| x[2] != (x[0] && !x[1])).unwrap();
+                assert_eq!(differs, None, "{key}: {value}");
+            }
+        }
+    }
 }

@@ -1,7 +1,9 @@
 //! Reading an answers file: the TOML values of each part, shaped like the part's key.
 
 use super::error::CheckError;
-use super::key::{Expected, ExpectedLeaf};
+use super::formula::Formula;
+use super::key::{Expected, ExpectedLeaf, ExpectedPlane};
+use super::paths::paths;
 
 pub(super) fn read_seed(table: &toml::Table) -> Result<u64, CheckError> {
     match table.get("meta").and_then(|m| m.get("seed")) {
@@ -22,17 +24,33 @@ pub(super) enum Given {
     Number(f64),
     Vector([f64; 3]),
     Trace(Vec<ExpectedLeaf>),
-    Choice { answer: String, why: Option<String> },
+    Choice {
+        answer: String,
+        why: Option<String>,
+    },
+    Flag(bool),
+    Formula {
+        formula: Formula,
+        source: String,
+    },
+    Paths(String),
+    Planes(Vec<ExpectedPlane>),
+    /// `"none"` for a part that may have no value.
+    None,
+    /// Some value for a part whose key is "none" (its shape is not checked: any value is wrong).
+    Something(String),
 }
 
-fn read_choice(key: &str, value: &toml::Value) -> Result<Given, CheckError> {
+fn read_choice(key: &str, value: &toml::Value, options: &[&str]) -> Result<Given, CheckError> {
     let bad = |problem: String| CheckError::BadValue { key: key.to_string(), problem };
     let text = |v: &toml::Value| v.as_str().map(|s| s.trim().to_lowercase());
     match value {
         toml::Value::String(_) => Ok(Given::Choice { answer: text(value).unwrap_or_default(), why: None }),
         toml::Value::Table(table) => {
-            let answer =
-                table.get("answer").and_then(text).ok_or_else(|| bad("needs answer = \"yes\" or \"no\"".into()))?;
+            let answer = table
+                .get("answer")
+                .and_then(text)
+                .ok_or_else(|| bad(format!("needs answer = one of {}", quoted(options))))?;
             let why = match table.get("why") {
                 None => None,
                 Some(toml::Value::String(why)) => Some(why.clone()),
@@ -40,7 +58,7 @@ fn read_choice(key: &str, value: &toml::Value) -> Result<Given, CheckError> {
             };
             Ok(Given::Choice { answer, why })
         }
-        other => Err(bad(format!("expected \"yes\", \"no\" or \"impractical\", got {} `{other}`", other.type_str()))),
+        other => Err(bad(format!("expected one of {}, got {} `{other}`", quoted(options), other.type_str()))),
     }
 }
 
@@ -96,7 +114,36 @@ pub(super) fn read_value(key: &str, value: &toml::Value, expected: &Expected) ->
     match expected {
         Expected::Number { .. } => number(key, value).map(Given::Number),
         Expected::Trace { .. } => read_trace(key, value).map(Given::Trace),
-        Expected::Choice { .. } => read_choice(key, value),
+        Expected::Choice { options, .. } => read_choice(key, value, options),
+        Expected::Flag { .. } => match value {
+            toml::Value::Boolean(b) => Ok(Given::Flag(*b)),
+            other => Err(CheckError::BadValue {
+                key: key.to_string(),
+                problem: format!("expected true or false, got {} `{other}`", other.type_str()),
+            }),
+        },
+        Expected::Formula { symbols, .. } => {
+            let source = text(key, value, "a formula in quotes, e.g. \"dot(d, d)\"")?;
+            let formula = Formula::parse(&source, symbols).map_err(|e| CheckError::BadValue {
+                key: key.to_string(),
+                problem: format!("formula `{source}`: {e}"),
+            })?;
+            Ok(Given::Formula { formula, source })
+        }
+        Expected::Paths { .. } => {
+            let source = text(key, value, "a light-path class in quotes, e.g. \"LD+E\", or \"none\"")?;
+            paths(&source).map_err(|e| CheckError::BadValue {
+                key: key.to_string(),
+                problem: format!("light paths `{source}`: {e}"),
+            })?;
+            Ok(Given::Paths(source))
+        }
+        Expected::Planes { .. } => read_planes(key, value).map(Given::Planes),
+        Expected::OrNone { value: inner, none } => match value {
+            toml::Value::String(s) if s.trim().eq_ignore_ascii_case("none") => Ok(Given::None),
+            other if *none => Ok(Given::Something(other.to_string())),
+            other => read_value(key, other, inner),
+        },
         Expected::Vector { .. } | Expected::Direction { .. } | Expected::Parallel { .. } => {
             let bad = |problem: String| CheckError::BadValue { key: key.to_string(), problem };
             let toml::Value::Array(items) = value else {
@@ -112,4 +159,48 @@ pub(super) fn read_value(key: &str, value: &toml::Value, expected: &Expected) ->
             Ok(Given::Vector(out))
         }
     }
+}
+
+fn quoted(options: &[&str]) -> String {
+    options.iter().map(|o| format!("\"{o}\"")).collect::<Vec<_>>().join(", ")
+}
+
+fn text(key: &str, value: &toml::Value, wanted: &str) -> Result<String, CheckError> {
+    match value {
+        toml::Value::String(s) => Ok(s.clone()),
+        other => Err(CheckError::BadValue {
+            key: key.to_string(),
+            problem: format!("expected {wanted}, got {} `{other}`", other.type_str()),
+        }),
+    }
+}
+
+fn read_planes(key: &str, value: &toml::Value) -> Result<Vec<ExpectedPlane>, CheckError> {
+    let bad = |problem: String| CheckError::BadValue { key: key.to_string(), problem };
+    let shape = "each plane is a table { node = [...], t = N or \"parallel\", first = \"x>=3\" }";
+    let toml::Value::Array(items) = value else {
+        return Err(bad(format!("expected an array of planes, got {} `{value}`", value.type_str())));
+    };
+    items
+        .iter()
+        .map(|item| {
+            let step = item.as_table().ok_or_else(|| bad(shape.into()))?;
+            let node = step
+                .get("node")
+                .and_then(toml::Value::as_array)
+                .ok_or_else(|| bad(shape.into()))?
+                .iter()
+                .map(|b| {
+                    b.as_str().map(str::to_owned).ok_or_else(|| bad("node entries are strings like \"x>=3\"".into()))
+                })
+                .collect::<Result<Vec<_>, _>>()?;
+            let t = match step.get("t") {
+                Some(toml::Value::String(s)) if s == "parallel" => None,
+                Some(other) => Some(number(key, other)?),
+                None => return Err(bad(shape.into())),
+            };
+            let first = step.get("first").and_then(toml::Value::as_str).ok_or_else(|| bad(shape.into()))?.to_string();
+            Ok(ExpectedPlane { node, t, first })
+        })
+        .collect()
 }

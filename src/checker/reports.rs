@@ -39,7 +39,7 @@ pub fn report_text(report: &Report) -> String {
 /// ```
 /// let report = hw3::checker::check("", None).unwrap();
 /// let json = hw3::checker::report_gradescope(&report);
-/// assert_eq!(json["tests"][0]["name"], "q2a.t");
+/// assert!(json["tests"].as_array().unwrap().iter().any(|t| t["name"] == "q2a.t"));
 /// ```
 #[must_use]
 pub fn report_gradescope(report: &Report) -> serde_json::Value {

@@ -1,6 +1,7 @@
 //! Answers files written by the checker: the blank template and the key itself.
 
 use super::error::CheckError;
+use super::formula::Kind;
 use super::key::Expected;
 use super::variants::{QUESTIONS, variant};
 use std::fmt::Write as _;
@@ -33,17 +34,7 @@ pub fn template(seed: u64) -> Result<String, CheckError> {
                 let _ = writeln!(out, "\n[{table}]");
                 section = table;
             }
-            let shape = match part.expected {
-                Expected::Number { rtol, .. } => format!("a number; relative tolerance {rtol:.0e}"),
-                Expected::Vector { .. } => "[x, y, z]".to_string(),
-                Expected::Direction { angle_tol, .. } | Expected::Parallel { angle_tol, .. } => {
-                    format!("[x, y, z], unit length, within {angle_tol:.0e} rad")
-                }
-                Expected::Trace { .. } => "[{ path = [...], tmin = N, tmax = N or \"inf\" }, ...]".to_string(),
-                Expected::Choice { .. } => {
-                    "\"yes\", \"no\" or \"impractical\"; or { answer = ..., why = \"...\" }".to_string()
-                }
-            };
+            let shape = shape(&part.expected);
             let _ = writeln!(out, "# {} ({shape}, {} points)\n# {name} = ", part.prompt, part.points);
         }
     }
@@ -85,30 +76,88 @@ pub fn answers_key_for(question: &str, seed: u64) -> Result<String, CheckError> 
             let _ = writeln!(out, "\n[{table}]");
             section = table;
         }
-        let value = match part.expected {
-            Expected::Number { value, .. } => format!("{value:?}"),
-            Expected::Vector { value, .. } | Expected::Direction { value, .. } | Expected::Parallel { value, .. } => {
-                format!("[{:?}, {:?}, {:?}]", value[0], value[1], value[2])
-            }
-            Expected::Choice { value } => format!("{value:?}"),
-            Expected::Trace { leaves, .. } => {
-                let bound = |t: f64| if t.is_infinite() { "\"inf\"".to_string() } else { format!("{t:?}") };
-                let rows: Vec<String> = leaves
-                    .iter()
-                    .map(|l| {
-                        let path: Vec<String> = l.path.iter().map(|p| format!("{p:?}")).collect();
-                        format!(
-                            "  {{ path = [{}], tmin = {}, tmax = {} }},",
-                            path.join(", "),
-                            bound(l.t_min),
-                            bound(l.t_max)
-                        )
-                    })
-                    .collect();
-                format!("[\n{}\n]", rows.join("\n"))
-            }
-        };
+        let value = key_value(&part.expected);
         let _ = writeln!(out, "{name} = {value}");
     }
     Ok(out)
+}
+
+/// The format line of a part in the template.
+fn shape(expected: &Expected) -> String {
+    match expected {
+        Expected::OrNone { value, .. } => format!("{}; or \"none\" if there is none", shape(value)),
+        Expected::Number { rtol, .. } => format!("a number; relative tolerance {rtol:.0e}"),
+        Expected::Vector { .. } => "[x, y, z]".to_string(),
+        Expected::Direction { angle_tol, .. } | Expected::Parallel { angle_tol, .. } => {
+            format!("[x, y, z], unit length, within {angle_tol:.0e} rad")
+        }
+        Expected::Trace { .. } => "[{ path = [...], tmin = N, tmax = N or \"inf\" }, ...]".to_string(),
+        Expected::Planes { .. } => {
+            "[{ node = [...], t = N or \"parallel\", first = \"x>=3\" }, ...]; node = [] is the root".to_string()
+        }
+        Expected::Choice { options, .. } => {
+            let words: Vec<String> = options.iter().map(|o| format!("\"{o}\"")).collect();
+            format!("one of {}; or {{ answer = ..., why = \"...\" }}", words.join(", "))
+        }
+        Expected::Flag { .. } => "true or false".to_string(),
+        Expected::Formula { symbols, .. } => {
+            let names: Vec<String> = symbols
+                .iter()
+                .map(|(name, kind)| match kind {
+                    Kind::Vector => format!("{name} (vector; {name}_x ...)"),
+                    Kind::Scalar => (*name).to_string(),
+                })
+                .collect();
+            format!(
+                "a formula in quotes in {}; + - * / ^, dot, cross, norm, sqrt, abs; write * for products",
+                names.join(", ")
+            )
+        }
+        Expected::Paths { .. } => {
+            "light paths in Heckbert's notation in quotes: L D G S V E, | * + ? ( ), or \"none\"".to_string()
+        }
+    }
+}
+
+/// A part's key as a TOML value.
+fn key_value(expected: &Expected) -> String {
+    match expected {
+        Expected::Number { value, .. } => format!("{value:?}"),
+        Expected::Vector { value, .. } | Expected::Direction { value, .. } | Expected::Parallel { value, .. } => {
+            format!("[{:?}, {:?}, {:?}]", value[0], value[1], value[2])
+        }
+        Expected::OrNone { none: true, .. } => "\"none\"".to_string(),
+        Expected::OrNone { value, .. } => key_value(value),
+        Expected::Choice { value, .. } => format!("{value:?}"),
+        Expected::Flag { value } => value.to_string(),
+        Expected::Formula { source, .. } => format!("{source:?}"),
+        Expected::Paths { value } => format!("{value:?}"),
+        Expected::Planes { steps } => {
+            let rows: Vec<String> = steps
+                .iter()
+                .map(|p| {
+                    let node: Vec<String> = p.node.iter().map(|b| format!("{b:?}")).collect();
+                    let t = p.t.map_or_else(|| "\"parallel\"".to_string(), |t| format!("{t:?}"));
+                    format!("  {{ node = [{}], t = {t}, first = {:?} }},", node.join(", "), p.first)
+                })
+                .collect();
+            format!("[\n{}\n]", rows.join("\n"))
+        }
+        Expected::Trace { leaves, .. } => {
+            let bound = |t: f64| if t.is_infinite() { "\"inf\"".to_string() } else { format!("{t:?}") };
+            let rows: Vec<String> = leaves
+                .iter()
+                .map(|l| {
+                    let path: Vec<String> = l.path.iter().map(|p| format!("{p:?}")).collect();
+                    format!(
+                        "  {{ path = [{}], tmin = {}, tmax = {} }},",
+                        path.join(", "),
+                        bound(l.t_min),
+                        bound(l.t_max)
+                    )
+                })
+                .collect();
+            format!("[\n{}\n]", rows.join("\n"))
+        }
+    }
 }

@@ -2,7 +2,7 @@
 
 use super::error::CheckError;
 use super::key::Variant;
-use super::{q2, q3, q4, q5};
+use super::{q1, q2, q3, q4, q5};
 
 /// The questions the checker grades, in order.
 ///
@@ -12,7 +12,7 @@ use super::{q2, q3, q4, q5};
 ///     assert!(hw3::checker::variant(question, 1).is_ok());
 /// }
 /// ```
-pub const QUESTIONS: [&str; 4] = ["q2", "q3", "q4", "q5"];
+pub const QUESTIONS: [&str; 5] = ["q1", "q2", "q3", "q4", "q5"];
 
 /// The variant of `question` for `seed`.
 ///
@@ -26,6 +26,7 @@ pub const QUESTIONS: [&str; 4] = ["q2", "q3", "q4", "q5"];
 /// ```
 pub fn variant(question: &str, seed: u64) -> Result<Variant, CheckError> {
     match question {
+        "q1" => Ok(q1::variant(seed)),
         "q2" => Ok(q2::variant(seed)),
         "q3" => Ok(q3::variant(seed)),
         "q4" => Ok(q4::variant(seed)),

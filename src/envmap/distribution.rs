@@ -6,16 +6,25 @@
 use super::probe::Probe;
 use glam::{DVec2, DVec3};
 
-/// Rec. 709 luminance `0.2126 R + 0.7152 G + 0.0722 B` (ITU-R BT.709), the scalar
-/// [`MapDistribution`] follows (equal to the value itself for grey radiance).
+/// Rec. 709 / sRGB primaries' luminance weights `(0.2126, 0.7152, 0.0722)` (ITU-R BT.709-6,
+/// item 3.2): the relative luminance `Y` of a linear RGB colour.
+pub const LUMINANCE_WEIGHTS: DVec3 = DVec3::new(0.2126, 0.7152, 0.0722);
+
+/// The relative luminance `Y` of linear RGB `c` (the dot product with [`LUMINANCE_WEIGHTS`]): the
+/// scalar [`MapDistribution`] follows (equal to the value itself for grey radiance), and the one
+/// the renderer compares images by and weighs lights' powers by. Linear: no transfer curve.
 ///
 /// # Examples
 /// ```
-/// assert!((hw3::envmap::luminance(glam::DVec3::splat(2.0)) - 2.0).abs() < 1e-15);
+/// use glam::DVec3;
+/// use hw3::envmap::luminance;
+/// assert!((luminance(DVec3::splat(2.0)) - 2.0).abs() < 1e-15);
+/// assert!((luminance(DVec3::ONE) - 1.0).abs() < 1e-15); // the weights sum to 1
+/// assert_eq!(luminance(DVec3::Y), 0.7152);
 /// ```
 #[must_use]
 pub fn luminance(c: DVec3) -> f64 {
-    c.dot(DVec3::new(0.2126, 0.7152, 0.0722))
+    c.dot(LUMINANCE_WEIGHTS)
 }
 
 /// What one map sample returns: the direction, its solid-angle pdf, and the texel.

@@ -32,8 +32,13 @@
 //! - An eye inside the sphere hits the far root (the near one is behind it).
 //! - Comparisons are written so that NaN fails them: NaN anywhere is a miss, never a NaN `t`.
 //!   Validated constructors ([`Ray::new`], [`Sphere::new`]) reject such input earlier.
+//! - Valid input can still be out of a precision's reach: a square that overflows (for `|d| ≈ 1`,
+//!   `r ≥ 2⁵⁰⁹` in `f64`, `r ≥ 2⁶¹` in `f32`), or a sphere smaller than the rounding of the coordinates around it
+//!   (an eye 10¹⁶ away from a unit sphere in `f64`: `e + d t` cannot tell the sphere's two sides
+//!   apart). [`check_solvable`] refuses such cases with the reason; inside its domain every hit has
+//!   a finite `t`, a point on the sphere and a unit normal.
 
-use super::{Ray, Sphere};
+use super::{InputError, Ray, Sphere};
 use crate::real::Real;
 
 /// The two roots of the ray/sphere quadratic, sorted (`near ≤ far`), possibly negative.
@@ -76,6 +81,84 @@ impl<T: Real> Roots<T> {
 pub fn closest_approach_t<T: Real>(ray: &Ray<T>, center: T::Vec3) -> T {
     let f = ray.origin - center;
     -T::dot(f, ray.dir) / T::dot(ray.dir, ray.dir)
+}
+
+/// Largest ratio of the coordinates' size to the radius accepted by [`check_solvable`], in
+/// multiples of `1/ε`: the rounding of a hit point's coordinates stays below `r/256`, so its
+/// normal is right to 2⁻⁸ or better.
+const RESOLUTION: f64 = 1.0 / 256.0;
+
+/// Checks that the ray/sphere problem is within reach of precision `T`, so that the solvers here
+/// and the Q2 ones give a finite `t`, a point on the sphere and a unit normal for every hit.
+///
+/// With `s = max(‖e‖∞, ‖o‖∞, ‖e − o‖∞)`, it requires:
+/// - every square and product the solvers form (`r²|d|²`, `|f × d|²`, `f·f`, the homework's
+///   `4AC`, `t = |f|/|d|`) to be a finite normal number, with a factor 64 to spare;
+/// - `ε s ≤ r/256`: the rounding of coordinates of size `s` is below `r/256`, so a computed hit
+///   point lands on the right side of the sphere and its normal is right to 2⁻⁸ (in practice to
+///   `ε s/r`).
+///
+/// # Errors
+/// [`InputError::Unresolvable`] naming the quantity out of reach.
+///
+/// # Examples
+/// ```
+/// use glam::DVec3;
+/// use hw3::geometry::{Ray, Sphere, sphere::check_solvable};
+/// let sphere = Sphere::<f64>::new(DVec3::ZERO, 1.0).unwrap();
+/// let near = Ray::<f64>::new(DVec3::new(-5.0, 0.0, 0.0), DVec3::X).unwrap();
+/// assert!(check_solvable(&near, &sphere).is_ok());
+/// let far = Ray::<f64>::new(DVec3::new(-1e16, 0.0, 0.0), DVec3::X).unwrap();
+/// assert!(check_solvable(&far, &sphere).is_err()); // ε·10¹⁶ ≈ 2.2 > r/256
+/// let huge = Sphere::<f64>::new(DVec3::ZERO, 1e200).unwrap();
+/// assert!(check_solvable(&near, &huge).is_err()); // r² overflows
+/// ```
+pub fn check_solvable<T: Real>(ray: &Ray<T>, sphere: &Sphere<T>) -> Result<(), InputError> {
+    let refuse = |reason: String| Err(InputError::Unresolvable { precision: T::NAME, reason });
+    let size = |v: T::Vec3| T::components(v).iter().map(|c| c.to_f64().abs()).fold(0.0, f64::max);
+    let offset = ray.origin - sphere.center;
+    let (f, d, r) = (size(offset), size(ray.dir), sphere.radius.to_f64());
+    if !f.is_finite() {
+        return refuse("e − o overflows".into());
+    }
+    // Exponents, so that the test itself cannot overflow; log2(0) = −∞ passes every upper bound.
+    let (max_exp, min_exp) = (T::MAX.to_f64().log2(), T::MIN_POSITIVE.to_f64().log2());
+    let (lf, ld, lr) = (f.log2(), d.log2(), r.log2());
+    // A factor 64 to spare: the homework's `4AC` is 4 times a product of sums of three squares,
+    // and |·| is up to √3 times ‖·‖∞.
+    let spare = 6.0;
+    let (fs, ds, rs) = (short(f), short(d), short(r));
+    if 2.0 * lr.max(lr + ld) + spare >= max_exp {
+        return refuse(format!("r² |d|² overflows for r = {rs}, |d| = {ds}"));
+    }
+    if 2.0 * lf.max(lf + ld) + spare >= max_exp {
+        return refuse(format!("|e − o|² |d|² overflows for |e − o| = {fs}, |d| = {ds}"));
+    }
+    if lf.max(lr) - ld + spare >= max_exp {
+        return refuse(format!("t ≈ |e − o|/|d| overflows for |e − o| = {fs}, r = {rs}, |d| = {ds}"));
+    }
+    if 2.0 * lr.min(lr + ld) - spare <= min_exp {
+        return refuse(format!("r² |d|² underflows for r = {rs}, |d| = {ds}"));
+    }
+    let s = f.max(size(ray.origin)).max(size(sphere.center));
+    let rounding = T::EPSILON.to_f64() * s;
+    if rounding > RESOLUTION * r {
+        return refuse(format!(
+            "coordinates of size {} are rounded by up to {}, more than r/256 for r = {rs}: the hit point \
+             cannot be told apart from the other side of the sphere",
+            short(s),
+            short(rounding)
+        ));
+    }
+    Ok(())
+}
+
+/// `x` in scientific notation with at most 4 significant digits (`1e16`, `2.22e0`).
+fn short(x: f64) -> String {
+    let text = format!("{x:.3e}");
+    let (mantissa, exponent) = text.split_once('e').unwrap_or((&text, "0"));
+    let mantissa = if mantissa.contains('.') { mantissa.trim_end_matches('0').trim_end_matches('.') } else { mantissa };
+    format!("{mantissa}e{exponent}")
 }
 
 /// Both roots by the stable method (module docs), or `None` when the ray's line misses the sphere.

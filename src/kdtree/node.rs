@@ -80,6 +80,23 @@ impl Node {
         Self { payload: first, tag: (count << 2) | LEAF_TAG }
     }
 
+    /// The node with its upper-child index raised by `nodes` (interior) or its first index by
+    /// `indices` (leaf): a subtree's node moved to where another array places it.
+    ///
+    /// # Panics
+    /// If the shifted index leaves the 30 bits (interior) or 32 bits (leaf) it is stored in.
+    pub fn shifted(self, nodes: u32, indices: u32) -> Self {
+        match self.kind() {
+            NodeKind::Interior { upper, .. } => {
+                let upper = upper.checked_add(nodes).filter(|&u| u < MAX_PACKED).expect("kd-tree node index in range");
+                Self { payload: self.payload, tag: (upper << 2) | (self.tag & 3) }
+            }
+            NodeKind::Leaf { first, .. } => {
+                Self { payload: first.checked_add(indices).expect("kd-tree index in range"), tag: self.tag }
+            }
+        }
+    }
+
     #[inline]
     pub fn kind(self) -> NodeKind {
         let axis = self.tag & 3;
@@ -106,5 +123,11 @@ mod tests {
         let interior = Node::interior(0.375, 2, MAX_PACKED - 1);
         assert_eq!(interior.kind(), NodeKind::Interior { split: 0.375, upper: MAX_PACKED - 1, axis: 2 });
         assert_eq!(Node::leaf(u32::MAX, 7).kind(), NodeKind::Leaf { first: u32::MAX, count: 7 });
+        assert_eq!(interior.shifted(0, 9), interior);
+        assert_eq!(
+            Node::interior(0.375, 1, 5).shifted(10, 9).kind(),
+            NodeKind::Interior { split: 0.375, upper: 15, axis: 1 }
+        );
+        assert_eq!(Node::leaf(3, 7).shifted(10, 9).kind(), NodeKind::Leaf { first: 12, count: 7 });
     }
 }

@@ -9,13 +9,19 @@
 
 use crate::geometry::sphere::first_hit_stable;
 use crate::geometry::{InputError, Ray, Sphere};
+use crate::plot::markdown_table;
 use crate::q2_ray_sphere::seed_solver::first_hit_naive;
 use crate::real::Real;
 use glam::{DVec3, Vec3};
-use std::fmt::Write as _;
 use twofloat::TwoFloat;
 
 /// Solver method: the homework's formula or the stable rewrite.
+///
+/// # Examples
+/// ```
+/// use hw3::q2_ray_sphere::catalogue::{Method, Precision, variant_label};
+/// assert_eq!(variant_label(Method::Stable, Precision::F64), "stable f64");
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Method {
     /// The homework's `A`, `B`, `C` and textbook roots ([`first_hit_naive`]).
@@ -25,6 +31,12 @@ pub enum Method {
 }
 
 /// Floating-point precision of a run.
+///
+/// # Examples
+/// ```
+/// use hw3::q2_ray_sphere::catalogue::{Method, Precision, variant_label};
+/// assert_eq!(variant_label(Method::Naive, Precision::F32), "naive f32");
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Precision {
     /// IEEE single precision.
@@ -34,6 +46,13 @@ pub enum Precision {
 }
 
 /// The four variants every table compares, in column order.
+///
+/// # Examples
+/// ```
+/// use hw3::q2_ray_sphere::catalogue::{VARIANTS, variant_label};
+/// let columns: Vec<&str> = VARIANTS.iter().map(|&(m, p)| variant_label(m, p)).collect();
+/// assert_eq!(columns, ["naive f32", "stable f32", "naive f64", "stable f64"]);
+/// ```
 pub const VARIANTS: [(Method, Precision); 4] = [
     (Method::Naive, Precision::F32),
     (Method::Stable, Precision::F32),
@@ -42,6 +61,12 @@ pub const VARIANTS: [(Method, Precision); 4] = [
 ];
 
 /// Label of a variant for tables and plots (`"naive f32"`).
+///
+/// # Examples
+/// ```
+/// use hw3::q2_ray_sphere::catalogue::{Method, Precision, variant_label};
+/// assert_eq!(variant_label(Method::Stable, Precision::F32), "stable f32");
+/// ```
 #[must_use]
 pub fn variant_label(method: Method, precision: Precision) -> &'static str {
     match (method, precision) {
@@ -114,6 +139,13 @@ pub fn reference_first_hit(e: DVec3, d: DVec3, o: DVec3, r: f64) -> Option<f64> 
 }
 
 /// One hard input: a ray and a sphere given as exact `f32` values.
+///
+/// # Examples
+/// ```
+/// let cases = hw3::q2_ray_sphere::catalogue::hard_cases();
+/// assert!(cases.iter().any(|c| c.beyond_f32)); // some cases only f64 can answer
+/// assert!(cases.iter().all(|c| c.radius > 0.0));
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct HardCase {
     /// What makes it hard.
@@ -231,6 +263,12 @@ pub fn hard_cases() -> Vec<HardCase> {
 }
 
 /// How a method did on one case, compared with the reference.
+///
+/// # Examples
+/// ```
+/// use hw3::q2_ray_sphere::catalogue::Outcome;
+/// assert_eq!(Outcome::Missed.error(), 1.0);
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Outcome {
     /// Both hit: relative error of `t`, and the hit point's distance from the true one in radii
@@ -253,6 +291,14 @@ pub enum Outcome {
 
 impl Outcome {
     /// The relative error of `t` for "worst case" summaries: a wrong hit/miss counts as 1 (100 %).
+    ///
+    /// # Examples
+    /// ```
+    /// use hw3::q2_ray_sphere::catalogue::Outcome;
+    /// assert_eq!(Outcome::Hit { relative: 1e-7, point_error_in_radii: 0.0 }.error(), 1e-7);
+    /// assert_eq!(Outcome::BothMiss.error(), 0.0);
+    /// assert_eq!(Outcome::SpuriousHit.error(), 1.0);
+    /// ```
     #[must_use]
     pub fn error(self) -> f64 {
         match self {
@@ -282,6 +328,12 @@ impl Outcome {
 }
 
 /// One row of the catalogue table.
+///
+/// # Examples
+/// ```
+/// let rows = hw3::q2_ray_sphere::catalogue::score_catalogue();
+/// assert!(rows.iter().all(|row| row.outcomes.len() == 4));
+/// ```
 #[derive(Debug, Clone, PartialEq)]
 pub struct CatalogueRow {
     /// The case.
@@ -334,23 +386,35 @@ pub fn score_catalogue() -> Vec<CatalogueRow> {
 /// ```
 #[must_use]
 pub fn catalogue_table() -> String {
-    let mut out = String::from(
-        "| case | reference t | naive f32 | stable f32 | naive f64 | stable f64 \
-         | naive f32 point error / r | stable f32 point error / r |\n",
-    );
-    out.push_str("|---|---|---|---|---|---|---|---|\n");
-    for row in score_catalogue() {
-        let reference = row.reference.map_or("miss".to_string(), |t| format!("{t:.6e}"));
-        let cells: Vec<String> = row.outcomes.iter().map(|o| o.cell()).collect();
+    let header = [
+        "case",
+        "reference t",
+        "naive f32",
+        "stable f32",
+        "naive f64",
+        "stable f64",
+        "naive f32 point error / r",
+        "stable f32 point error / r",
+    ];
+    let rows = score_catalogue().into_iter().map(|row| {
         let mark = if row.case.beyond_f32 { " †" } else { "" };
-        let points = format!("{} | {}", row.outcomes[0].point_cell(), row.outcomes[1].point_cell());
-        let name = row.case.name;
-        let _ = writeln!(out, "| {name}{mark} | {reference} | {} | {points} |", cells.join(" | "));
-    }
-    out
+        let mut cells =
+            vec![format!("{}{mark}", row.case.name), row.reference.map_or("miss".to_string(), |t| format!("{t:.6e}"))];
+        cells.extend(row.outcomes.iter().map(|o| o.cell()));
+        cells.extend([row.outcomes[0].point_cell(), row.outcomes[1].point_cell()]);
+        cells
+    });
+    markdown_table(&header, rows)
 }
 
 /// Wrong hit/miss answers and hit-point error for rays at a unit sphere `distance` away.
+///
+/// # Examples
+/// ```
+/// let row = hw3::q2_ray_sphere::catalogue::far_sphere_sweep(100.0, 50, 1);
+/// assert_eq!(row.distance, 100.0);
+/// assert_eq!(row.wrong_hit_or_miss[3], 0.0); // stable f64 answers every ray
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SweepRow {
     /// Eye-to-centre distance in radii.
@@ -419,25 +483,25 @@ pub fn far_sphere_sweep(distance: f64, rays: u32, seed: u64) -> SweepRow {
 /// ```
 #[must_use]
 pub fn far_sphere_table(distances: &[f64], rays: u32) -> String {
-    let mut out = String::from(
-        "| distance / r | wrong hit/miss: naive f32 | stable f32 | naive f64 | stable f64 | mean hit-point error / r: naive f32 | stable f32 |\n|---|---|---|---|---|---|---|\n",
-    );
-    for &distance in distances {
+    let header = [
+        "distance / r",
+        "wrong hit/miss: naive f32",
+        "stable f32",
+        "naive f64",
+        "stable f64",
+        "mean hit-point error / r: naive f32",
+        "stable f32",
+    ];
+    let rows = distances.iter().map(|&distance| {
         let row = far_sphere_sweep(distance, rays, 2);
         let pct = |x: f64| format!("{:.2} %", 100.0 * x);
-        let _ = writeln!(
-            out,
-            "| {} | {} | {} | {} | {} | {:.1e} | {:.1e} |",
-            if distance.log10().fract() == 0.0 { format!("{distance:.0e}") } else { format!("{distance}") },
-            pct(row.wrong_hit_or_miss[0]),
-            pct(row.wrong_hit_or_miss[1]),
-            pct(row.wrong_hit_or_miss[2]),
-            pct(row.wrong_hit_or_miss[3]),
-            row.mean_point_error_in_radii[0],
-            row.mean_point_error_in_radii[1],
-        );
-    }
-    out
+        let label = if distance.log10().fract() == 0.0 { format!("{distance:.0e}") } else { format!("{distance}") };
+        let mut cells = vec![label];
+        cells.extend(row.wrong_hit_or_miss.iter().map(|&x| pct(x)));
+        cells.extend(row.mean_point_error_in_radii[..2].iter().map(|e| format!("{e:.1e}")));
+        cells
+    });
+    markdown_table(&header, rows)
 }
 
 /// A realistic batch for timing: `n` camera rays from the origin through a 60° field of view, each
@@ -469,6 +533,12 @@ pub fn camera_batch(n: usize, seed: u64) -> Vec<(Ray<f64>, Sphere<f64>)> {
 }
 
 /// Distances of the far-sphere sweep in the notes.
+///
+/// # Examples
+/// ```
+/// use hw3::q2_ray_sphere::catalogue::SWEEP_DISTANCES;
+/// assert!(SWEEP_DISTANCES.windows(2).all(|w| w[0] < w[1]));
+/// ```
 pub const SWEEP_DISTANCES: [f64; 5] = [1e2, 1e3, 4096.0, 1e4, 1e5];
 
 #[cfg(test)]

@@ -5,18 +5,28 @@ use super::catalogue::{self, Outcome, VARIANTS, variant_label};
 use super::reflection::{Scenario, SpawnPolicy, self_hit_rate};
 use super::{closest_approach, worked_example};
 use crate::geometry::sphere::{first_hit_stable, roots_stable};
-use crate::plot::{self, Figure, PALETTE, PlotError, err};
+use crate::plot::{
+    self, Axis, Chart, Dots, Figure, Legend, LegendMark, PALETTE, PlotError, Series, err, markdown_table,
+};
+use crate::{data, stats};
 use glam::DVec3;
 use plotters::coord::Shift;
 use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 
-type Chart<'a, 'b> = ChartContext<'a, SVGBackend<'b>, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
+type Diagram<'a, 'b> = ChartContext<'a, SVGBackend<'b>, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
 
 /// Every Q2 figure, as written to `docs/figures/`.
 ///
 /// # Errors
 /// [`PlotError`] if drawing fails.
+///
+/// # Examples
+/// ```
+/// let figures = hw3::q2_ray_sphere::figures().unwrap();
+/// assert!(figures.iter().any(|f| f.file_name == "q2_reflection.svg"));
+/// assert!(figures.iter().any(|f| f.file_name == "q2_catalogue.md"));
+/// ```
 pub fn figures() -> Result<Vec<Figure>, PlotError> {
     let mut figures = vec![
         plot::svg_figure("q2_reflection.svg", (560, 360), draw_reflection)?,
@@ -34,7 +44,10 @@ pub fn figures() -> Result<Vec<Figure>, PlotError> {
     Ok(figures)
 }
 
-fn cross_section<'a, 'b>(root: &'a DrawingArea<SVGBackend<'b>, Shift>, caption: &str) -> Result<Chart<'a, 'b>, String> {
+fn cross_section<'a, 'b>(
+    root: &'a DrawingArea<SVGBackend<'b>, Shift>,
+    caption: &str,
+) -> Result<Diagram<'a, 'b>, String> {
     let area = root.titled(caption, ("sans-serif", 16)).map_err(err)?;
     let (width, height) = area.dim_in_pixel();
     let (margin, x_labels, y_labels) = (6, 20, 26);
@@ -67,7 +80,7 @@ fn cross_section<'a, 'b>(root: &'a DrawingArea<SVGBackend<'b>, Shift>, caption: 
     Ok(chart)
 }
 
-fn arrow(chart: &mut Chart<'_, '_>, from: DVec3, to: DVec3, color: RGBColor) -> Result<(), String> {
+fn arrow(chart: &mut Diagram<'_, '_>, from: DVec3, to: DVec3, color: RGBColor) -> Result<(), String> {
     chart.draw_series(LineSeries::new([(from.x, from.y), (to.x, to.y)], color.stroke_width(2))).map_err(err)?;
     let back = (from - to).normalize() * 0.25;
     let side = DVec3::new(-back.y, back.x, 0.0) * 0.4;
@@ -76,13 +89,13 @@ fn arrow(chart: &mut Chart<'_, '_>, from: DVec3, to: DVec3, color: RGBColor) -> 
     Ok(())
 }
 
-fn label(chart: &mut Chart<'_, '_>, at: (f64, f64), text: &str, color: RGBColor) -> Result<(), String> {
+fn label(chart: &mut Diagram<'_, '_>, at: (f64, f64), text: &str, color: RGBColor) -> Result<(), String> {
     let style = TextStyle::from(("sans-serif", 13)).color(&color);
     chart.draw_series(std::iter::once(Text::new(text.to_string(), at, style))).map_err(err)?;
     Ok(())
 }
 
-fn dot(chart: &mut Chart<'_, '_>, at: DVec3, color: RGBColor) -> Result<(), String> {
+fn dot(chart: &mut Diagram<'_, '_>, at: DVec3, color: RGBColor) -> Result<(), String> {
     chart.draw_series(std::iter::once(Circle::new((at.x, at.y), 4, color.filled()))).map_err(err)?;
     Ok(())
 }
@@ -157,26 +170,20 @@ struct CostTable {
 }
 
 impl CostTable {
-    const CSV: &'static str = concat!(env!("CARGO_MANIFEST_DIR"), "/docs/data/q2_cost.csv");
-
+    /// The committed measurements; `None` when the file holds no intersection timing.
     fn load() -> Option<Self> {
-        let text = std::fs::read_to_string(Self::CSV).ok()?;
-        let mut meta = String::new();
-        let mut rows = Vec::new();
-        for line in text.lines() {
-            if let Some(comment) = line.strip_prefix('#') {
-                meta.push_str(comment.trim());
-                continue;
-            }
-            let fields: Vec<&str> = line.split(',').collect();
-            if let [kind, variant, median, ratio] = fields[..]
-                && let (Ok(median_ns), Ok(ratio)) = (median.parse(), ratio.parse())
-            {
-                let (kind, variant) = (kind.to_string(), variant.to_string());
-                rows.push(CostRow { kind, variant, median_ns, ratio });
-            }
-        }
-        Some(Self { rows, meta })
+        let csv = data::csv(data::Q2_COST);
+        let rows: Vec<CostRow> = csv
+            .records
+            .iter()
+            .filter_map(|fields| {
+                let [kind, variant, median, ratio] = fields[..] else { return None };
+                let (median_ns, ratio) = (median.parse().ok()?, ratio.parse().ok()?);
+                Some(CostRow { kind: kind.to_string(), variant: variant.to_string(), median_ns, ratio })
+            })
+            .collect();
+        let meta = csv.comments.concat();
+        rows.iter().any(|r| r.kind == "intersect").then_some(Self { rows, meta })
     }
 
     fn intersections(&self) -> impl Iterator<Item = &CostRow> {
@@ -193,34 +200,40 @@ impl CostTable {
             .filter(|r| !r.case.beyond_f32)
             .map(|r| Outcome::error(r.outcomes[index]))
             .collect();
-        errors.sort_by(f64::total_cmp);
-        Some((*errors.last()?, errors[errors.len() / 2]))
+        let median = (!errors.is_empty()).then(|| stats::median(&mut errors))?;
+        Some((*errors.last()?, median))
     }
 
     fn markdown(&self) -> String {
-        let mut out = String::from(
-            "| method | median ns / call | time vs naive f32 | worst catalogue error (no † rows) | median catalogue error |\n\
-             |---|---|---|---|---|\n",
-        );
-        for row in self.intersections() {
+        let header = [
+            "method",
+            "median ns / call",
+            "time vs naive f32",
+            "worst catalogue error (no † rows)",
+            "median catalogue error",
+        ];
+        let intersections = self.intersections().map(|row| {
             let (worst, median) = Self::errors(&row.variant)
                 .map_or(("n/a".into(), "n/a".into()), |(w, m)| (format!("{w:.1e}"), format!("{m:.1e}")));
-            let (name, ns, ratio) = (&row.variant, row.median_ns, row.ratio);
-            out.push_str(&format!("| {name} | {ns:.2} | {ratio:.2}× | {worst} | {median} |\n"));
-        }
-        out.push_str(
-            "\n| spawn policy (f32 hit + reflect) | median ns / call | time vs AtComputedPoint | self-hits, 20000 near rays |\n\
-             |---|---|---|---|\n",
-        );
-        for row in self.rows.iter().filter(|r| r.kind == "spawn") {
+            [row.variant.clone(), format!("{:.2}", row.median_ns), format!("{:.2}×", row.ratio), worst, median]
+        });
+        let mut out = markdown_table(&header, intersections);
+        let header = [
+            "spawn policy (f32 hit + reflect)",
+            "median ns / call",
+            "time vs AtComputedPoint",
+            "self-hits, 20000 near rays",
+        ];
+        let spawns = self.rows.iter().filter(|r| r.kind == "spawn").map(|row| {
             let policy = SpawnPolicy::ALL.into_iter().find(|p| format!("{p:?}") == row.variant);
             let rate = policy.map_or("n/a".into(), |p| {
                 let count = self_hit_rate::<f32>(Scenario::Near, p, 20_000, 11);
                 format!("{:.2} %", 100.0 * count.self_hits as f64 / count.reflected as f64)
             });
-            let (name, ns, ratio) = (&row.variant, row.median_ns, row.ratio);
-            out.push_str(&format!("| {name} | {ns:.2} | {ratio:.2}× | {rate} |\n"));
-        }
+            [row.variant.clone(), format!("{:.2}", row.median_ns), format!("{:.2}×", row.ratio), rate]
+        });
+        out.push('\n');
+        out.push_str(&markdown_table(&header, spawns));
         out.push_str(&format!("\nMeasured by `cargo bench --bench q2_cost`: {}\n", self.meta));
         out
     }
@@ -233,41 +246,41 @@ impl CostTable {
             })
             .collect();
         let max_ns = points.iter().map(|p| p.1).fold(1.0, f64::max) * 1.3;
-        let mut chart = ChartBuilder::on(root)
-            .caption("Q2: catalogue error vs time per intersection", ("sans-serif", 16))
-            .margin(8)
-            .x_label_area_size(36)
-            .y_label_area_size(56)
-            .build_cartesian_2d(0.0..max_ns, (1e-17..1e-2).log_scale())
-            .map_err(err)?;
-        chart
-            .configure_mesh()
-            .x_desc("median ns per call (one run)")
-            .y_desc("relative error of t (0 drawn at 1e-17)")
-            .y_label_formatter(&|y| format!("{y:.0e}"))
-            .label_style(("sans-serif", 11))
-            .draw()
-            .map_err(err)?;
-        for (i, (name, ns, worst, median)) in points.iter().enumerate() {
-            let color = PALETTE[i % PALETTE.len()];
-            chart
-                .draw_series([
-                    Circle::new((*ns, *worst), 5, color.filled()),
-                    Circle::new((*ns, *median), 5, color.stroke_width(2)),
-                ])
-                .map_err(err)?
-                .label(name.as_str())
-                .legend(move |(x, y)| Circle::new((x, y), 4, color.filled()));
+        // Per variant: a filled dot at its worst error (with the legend entry), a ring at its median.
+        let series = points
+            .iter()
+            .enumerate()
+            .flat_map(|(i, (name, ns, worst, median))| {
+                let colour = PALETTE[i % PALETTE.len()];
+                let worst = Series {
+                    legend: LegendMark::Dot { dx: 0, radius: 4 },
+                    ..Series::dots(name.as_str(), vec![(*ns, *worst)], colour, 5)
+                };
+                let median = Series {
+                    label: None,
+                    dots: Some(Dots { radius: 5, ring: Some(2) }),
+                    ..Series::dots("", vec![(*ns, *median)], colour, 5)
+                };
+                [worst, median]
+            })
+            .collect();
+        Chart {
+            caption_size: 16,
+            margin: 8,
+            label_areas: (36, 56),
+            label_size: 11,
+            series,
+            legend: Some(Legend { position: Some(SeriesLabelPosition::LowerRight), font: 11, opacity: 0.9 }),
+            ..Chart::new(
+                "Q2: catalogue error vs time per intersection",
+                Axis::linear(0.0, max_ns, "median ns per call (one run)"),
+                Axis {
+                    format: Some(|y| format!("{y:.0e}")),
+                    ..Axis::log(1e-17, 1e-2, "relative error of t (0 drawn at 1e-17)")
+                },
+            )
         }
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::LowerRight)
-            .background_style(WHITE.mix(0.9))
-            .border_style(BLACK)
-            .label_font(("sans-serif", 11))
-            .draw()
-            .map_err(err)?;
-        Ok(())
+        .draw(root)
     }
 }
 

@@ -15,6 +15,12 @@ use crate::rng::{self, Generator};
 use glam::DVec3;
 
 /// Where a secondary ray starts and which `t` it accepts.
+///
+/// # Examples
+/// ```
+/// use hw3::q2_ray_sphere::reflection::SpawnPolicy;
+/// assert_eq!(SpawnPolicy::ALL[0], SpawnPolicy::AtComputedPoint);
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum SpawnPolicy {
     /// The homework's ray: origin `e + d t_i`, accept `t > 0`.
@@ -28,11 +34,30 @@ pub enum SpawnPolicy {
 
 impl SpawnPolicy {
     /// All policies, in the order the notes present them.
+    ///
+    /// # Examples
+    /// ```
+    /// use hw3::q2_ray_sphere::reflection::SpawnPolicy;
+    /// assert_eq!(SpawnPolicy::ALL.len(), 3);
+    /// assert_eq!(SpawnPolicy::ALL[2], SpawnPolicy::ReprojectAndOffset);
+    /// ```
     pub const ALL: [SpawnPolicy; 3] =
         [SpawnPolicy::AtComputedPoint, SpawnPolicy::FixedEpsilon, SpawnPolicy::ReprojectAndOffset];
 }
 
 /// A reflection at a hit: the surface frame and the reflected ray with its minimum accepted `t`.
+///
+/// # Examples
+/// ```
+/// use glam::DVec3;
+/// use hw3::geometry::{Ray, Sphere};
+/// use hw3::q2_ray_sphere::reflection::{SpawnPolicy, reflect_at_hit};
+/// let ray = Ray::<f64>::new(DVec3::new(0.0, 0.0, -5.0), DVec3::Z).unwrap();
+/// let sphere = Sphere::<f64>::new(DVec3::ZERO, 1.0).unwrap();
+/// let bounce = reflect_at_hit(&ray, &sphere, 4.0, SpawnPolicy::FixedEpsilon);
+/// assert_eq!(bounce.point, DVec3::new(0.0, 0.0, -1.0));
+/// assert_eq!(bounce.t_min, 1e-4);
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Reflection<T: Real> {
     /// The hit point as the policy computes it (reprojected for [`SpawnPolicy::ReprojectAndOffset`]).
@@ -83,6 +108,13 @@ pub fn reflect_at_hit<T: Real>(ray: &Ray<T>, sphere: &Sphere<T>, t: T, policy: S
 }
 
 /// A family of random primary rays for the self-intersection experiment.
+///
+/// # Examples
+/// ```
+/// use hw3::q2_ray_sphere::reflection::{Scenario, SpawnPolicy, self_hit_rate};
+/// let far = self_hit_rate::<f64>(Scenario::Far, SpawnPolicy::ReprojectAndOffset, 200, 3);
+/// assert_eq!(far.self_hits, 0);
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Scenario {
     /// Radius log-uniform in [0.1, 10], centre in [−10, 10]³, eye 1.5–20 radii away.
@@ -99,6 +131,13 @@ pub enum Scenario {
 
 impl Scenario {
     /// All scenarios.
+    ///
+    /// # Examples
+    /// ```
+    /// use hw3::q2_ray_sphere::reflection::Scenario;
+    /// assert_eq!(Scenario::ALL.len(), 5);
+    /// assert_eq!(Scenario::ALL[0], Scenario::Near);
+    /// ```
     pub const ALL: [Scenario; 5] =
         [Scenario::Near, Scenario::Far, Scenario::HugeSphere, Scenario::TinySphere, Scenario::Translated];
 
@@ -149,6 +188,13 @@ impl Scenario {
 }
 
 /// Outcome of [`self_hit_rate`].
+///
+/// # Examples
+/// ```
+/// use hw3::q2_ray_sphere::reflection::{Scenario, SpawnPolicy, self_hit_rate};
+/// let count = self_hit_rate::<f64>(Scenario::Near, SpawnPolicy::ReprojectAndOffset, 100, 2);
+/// assert!(count.reflected > 0 && count.self_hits <= count.reflected);
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct SelfHitCount {
     /// Primary rays whose stable first hit was found (the others are skipped).

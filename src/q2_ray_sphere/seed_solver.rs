@@ -7,6 +7,13 @@ use crate::real::Real;
 use std::fmt;
 
 /// Which branch of the homework's case analysis a ray took.
+///
+/// # Examples
+/// ```
+/// use hw3::q2_ray_sphere::{seed_solver::{SeedBranch, seed_trace}, worked_example};
+/// let (ray, sphere) = worked_example();
+/// assert_eq!(seed_trace(&ray, &sphere).branch, SeedBranch::TwoRootsT2Smaller);
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum SeedBranch {
     /// `4AC > B²`: no real roots, no intersection.
@@ -21,6 +28,15 @@ pub enum SeedBranch {
 }
 
 /// Every intermediate value of the homework's algorithm for one ray, for traces and snapshots.
+///
+/// # Examples
+/// ```
+/// use hw3::q2_ray_sphere::{seed_solver::seed_trace, worked_example};
+/// let (ray, sphere) = worked_example();
+/// let trace = seed_trace(&ray, &sphere);
+/// assert_eq!((trace.a, trace.b, trace.c, trace.discriminant), (1.0, -10.0, 22.0, 12.0));
+/// assert_eq!(trace.chosen, Some(trace.t2));
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SeedTrace<T: Real> {
     /// `A = d·d`.

@@ -5,6 +5,13 @@ use crate::geometry::InputError;
 use serde_json::{Value, json};
 
 /// Why `hw3 kd-trace` rejected its input (the CLI exits with status 2).
+///
+/// # Examples
+/// ```
+/// use hw3::q3_kd_traversal::{TraceInputError, parse_vec2};
+/// let error = parse_vec2("origin", "5;0").unwrap_err();
+/// assert!(matches!(error, TraceInputError::Parse { name: "origin", .. }));
+/// ```
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum TraceInputError {
     /// An argument is not two comma-separated numbers.

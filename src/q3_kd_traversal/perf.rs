@@ -2,11 +2,12 @@
 //! (`docs/data/q3_kdtree_perf.csv`, written by `cargo bench --bench q3_kdtree`), so that
 //! `cargo run` stays deterministic: timings come only from the benchmark.
 
-use crate::plot::{Figure, PALETTE, PlotError, err, svg_figure};
+use crate::data;
+use crate::plot::{Axis, Chart, Dots, Figure, Legend, LegendMark, PALETTE, PlotError, Series, svg_figure};
 use plotters::prelude::*;
 
 /// The committed measurements.
-const CSV: &str = include_str!("../../docs/data/q3_kdtree_perf.csv");
+const CSV: &str = data::Q3_KDTREE_PERF;
 
 /// Which ray set a panel shows.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -49,11 +50,12 @@ impl Row {
     }
 }
 
-fn rows(csv: &str) -> Vec<Row> {
-    csv.lines()
-        .skip(1)
-        .filter_map(|line| {
-            let fields: Vec<String> = line.split(',').map(str::to_string).collect();
+fn rows(text: &str) -> Vec<Row> {
+    data::csv(text)
+        .records
+        .into_iter()
+        .filter_map(|fields| {
+            let fields: Vec<String> = fields.into_iter().map(str::to_string).collect();
             Some(Row { density: fields.first()?.clone(), n: fields.get(1)?.parse().ok()?, fields })
         })
         .collect()
@@ -80,51 +82,43 @@ fn panel<DB: DrawingBackend>(
         Rays::Camera => "camera rays 512×512: µs per ray vs N (1 thread)",
         Rays::Random => "10⁶ random rays: µs per ray vs N (1 thread)",
     };
-    let mut chart = ChartBuilder::on(area)
-        .caption(title, ("sans-serif", 15))
-        .margin(12)
-        .x_label_area_size(36)
-        .y_label_area_size(52)
-        .build_cartesian_2d((50.0..2.0 * n_max).log_scale(), (0.05..5000.0).log_scale())
-        .map_err(err)?;
-    chart
-        .configure_mesh()
-        .x_desc("N spheres")
-        .y_desc("µs per ray")
-        .label_style(("sans-serif", 12))
-        .x_label_formatter(&|v| format!("{v:.0e}"))
-        .y_label_formatter(&|v| format!("{v}"))
-        .draw()
-        .map_err(err)?;
     // Every method at fixed k (the note's main workload); the kd-tree also at fixed volume
     // fraction, thinner and in sky blue, to show the density scaling.
-    let series = METHODS.iter().map(|m| (m, "fixed_k")).chain(std::iter::once((&METHODS[0], "fixed_volume")));
-    for (method, density) in series {
-        let column = match rays {
-            Rays::Camera => method.camera_column,
-            Rays::Random => method.random_column,
-        };
-        let (colour, width, scaling) = match density {
-            "fixed_k" => (PALETTE[method.colour], 2, "fixed k"),
-            _ => (PALETTE[5], 1, "fixed volume"),
-        };
-        let points: Vec<(f64, f64)> =
-            rows.iter().filter(|r| r.density == density).filter_map(|r| Some((r.n, r.us_per_ray(column)?))).collect();
-        chart
-            .draw_series(LineSeries::new(points.clone(), colour.stroke_width(width)))
-            .map_err(err)?
-            .label(format!("{}, {scaling}", method.label))
-            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], colour.stroke_width(2)));
-        chart.draw_series(points.into_iter().map(|p| Circle::new(p, 3, colour.filled()))).map_err(err)?;
+    let methods = METHODS.iter().map(|m| (m, "fixed_k")).chain(std::iter::once((&METHODS[0], "fixed_volume")));
+    let series = methods
+        .map(|(method, density)| {
+            let column = match rays {
+                Rays::Camera => method.camera_column,
+                Rays::Random => method.random_column,
+            };
+            let (colour, width, scaling) = match density {
+                "fixed_k" => (PALETTE[method.colour], 2, "fixed k"),
+                _ => (PALETTE[5], 1, "fixed volume"),
+            };
+            let points = rows
+                .iter()
+                .filter(|r| r.density == density)
+                .filter_map(|r| Some((r.n, r.us_per_ray(column)?)))
+                .collect();
+            Series {
+                dots: Some(Dots { radius: 3, ring: None }),
+                legend: LegendMark::Line { length: 18, width: 2 },
+                ..Series::line(format!("{}, {scaling}", method.label), points, colour, width)
+            }
+        })
+        .collect();
+    Chart {
+        caption_size: 15,
+        label_areas: (36, 52),
+        series,
+        legend: Some(Legend { position: Some(SeriesLabelPosition::UpperRight), font: 11, opacity: 0.9 }),
+        ..Chart::new(
+            title,
+            Axis { format: Some(|v| format!("{v:.0e}")), ..Axis::log(50.0, 2.0 * n_max, "N spheres") },
+            Axis { format: Some(|v| format!("{v}")), ..Axis::log(0.05, 5000.0, "µs per ray") },
+        )
     }
-    chart
-        .configure_series_labels()
-        .position(SeriesLabelPosition::UpperRight)
-        .label_font(("sans-serif", 11))
-        .background_style(WHITE.mix(0.9))
-        .border_style(BLACK)
-        .draw()
-        .map_err(err)
+    .draw(area)
 }
 
 #[cfg(test)]

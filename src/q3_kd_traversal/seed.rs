@@ -11,6 +11,12 @@ use std::fmt;
 const INF: f64 = f64::INFINITY;
 
 /// One of the seed's worked cases: its label, its ray, and the seed's handwritten steps.
+///
+/// # Examples
+/// ```
+/// let cases = hw3::q3_kd_traversal::seed::cases();
+/// assert_eq!(cases.iter().map(|c| c.label).collect::<Vec<_>>(), ["d", "e"]);
+/// ```
 #[derive(Debug, Clone, PartialEq)]
 pub struct SeedCase {
     /// The homework's sub-question (`"d"`, `"e"`).
@@ -75,6 +81,15 @@ pub fn cases() -> Vec<SeedCase> {
 
 /// One row of the step-by-step comparison: our step and the seed's at the same position (leaf
 /// steps, which the seed does not write, are left out of ours).
+///
+/// # Examples
+/// ```
+/// use hw3::q3_kd_traversal::{Node2, seed, traverse};
+/// let case = &seed::cases()[0]; // (d)
+/// let rows = seed::compare(&traverse(&Node2::homework(), &case.ray), &case.handwritten);
+/// assert_eq!(rows[0].index, 1);
+/// assert!(rows[0].agrees()); // both start with the root plane at t = 2
+/// ```
 #[derive(Debug, Clone, PartialEq)]
 pub struct StepComparison {
     /// 1-based position.

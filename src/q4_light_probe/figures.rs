@@ -11,7 +11,7 @@ use glam::DVec3;
 use plotters::prelude::*;
 
 /// The benchmark's committed results (written by `cargo bench --bench q4_irradiance`).
-const ACCURACY_CSV: &str = include_str!("../../docs/data/q4_accuracy_time.csv");
+const ACCURACY_CSV: &str = crate::data::Q4_ACCURACY_TIME;
 
 /// Every Q4 figure, deterministic bytes.
 ///
@@ -261,10 +261,10 @@ struct Row {
 }
 
 fn parse_csv(text: &str) -> Vec<Row> {
-    text.lines()
-        .skip(1)
-        .filter_map(|line| {
-            let f: Vec<&str> = line.split(',').collect();
+    crate::data::csv(text)
+        .records
+        .into_iter()
+        .filter_map(|f| {
             Some(Row {
                 map: f.first()?.to_string(),
                 method: f.get(1)?.to_string(),

@@ -407,7 +407,10 @@ impl<'a> Irradiance<'a> {
         sum * (TAU / samples as f64)
     }
 
-    /// A cosine-distributed direction around `n` (pdf `cos θ / π`).
+    /// A cosine-distributed direction around `n` (pdf `cos θ / π`). The same map as
+    /// [`crate::render::sampling::cosine_direction`], kept as its own copy because its arithmetic
+    /// differs in the last bits (the normal's term is added first, and the result is not
+    /// renormalised), and the committed Q4 figures and study numbers follow these bits.
     fn cosine_direction(n: DVec3, rng: &mut Generator) -> DVec3 {
         let (t1, t2) = n.any_orthonormal_pair();
         let u1 = uniform(rng);

@@ -2,7 +2,8 @@
 
 use glam::DVec3;
 
-/// `n` unit normals spread evenly over the sphere (a Fibonacci spiral), deterministic.
+/// `n` unit normals spread evenly over the sphere (a Fibonacci spiral), deterministic: the
+/// renderer's [`fibonacci_sphere`](crate::render::sampling::fibonacci_sphere), bit for bit.
 ///
 /// # Examples
 /// ```
@@ -12,13 +13,5 @@ use glam::DVec3;
 /// ```
 #[must_use]
 pub fn fibonacci_normals(n: usize) -> Vec<DVec3> {
-    let golden = std::f64::consts::PI * (3.0 - 5f64.sqrt());
-    (0..n)
-        .map(|i| {
-            let z = 1.0 - (2 * i + 1) as f64 / n as f64;
-            let r = (1.0 - z * z).max(0.0).sqrt();
-            let phi = golden * i as f64;
-            DVec3::new(r * phi.cos(), r * phi.sin(), z)
-        })
-        .collect()
+    crate::render::sampling::fibonacci_sphere(n)
 }

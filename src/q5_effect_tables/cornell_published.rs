@@ -17,14 +17,17 @@
 //! coincident surfaces do not tie (a tie would go to the lower object index, hiding the light
 //! behind the ceiling for half the rays).
 
-use super::experiments::ExperimentError;
-use super::experiments::{GREEN, RED, WHITE};
+use super::error::ExperimentError;
 use super::radiosity::{Mesh, Solver, System};
+use super::scenes::{GREEN, RED, WHITE};
 use crate::geometry::{InputError, Ray};
 use crate::render::analysis::analyze;
 use crate::render::integrator::Integrator;
-use crate::render::scene::{Camera, Material, Object, Scene, Shape};
 use crate::render::{Settings, render};
+use crate::render::{
+    camera::Camera,
+    scene::{Material, Object, Scene, Shape},
+};
 use glam::DVec3;
 
 /// Radiance of the light (Mitsuba 3's RGB stand-in for the published spectrum).
@@ -169,6 +172,14 @@ pub fn radiosity_at_probes(n: usize, samples: usize) -> Result<Vec<f64>, Experim
 ///
 /// # Errors
 /// [`ExperimentError`] if the scene, the system or the render fails (never for these numbers).
+///
+/// # Examples
+/// ```no_run
+/// // Not run here: 12 × 12 patches per quad and a 32-spp render; `tests/docs.rs` compares the figure
+/// // built from it with the committed one.
+/// let both = hw3::q5_effect_tables::cornell_published::side_by_side(200).unwrap();
+/// assert_eq!(both.dimensions(), (400, 200));
+/// ```
 pub fn side_by_side(size: u32) -> Result<image::RgbImage, ExperimentError> {
     let scene = scene()?;
     let system = System::new(&scene, Mesh::new(&scene, 12)?, 1)?;
@@ -197,6 +208,13 @@ pub const LEVELS: [usize; 4] = [4, 6, 8, 12];
 ///
 /// # Errors
 /// As [`radiosity_at_probes`].
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::cornell_published::{radiosity_at_probes, relative_errors};
+/// let itself = radiosity_at_probes(2, 1).unwrap();
+/// assert!(relative_errors(2, &itself).unwrap().iter().all(|&e| e == 0.0));
+/// ```
 pub fn relative_errors(n: usize, reference: &[f64]) -> Result<Vec<f64>, ExperimentError> {
     Ok(radiosity_at_probes(n, 1)?.iter().zip(reference).map(|(v, r)| v / r - 1.0).collect())
 }
@@ -206,6 +224,14 @@ pub fn relative_errors(n: usize, reference: &[f64]) -> Result<Vec<f64>, Experime
 ///
 /// # Errors
 /// As [`radiosity_at_probes`].
+///
+/// # Examples
+/// ```no_run
+/// // Not run here: a 4096-sample path-traced reference and radiosity up to 12 × 12 patches;
+/// // `tests/docs.rs` compares it with the committed `q5_cornell_published.md`.
+/// let table = hw3::q5_effect_tables::cornell_published::validation_table().unwrap();
+/// assert!(table.contains("| 12 |"));
+/// ```
 pub fn validation_table() -> Result<String, ExperimentError> {
     let (scene, probes) = (scene()?, wall_probes());
     let reference = super::photon_cornell::reference(&scene, &probes, REFERENCE_SPP);

@@ -11,9 +11,12 @@
 //!   reaches directly (the light is one-sided and the mirror is behind it), so the mirror shows
 //!   `LDS+E` and no `LS…` path.
 
-use super::experiments::{RED, WHITE};
+use super::scenes::{RED, WHITE};
 use crate::geometry::{InputError, Ray, Sphere};
-use crate::render::scene::{Camera, Material, Object, Scene};
+use crate::render::{
+    camera::Camera,
+    scene::{Material, Object, Scene},
+};
 use glam::DVec3;
 
 /// Radiance of the small lights of the open scenes (brighter than the box's: one light, no walls).
@@ -160,7 +163,7 @@ mod tests {
         for ray in mirror_probes() {
             let hit = room.closest_hit(&ray, 0.0, f64::INFINITY).unwrap();
             assert_eq!(hit.object, 2, "the mirror");
-            let next = crate::render::integrator::reflected_ray(&ray, &hit);
+            let next = crate::render::bsdf::reflected_ray(&ray, &hit);
             assert_eq!(room.closest_hit(&next, 0.0, f64::INFINITY).unwrap().object, 0, "then the panel");
         }
         let ball = lit_floor(WHITE_FLOOR, true).unwrap();

@@ -2,28 +2,25 @@
 //! and a number with a threshold, measured for every method against the path-traced reference.
 
 use super::effect_scenes::{self, GLOSSY_FLOOR, WHITE_FLOOR, lit_floor, mirror_room};
-use super::radiosity::{Mesh, RadiosityError, Solver, System, relative_errors};
-use super::{EFFECTS, LightKind, METHODS, SeedAnswer, Verdict, decide, seed_answer};
-use crate::geometry::{InputError, Ray};
-use crate::plot::{self, Figure, PALETTE, PlotError, err};
-use crate::render::analysis::{Pass, Passes, analyze};
-use crate::render::integrator::{Integrator, Sampler, Tracer, dielectric_split, facing_normal, reflected_ray};
+use super::error::ExperimentError;
+use super::grammar::{EFFECTS, LightKind, METHODS, SeedAnswer, Verdict, decide, seed_answer};
+use super::radiosity::{Mesh, Solver, System};
+use super::scenes::{bleeding_region, cornell_box, glow_region, grey};
+use crate::geometry::Ray;
 use crate::render::photon::{PhotonError, PhotonMap, PhotonMaps, trace_photons};
-use crate::render::scene::{Camera, Material, Object, Scene};
-use crate::render::{Settings, render};
+use crate::render::scene::{Material, Scene};
+use crate::render::{
+    analysis::analyze,
+    passes::{Pass, Passes},
+};
+use crate::render::{
+    bsdf::{dielectric_split, facing_normal, reflected_ray},
+    integrator::{Integrator, Tracer},
+    sampling::Sampler,
+};
 use glam::DVec3;
-use plotters::prelude::*;
 use serde::Serialize;
 use std::sync::OnceLock;
-
-/// Reflectances of the Cornell box walls (RGB stand-ins for the measured spectra, as in Tungsten).
-pub const WHITE: DVec3 = DVec3::new(0.725, 0.71, 0.68);
-/// Red wall.
-pub const RED: DVec3 = DVec3::new(0.63, 0.065, 0.05);
-/// Green wall.
-pub const GREEN: DVec3 = DVec3::new(0.14, 0.45, 0.091);
-/// Radiance of the ceiling light.
-pub const LIGHT_RADIANCE: f64 = 12.0;
 
 /// Radiosity mesh used by the measured table: patches per quad edge and form-factor samples per
 /// patch edge.
@@ -34,104 +31,6 @@ pub const REFERENCE_SPP: u32 = 1024;
 pub const YES_FRACTION: f64 = 0.8;
 /// A cell is No when it captures at most this fraction.
 pub const NO_FRACTION: f64 = 0.2;
-
-/// The six inward-facing walls of the box `[−1, 1]³`, floor, ceiling, back, left, right, front.
-fn walls(albedos: [DVec3; 6]) -> Vec<Object> {
-    let (x, y, z) = (DVec3::X * 2.0, DVec3::Y * 2.0, DVec3::Z * 2.0);
-    let low = DVec3::splat(-1.0);
-    let geometry = [
-        (low, z, x),
-        (DVec3::new(-1.0, 1.0, -1.0), x, z),
-        (low, x, y),
-        (low, y, z),
-        (DVec3::new(1.0, -1.0, -1.0), z, y),
-        (DVec3::new(-1.0, -1.0, 1.0), y, x),
-    ];
-    geometry
-        .iter()
-        .zip(albedos)
-        .map(|(&(corner, u, v), albedo)| Object::quad(corner, u, v, Material::Diffuse { albedo }))
-        .collect()
-}
-
-/// A closed box `[−1, 1]³` with every wall of reflectance `albedo`, camera inside (the furnace).
-///
-/// # Errors
-/// [`InputError`] for an albedo outside `[0, 1]`.
-pub fn closed_box(albedo: DVec3) -> Result<Scene, InputError> {
-    let camera = Camera::looking_at(DVec3::new(0.0, 0.0, 0.9), DVec3::ZERO, 60.0);
-    Scene::new(camera, walls([albedo; 6]), vec![], None, DVec3::ZERO)
-}
-
-/// A Cornell-like box `[−1, 1]³`, open at the front (z = 1): white floor, ceiling and back, green
-/// right wall, a left wall that is red (`red_left`) or white, a 0.5 × 0.5 light under the ceiling
-/// facing down, and a white block on the floor. The ceiling is lit only indirectly (the light faces
-/// away from it): the ambient-glow region.
-///
-/// # Errors
-/// Never for the built-in numbers.
-pub fn cornell_box(red_left: bool) -> Result<Scene, InputError> {
-    let left = if red_left { RED } else { WHITE };
-    let mut objects = walls([WHITE, WHITE, WHITE, left, GREEN, WHITE]);
-    objects.pop(); // open front: the camera looks in
-    objects.push(Object::quad(
-        DVec3::new(-0.25, 0.99, -0.25),
-        DVec3::X * 0.5,
-        DVec3::Z * 0.5,
-        Material::Emitter { radiance: DVec3::splat(LIGHT_RADIANCE) },
-    ));
-    let (x0, x1, y0, y1, z0, z1) = (0.1, 0.7, -1.0, -0.4, -0.3, 0.3);
-    let (w, h) = (DVec3::X * (x1 - x0), DVec3::Y * (y1 - y0));
-    let d = DVec3::Z * (z1 - z0);
-    let white = Material::Diffuse { albedo: WHITE };
-    for (corner, u, v) in [
-        (DVec3::new(x0, y1, z0), d, w),
-        (DVec3::new(x0, y0, z1), w, h),
-        (DVec3::new(x0, y0, z0), h, w),
-        (DVec3::new(x0, y0, z0), d, h),
-        (DVec3::new(x1, y0, z0), h, d),
-    ] {
-        objects.push(Object::quad(corner, u, v, white));
-    }
-    let camera = Camera::looking_at(DVec3::new(0.0, 0.0, 3.4), DVec3::ZERO, 40.0);
-    Scene::new(camera, objects, vec![], None, DVec3::ZERO)
-}
-
-/// Probe rays straight down the normals onto `points` (from 0.05 above): a Lambertian surface
-/// looks the same from every direction, so the normal one will do.
-fn region(points: impl Iterator<Item = DVec3>, normal: DVec3) -> Vec<Ray<f64>> {
-    points.map(|p| Ray { origin: p + normal * 0.05, dir: -normal }).collect()
-}
-
-/// The floor strip beside the left wall (x ∈ [−0.95, −0.65]): where red bleeds.
-fn bleeding_region() -> Vec<Ray<f64>> {
-    region((0..16).map(|k| DVec3::new(-0.95 + 0.1 * (k % 4) as f64, -1.0, -0.75 + 0.1 * (k / 4) as f64)), DVec3::Y)
-}
-
-/// Ceiling points away from the light: no light sees them directly.
-fn glow_region() -> Vec<Ray<f64>> {
-    region((0..16).map(|k| DVec3::new(-0.9 + 0.1 * (k % 4) as f64, 1.0, 0.5 + 0.1 * (k / 4) as f64)), -DVec3::Y)
-}
-
-/// Why an experiment could not run.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-pub enum ExperimentError {
-    /// The radiosity system could not be built.
-    #[error(transparent)]
-    Radiosity(#[from] RadiosityError),
-    /// Photon tracing or a photon-map estimate failed.
-    #[error(transparent)]
-    Photon(#[from] PhotonError),
-    /// A scene failed validation (never for the built-in scenes).
-    #[error(transparent)]
-    Scene(#[from] InputError),
-    /// A figure could not be rendered or encoded.
-    #[error("rendering a figure failed: {0}")]
-    Render(String),
-    /// A table row or column id that [`EFFECTS`] or [`METHODS`] does not list.
-    #[error("no effect or method with id {0:?}")]
-    UnknownId(&'static str),
-}
 
 /// A method that the experiments run.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -206,7 +105,7 @@ fn mean_radiance(scene: &Scene, method: Measured, probes: &[Ray<f64>]) -> Result
             let passes = if method == Measured::PathTracing {
                 reference_passes(scene)
             } else {
-                analyze(scene).plan.for_integrator(integrator)
+                integrator.restrict(analyze(scene).plan)
             };
             let tracer = Tracer::new(scene, passes);
             probes
@@ -237,7 +136,7 @@ fn mean_radiance(scene: &Scene, method: Measured, probes: &[Ray<f64>]) -> Result
 /// The passes of the path-traced reference: the scene's plan with every bounce on, whatever the
 /// planner decides. A caustic needs the bounce off a scene's only diffuse surface, which the
 /// plan (built for eye-ray effects) leaves out when no second diffuse surface exists.
-fn reference_passes(scene: &Scene) -> Passes {
+pub(super) fn reference_passes(scene: &Scene) -> Passes {
     analyze(scene).plan.with(Pass::IndirectBounces, true).with(Pass::SpecularRecursion, true)
 }
 
@@ -256,7 +155,7 @@ struct PhotonEye<'a> {
 impl<'a> PhotonEye<'a> {
     fn new(scene: &'a Scene, maps: &'a PhotonMaps, caustics: bool) -> Self {
         let direct = Integrator::Whitted { max_depth: 0 };
-        Self { scene, tracer: Tracer::new(scene, analyze(scene).plan.for_integrator(direct)), maps, caustics }
+        Self { scene, tracer: Tracer::new(scene, direct.restrict(analyze(scene).plan)), maps, caustics }
     }
 
     /// Radiance along `ray`, following at most `depth` specular bounces.
@@ -321,11 +220,6 @@ pub struct MeasuredCell {
     pub grammar: Verdict,
     /// The seed's answer for the cell (`NotAsked` for the columns the seed does not have).
     pub seed: SeedAnswer,
-}
-
-/// Channel mean of a radiance.
-fn grey(radiance: DVec3) -> f64 {
-    radiance.element_sum() / 3.0
 }
 
 /// (a) Highlight: the radiance of the glossy floor of [`lit_floor`] at the mirror direction of
@@ -411,6 +305,14 @@ pub fn caustic(method: Measured) -> Result<f64, ExperimentError> {
 ///
 /// # Errors
 /// As [`highlight`].
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::experiments::{Measured, bleeding};
+/// // Red light reaches the floor only by a diffuse bounce off the wall: radiosity has it, direct light not.
+/// assert!(bleeding(Measured::Radiosity { subdivisions: 2, samples: 1 }).unwrap() > 0.05);
+/// assert!(bleeding(Measured::Whitted).unwrap().abs() < 1e-12);
+/// ```
 pub fn bleeding(method: Measured) -> Result<f64, ExperimentError> {
     let ratio = |red: bool| -> Result<f64, ExperimentError> {
         let l = mean_radiance(&cornell_box(red)?, method, &bleeding_region())?;
@@ -423,6 +325,13 @@ pub fn bleeding(method: Measured) -> Result<f64, ExperimentError> {
 ///
 /// # Errors
 /// As [`highlight`].
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::experiments::{Measured, glow};
+/// assert!(glow(Measured::Radiosity { subdivisions: 2, samples: 1 }).unwrap() > 0.0);
+/// assert_eq!(glow(Measured::Whitted).unwrap(), 0.0);
+/// ```
 pub fn glow(method: Measured) -> Result<f64, ExperimentError> {
     Ok(grey(mean_radiance(&cornell_box(true)?, method, &glow_region())?))
 }
@@ -471,6 +380,14 @@ pub fn verdict(fraction: f64) -> Verdict {
 ///
 /// # Errors
 /// [`ExperimentError`] if an experiment fails (never for the built-in scenes).
+///
+/// # Examples
+/// ```no_run
+/// // Not run here: 24 cells against a 1024-sample path tracer; `experiments::tests` runs it and
+/// // pins the table.
+/// let cells = hw3::q5_effect_tables::experiments::measured_table().unwrap();
+/// assert_eq!(cells.len(), 24);
+/// ```
 pub fn measured_table() -> Result<Vec<MeasuredCell>, ExperimentError> {
     static TABLE: OnceLock<Result<Vec<MeasuredCell>, ExperimentError>> = OnceLock::new();
     TABLE.get_or_init(measure_table).clone()
@@ -504,6 +421,24 @@ fn measure_table() -> Result<Vec<MeasuredCell>, ExperimentError> {
 }
 
 /// The measured table as markdown.
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::experiments::{MeasuredCell, measured_table_markdown};
+/// use hw3::q5_effect_tables::{SeedAnswer, Verdict};
+/// let cell = MeasuredCell {
+///     effect: "d_caustic",
+///     method: "two_pass",
+///     value: 0.017,
+///     reference: 57.6,
+///     fraction: 0.017 / 57.6,
+///     verdict: Verdict::No,
+///     grammar: Verdict::Impractical,
+///     seed: SeedAnswer::No,
+/// };
+/// let table = measured_table_markdown(&[cell]);
+/// assert!(table.ends_with("| (d caustic) | two_pass | 0.0170 | 57.6000 | 0.000 | No | Impractical | No |\n"));
+/// ```
 #[must_use]
 pub fn measured_table_markdown(cells: &[MeasuredCell]) -> String {
     let mut out = String::from(
@@ -529,117 +464,24 @@ pub fn measured_table_markdown(cells: &[MeasuredCell]) -> String {
 ///
 /// # Errors
 /// As [`System::new`].
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::experiments::cornell_system;
+/// // 11 quads of 2 × 2 patches.
+/// let (_, system) = cornell_system(2, 1).unwrap();
+/// assert_eq!(system.mesh.patches.len(), 44);
+/// ```
 pub fn cornell_system(n: usize, samples: usize) -> Result<(Scene, System), ExperimentError> {
     let scene = cornell_box(true)?;
     let system = System::new(&scene, Mesh::new(&scene, n)?, samples)?;
     Ok((scene, system))
 }
 
-/// Figures: the radiosity Cornell box (PNG), solver convergence (SVG), the measured table and
-/// the grammar tables (markdown).
-///
-/// # Errors
-/// [`PlotError`] if drawing fails.
-pub fn figures() -> Result<Vec<Figure>, PlotError> {
-    let draw_error =
-        |figure: &str, e: &dyn std::fmt::Display| PlotError::Draw { figure: figure.into(), message: e.to_string() };
-    let (scene, system) = cornell_system(8, 2).map_err(|e| draw_error("q5_radiosity_cornell.png", &e))?;
-    let solution = system.solve(Solver::GaussSeidel, 60).pop().unwrap_or_default();
-    let image = system.render(&scene, &solution, 200, 200);
-    let mut figures = vec![plot::png_bytes("q5_radiosity_cornell.png", &image.to_rgb8())?];
-    let (_, small) = cornell_system(4, 1).map_err(|e| draw_error("q5_radiosity_convergence.svg", &e))?;
-    let reference = small.solve(Solver::GaussSeidel, 200).pop().unwrap_or_default();
-    let curves: Vec<(Solver, Vec<f64>)> =
-        Solver::ALL.iter().map(|&s| (s, relative_errors(&small.solve(s, 20), &reference))).collect();
-    figures.push(plot::svg_figure("q5_radiosity_convergence.svg", (640, 400), |root| {
-        root.fill(&WHITE_BG).map_err(err)?;
-        let mut chart = ChartBuilder::on(root)
-            .caption("Radiosity solvers: error vs sweeps (176 patches)", ("sans-serif", 18))
-            .margin(12)
-            .x_label_area_size(40)
-            .y_label_area_size(60)
-            .build_cartesian_2d(0f64..20f64, (1e-12f64..1f64).log_scale())
-            .map_err(err)?;
-        chart
-            .configure_mesh()
-            .x_desc("sweeps (Southwell: N shots)")
-            .y_desc("max |B − B*| / max B*")
-            .label_style(("sans-serif", 12))
-            .draw()
-            .map_err(err)?;
-        for (k, (solver, errors)) in curves.iter().enumerate() {
-            let color = PALETTE[k % PALETTE.len()];
-            let points: Vec<(f64, f64)> =
-                errors.iter().enumerate().filter(|(_, e)| **e > 0.0).map(|(i, &e)| (i as f64, e.max(1e-12))).collect();
-            chart
-                .draw_series(LineSeries::new(points, color.stroke_width(2)))
-                .map_err(err)?
-                .label(solver.name())
-                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], color.stroke_width(2)));
-        }
-        chart
-            .configure_series_labels()
-            .background_style(WHITE_BG.mix(0.8))
-            .border_style(BLACK)
-            .label_font(("sans-serif", 13))
-            .draw()
-            .map_err(err)
-    })?);
-    figures.push(effect_scenes_figure().map_err(|e| draw_error(EFFECT_SCENES_PNG, &e))?);
-    let published = super::cornell_published::side_by_side(200).map_err(|e| draw_error(PUBLISHED_PNG, &e))?;
-    figures.push(plot::png_bytes(PUBLISHED_PNG, &published)?);
-    let validation =
-        super::cornell_published::validation_table().map_err(|e| draw_error("q5_cornell_published.md", &e))?;
-    figures.push(Figure { file_name: "q5_cornell_published.md".into(), bytes: validation.into_bytes() });
-    let measured = measured_table().map_err(|e| draw_error("q5_measured_table.md", &e))?;
-    figures.push(Figure {
-        file_name: "q5_measured_table.md".into(),
-        bytes: measured_table_markdown(&measured).into_bytes(),
-    });
-    let grammar = super::grammar_table_markdown().map_err(|e| draw_error("q5_grammar_tables.md", &e))?;
-    figures.push(Figure { file_name: "q5_grammar_tables.md".into(), bytes: grammar.into_bytes() });
-    let comparison = super::seed_comparison_markdown().map_err(|e| draw_error("q5_seed_comparison.md", &e))?;
-    figures.push(Figure { file_name: "q5_seed_comparison.md".into(), bytes: comparison.into_bytes() });
-    Ok(figures)
-}
-
-/// File name of the published Cornell box's radiosity / path-traced pair.
-const PUBLISHED_PNG: &str = "q5_cornell_published.png";
-
-/// File name of the experiment-scene montage.
-const EFFECT_SCENES_PNG: &str = "q5_effect_scenes.png";
-
-/// The four open experiment scenes side by side, path-traced (160 × 120, 32 samples per pixel,
-/// every bounce on, seed 1: byte-identical run to run): the glossy floor's highlight, the white
-/// floor's cosine falloff, the red panel in the mirror, the caustic under the glass ball.
-fn effect_scenes_figure() -> Result<Figure, ExperimentError> {
-    let (width, height) = (160, 120);
-    let highlight_view =
-        Camera::looking_at(effect_scenes::HIGHLIGHT_EYE, effect_scenes::HIGHLIGHT_POINT + DVec3::X * 0.6, 45.0);
-    let scenes = [
-        lit_floor(GLOSSY_FLOOR, false)?.with_camera(highlight_view)?,
-        lit_floor(WHITE_FLOOR, false)?,
-        mirror_room()?,
-        lit_floor(WHITE_FLOOR, true)?,
-    ];
-    let mut montage = image::RgbImage::new(width * scenes.len() as u32, height);
-    for (k, scene) in scenes.iter().enumerate() {
-        let settings = Settings {
-            integrator: Integrator::PathTracer { max_depth: 12 },
-            ..Settings::whitted(width, height, 32, reference_passes(scene))
-        };
-        let image = render(scene, &settings, &|_| {}).map_err(|e| ExperimentError::Render(e.to_string()))?;
-        image::imageops::replace(&mut montage, &image.to_rgb8(), i64::from(width) * k as i64, 0);
-    }
-    plot::png_bytes(EFFECT_SCENES_PNG, &montage).map_err(|e| ExperimentError::Render(e.to_string()))
-}
-
-/// Plotters' white (the crate's [`WHITE`] is a reflectance).
-const WHITE_BG: RGBColor = RGBColor(255, 255, 255);
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::render::{camera::Camera, scene::Object};
     use std::f64::consts::PI;
 
     /// Every measured verdict equals the grammar's but one, the seed's two-pass method on the

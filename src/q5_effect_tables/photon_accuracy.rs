@@ -53,33 +53,29 @@ pub fn parse(csv: &str) -> Result<Vec<AccuracyRow>, String> {
 /// # Errors
 /// A message naming `file` and the first line with a non-numeric field.
 pub(super) fn numeric_rows(csv: &str, file: &str) -> Result<Vec<Vec<f64>>, String> {
-    csv.lines()
-        .skip(1)
-        .filter(|line| !line.trim().is_empty())
-        .map(|line| {
-            line.split(',')
+    crate::data::csv(csv)
+        .records
+        .into_iter()
+        .map(|fields| {
+            fields
+                .iter()
                 .map(|f| f.trim().parse::<f64>())
                 .collect::<Result<_, _>>()
-                .map_err(|e| format!("{file}: `{line}`: {e}"))
+                .map_err(|e| format!("{file}: `{}`: {e}", fields.join(",")))
         })
         .collect()
 }
 
-/// Reads and parses the committed `docs/data/<file>` for the figure `figure`.
+/// Parses committed data (a constant of [`crate::data`]) for the figure `figure`.
 ///
 /// # Errors
-/// [`PlotError::Draw`] when the file is missing (naming the benchmark that writes it) or malformed.
+/// [`PlotError::Draw`] naming the figure when the data is malformed.
 pub(super) fn read_committed<T>(
-    file: &str,
+    csv: &str,
     figure: &str,
     parse: impl Fn(&str) -> Result<Vec<T>, String>,
 ) -> Result<Vec<T>, PlotError> {
-    let path = format!("{}/docs/data/{file}", env!("CARGO_MANIFEST_DIR"));
-    let csv = std::fs::read_to_string(&path).map_err(|e| PlotError::Draw {
-        figure: figure.into(),
-        message: format!("{path}: {e} (run `cargo bench --bench q5_photon`)"),
-    })?;
-    parse(&csv).map_err(|message| PlotError::Draw { figure: figure.into(), message })
+    parse(csv).map_err(|message| PlotError::Draw { figure: figure.into(), message })
 }
 
 /// The log-log chart of RMS error against k, one line per photon count, with the noise law
@@ -87,9 +83,15 @@ pub(super) fn read_committed<T>(
 ///
 /// # Errors
 /// [`PlotError`] when the CSV is missing or malformed, or drawing fails.
+///
+/// # Examples
+/// ```
+/// let figure = hw3::q5_effect_tables::photon_accuracy::figure().unwrap();
+/// assert_eq!(figure.file_name, "q5_photon_accuracy.svg");
+/// ```
 pub fn figure() -> Result<Figure, PlotError> {
     let name = "q5_photon_accuracy.svg";
-    let rows = read_committed("q5_photon_accuracy.csv", name, parse)?;
+    let rows = read_committed(crate::data::Q5_PHOTON_ACCURACY, name, parse)?;
     let mut counts: Vec<f64> = rows.iter().map(|r| r.photons).collect();
     counts.dedup();
     let lines = counts
@@ -200,7 +202,7 @@ mod tests {
     /// stays within ±3 %.
     #[test]
     fn committed_photon_accuracy_follows_the_noise_law() {
-        let rows = read_committed("q5_photon_accuracy.csv", "test", parse).unwrap();
+        let rows = read_committed(crate::data::Q5_PHOTON_ACCURACY, "test", parse).unwrap();
         assert!(rows.len() >= 12);
         for r in &rows {
             let law = 1.0 / (r.k - 2.0).sqrt();

@@ -9,14 +9,17 @@
 //! `1/√(k − 2)` of the value, set by k) and **bias** (the seed-mean's error: the kNN disc blurs the
 //! radiance over a radius `r ∝ √(k/N)`, so it grows with k and shrinks as photons are added).
 
-use super::experiments::cornell_box;
 use super::photon_accuracy::LogLogChart;
+use super::scenes::cornell_box;
 use crate::geometry::{InputError, Ray};
 use crate::plot::{Figure, PlotError};
-use crate::render::analysis::{Pass, analyze};
-use crate::render::integrator::{Integrator, Sampler, Tracer};
 use crate::render::photon::{PhotonError, PhotonMap};
 use crate::render::scene::Scene;
+use crate::render::{analysis::analyze, passes::Pass};
+use crate::render::{
+    integrator::{Integrator, Tracer},
+    sampling::Sampler,
+};
 use glam::DVec3;
 use plotters::prelude::SeriesLabelPosition;
 use rayon::prelude::*;
@@ -59,6 +62,13 @@ pub struct Reference {
 
 impl Reference {
     /// The largest relative standard error over the probes.
+    ///
+    /// # Examples
+    /// ```
+    /// use hw3::q5_effect_tables::photon_cornell::Reference;
+    /// let reference = Reference { radiance: vec![2.0, 4.0], standard_error: vec![0.1, 0.4] };
+    /// assert_eq!(reference.max_relative_error(), 0.1);
+    /// ```
     #[must_use]
     pub fn max_relative_error(&self) -> f64 {
         self.radiance.iter().zip(&self.standard_error).map(|(l, s)| s / l).fold(0.0, f64::max)
@@ -269,9 +279,15 @@ pub fn best_k(rows: &[Row]) -> Vec<Row> {
 ///
 /// # Errors
 /// [`PlotError`] when the CSV is missing or malformed, or drawing fails.
+///
+/// # Examples
+/// ```
+/// let figure = hw3::q5_effect_tables::photon_cornell::figure().unwrap();
+/// assert_eq!(figure.file_name, "q5_photon_cornell.svg");
+/// ```
 pub fn figure() -> Result<Figure, PlotError> {
     let name = "q5_photon_cornell.svg";
-    let rows = super::photon_accuracy::read_committed(CSV_NAME, name, parse)?;
+    let rows = super::photon_accuracy::read_committed(crate::data::Q5_PHOTON_CORNELL, name, parse)?;
     let mut ks: Vec<f64> = rows.iter().map(|r| r.k).collect();
     ks.sort_by(f64::total_cmp);
     ks.dedup();
@@ -310,7 +326,8 @@ mod tests {
     /// −1/3 that the bias–variance balance of a 2-D density estimate predicts).
     #[test]
     fn committed_cornell_accuracy_is_judged_by_a_converged_reference_and_falls_with_photons() {
-        let rows = super::super::photon_accuracy::read_committed(CSV_NAME, "test", parse).unwrap();
+        let rows =
+            super::super::photon_accuracy::read_committed(crate::data::Q5_PHOTON_CORNELL, "test", parse).unwrap();
         assert!(rows.len() >= 12);
         for r in &rows {
             assert!(r.reference_error < r.error.rms / 3.0, "{r:?}");

@@ -9,7 +9,10 @@
 use crate::geometry::Ray;
 use crate::geometry::sphere::spawn_origin;
 use crate::render::Image;
-use crate::render::scene::{CameraFrame, Material, Scene, Shape};
+use crate::render::{
+    camera::CameraFrame,
+    scene::{Material, Scene, Shape},
+};
 use glam::DVec3;
 use rayon::prelude::*;
 use std::f64::consts::PI;
@@ -51,6 +54,15 @@ pub struct Patch {
 
 impl Patch {
     /// The point at patch coordinates `(a, b) ∈ [0, 1]²`.
+    ///
+    /// # Examples
+    /// ```
+    /// use hw3::q5_effect_tables::{radiosity::Mesh, scenes::cornell_box};
+    /// let scene = cornell_box(true).unwrap();
+    /// let patch = Mesh::new(&scene, 2).unwrap().patches[0];
+    /// assert_eq!(patch.point(0.0, 0.0), patch.corner);
+    /// assert!((patch.point(1.0, 1.0) - (patch.corner + patch.edge_u + patch.edge_v)).length() < 1e-12);
+    /// ```
     #[must_use]
     pub fn point(&self, a: f64, b: f64) -> DVec3 {
         self.corner + self.edge_u * a + self.edge_v * b
@@ -86,7 +98,7 @@ impl Mesh {
     /// # Examples
     /// ```
     /// use hw3::q5_effect_tables::radiosity::Mesh;
-    /// let scene = hw3::q5_effect_tables::experiments::cornell_box(true).unwrap();
+    /// let scene = hw3::q5_effect_tables::scenes::cornell_box(true).unwrap();
     /// let mesh = Mesh::new(&scene, 2).unwrap();
     /// assert_eq!(mesh.patches.len() % 4, 0);
     /// assert!(Mesh::new(&scene, 0).is_err());
@@ -140,6 +152,16 @@ impl Mesh {
 /// The form factor from a differential area at `point` (normal `normal`) to the polygon
 /// `vertices`: `F = (1/2π) |Σ_k β_k n·γ_k|` (Lambert), after clipping the polygon to the
 /// hemisphere above the point. Exact without occluders; 0 when the point sees the polygon's back.
+///
+/// # Examples
+/// ```
+/// use glam::DVec3;
+/// use hw3::q5_effect_tables::radiosity::point_to_polygon;
+/// // A square 2000 wide, 1 above the point, fills nearly all of its hemisphere; from below, none.
+/// let square = [(-1e3, -1e3), (1e3, -1e3), (1e3, 1e3), (-1e3, 1e3)].map(|(x, y)| DVec3::new(x, y, 1.0));
+/// assert!((point_to_polygon(DVec3::ZERO, DVec3::Z, &square) - 1.0).abs() < 1e-3);
+/// assert_eq!(point_to_polygon(DVec3::ZERO, DVec3::NEG_Z, &square), 0.0);
+/// ```
 #[must_use]
 pub fn point_to_polygon(point: DVec3, normal: DVec3, vertices: &[DVec3]) -> f64 {
     // Sutherland–Hodgman against the tangent plane: the formula holds for polygons above it.
@@ -191,6 +213,14 @@ impl System {
     ///
     /// # Errors
     /// [`RadiosityError::ZeroCount`] for `samples = 0`.
+    ///
+    /// # Examples
+    /// ```
+    /// use hw3::q5_effect_tables::{radiosity::{Mesh, System}, scenes::cornell_box};
+    /// let scene = cornell_box(true).unwrap();
+    /// assert!(System::new(&scene, Mesh::new(&scene, 2).unwrap(), 1).is_ok());
+    /// assert!(System::new(&scene, Mesh::new(&scene, 2).unwrap(), 0).is_err());
+    /// ```
     pub fn new(scene: &Scene, mesh: Mesh, samples: usize) -> Result<Self, RadiosityError> {
         if samples == 0 {
             return Err(RadiosityError::ZeroCount { name: "samples" });
@@ -246,6 +276,16 @@ impl System {
 
     /// Runs `solver` for `sweeps` sweeps (Southwell: `N` shots per sweep), starting from `B = E`,
     /// and returns the radiosity after each sweep (index 0 = the start).
+    ///
+    /// # Examples
+    /// ```
+    /// use hw3::q5_effect_tables::{experiments::cornell_system, radiosity::Solver};
+    /// let (_, system) = cornell_system(2, 1).unwrap();
+    /// let history = system.solve(Solver::GaussSeidel, 5);
+    /// assert_eq!(history.len(), 6);
+    /// let total = |b: &[glam::DVec3]| b.iter().map(|x| x.element_sum()).sum::<f64>();
+    /// assert!(total(&history[5]) > total(&history[0]));
+    /// ```
     #[must_use]
     pub fn solve(&self, solver: Solver, sweeps: usize) -> Vec<Vec<DVec3>> {
         let n = self.mesh.patches.len();
@@ -290,6 +330,17 @@ impl System {
 
     /// The radiance (`B/π`) leaving the meshed surface at `point` on object `object`, bilinearly
     /// interpolated between patch centres; None for objects without patches.
+    ///
+    /// # Examples
+    /// ```
+    /// use glam::DVec3;
+    /// use hw3::q5_effect_tables::{experiments::cornell_system, radiosity::Solver};
+    /// let (_, system) = cornell_system(2, 1).unwrap();
+    /// let b = system.solve(Solver::GaussSeidel, 20).pop().unwrap();
+    /// // Object 0 is the floor; there is no object 99.
+    /// assert!(system.radiance_at(&b, 0, DVec3::new(0.0, -1.0, 0.5)).unwrap().min_element() > 0.0);
+    /// assert!(system.radiance_at(&b, 99, DVec3::ZERO).is_none());
+    /// ```
     #[must_use]
     pub fn radiance_at(&self, radiosity: &[DVec3], object: usize, point: DVec3) -> Option<DVec3> {
         let first = (*self.mesh.first_patch.get(object)?)?;
@@ -314,6 +365,16 @@ impl System {
 
     /// An image of the solution seen from the scene's camera (one ray per pixel centre;
     /// unmeshed objects and the background are black: radiosity has no paths through them).
+    ///
+    /// # Examples
+    /// ```
+    /// use hw3::q5_effect_tables::{experiments::cornell_system, radiosity::Solver};
+    /// let (scene, system) = cornell_system(2, 1).unwrap();
+    /// let b = system.solve(Solver::GaussSeidel, 20).pop().unwrap();
+    /// let image = system.render(&scene, &b, 8, 6);
+    /// assert_eq!(image.pixels.len(), 48);
+    /// assert!(image.pixels.iter().any(|p| p.max_element() > 0.0));
+    /// ```
     #[must_use]
     pub fn render(&self, scene: &Scene, radiosity: &[DVec3], width: u32, height: u32) -> Image {
         let frame = CameraFrame::new(scene.camera());
@@ -371,6 +432,12 @@ impl Solver {
     pub const ALL: [Solver; 3] = [Solver::Jacobi, Solver::GaussSeidel, Solver::Southwell];
 
     /// Display name.
+    ///
+    /// # Examples
+    /// ```
+    /// use hw3::q5_effect_tables::radiosity::Solver;
+    /// assert_eq!(Solver::ALL.map(Solver::name), ["Jacobi", "Gauss–Seidel", "progressive (Southwell)"]);
+    /// ```
     #[must_use]
     pub fn name(self) -> &'static str {
         match self {
@@ -382,6 +449,15 @@ impl Solver {
 }
 
 /// Relative error `max_i |B_i − B*_i| / max_i B*_i` (over channels) of each solution in `history`.
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::{experiments::cornell_system, radiosity::{Solver, relative_errors}};
+/// let (_, system) = cornell_system(2, 1).unwrap();
+/// let reference = system.solve(Solver::GaussSeidel, 60).pop().unwrap();
+/// let errors = relative_errors(&system.solve(Solver::Jacobi, 10), &reference);
+/// assert!(errors[10] < 0.1 * errors[0]);
+/// ```
 #[must_use]
 pub fn relative_errors(history: &[Vec<DVec3>], reference: &[DVec3]) -> Vec<f64> {
     let scale = reference.iter().map(|b| b.max_element()).fold(0.0, f64::max);
@@ -394,7 +470,7 @@ pub fn relative_errors(history: &[Vec<DVec3>], reference: &[DVec3]) -> Vec<f64> 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::q5_effect_tables::experiments::{closed_box, cornell_box};
+    use crate::q5_effect_tables::scenes::{closed_box, cornell_box};
 
     #[test]
     fn point_to_polygon_matches_the_disc_and_the_closed_cube() {

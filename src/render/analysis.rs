@@ -12,123 +12,14 @@
 
 pub mod grammar;
 
-use super::integrator::Integrator;
+use super::passes::{Pass, Passes};
+use super::sampling::fibonacci_sphere;
 use super::scene::{Material, Scene, Shape};
 use crate::geometry::Ray;
 use crate::geometry::sphere::spawn_origin;
 use glam::DVec3;
 use grammar::{Lang, Letter, common_word};
 use serde::Serialize;
-
-/// A render pass that the planner can switch on or off.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Serialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Pass {
-    /// Recursion through perfect mirrors and glass (`…S+E`).
-    SpecularRecursion,
-    /// Beer–Lambert attenuation `e^(−σ_t d)` of every ray segment in a medium.
-    Transmittance,
-    /// Single scattering from point and area lights along every ray segment (`…V…E`).
-    InScattering,
-    /// A random time in the shutter interval for every camera sample (motion blur).
-    TimeSampling,
-    /// Diffuse/glossy bounces after the first (`L(D|G)(D|G)+…E`; path tracer only).
-    IndirectBounces,
-    /// A caustic photon map (`LS+D`) traced once per render from the point and area lights and
-    /// read at every diffuse or glossy hit (Whitted only: the path tracer finds area-light
-    /// caustics by its own bounces).
-    Caustics,
-}
-
-impl Pass {
-    /// Every pass, in a fixed order.
-    pub const ALL: [Pass; 6] = [
-        Pass::SpecularRecursion,
-        Pass::Transmittance,
-        Pass::InScattering,
-        Pass::TimeSampling,
-        Pass::IndirectBounces,
-        Pass::Caustics,
-    ];
-
-    /// The pass's name as the CLI and JSON print it.
-    #[must_use]
-    pub fn name(self) -> &'static str {
-        match self {
-            Pass::SpecularRecursion => "specular_recursion",
-            Pass::Transmittance => "transmittance",
-            Pass::InScattering => "in_scattering",
-            Pass::TimeSampling => "time_sampling",
-            Pass::IndirectBounces => "indirect_bounces",
-            Pass::Caustics => "caustics",
-        }
-    }
-}
-
-/// Which passes a render runs.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
-pub struct Passes {
-    /// See [`Pass::SpecularRecursion`].
-    pub specular_recursion: bool,
-    /// See [`Pass::Transmittance`].
-    pub transmittance: bool,
-    /// See [`Pass::InScattering`].
-    pub in_scattering: bool,
-    /// See [`Pass::TimeSampling`].
-    pub time_sampling: bool,
-    /// See [`Pass::IndirectBounces`].
-    pub indirect_bounces: bool,
-    /// See [`Pass::Caustics`].
-    pub caustics: bool,
-}
-
-impl Passes {
-    /// Every pass on (`--effects all`): the brute-force render the plan is tested against.
-    #[must_use]
-    pub fn all() -> Self {
-        Pass::ALL.iter().fold(Self::default(), |p, &pass| p.with(pass, true))
-    }
-
-    /// Whether `pass` is on.
-    #[must_use]
-    pub fn get(&self, pass: Pass) -> bool {
-        match pass {
-            Pass::SpecularRecursion => self.specular_recursion,
-            Pass::Transmittance => self.transmittance,
-            Pass::InScattering => self.in_scattering,
-            Pass::TimeSampling => self.time_sampling,
-            Pass::IndirectBounces => self.indirect_bounces,
-            Pass::Caustics => self.caustics,
-        }
-    }
-
-    /// The passes `integrator` can run: Whitted tracing has no indirect bounces, so the plan
-    /// drops [`Pass::IndirectBounces`] for it (the class is then reported, not rendered); the
-    /// path tracer reads no photon map, so it drops [`Pass::Caustics`] (it finds caustics from
-    /// area lights and the environment by its own bounces, and none from point lights).
-    #[must_use]
-    pub fn for_integrator(self, integrator: Integrator) -> Self {
-        match integrator {
-            Integrator::Whitted { .. } => self.with(Pass::IndirectBounces, false),
-            Integrator::PathTracer { .. } => self.with(Pass::Caustics, false),
-        }
-    }
-
-    /// A copy with `pass` set to `on`.
-    #[must_use]
-    pub fn with(mut self, pass: Pass, on: bool) -> Self {
-        let flag = match pass {
-            Pass::SpecularRecursion => &mut self.specular_recursion,
-            Pass::Transmittance => &mut self.transmittance,
-            Pass::InScattering => &mut self.in_scattering,
-            Pass::TimeSampling => &mut self.time_sampling,
-            Pass::IndirectBounces => &mut self.indirect_bounces,
-            Pass::Caustics => &mut self.caustics,
-        };
-        *flag = on;
-        self
-    }
-}
 
 /// One light-path class in Heckbert's notation and whether it can carry energy in the scene.
 #[derive(Debug, Clone, PartialEq, Eq, Serialize)]
@@ -186,8 +77,8 @@ struct Letters {
 ///
 /// # Examples
 /// ```
-/// use hw3::render::{analysis::{analyze, Pass}, scenes};
-/// let fog = analyze(&scenes::fog_street(0.1).unwrap());
+/// use hw3::render::{analysis::analyze, catalogue, passes::Pass};
+/// let fog = analyze(&catalogue::fog_street(0.1).unwrap());
 /// assert!(fog.plan.get(Pass::InScattering));
 /// assert!(!fog.plan.get(Pass::SpecularRecursion)); // no mirror in the street
 /// ```
@@ -370,10 +261,8 @@ fn reflects_diffusely(material: &Material) -> bool {
 /// line of sight to a front-facing sample point of any mirror, at shutter open.
 fn light_sees_a_mirror(scene: &Scene) -> bool {
     let mut light_points: Vec<DVec3> = scene.point_lights().iter().map(|l| l.position).collect();
-    for object in scene.objects() {
-        if let (Material::Emitter { .. }, Shape::Quad { corner, edge_u, edge_v }) = (object.material, object.shape) {
-            light_points.extend(quad_samples(corner, edge_u, edge_v).map(|(p, _)| p));
-        }
+    for light in scene.area_lights() {
+        light_points.extend(quad_samples(light.corner, light.edge_u, light.edge_v).map(|(p, _)| p));
     }
     let time = scene.camera().shutter.0;
     scene
@@ -401,18 +290,8 @@ fn surface_samples(shape: &Shape, time: f64) -> Vec<(DVec3, DVec3)> {
     match *shape {
         Shape::Quad { corner, edge_u, edge_v } => quad_samples(corner, edge_u, edge_v).collect(),
         Shape::Sphere { sphere, velocity } => {
-            const COUNT: usize = 200;
-            let golden_angle = std::f64::consts::PI * (3.0 - 5f64.sqrt());
             let center = sphere.center + velocity * time;
-            (0..COUNT)
-                .map(|i| {
-                    let z = 1.0 - 2.0 * (i as f64 + 0.5) / COUNT as f64;
-                    let ring = (1.0 - z * z).sqrt();
-                    let phi = golden_angle * i as f64;
-                    let normal = DVec3::new(ring * phi.cos(), ring * phi.sin(), z);
-                    (center + normal * sphere.radius, normal)
-                })
-                .collect()
+            fibonacci_sphere(200).into_iter().map(|normal| (center + normal * sphere.radius, normal)).collect()
         }
     }
 }
@@ -426,80 +305,4 @@ fn quad_samples(corner: DVec3, edge_u: DVec3, edge_v: DVec3) -> impl Iterator<It
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::render::scenes;
-
-    fn carried(analysis: &Analysis) -> Vec<&'static str> {
-        analysis.classes.iter().filter(|c| c.carries_energy).map(|c| c.notation).collect()
-    }
-
-    #[test]
-    fn each_built_in_scene_gets_the_classes_its_contents_imply() {
-        let mirrors = analyze(&scenes::mirror_spheres(true).unwrap());
-        assert!(carried(&mirrors).contains(&"L(D|G)?S+E"));
-        assert!(carried(&mirrors).contains(&"LS+(D|G)…E"));
-        assert!(
-            mirrors.plan.caustics && mirrors.not_rendered.is_empty(),
-            "a point light's caustics get the photon pass"
-        );
-        assert!(!mirrors.plan.for_integrator(Integrator::PathTracer { max_depth: 3 }).caustics);
-        let caustic = analyze(&scenes::by_name("caustic").unwrap());
-        assert!(caustic.plan.caustics && caustic.plan.specular_recursion);
-        assert!(!analyze(&scenes::fog_street(0.1).unwrap()).plan.caustics);
-        let diffuse = analyze(&scenes::mirror_spheres(false).unwrap());
-        assert!(!carried(&diffuse).contains(&"L(D|G)?S+E"));
-        assert!(!diffuse.plan.specular_recursion);
-        let fog = analyze(&scenes::fog_street(0.1).unwrap());
-        assert!(fog.extinction && fog.plan.in_scattering && fog.plan.transmittance);
-        let clear = analyze(&scenes::fog_street(0.0).unwrap());
-        assert!(!clear.extinction && !clear.plan.in_scattering && !clear.plan.transmittance);
-        let moving = analyze(&scenes::moving_ball(2.0).unwrap());
-        assert!(moving.moving && moving.plan.time_sampling);
-        let still = analyze(&scenes::moving_ball(0.0).unwrap());
-        assert!(!still.moving && !still.plan.time_sampling);
-    }
-
-    #[test]
-    fn a_mirror_hidden_from_every_light_carries_no_caustic() {
-        let scene = scenes::mirror_behind_wall().unwrap();
-        let analysis = analyze(&scene);
-        assert!(analysis.plan.specular_recursion, "the eye still sees it");
-        assert!(!carried(&analysis).contains(&"LS+(D|G)…E"));
-        assert!(!analysis.plan.caustics);
-    }
-
-    /// The environment is a light derived from the scene: a non-black map lights the probe-lit
-    /// scene (LE, LDE, reflections, caustics through the mirror), a black one lights nothing, and
-    /// its glow in fog is reported as not rendered while an area light's glow is planned.
-    #[test]
-    fn the_environment_is_a_light_and_area_lights_glow_in_fog() {
-        use crate::render::environment::Environment;
-        let lit = analyze(&scenes::probe_lit().unwrap());
-        for class in ["LE", "LDE", "LGE", "L(D|G)?S+E", "LS+(D|G)…E"] {
-            assert!(carried(&lit).contains(&class), "{class}");
-        }
-        assert!(!lit.plan.caustics, "environment caustics are the path tracer's: no photons to shoot");
-        let no_light = scenes::mirror_spheres(false).unwrap();
-        let (camera, objects) = (*no_light.camera(), no_light.objects().to_vec());
-        let dark = Scene::new(camera, objects, vec![], None, DVec3::ONE).unwrap();
-        let black = analyze(&dark.with_environment(Environment::constant(DVec3::ZERO).unwrap()));
-        assert!(!carried(&black).contains(&"LDE"), "a black environment is no light");
-        let foggy = scenes::fog_panel(0.15).unwrap();
-        let analysis = analyze(&foggy);
-        assert!(analysis.plan.in_scattering && analysis.not_rendered.is_empty());
-        let with_sky = analyze(&foggy.with_environment(Environment::constant(DVec3::ONE).unwrap()));
-        assert_eq!(with_sky.not_rendered, vec!["LV(D|G|S)*E (environment)"]);
-    }
-
-    #[test]
-    fn passes_all_sets_every_flag_and_with_clears_one() {
-        let all = Passes::all();
-        assert!(Pass::ALL.iter().all(|&p| all.get(p)));
-        for pass in Pass::ALL {
-            let off = all.with(pass, false);
-            assert!(!off.get(pass));
-            assert_eq!(Pass::ALL.iter().filter(|&&p| off.get(p)).count(), Pass::ALL.len() - 1);
-        }
-    }
-}
+mod tests;

@@ -1,8 +1,11 @@
 //! The logic of `hw3 scenes`, `hw3 effects` and `hw3 render`, kept out of `main.rs` so that it can
 //! be tested without spawning the binary.
 
-use super::analysis::{Analysis, Pass, Passes, analyze};
-use super::{RenderError, Settings, render, scenes};
+use super::{RenderError, Settings, catalogue, render};
+use super::{
+    analysis::{Analysis, analyze},
+    passes::{Pass, Passes},
+};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::fmt::Write as _;
 use std::io::IsTerminal as _;
@@ -16,7 +19,7 @@ use std::time::Instant;
 /// ```
 #[must_use]
 pub fn scenes_text() -> String {
-    scenes::CATALOGUE.iter().map(|(name, description)| format!("{name:16} {description}\n")).collect()
+    catalogue::CATALOGUE.iter().map(|(name, description)| format!("{name:16} {description}\n")).collect()
 }
 
 /// `hw3 effects SCENE [--json]`: the path classes that carry energy and the pass plan.
@@ -32,7 +35,7 @@ pub fn scenes_text() -> String {
 /// assert!(json.contains("\"in_scattering\": true"));
 /// ```
 pub fn effects_text(scene_name: &str, json: bool) -> Result<String, RenderError> {
-    let analysis = analyze(&scenes::by_name(scene_name)?);
+    let analysis = analyze(&catalogue::by_name(scene_name)?);
     if json {
         return Ok(serde_json::to_string_pretty(&analysis).expect("plain data serialises") + "\n");
     }
@@ -157,10 +160,10 @@ pub fn render_scene_to(
     mode: EffectsMode,
     target: ProgressDrawTarget,
 ) -> Result<RenderOutput, RenderError> {
-    let scene = scenes::by_name(scene_name)?;
+    let scene = catalogue::by_name(scene_name)?;
     let mut settings = Settings::whitted(size.0, size.1, spp, Passes::all());
     if mode == EffectsMode::Auto {
-        settings.passes = analyze(&scene).plan.for_integrator(settings.integrator);
+        settings.passes = settings.integrator.restrict(analyze(&scene).plan);
     }
     let passes = settings.passes;
     super::check_settings(&settings)?;
@@ -210,7 +213,7 @@ mod tests {
     #[test]
     fn effects_of_every_built_in_scene() {
         let text: String =
-            scenes::CATALOGUE.iter().map(|(name, _)| effects_text(name, false).unwrap() + "\n").collect();
+            catalogue::CATALOGUE.iter().map(|(name, _)| effects_text(name, false).unwrap() + "\n").collect();
         crate::test_support::insta_settings()
             .bind(|| insta::assert_snapshot!("render_effects_of_built_in_scenes", text));
     }

@@ -1,8 +1,8 @@
 //! The renderer chapter's figures: the environment light, area-light single scattering, and the
 //! caustic pass on and off.
 
-use super::analysis::{Pass, analyze};
-use super::{Settings, render, scenes};
+use super::{Settings, catalogue, render};
+use super::{analysis::analyze, passes::Pass};
 use crate::plot::{self, Figure, PlotError};
 
 /// Samples per pixel of the renderer chapter's images (Whitted tracing, 160×120).
@@ -25,8 +25,8 @@ pub fn figures() -> Result<Vec<Figure>, PlotError> {
         ("render_caustic_off.png", "caustic", Some(Pass::Caustics)),
     ];
     for (file_name, name, switched_off) in renders {
-        let scene =
-            scenes::by_name(name).map_err(|e| PlotError::Draw { figure: file_name.into(), message: e.to_string() })?;
+        let scene = catalogue::by_name(name)
+            .map_err(|e| PlotError::Draw { figure: file_name.into(), message: e.to_string() })?;
         let plan = analyze(&scene).plan;
         let plan = switched_off.map_or(plan, |pass| plan.with(pass, false));
         let image = render(&scene, &Settings::whitted(160, 120, SPP, plan), &|_| {})

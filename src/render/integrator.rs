@@ -6,15 +6,16 @@
 //! pass that is switched on for a scene that does not need it consumes no random number that would
 //! shift the others: that is what makes "forced on, image identical" testable bit for bit.
 
-use super::analysis::Passes;
-use super::environment;
+use super::bsdf::{brdf, dielectric_split, facing_normal, front_side, reflected_ray};
+use super::environment::ENVIRONMENT_SAMPLES;
 use super::medium;
+use super::passes::{Pass, Passes};
 use super::photon::{Gather, PhotonMap};
-use super::scene::{Hit, Material, PointLight, Scene, Shape};
-use crate::geometry::sphere::{reflect, spawn_origin};
-use crate::geometry::{InputError, Ray};
+use super::sampling::{Sampler, cosine_direction};
+use super::scene::{Hit, Material, Scene};
+use crate::geometry::Ray;
+use crate::geometry::sphere::spawn_origin;
 use glam::DVec3;
-use rand_core::Rng as _;
 use std::f64::consts::PI;
 
 /// Which light transport algorithm a render uses.
@@ -34,25 +35,26 @@ pub enum Integrator {
     },
 }
 
-/// A per-pixel random stream (PCG32); seeded from the image seed and pixel index, so the result
-/// never depends on which thread renders the pixel.
-#[derive(Debug, Clone)]
-pub struct Sampler(rand_pcg::Pcg32);
-
-impl Sampler {
-    /// The stream `stream` of pixel `pixel` for image seed `seed`.
+impl Integrator {
+    /// The passes of `plan` this integrator can run: Whitted tracing has no indirect bounces, so the plan
+    /// drops [`Pass::IndirectBounces`] for it (the class is then reported, not rendered); the
+    /// path tracer reads no photon map, so it drops [`Pass::Caustics`] (it finds caustics from
+    /// area lights and the environment by its own bounces, and none from point lights).
+    ///
+    /// # Examples
+    /// ```
+    /// use hw3::render::{integrator::Integrator, passes::{Pass, Passes}};
+    /// let whitted = Integrator::Whitted { max_depth: 8 }.restrict(Passes::all());
+    /// assert!(!whitted.get(Pass::IndirectBounces) && whitted.get(Pass::Caustics));
+    /// let path = Integrator::PathTracer { max_depth: 8 }.restrict(Passes::all());
+    /// assert!(path.get(Pass::IndirectBounces) && !path.get(Pass::Caustics));
+    /// ```
     #[must_use]
-    pub fn new(seed: u64, pixel: u64, stream: u64) -> Self {
-        // SplitMix64 finaliser: neighbouring pixels get unrelated PCG states.
-        let mut z = seed ^ pixel.wrapping_mul(0x9E37_79B9_7F4A_7C15);
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        Self(rand_pcg::Pcg32::new(z ^ (z >> 31), stream))
-    }
-
-    /// A uniform number in `[0, 1)` with 53 random bits.
-    pub fn uniform(&mut self) -> f64 {
-        (self.0.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
+    pub fn restrict(self, plan: Passes) -> Passes {
+        match self {
+            Integrator::Whitted { .. } => plan.with(Pass::IndirectBounces, false),
+            Integrator::PathTracer { .. } => plan.with(Pass::Caustics, false),
+        }
     }
 }
 
@@ -68,13 +70,14 @@ pub struct Tracer<'a> {
     passes: Passes,
     in_scatter_steps: usize,
     caustics: Option<(&'a PhotonMap, Gather)>,
+    indirect: Option<(&'a PhotonMap, Gather)>,
 }
 
 impl<'a> Tracer<'a> {
     /// A tracer for `scene` running `passes`.
     #[must_use]
     pub fn new(scene: &'a Scene, passes: Passes) -> Self {
-        Self { scene, passes, in_scatter_steps: IN_SCATTER_STEPS, caustics: None }
+        Self { scene, passes, in_scatter_steps: IN_SCATTER_STEPS, caustics: None, indirect: None }
     }
 
     /// The same tracer reading the caustic photon map `map` with `gather` at every diffuse or
@@ -83,6 +86,33 @@ impl<'a> Tracer<'a> {
     #[must_use]
     pub fn with_caustics(self, map: &'a PhotonMap, gather: Gather) -> Self {
         Self { caustics: Some((map, gather)), ..self }
+    }
+
+    /// The same tracer also reading the *indirect* photon map `map` (photons after a diffuse or
+    /// glossy bounce, [`super::photon::PhotonMaps::indirect`]) with `gather` at every diffuse or
+    /// glossy hit of Whitted tracing: the eye pass of two-pass rendering and of photon mapping.
+    /// Added before the caustic map's estimate; an empty map adds nothing (bit for bit), and so
+    /// does a tracer without it. A `gather` of `k` neighbours within [`f64::MAX`] is the plain
+    /// `k`-nearest estimate [`PhotonMap::radiance`], and zero for a map of fewer than `k` photons.
+    ///
+    /// # Examples
+    /// ```
+    /// use glam::DVec3;
+    /// use hw3::geometry::Ray;
+    /// use hw3::render::{catalogue, integrator::{Integrator, Tracer}, passes::Passes, photon};
+    /// use hw3::render::sampling::Sampler;
+    /// let scene = catalogue::cornell_mirror().unwrap();
+    /// let maps = photon::trace_photons(&scene, 5_000, 1).unwrap();
+    /// let gather = photon::Gather::new(20, f64::MAX).unwrap();
+    /// let ray = Ray { origin: scene.camera().eye, dir: (scene.camera().look_at - scene.camera().eye).normalize() };
+    /// let whitted = Integrator::Whitted { max_depth: 0 };
+    /// let direct = Tracer::new(&scene, Passes::default()).radiance(whitted, &ray, 0.0, &mut Sampler::new(1, 0, 0));
+    /// let both = Tracer::new(&scene, Passes::default()).with_indirect(&maps.indirect, gather);
+    /// assert!(both.radiance(whitted, &ray, 0.0, &mut Sampler::new(1, 0, 0)).x > direct.x); // the bounce light
+    /// ```
+    #[must_use]
+    pub fn with_indirect(self, map: &'a PhotonMap, gather: Gather) -> Self {
+        Self { indirect: Some((map, gather)), ..self }
     }
 
     /// The same tracer with `steps` quadrature steps for single scattering (≥ 1).
@@ -130,9 +160,13 @@ impl<'a> Tracer<'a> {
                 }
                 Material::Diffuse { .. } | Material::Glossy { .. } => {
                     let direct = self.direct_light(ray, &hit, time, sampler);
-                    match self.caustics {
-                        Some((map, gather)) if !map.is_empty() => direct + self.caustic(map, gather, ray, &hit),
+                    let lit = match self.indirect {
+                        Some((map, gather)) if !map.is_empty() => direct + self.gathered(map, gather, ray, &hit),
                         _ => direct,
+                    };
+                    match self.caustics {
+                        Some((map, gather)) if !map.is_empty() => lit + self.gathered(map, gather, ray, &hit),
+                        _ => lit,
                     }
                 }
             },
@@ -283,38 +317,59 @@ impl<'a> Tracer<'a> {
         for light in self.scene.point_lights() {
             add_light(light.position, light.intensity);
         }
-        for object in self.scene.objects() {
-            if let (Material::Emitter { radiance }, Shape::Quad { corner, edge_u, edge_v }) =
-                (object.material, object.shape)
-            {
-                let target = corner + edge_u * sampler.uniform() + edge_v * sampler.uniform();
-                let light_normal = edge_u.cross(edge_v);
-                let area = light_normal.length();
-                let cos_light = -light_normal.dot((target - hit.point).normalize()) / area;
-                if cos_light > 0.0 {
-                    add_light(target, radiance * (cos_light * area));
-                }
+        for light in self.scene.area_lights() {
+            let target = light.point(sampler.uniform(), sampler.uniform());
+            let light_normal = light.edge_u.cross(light.edge_v);
+            let area = light_normal.length();
+            let cos_light = -light_normal.dot((target - hit.point).normalize()) / area;
+            if cos_light > 0.0 {
+                add_light(target, light.radiance * (cos_light * area));
             }
         }
         let brdf_toward = |dir: DVec3| brdf(&material, to_eye, dir, normal);
-        let to_infinity = self.light_transmittance(f64::INFINITY);
-        total
-            + environment::direct_light(
-                self.scene,
-                hit.point,
-                normal,
-                hit.normal,
-                time,
-                &brdf_toward,
-                to_infinity,
-                sampler,
-            )
+        total + self.environment_light(hit, normal, time, &brdf_toward, sampler)
     }
 
-    /// The caustic map's radiance estimate toward the eye at a diffuse or glossy hit. Photons
+    /// Next-event estimation of the environment at a surface point: the mean over
+    /// [`ENVIRONMENT_SAMPLES`] sampled directions `ω` of `f(ω) · L(ω) · cos / pdf(ω)`, each with
+    /// a shadow ray to infinity and the transmittance to infinity (0 in a medium, where nothing
+    /// arrives from infinitely far). `normal` faces the incoming ray, `brdf(ω)` is the surface's
+    /// BRDF toward `ω`. Zero without an environment; consumes random numbers only with one.
+    fn environment_light(
+        &self,
+        hit: &Hit,
+        normal: DVec3,
+        time: f64,
+        brdf: &dyn Fn(DVec3) -> DVec3,
+        sampler: &mut Sampler,
+    ) -> DVec3 {
+        let Some(environment) = self.scene.environment() else {
+            return DVec3::ZERO;
+        };
+        let transmittance_to_infinity = self.light_transmittance(f64::INFINITY);
+        let mut total = DVec3::ZERO;
+        for _ in 0..ENVIRONMENT_SAMPLES {
+            let Some(sample) = environment.sample(&mut || sampler.uniform()) else {
+                continue;
+            };
+            let cosine = normal.dot(sample.direction);
+            if !(cosine > 0.0 && sample.pdf > 0.0) {
+                continue;
+            }
+            let dir = sample.direction;
+            let shadow = Ray { origin: spawn_origin::<f64>(hit.point, hit.normal, dir), dir };
+            if self.scene.occluded(&shadow, time, f64::INFINITY) {
+                continue;
+            }
+            total += brdf(dir) * sample.radiance * (cosine / sample.pdf);
+        }
+        total * (transmittance_to_infinity / ENVIRONMENT_SAMPLES as f64)
+    }
+
+    /// A photon map's radiance estimate toward the eye at a diffuse or glossy hit. Photons
     /// ignore the medium (see [`super::photon::trace_caustic_photons`]), so in fog the caustic
     /// comes out unattenuated on its way from the light.
-    fn caustic(&self, map: &PhotonMap, gather: Gather, ray: &Ray<f64>, hit: &Hit) -> DVec3 {
+    fn gathered(&self, map: &PhotonMap, gather: Gather, ray: &Ray<f64>, hit: &Hit) -> DVec3 {
         let material = self.scene.objects()[hit.object].material;
         map.radiance_gathered(&material, hit.point, -ray.dir, facing_normal(ray, hit), gather)
     }
@@ -325,185 +380,36 @@ impl<'a> Tracer<'a> {
     }
 }
 
-/// The single-scattered radiance ("airlight") along a view ray of length `length` in a
-/// non-absorbing homogeneous medium (`σ_s = σ_t = beta`) from an isotropic point light of
-/// intensity `intensity` at distance `light_distance` and angle `gamma` (radians) from the ray:
-/// Sun et al.'s (2005) closed form `A₀ [F(A₁, ξ₁) − F(A₁, γ/2)]` with
-/// `F(u, v) = ∫₀^v e^(−u tan ξ) dξ` evaluated by composite Simpson (20 000 panels). An oracle for
-/// the renderer's marching, computed by a different route (reference note §4).
-///
-/// # Errors
-/// [`InputError::OutOfRange`] unless `beta`, `light_distance` and `length` are finite and > 0
-/// and `gamma` is in `(0, π)` (on the ray's line the integral diverges).
-///
-/// # Examples
-/// ```
-/// use hw3::render::integrator::airlight_closed_form;
-/// // Anchor from the reference note (results_airlight.txt): β = 0.3, D = 1, γ = 5°, 20 units.
-/// let l = airlight_closed_form(0.3, 1.0, 1.0, 5f64.to_radians(), 20.0).unwrap();
-/// assert!((l / 5.770888e-01 - 1.0).abs() < 2e-6);
-/// ```
-pub fn airlight_closed_form(
-    beta: f64,
-    intensity: f64,
-    light_distance: f64,
-    gamma: f64,
-    length: f64,
-) -> Result<f64, InputError> {
-    for (name, value) in [("beta", beta), ("light distance", light_distance), ("length", length)] {
-        if !(value > 0.0 && value.is_finite()) {
-            return Err(InputError::OutOfRange { name, value: format!("{value}"), expected: "finite and > 0" });
-        }
-    }
-    if !(gamma > 0.0 && gamma < PI) {
-        return Err(InputError::OutOfRange { name: "gamma", value: format!("{gamma}"), expected: "in (0, π)" });
-    }
-    let f = |u: f64, v: f64| {
-        let n = 20_000;
-        let h = v / f64::from(n);
-        let g = |xi: f64| (-u * xi.tan()).exp();
-        let inner: f64 = (1..n).map(|i| g(f64::from(i) * h) * if i % 2 == 1 { 4.0 } else { 2.0 }).sum();
-        (g(0.0) + inner + g(v)) * h / 3.0
-    };
-    let (t_sv, t_vp) = (beta * light_distance, beta * length);
-    let a0 = beta * beta * intensity * (-t_sv * gamma.cos()).exp() / (2.0 * PI * t_sv * gamma.sin());
-    let a1 = t_sv * gamma.sin();
-    let v_end = PI / 4.0 + 0.5 * ((t_vp - t_sv * gamma.cos()) / (t_sv * gamma.sin())).atan();
-    Ok(a0 * (f(a1, v_end) - f(a1, gamma / 2.0)))
-}
-
-/// The same airlight as [`airlight_closed_form`], measured by the renderer: a camera ray along
-/// `−z` ends on a black wall at distance `length`, a unit-intensity point light sits at
-/// distance `light_distance` and angle `gamma` from the ray, the fog has `σ_s = beta`, and the
-/// in-scattering integral uses `steps` quadrature steps.
-///
-/// # Errors
-/// [`InputError`] for a non-finite or negative `beta`, or geometry that makes an invalid scene.
-///
-/// # Examples
-/// ```
-/// use hw3::render::integrator::{airlight_closed_form, airlight_traced};
-/// let traced = airlight_traced(0.3, 1.0, 0.5, 20.0, 64).unwrap();
-/// let exact = airlight_closed_form(0.3, 1.0, 1.0, 0.5, 20.0).unwrap();
-/// assert!((traced / exact - 1.0).abs() < 1e-3);
-/// ```
-pub fn airlight_traced(
-    beta: f64,
-    light_distance: f64,
-    gamma: f64,
-    length: f64,
-    steps: usize,
-) -> Result<f64, InputError> {
-    let light = PointLight {
-        position: DVec3::new(light_distance * gamma.sin(), 0.0, -light_distance * gamma.cos()),
-        intensity: DVec3::ONE,
-    };
-    let black = Material::Diffuse { albedo: DVec3::ZERO };
-    let scene = super::scenes::wall_in_fog(length, black, light, beta)?;
-    let tracer = Tracer::new(&scene, Passes::all()).with_in_scatter_steps(steps);
-    let ray = Ray { origin: DVec3::ZERO, dir: DVec3::NEG_Z };
-    let radiance = tracer.radiance(Integrator::Whitted { max_depth: 0 }, &ray, 0.0, &mut Sampler::new(0, 0, 0));
-    Ok(radiance.x)
-}
-
-/// 1 when the ray arrives at the emitting side of a quad (the side its normal points to), else 0.
-fn front_side(ray: &Ray<f64>, hit: &Hit) -> f64 {
-    if ray.dir.dot(hit.normal) < 0.0 { 1.0 } else { 0.0 }
-}
-
-/// The geometric normal turned towards the side the ray came from.
-pub(crate) fn facing_normal(ray: &Ray<f64>, hit: &Hit) -> DVec3 {
-    if ray.dir.dot(hit.normal) < 0.0 { hit.normal } else { -hit.normal }
-}
-
-pub(crate) fn reflected_ray(ray: &Ray<f64>, hit: &Hit) -> Ray<f64> {
-    let dir = reflect::<f64>(ray.dir, hit.normal);
-    Ray { origin: spawn_origin::<f64>(hit.point, hit.normal, dir), dir }
-}
-
-/// What a dielectric interface does to a ray: the Fresnel reflectance and, unless the ray is
-/// totally internally reflected, the refracted ray.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct DielectricSplit {
-    /// Fraction reflected (unpolarised Fresnel), in `[0, 1]`; 1 under total internal reflection.
-    pub reflectance: f64,
-    /// The refracted ray (unit direction, origin off the surface on the far side), if any.
-    pub refracted: Option<Ray<f64>>,
-}
-
-/// Snell refraction and exact unpolarised Fresnel reflectance at a hit on a surface of refractive
-/// index `index` in vacuum (air): entering when the ray meets the outward normal head-on.
-///
-/// The refracted direction is `η d + (η cos θ_i − cos θ_t) n` with `η = n₁/n₂` and `n` the normal
-/// facing the incoming ray; `R = (r_s² + r_p²)/2` with the Fresnel amplitudes
-/// `r_s = (n₁ cos θ_i − n₂ cos θ_t)/(n₁ cos θ_i + n₂ cos θ_t)` and
-/// `r_p = (n₂ cos θ_i − n₁ cos θ_t)/(n₂ cos θ_i + n₁ cos θ_t)`.
-///
-/// # Examples
-/// ```
-/// use glam::DVec3;
-/// use hw3::geometry::Ray;
-/// use hw3::render::integrator::dielectric_split;
-/// use hw3::render::scene::Hit;
-/// let ray = Ray { origin: DVec3::new(0.0, 0.0, 1.0), dir: DVec3::NEG_Z };
-/// let hit = Hit { t: 1.0, point: DVec3::ZERO, normal: DVec3::Z, object: 0 };
-/// let split = dielectric_split(&ray, &hit, 1.5);
-/// assert!((split.reflectance - 0.04).abs() < 1e-15); // ((n − 1)/(n + 1))² at normal incidence
-/// assert_eq!(split.refracted.unwrap().dir, DVec3::NEG_Z);
-/// ```
-#[must_use]
-pub fn dielectric_split(ray: &Ray<f64>, hit: &Hit, index: f64) -> DielectricSplit {
-    let normal = facing_normal(ray, hit);
-    let entering = ray.dir.dot(hit.normal) < 0.0;
-    let (n1, n2) = if entering { (1.0, index) } else { (index, 1.0) };
-    let eta = n1 / n2;
-    let cos_i = (-ray.dir.dot(normal)).clamp(0.0, 1.0);
-    let sin_t_squared = eta * eta * (1.0 - cos_i * cos_i);
-    if sin_t_squared >= 1.0 {
-        return DielectricSplit { reflectance: 1.0, refracted: None };
-    }
-    let cos_t = (1.0 - sin_t_squared).sqrt();
-    let r_s = (n1 * cos_i - n2 * cos_t) / (n1 * cos_i + n2 * cos_t);
-    let r_p = (n2 * cos_i - n1 * cos_t) / (n2 * cos_i + n1 * cos_t);
-    let dir = (ray.dir * eta + normal * (eta * cos_i - cos_t)).normalize();
-    DielectricSplit {
-        reflectance: (r_s * r_s + r_p * r_p) / 2.0,
-        refracted: Some(Ray { origin: spawn_origin::<f64>(hit.point, hit.normal, dir), dir }),
-    }
-}
-
-/// The BRDF of a diffuse or glossy material for unit `to_eye`, `to_light` and facing `normal`.
-pub(crate) fn brdf(material: &Material, to_eye: DVec3, to_light: DVec3, normal: DVec3) -> DVec3 {
-    match *material {
-        Material::Diffuse { albedo } => albedo / PI,
-        Material::Glossy { diffuse, specular, exponent } => {
-            let mirror_dir = reflect::<f64>(-to_eye, normal);
-            let lobe = mirror_dir.dot(to_light).max(0.0).powf(exponent);
-            diffuse / PI + specular * ((exponent + 2.0) / (2.0 * PI) * lobe)
-        }
-        Material::Mirror { .. } | Material::Glass { .. } | Material::Emitter { .. } => DVec3::ZERO,
-    }
-}
-
-/// A cosine-distributed direction about the unit `normal` (Malley's method).
-pub(crate) fn cosine_direction(normal: DVec3, u1: f64, u2: f64) -> DVec3 {
-    let radius = u1.sqrt();
-    let phi = 2.0 * PI * u2;
-    let (tangent, bitangent) = normal.any_orthonormal_pair();
-    let z = (1.0 - u1).max(0.0).sqrt();
-    (tangent * (radius * phi.cos()) + bitangent * (radius * phi.sin()) + normal * z).normalize()
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::geometry::Sphere;
-    use crate::render::analysis::Pass;
-    use crate::render::scene::Hit;
-    use crate::render::scene::{Camera, Object};
+    use crate::render::camera::Camera;
+    use crate::render::medium::airlight_closed_form;
+    use crate::render::photon::Photon;
+    use crate::render::scene::{Fog, Object, PointLight};
 
     fn camera() -> Camera {
         Camera::looking_at(DVec3::ZERO, DVec3::NEG_Z, 40.0)
+    }
+
+    /// The airlight the tracer measures (its own copy of the set-up, so the test does not lean
+    /// on a catalogue scene): a camera ray along `−z` ends on a black wall at `length`, a
+    /// unit-intensity point light sits at distance `light_distance` and angle `gamma` from the
+    /// ray, the fog has `σ_s = beta`, and single scattering uses `steps` quadrature steps.
+    fn traced_airlight(beta: f64, light_distance: f64, gamma: f64, length: f64, steps: usize) -> f64 {
+        let lamp = PointLight {
+            position: DVec3::new(light_distance * gamma.sin(), 0.0, -light_distance * gamma.cos()),
+            intensity: DVec3::ONE,
+        };
+        let black = Material::Diffuse { albedo: DVec3::ZERO };
+        let wall =
+            Object::quad(DVec3::new(-1e3, -1e3, -length), DVec3::new(2e3, 0.0, 0.0), DVec3::new(0.0, 2e3, 0.0), black);
+        let fog = Fog { sigma_a: 0.0, sigma_s: beta };
+        let scene = Scene::new(camera(), vec![wall], vec![lamp], Some(fog), DVec3::ZERO).unwrap();
+        let tracer = Tracer::new(&scene, Passes::all()).with_in_scatter_steps(steps);
+        let ray = Ray { origin: DVec3::ZERO, dir: DVec3::NEG_Z };
+        tracer.radiance(Integrator::Whitted { max_depth: 0 }, &ray, 0.0, &mut Sampler::new(0, 0, 0)).x
     }
 
     #[test]
@@ -521,12 +427,12 @@ mod tests {
             assert!(((closed - anchor) / anchor).abs() < 2e-6, "{closed} vs {anchor}");
             // The midpoint rule is second order: 1.2e-4 at 256 steps, 7e-6 at 1024, 4e-7 at 4096
             // (β = 0.05, D = 1, γ = 5°).
-            let traced = airlight_traced(beta, d, gamma, length, 4096).unwrap();
+            let traced = traced_airlight(beta, d, gamma, length, 4096);
             assert!(
                 ((traced - closed) / closed).abs() < 2e-6,
                 "β={beta} D={d} γ={gamma_degrees}: traced {traced:e}, closed {closed:e}"
             );
-            let default_steps = airlight_traced(beta, d, gamma, length, IN_SCATTER_STEPS).unwrap();
+            let default_steps = traced_airlight(beta, d, gamma, length, IN_SCATTER_STEPS);
             assert!(((default_steps - closed) / closed).abs() < 1e-2);
         }
     }
@@ -561,29 +467,6 @@ mod tests {
         assert!((mean - 1.0).abs() < 1e-9, "{mean}");
     }
 
-    #[test]
-    fn refraction_obeys_snell_and_total_internal_reflection() {
-        let hit = Hit { t: 1.0, point: DVec3::ZERO, normal: DVec3::Z, object: 0 };
-        let incoming = |angle: f64, from_inside: bool| {
-            let side = if from_inside { 1.0 } else { -1.0 };
-            Ray { origin: DVec3::ZERO, dir: DVec3::new(angle.sin(), 0.0, side * angle.cos()) }
-        };
-        for degrees in [0.0, 10.0, 30.0, 60.0, 89.0] {
-            let theta = f64::to_radians(degrees);
-            let split = dielectric_split(&incoming(theta, false), &hit, 1.5);
-            let out = split.refracted.unwrap();
-            assert!((out.dir.x - theta.sin() / 1.5).abs() < 1e-15, "Snell at {degrees}°");
-            assert!(out.dir.z < 0.0 && out.origin.z < 0.0, "continues below the surface");
-            assert!((0.0..1.0).contains(&split.reflectance));
-        }
-        // Inside glass, beyond the critical angle asin(1/1.5) = 41.8°, all light reflects.
-        let inside = dielectric_split(&incoming(f64::to_radians(45.0), true), &hit, 1.5);
-        assert_eq!(inside.reflectance, 1.0);
-        assert!(inside.refracted.is_none());
-        let below = dielectric_split(&incoming(f64::to_radians(40.0), true), &hit, 1.5);
-        assert!(below.refracted.is_some() && below.reflectance < 1.0);
-    }
-
     /// A glass sphere in front of a uniform background: every path ends in the background, so
     /// Whitted's reflect-and-refract tree must return the background (energy conservation), up to
     /// the weight still inside the sphere at depth 8.
@@ -602,20 +485,43 @@ mod tests {
         }
     }
 
+    /// The indirect-map option reads the map exactly as a photon-map gather at the diffuse hit
+    /// would, and with a radius of [`f64::MAX`] that is the plain `k`-nearest estimate; without
+    /// lights the direct part is exactly zero, so the radiances are compared bit for bit.
     #[test]
-    fn cosine_directions_stay_in_the_hemisphere_and_average_to_two_thirds() {
-        let normal = DVec3::new(0.0, 0.6, 0.8);
-        let mut sampler = Sampler::new(7, 0, 0);
-        let n = 20_000;
-        let mean_cos: f64 = (0..n)
-            .map(|_| {
-                let d = cosine_direction(normal, sampler.uniform(), sampler.uniform());
-                assert!(d.dot(normal) >= 0.0 && (d.length() - 1.0).abs() < 1e-12);
-                d.dot(normal)
+    fn the_indirect_map_option_equals_a_photon_map_gather_at_a_diffuse_hit() {
+        let grey = Material::Diffuse { albedo: DVec3::splat(0.5) };
+        let floor =
+            Object::quad(DVec3::new(-1.0, -1.0, -2.0), DVec3::new(2.0, 0.0, 0.0), DVec3::new(0.0, 2.0, 0.0), grey);
+        let scene = Scene::new(camera(), vec![floor], vec![], None, DVec3::ZERO).unwrap();
+        let photons = (0..400)
+            .map(|i| Photon {
+                position: DVec3::new(f64::from(i % 20) * 0.05 - 0.5, f64::from(i / 20) * 0.05 - 0.5, -2.0),
+                direction: DVec3::new(0.0, 0.6, -0.8),
+                normal: DVec3::Z,
+                power: DVec3::splat(0.01),
             })
-            .sum::<f64>()
-            / n as f64;
-        // E[cosθ] = 2/3 for pdf cosθ/π; std of cosθ is √(1/2 − 4/9) ≈ 0.236, so 5σ/√n ≈ 0.0083.
-        assert!((mean_cos - 2.0 / 3.0).abs() < 0.0083, "{mean_cos}");
+            .collect();
+        let map = PhotonMap::new(photons);
+        let whitted = Integrator::Whitted { max_depth: 0 };
+        let ray = Ray { origin: DVec3::ZERO, dir: DVec3::new(0.05, -0.02, -1.0).normalize() };
+        let hit = scene.closest_hit(&ray, 0.0, f64::INFINITY).unwrap();
+        for gather in [Gather::new(30, 0.1).unwrap(), Gather::new(30, f64::MAX).unwrap()] {
+            let tracer = Tracer::new(&scene, Passes::default()).with_indirect(&map, gather);
+            let traced = tracer.radiance(whitted, &ray, 0.0, &mut Sampler::new(0, 0, 0));
+            let expected = map.radiance_gathered(&grey, hit.point, -ray.dir, DVec3::Z, gather);
+            assert_eq!(traced, expected);
+            assert!(traced.x > 0.0);
+        }
+        let knn = map.radiance(&grey, hit.point, -ray.dir, DVec3::Z, 30).unwrap();
+        let unbounded = Tracer::new(&scene, Passes::default()).with_indirect(&map, Gather::new(30, f64::MAX).unwrap());
+        assert_eq!(unbounded.radiance(whitted, &ray, 0.0, &mut Sampler::new(0, 0, 0)), knn);
+        // Off, or an empty map: the tracer without the option, bit for bit.
+        let empty = PhotonMap::new(vec![]);
+        let off = Tracer::new(&scene, Passes::default());
+        let with_empty = off.with_indirect(&empty, Gather::new(30, 0.1).unwrap());
+        let plain = off.radiance(whitted, &ray, 0.0, &mut Sampler::new(0, 0, 0));
+        assert_eq!(with_empty.radiance(whitted, &ray, 0.0, &mut Sampler::new(0, 0, 0)), plain);
+        assert_eq!(plain, DVec3::ZERO);
     }
 }

@@ -1,85 +1,16 @@
-//! Scene description: camera, shapes, materials, lights, fog and motion, validated on construction.
+//! Scene description: shapes, materials, lights, fog and motion, validated on construction.
 //!
 //! Everything is `f64`. A [`Scene`] can only be built through [`Scene::new`], which rejects NaN or
 //! infinite numbers, negative albedos or densities, degenerate quads and cameras, and an inverted
 //! shutter, so the integrators never see input that could turn into a silent NaN.
 
+use super::camera::Camera;
+use super::environment::Environment;
 use crate::geometry::sphere::{first_hit_stable, surface_hit};
 use crate::geometry::{InputError, Ray, Sphere, require_finite};
 use crate::kdtree::{BuildError, KdTree};
-use crate::render::environment::Environment;
 use glam::DVec3;
 use std::sync::Arc;
-
-/// A pinhole camera with a shutter interval (distribution ray tracing samples times inside it).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Camera {
-    /// The pinhole.
-    pub eye: DVec3,
-    /// A point the camera looks at (the image centre).
-    pub look_at: DVec3,
-    /// Approximate up direction (must not be parallel to the view direction).
-    pub up: DVec3,
-    /// Vertical field of view in degrees, in `(0, 180)`.
-    pub vfov_degrees: f64,
-    /// Shutter open and close times, `open ≤ close`. Equal times give an instantaneous exposure.
-    pub shutter: (f64, f64),
-}
-
-impl Camera {
-    /// A camera at `eye` looking at `look_at` with `+y` up, a vertical field of view of
-    /// `vfov_degrees`, and an instantaneous shutter at time 0 (validated by [`Scene::new`]).
-    ///
-    /// # Examples
-    /// ```
-    /// use glam::DVec3;
-    /// let camera = hw3::render::scene::Camera::looking_at(DVec3::Z, DVec3::ZERO, 40.0);
-    /// assert_eq!(camera.shutter, (0.0, 0.0));
-    /// ```
-    #[must_use]
-    pub fn looking_at(eye: DVec3, look_at: DVec3, vfov_degrees: f64) -> Self {
-        Self { eye, look_at, up: DVec3::Y, vfov_degrees, shutter: (0.0, 0.0) }
-    }
-}
-
-/// The camera's orthonormal frame and image-plane extents, precomputed once per render.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct CameraFrame {
-    eye: DVec3,
-    forward: DVec3,
-    right: DVec3,
-    up: DVec3,
-    half_height: f64,
-}
-
-impl CameraFrame {
-    /// The frame of `camera`; assumes `camera` was validated by [`Scene::new`].
-    pub(crate) fn new(camera: &Camera) -> Self {
-        let forward = (camera.look_at - camera.eye).normalize();
-        let right = forward.cross(camera.up).normalize();
-        let up = right.cross(forward);
-        let half_height = (camera.vfov_degrees.to_radians() / 2.0).tan();
-        Self { eye: camera.eye, forward, right, up, half_height }
-    }
-
-    /// Whether `point` projects inside the image of aspect ratio `aspect` (and lies in front).
-    pub(crate) fn sees(&self, point: DVec3, aspect: f64) -> bool {
-        let offset = point - self.eye;
-        let depth = offset.dot(self.forward);
-        depth > 0.0
-            && (offset.dot(self.right) / depth).abs() <= self.half_height * aspect
-            && (offset.dot(self.up) / depth).abs() <= self.half_height
-    }
-
-    /// The primary ray through image-plane point `(u, v)` in `[0, 1]²` (`v = 0` is the top row)
-    /// for an image of aspect ratio `aspect = width / height`. The direction is unit length.
-    pub(crate) fn ray(&self, u: f64, v: f64, aspect: f64) -> Ray<f64> {
-        let x = (2.0 * u - 1.0) * self.half_height * aspect;
-        let y = (1.0 - 2.0 * v) * self.half_height;
-        let dir = (self.forward + self.right * x + self.up * y).normalize();
-        Ray { origin: self.eye, dir }
-    }
-}
 
 /// The surface's reflection model. Each material is one letter of Heckbert's path notation.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -170,6 +101,38 @@ pub struct PointLight {
     pub position: DVec3,
     /// Radiant intensity per channel (≥ 0).
     pub intensity: DVec3,
+}
+
+/// An emitting quad (an object of [`Material::Emitter`] on a [`Shape::Quad`]): one-sided, its
+/// radiance leaving the side `edge_u × edge_v` points to. Listed by [`Scene::area_lights`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AreaLight {
+    /// Index of the object in [`Scene::objects`].
+    pub object: usize,
+    /// One corner.
+    pub corner: DVec3,
+    /// First edge from the corner.
+    pub edge_u: DVec3,
+    /// Second edge from the corner.
+    pub edge_v: DVec3,
+    /// Emitted radiance per channel (≥ 0; possibly black).
+    pub radiance: DVec3,
+}
+
+impl AreaLight {
+    /// The point at `(u, v) ∈ [0, 1]²` of the quad: `corner + u·edge_u + v·edge_v`.
+    ///
+    /// # Examples
+    /// ```
+    /// use glam::DVec3;
+    /// use hw3::render::scene::AreaLight;
+    /// let light = AreaLight { object: 0, corner: DVec3::ZERO, edge_u: DVec3::X, edge_v: DVec3::Z, radiance: DVec3::ONE };
+    /// assert_eq!(light.point(0.5, 1.0), DVec3::new(0.5, 0.0, 1.0));
+    /// ```
+    #[must_use]
+    pub fn point(&self, u: f64, v: f64) -> DVec3 {
+        self.corner + self.edge_u * u + self.edge_v * v
+    }
 }
 
 /// A homogeneous medium filling all space (the camera is always inside it), with an isotropic
@@ -286,6 +249,7 @@ impl Scene {
     /// ```
     /// use glam::DVec3;
     /// use hw3::geometry::Sphere;
+    /// use hw3::render::camera::Camera;
     /// use hw3::render::scene::*;
     /// let camera = Camera { eye: DVec3::new(0.0, 0.0, 5.0), look_at: DVec3::ZERO, up: DVec3::Y,
     ///     vfov_degrees: 40.0, shutter: (0.0, 0.0) };
@@ -327,8 +291,8 @@ impl Scene {
     /// # Examples
     /// ```
     /// use glam::DVec3;
-    /// use hw3::render::{environment::Environment, scenes};
-    /// let scene = scenes::mirror_spheres(true).unwrap();
+    /// use hw3::render::{environment::Environment, catalogue};
+    /// let scene = catalogue::mirror_spheres(true).unwrap();
     /// let lit = scene.clone().with_environment(Environment::constant(DVec3::ONE).unwrap());
     /// assert!(scene.environment().is_none() && lit.environment().is_some());
     /// ```
@@ -348,7 +312,7 @@ impl Scene {
     ///
     /// # Examples
     /// ```
-    /// let scene = hw3::render::scenes::clutter_forest(50, 1).unwrap();
+    /// let scene = hw3::render::catalogue::clutter_forest(50, 1).unwrap();
     /// assert_eq!(scene.kd_tree_spheres(), 50);
     /// let brute = scene.without_kd_tree();
     /// assert_eq!((brute.kd_tree_spheres(), &brute), (0, &scene));
@@ -381,6 +345,43 @@ impl Scene {
     #[must_use]
     pub fn point_lights(&self) -> &[PointLight] {
         &self.point_lights
+    }
+
+    /// Every emitting quad, in object order (black ones included: callers that weigh lights by
+    /// power skip them themselves). Emitters are quads only ([`Scene::new`] refuses an emitting
+    /// sphere).
+    ///
+    /// # Examples
+    /// ```
+    /// let cornell = hw3::render::catalogue::cornell_mirror().unwrap();
+    /// assert_eq!(cornell.area_lights().count(), 1);
+    /// let light = cornell.area_lights().next().unwrap();
+    /// assert_eq!(light.point(0.0, 0.0), light.corner);
+    /// ```
+    pub fn area_lights(&self) -> impl Iterator<Item = AreaLight> + '_ {
+        self.objects.iter().enumerate().filter_map(|(object, o)| match (o.material, o.shape) {
+            (Material::Emitter { radiance }, Shape::Quad { corner, edge_u, edge_v }) => {
+                Some(AreaLight { object, corner, edge_u, edge_v, radiance })
+            }
+            _ => None,
+        })
+    }
+
+    /// The radiance seen along an escaping ray of unit direction `direction`: the environment
+    /// if the scene has one, else the constant background.
+    ///
+    /// # Examples
+    /// ```
+    /// use glam::DVec3;
+    /// use hw3::render::{environment::Environment, catalogue};
+    /// let scene = catalogue::mirror_spheres(true).unwrap();
+    /// assert_eq!(scene.escaped_radiance(DVec3::Y), scene.background());
+    /// let lit = scene.with_environment(Environment::constant(DVec3::ONE).unwrap());
+    /// assert_eq!(lit.escaped_radiance(DVec3::Y), DVec3::ONE);
+    /// ```
+    #[must_use]
+    pub fn escaped_radiance(&self, direction: DVec3) -> DVec3 {
+        self.environment().map_or_else(|| self.background(), |environment| environment.radiance(direction))
     }
 
     /// The medium, if any.
@@ -618,118 +619,4 @@ fn require_unit_interval(name: &'static str, v: DVec3) -> Result<(), InputError>
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn unit_quad() -> Shape {
-        Shape::Quad {
-            corner: DVec3::new(-1.0, -1.0, 0.0),
-            edge_u: DVec3::new(2.0, 0.0, 0.0),
-            edge_v: DVec3::new(0.0, 2.0, 0.0),
-        }
-    }
-
-    fn ray(origin: [f64; 3], dir: [f64; 3]) -> Ray<f64> {
-        Ray::new(DVec3::from(origin), DVec3::from(dir)).unwrap()
-    }
-
-    #[test]
-    fn quad_is_hit_inside_and_missed_outside_and_behind() {
-        let quad = unit_quad();
-        assert_eq!(intersect(&quad, &ray([0.5, 0.5, 3.0], [0.0, 0.0, -1.0]), 0.0), Some(3.0));
-        assert_eq!(intersect(&quad, &ray([1.5, 0.0, 3.0], [0.0, 0.0, -1.0]), 0.0), None);
-        assert_eq!(intersect(&quad, &ray([0.0, 0.0, 3.0], [0.0, 0.0, 1.0]), 0.0), None);
-    }
-
-    #[test]
-    fn grazing_ray_in_the_plane_of_a_quad_is_a_miss_not_a_nan() {
-        let quad = unit_quad();
-        assert_eq!(intersect(&quad, &ray([-5.0, 0.0, 0.0], [1.0, 0.0, 0.0]), 0.0), None);
-        let nearly = ray([-5.0, 0.0, 1e-300], [1.0, 0.0, -1e-300]);
-        assert_eq!(intersect(&quad, &nearly, 0.0), None);
-    }
-
-    #[test]
-    fn moving_sphere_is_where_its_velocity_puts_it() {
-        let shape =
-            Shape::Sphere { sphere: Sphere::new(DVec3::ZERO, 1.0).unwrap(), velocity: DVec3::new(2.0, 0.0, 0.0) };
-        let probe = ray([2.0, 0.0, 5.0], [0.0, 0.0, -1.0]);
-        assert_eq!(intersect(&shape, &probe, 0.0), None);
-        assert_eq!(intersect(&shape, &probe, 1.0), Some(4.0));
-    }
-
-    /// Random rays from inside and outside a 400-sphere forest with a moving sphere and a quad
-    /// added: closest hits, shadow tests and pierce counts agree with the brute-force loop.
-    #[test]
-    fn kd_tree_queries_equal_brute_force_on_a_mixed_scene() {
-        let forest = crate::render::scenes::clutter_forest(400, 3).unwrap();
-        let mut objects = forest.objects().to_vec();
-        let material = Material::Diffuse { albedo: DVec3::splat(0.5) };
-        let mover = Sphere::new(DVec3::new(0.0, 0.0, -5.0), 2.0).unwrap();
-        objects.insert(7, Object { shape: Shape::Sphere { sphere: mover, velocity: DVec3::X }, material });
-        objects.push(Object::quad(DVec3::new(-30.0, -3.0, -12.0), DVec3::X * 60.0, DVec3::Y * 6.0, material));
-        // Times 0…1.5 fall in the shutter (the mover's swept box), 2.0 outside it.
-        let camera = Camera { shutter: (0.0, 1.5), ..*forest.camera() };
-        let scene = Scene::new(camera, objects, vec![], None, DVec3::ZERO).unwrap();
-        assert_eq!(scene.kd_tree_spheres(), 401, "the moving sphere is in the tree, the quad outside");
-        let brute = scene.without_kd_tree();
-        let mut rng = crate::rng::seeded(11, 0);
-        let mut point = |half: f64| {
-            let mut coordinate = || crate::rng::uniform_in(&mut rng, -half, half);
-            DVec3::new(coordinate(), coordinate(), coordinate() - 5.0)
-        };
-        let mut hits = 0;
-        for case in 0..2000 {
-            let origin = if case % 2 == 0 { point(8.0) } else { point(30.0) };
-            let ray = Ray::<f64>::new(origin, (point(25.0) - origin).normalize()).unwrap();
-            let (time, t_max) = (f64::from(case % 5) * 0.5, if case % 3 == 0 { 6.0 } else { f64::INFINITY });
-            let hit = scene.closest_hit(&ray, time, t_max);
-            assert_eq!(hit, brute.closest_hit(&ray, time, t_max), "ray {case}");
-            assert_eq!(scene.occluded(&ray, time, t_max), brute.occluded(&ray, time, t_max), "ray {case}");
-            assert_eq!(
-                scene.objects_pierced(&ray, time, t_max),
-                brute.objects_pierced(&ray, time, t_max),
-                "ray {case}"
-            );
-            hits += usize::from(hit.is_some());
-        }
-        assert!((300..1700).contains(&hits), "the rays both hit and miss: {hits} hits of 2000");
-    }
-
-    /// The documented exception of the hit-by-hit walk: a sphere duplicated bit for bit is crossed
-    /// at the same `t` as its twin, and the tree reports one sphere per `t`.
-    #[test]
-    fn duplicated_sphere_is_pierced_once_through_the_tree_and_twice_by_brute_force() {
-        let ball = Object::sphere(Sphere::new(DVec3::ZERO, 1.0).unwrap(), Material::Diffuse { albedo: DVec3::ONE });
-        let camera = Camera::looking_at(DVec3::new(0.0, 0.0, 5.0), DVec3::ZERO, 40.0);
-        let scene = Scene::new(camera, vec![ball, ball], vec![], None, DVec3::ZERO).unwrap();
-        let probe = ray([0.0, 0.0, 5.0], [0.0, 0.0, -1.0]);
-        assert_eq!(scene.objects_pierced(&probe, 0.0, f64::INFINITY), 1);
-        assert_eq!(scene.without_kd_tree().objects_pierced(&probe, 0.0, f64::INFINITY), 2);
-        assert_eq!(scene.closest_hit(&probe, 0.0, 9.0).map(|h| h.object), Some(0), "ties go to the lower index");
-    }
-
-    #[test]
-    fn invalid_scenes_are_typed_errors_naming_the_value() {
-        let camera = Camera { shutter: (0.0, 1.0), ..Camera::looking_at(DVec3::new(0.0, 0.0, 5.0), DVec3::ZERO, 40.0) };
-        let name = |r: Result<Scene, InputError>| match r.unwrap_err() {
-            InputError::NonFinite { name, .. }
-            | InputError::DegenerateDirection { name, .. }
-            | InputError::OutOfRange { name, .. } => name,
-        };
-        let scene = |camera, objects, fog| Scene::new(camera, objects, vec![], fog, DVec3::ZERO);
-        let parallel_up = Camera { up: DVec3::Z, ..camera };
-        assert_eq!(name(scene(parallel_up, vec![], None)), "camera view direction");
-        let inverted = Camera { shutter: (1.0, 0.0), ..camera };
-        assert_eq!(name(scene(inverted, vec![], None)), "shutter close");
-        let flat = Object {
-            shape: Shape::Quad { corner: DVec3::ZERO, edge_u: DVec3::X, edge_v: DVec3::X * 2.0 },
-            material: Material::Diffuse { albedo: DVec3::ONE },
-        };
-        assert_eq!(name(scene(camera, vec![flat], None)), "quad edges");
-        let bright = Object { shape: unit_quad(), material: Material::Diffuse { albedo: DVec3::splat(1.5) } };
-        assert_eq!(name(scene(camera, vec![bright], None)), "diffuse albedo");
-        let fog = Fog { sigma_a: 0.0, sigma_s: f64::NAN };
-        assert_eq!(name(scene(camera, vec![], Some(fog))), "fog sigma_s");
-    }
-}
+mod tests;

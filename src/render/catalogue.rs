@@ -1,12 +1,15 @@
-//! Built-in scenes: Q1's four hard scenes (and their easy twins), plus a small box for the path
+//! The catalogue of built-in scenes: Q1's four hard scenes (and their easy twins), plus a small box for the path
 //! tracer. `hw3 scenes` lists them; `hw3 render NAME` and `hw3 effects NAME` take their names.
 
-use super::RenderError;
 use super::environment::Environment;
-use super::scene::{Camera, Fog, Material, Object, PointLight, Scene, Shape};
+use super::error::RenderError;
+use super::{
+    camera::Camera,
+    scene::{Fog, Material, Object, PointLight, Scene, Shape},
+};
 use crate::geometry::{InputError, Sphere};
+use crate::rng;
 use glam::DVec3;
-use rand_core::Rng as _;
 
 /// Every built-in scene: CLI name and a one-line description.
 pub const CATALOGUE: [(&str, &str); 11] = [
@@ -30,8 +33,8 @@ pub const CATALOGUE: [(&str, &str); 11] = [
 ///
 /// # Examples
 /// ```
-/// assert!(hw3::render::scenes::by_name("mirrors").is_ok());
-/// assert!(hw3::render::scenes::by_name("nope").is_err());
+/// assert!(hw3::render::catalogue::by_name("mirrors").is_ok());
+/// assert!(hw3::render::catalogue::by_name("nope").is_err());
 /// ```
 pub fn by_name(name: &str) -> Result<Scene, RenderError> {
     let scene = match name {
@@ -69,8 +72,8 @@ pub const CLUTTER_RADIUS: f64 = 0.5;
 /// # Errors
 /// Never for the built-in numbers; the `Result` carries [`Scene::new`]'s validation.
 pub fn clutter_forest(count: usize, seed: u64) -> Result<Scene, InputError> {
-    let mut random = rand_pcg::Pcg32::new(seed, 0xC1u64);
-    let mut uniform = move || (random.next_u64() >> 11) as f64 / (1u64 << 53) as f64;
+    let mut random = rng::pcg32(seed, 0xC1);
+    let mut uniform = move || rng::uniform(&mut random);
     let half = CLUTTER_HALF_WIDTH + CLUTTER_RADIUS;
     let objects = (0..count)
         .map(|_| {
@@ -188,20 +191,6 @@ pub fn mirror_behind_wall() -> Result<Scene, InputError> {
     let mut objects = checker_floor(4, -3.0);
     objects.extend([mirror, roof]);
     seen_by_mirror_camera(objects, DVec3::new(0.0, 6.0, -3.0), DVec3::ZERO)
-}
-
-/// A camera at the origin looking along `−z` at a 2000×2000 wall of `wall` material facing it at
-/// distance `distance`, one `lamp`, and a non-absorbing fog of scattering coefficient `sigma_s`:
-/// the set-up of the fog measurements (transmittance and airlight).
-///
-/// # Errors
-/// [`InputError`] for an invalid distance, lamp, material or density.
-pub fn wall_in_fog(distance: f64, wall: Material, lamp: PointLight, sigma_s: f64) -> Result<Scene, InputError> {
-    let wall =
-        Object::quad(DVec3::new(-1e3, -1e3, -distance), DVec3::new(2e3, 0.0, 0.0), DVec3::new(0.0, 2e3, 0.0), wall);
-    let camera = Camera::looking_at(DVec3::ZERO, DVec3::NEG_Z, 40.0);
-    let fog = Fog { sigma_a: 0.0, sigma_s };
-    Scene::new(camera, vec![wall], vec![lamp], Some(fog), DVec3::ZERO)
 }
 
 /// Shutter of [`moving_ball`]: open at 0, close at 1.
@@ -324,7 +313,7 @@ pub const CAUSTIC_LIGHT_CENTER: DVec3 = DVec3::new(-3.0, 9.5, 0.0);
 ///
 /// # Examples
 /// ```
-/// let scene = hw3::render::scenes::glass_ball_caustic().unwrap();
+/// let scene = hw3::render::catalogue::glass_ball_caustic().unwrap();
 /// assert_eq!(scene.objects().len(), 3);
 /// ```
 pub fn glass_ball_caustic() -> Result<Scene, InputError> {
@@ -353,7 +342,7 @@ pub fn glass_ball_caustic() -> Result<Scene, InputError> {
 ///
 /// # Examples
 /// ```
-/// let (center, radius, points) = hw3::render::scenes::caustic_footprint(100);
+/// let (center, radius, points) = hw3::render::catalogue::caustic_footprint(100);
 /// assert!(points.iter().all(|p| (*p - center).length() <= radius && p.y == 0.0));
 /// ```
 #[must_use]
@@ -378,7 +367,7 @@ pub fn caustic_footprint(n: usize) -> (DVec3, f64, Vec<DVec3>) {
 ///
 /// # Examples
 /// ```
-/// let scene = hw3::render::scenes::probe_lit().unwrap();
+/// let scene = hw3::render::catalogue::probe_lit().unwrap();
 /// assert!(scene.environment().is_some() && scene.point_lights().is_empty());
 /// ```
 pub fn probe_lit() -> Result<Scene, RenderError> {
@@ -404,6 +393,27 @@ pub fn probe_lit() -> Result<Scene, RenderError> {
     ];
     let camera = Camera::looking_at(DVec3::new(0.0, 1.5, 2.5), DVec3::new(0.0, 0.5, -2.0), 45.0);
     Ok(Scene::new(camera, objects, vec![], None, DVec3::ZERO)?.with_environment(environment))
+}
+
+/// The white-furnace scene: a closed unit sphere of grey albedo `albedo` with an isotropic point
+/// light of intensity `intensity` at its centre. Every point of the wall receives the irradiance
+/// `E = Φ/(A(1 − ρ)) = I/(1 − ρ)` (direct `I` at distance 1, plus the geometric series of uniform
+/// interreflection), the exact reference of the photon-map tests and accuracy bench.
+///
+/// # Errors
+/// [`InputError`] for an albedo outside `[0, 1]` or a negative or non-finite intensity.
+///
+/// # Examples
+/// ```
+/// let scene = hw3::render::catalogue::furnace_sphere(0.5, 1.0).unwrap();
+/// assert_eq!(scene.objects().len(), 1);
+/// assert!(hw3::render::catalogue::furnace_sphere(1.5, 1.0).is_err());
+/// ```
+pub fn furnace_sphere(albedo: f64, intensity: f64) -> Result<Scene, InputError> {
+    let camera = Camera::looking_at(DVec3::new(0.0, 0.0, 0.5), DVec3::ZERO, 40.0);
+    let shell = Object::sphere(Sphere::new(DVec3::ZERO, 1.0)?, Material::Diffuse { albedo: DVec3::splat(albedo) });
+    let lamp = PointLight { position: DVec3::ZERO, intensity: DVec3::splat(intensity) };
+    Scene::new(camera, vec![shell], vec![lamp], None, DVec3::ZERO)
 }
 
 #[cfg(test)]

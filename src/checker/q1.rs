@@ -1,0 +1,258 @@
+//! Q1 variants: a number for each difficulty's metric (the gap fraction of a cluttered slab, fog
+//! transmittance and visual range, the turn of a mirror reflection per camera step, the image
+//! shift of a moving object per frame), and the built-in scenes matched to the difficulties.
+
+use super::key::{Expected, MalRule, Part, Variant};
+use crate::render::catalogue::{CATALOGUE, CLUTTER_COUNT, CLUTTER_HALF_WIDTH, CLUTTER_RADIUS};
+use crate::rng;
+use rand_core::Rng;
+use std::f64::consts::PI;
+
+/// The RNG stream of Q1 variants.
+const STREAM: u64 = 1;
+
+const NOTES: &str = "hw3/q1_hard_scenes/index.html";
+
+/// The difficulties of Q1, by the homework's letters.
+const DIFFICULTIES: [&str; 4] = ["a", "b", "c", "d"];
+
+/// The four hard scenes of the renderer, by name.
+const SCENES: [(&str, &str); 4] = [
+    ("clutter", "q1match.clutter"),
+    ("fog", "q1match.fog"),
+    ("mirrors", "q1match.mirrors"),
+    ("motion", "q1match.motion"),
+];
+
+fn number(value: f64, rtol: f64) -> Expected {
+    Expected::Number { value, rtol, atol: 1e-9 }
+}
+
+/// A variant's numbers.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) struct Numbers {
+    /// Spheres, slab side `W`, radius `a`.
+    pub count: f64,
+    pub side: f64,
+    pub radius: f64,
+    /// Fog `σ_t` and a path length.
+    pub sigma_t: f64,
+    pub path: f64,
+    /// Mirror sphere radius and camera step.
+    pub mirror_radius: f64,
+    pub step: f64,
+    /// Object speed (units per second), frames per second, depth, vertical field of view
+    /// (degrees) and image height (pixels).
+    pub speed: f64,
+    pub fps: f64,
+    pub depth: f64,
+    pub fov_deg: f64,
+    pub height: f64,
+}
+
+/// Seed 0 is the renderer's clutter scene (1500 spheres of radius 0.5 over a 40 × 40 face) and
+/// its fog street (σ_t = 0.08); other seeds draw from small grids of nice numbers.
+pub(super) fn numbers(seed: u64) -> Numbers {
+    if seed == 0 {
+        return Numbers {
+            count: CLUTTER_COUNT as f64,
+            side: 2.0 * CLUTTER_HALF_WIDTH,
+            radius: CLUTTER_RADIUS,
+            sigma_t: 0.08,
+            path: 10.0,
+            mirror_radius: 1.0,
+            step: 0.01,
+            speed: 2.0,
+            fps: 24.0,
+            depth: 5.0,
+            fov_deg: 60.0,
+            height: 480.0,
+        };
+    }
+    let mut g = rng::seeded(seed, STREAM);
+    let mut pick = |values: &[f64]| values[(g.next_u64() % values.len() as u64) as usize];
+    Numbers {
+        count: pick(&[500.0, 1000.0, 1500.0, 2000.0, 4000.0]),
+        side: pick(&[20.0, 30.0, 40.0]),
+        radius: pick(&[0.25, 0.5, 1.0]),
+        sigma_t: pick(&[0.05, 0.1, 0.2, 0.5]),
+        path: pick(&[1.0, 2.0, 5.0, 10.0]),
+        mirror_radius: pick(&[0.5, 1.0, 2.0]),
+        step: pick(&[0.01, 0.02, 0.05]),
+        speed: pick(&[1.0, 2.0, 5.0]),
+        fps: pick(&[24.0, 30.0, 60.0]),
+        depth: pick(&[2.0, 5.0, 10.0]),
+        fov_deg: pick(&[40.0, 60.0, 90.0]),
+        height: pick(&[480.0, 720.0, 1080.0]),
+    }
+}
+
+/// The difficulty a built-in scene illustrates: the letter its catalogue line starts with (`Q1a:`).
+fn difficulty_of(scene: &str) -> &'static str {
+    let (_, description) = CATALOGUE.iter().find(|(name, _)| *name == scene).expect("a built-in scene");
+    let letter = description.strip_prefix("Q1").and_then(|rest| rest.chars().next()).unwrap_or('?');
+    DIFFICULTIES.iter().find(|d| d.starts_with(letter)).expect("the hard scenes are labelled Q1a … Q1d")
+}
+
+pub(super) fn variant(seed: u64) -> Variant {
+    let n = numbers(seed);
+    // One sphere blocks a ray with probability p = πa²/(W + 2a)² (its centre must fall in the
+    // disc of radius a around the ray, out of a face widened by a on each side); misses multiply.
+    let p = PI * n.radius * n.radius / (n.side + 2.0 * n.radius).powi(2);
+    let gap = (1.0 - p).powf(n.count);
+    let transmittance = (-n.sigma_t * n.path).exp();
+    let visual_range = 50f64.ln() / n.sigma_t;
+    // A sideways step δ moves where a pixel's ray meets the ball by δ; near the centre of the
+    // ball the normal turns by δ/R and the reflected ray by twice that.
+    let turn = (2.0 * n.step / n.mirror_radius).to_degrees();
+    let focal_pixels = n.height / 2.0 / (n.fov_deg.to_radians() / 2.0).tan();
+    let shift = n.speed / n.fps * focal_pixels / n.depth;
+    let statement = format!(
+        "Q1 (variant {seed}). What makes each scene hard, in numbers.\n\
+         (a) {count} spheres of radius a = {a}, centres uniform over a slab whose front face is a {w} x {w} square \
+         (widened by a on each side): the fraction of rays perpendicular to the face that cross the slab without a hit;\n\
+         (b) fog of extinction coefficient sigma_t = {s}: the transmittance along a path of length {l}, and the visual \
+         range (the distance at which an object's contrast falls to 2 %);\n\
+         (c) a camera looking straight at a mirror sphere of radius R = {r} steps sideways by {step}: the angle, in \
+         degrees, by which the reflected ray of the pixel at the ball's centre turns;\n\
+         (d) an object moving at {v} units/s across the view, {z} units away, filmed at {fps} frames/s with a vertical \
+         field of view of {fov} degrees and an image {h} pixels high: its image shift per frame, in pixels.\n\
+         Match each built-in scene to the difficulty it shows (a, b, c or d): {}.",
+        SCENES.map(|(name, _)| name).join(", "),
+        count = n.count,
+        a = n.radius,
+        w = n.side,
+        s = n.sigma_t,
+        l = n.path,
+        r = n.mirror_radius,
+        step = n.step,
+        v = n.speed,
+        z = n.depth,
+        fps = n.fps,
+        fov = n.fov_deg,
+        h = n.height,
+    );
+    let mut parts = vec![
+        Part {
+            key: "q1a.gap_fraction",
+            prompt: "fraction of rays crossing the slab without a hit",
+            points: 2.0,
+            // 1 % so that the Boolean-model limit e^(−Np) also counts: it differs by about N p²/2.
+            expected: number(gap, 1e-2),
+            mal_rules: vec![MalRule {
+                value: number(1.0 - n.count * p, 1e-2),
+                message: "that is the first-order term 1 - N p; the misses multiply: (1 - p)^N",
+                credit: 0.0,
+            }],
+            explained_in: NOTES,
+        },
+        Part {
+            key: "q1b.transmittance",
+            prompt: "transmittance e^(-sigma_t l)",
+            points: 1.0,
+            expected: number(transmittance, 1e-3),
+            mal_rules: vec![MalRule {
+                value: number(1.0 - n.sigma_t * n.path, 1e-3),
+                message: "that is the first-order term 1 - sigma_t l; the transmittance is e^(-sigma_t l)",
+                credit: 0.0,
+            }],
+            explained_in: NOTES,
+        },
+        Part {
+            key: "q1b.visual_range",
+            prompt: "visual range ln(50)/sigma_t",
+            points: 1.0,
+            expected: number(visual_range, 1e-3),
+            mal_rules: vec![MalRule {
+                value: number(1.0 / n.sigma_t, 1e-3),
+                message: "that is the mean free path 1/sigma_t; the visual range is where e^(-sigma_t d) = 2 %: ln 50/sigma_t",
+                credit: 0.0,
+            }],
+            explained_in: NOTES,
+        },
+        Part {
+            key: "q1c.reflection_turn_deg",
+            prompt: "turn of the reflected ray, degrees",
+            points: 1.0,
+            expected: number(turn, 1e-2),
+            mal_rules: vec![
+                MalRule {
+                    value: number(turn / 2.0, 1e-2),
+                    message: "that is the turn of the normal, step/R; the reflected ray turns twice as much",
+                    credit: 0.0,
+                },
+                MalRule {
+                    value: number(turn.to_radians(), 1e-2),
+                    message: "that is the angle in radians; degrees are asked",
+                    credit: 0.5,
+                },
+            ],
+            explained_in: NOTES,
+        },
+        Part {
+            key: "q1d.pixels_per_frame",
+            prompt: "image shift per frame, pixels",
+            points: 1.0,
+            expected: number(shift, 1e-2),
+            mal_rules: vec![MalRule {
+                value: number(n.speed / n.fps * n.height / n.fov_deg.to_radians().tan() / n.depth, 1e-2),
+                message: "the focal length in pixels is (H/2)/tan(fov/2): half the image over the tangent of half the angle",
+                credit: 0.0,
+            }],
+            explained_in: NOTES,
+        },
+    ];
+    for (scene, key) in SCENES {
+        parts.push(Part {
+            key,
+            prompt: "which difficulty the scene shows",
+            points: 0.5,
+            expected: Expected::Choice { value: difficulty_of(scene), options: &DIFFICULTIES },
+            mal_rules: vec![],
+            explained_in: NOTES,
+        });
+    }
+    Variant { question: "q1", seed, statement, parts }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn value(v: &Variant, key: &str) -> f64 {
+        match v.parts.iter().find(|p| p.key == key).unwrap().expected {
+            Expected::Number { value, .. } => value,
+            _ => unreachable!(),
+        }
+    }
+
+    #[test]
+    fn seed_zero_is_the_renderers_scenes() {
+        let v = variant(0);
+        assert!(v.statement.contains("1500 spheres of radius a = 0.5"), "{}", v.statement);
+        // The clutter chapter's exact law for the same slab: p = π/4 / 41², (1 − p)^1500.
+        let p = PI * 0.25 / 41.0f64.powi(2);
+        assert!((value(&v, "q1a.gap_fraction") - (1.0 - p).powi(1500)).abs() < 1e-12);
+        assert!((value(&v, "q1b.visual_range") - 48.9).abs() < 0.01);
+    }
+
+    #[test]
+    fn the_four_scenes_are_the_four_difficulties() {
+        let v = variant(0);
+        let letters: Vec<&str> = SCENES
+            .iter()
+            .map(|(_, key)| match v.parts.iter().find(|p| p.key == *key).unwrap().expected {
+                Expected::Choice { value, .. } => value,
+                _ => unreachable!(),
+            })
+            .collect();
+        assert_eq!(letters, ["a", "b", "c", "d"]);
+    }
+
+    /// The renderer's fog follows the transmittance law the key uses (measured by the Q1 code).
+    #[test]
+    fn the_renderers_fog_has_the_keys_transmittance() {
+        let row = crate::q1_hard_scenes::fog_row(0.1, 5.0).unwrap();
+        assert!((row.transmittance - row.law).abs() < 1e-9, "{row:?}");
+    }
+}

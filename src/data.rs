@@ -1,0 +1,90 @@
+//! Committed data: the benchmark measurements under `docs/data/` that figures and tables are drawn
+//! from, compiled into the binary (so `hw3` draws the same figures from any directory, and after
+//! `cargo install`), and one reader for them.
+//!
+//! Timings come only from `cargo bench`, which rewrites these files; `cargo run` and `cargo test`
+//! read them and never measure.
+
+/// `docs/data/q2_cost.csv`: ns per ray/sphere intersection and per spawn policy (written by
+/// `cargo bench --bench q2_cost`).
+pub const Q2_COST: &str = include_str!("../docs/data/q2_cost.csv");
+
+/// `docs/data/q3_kdtree_perf.csv`: build time, node counts and Mrays/s of the kd-tree and its
+/// peers against scene size (written by `cargo bench --bench q3_kdtree`).
+pub const Q3_KDTREE_PERF: &str = include_str!("../docs/data/q3_kdtree_perf.csv");
+
+/// `docs/data/q1_accuracy.csv`: RMS error and seconds per scene, integrator and samples per pixel
+/// (written by `cargo bench --bench render`).
+pub const Q1_ACCURACY: &str = include_str!("../docs/data/q1_accuracy.csv");
+
+/// `docs/data/q4_accuracy_time.csv`: error and nanoseconds per normal of every irradiance estimator
+/// (written by `cargo bench --bench q4_irradiance`).
+pub const Q4_ACCURACY_TIME: &str = include_str!("../docs/data/q4_accuracy_time.csv");
+
+/// `docs/data/q5_photon_accuracy.csv`: the photon map's error in the white furnace against k and
+/// photon count (written by `cargo bench --bench q5_photon`).
+pub const Q5_PHOTON_ACCURACY: &str = include_str!("../docs/data/q5_photon_accuracy.csv");
+
+/// `docs/data/q5_photon_cornell.csv`: the photon map's error in the Cornell box against k and photon
+/// count (written by `cargo bench --bench q5_photon`).
+pub const Q5_PHOTON_CORNELL: &str = include_str!("../docs/data/q5_photon_cornell.csv");
+
+/// A committed CSV file, split: its `#` comment lines, its header and its records.
+///
+/// The committed files are plain comma-separated fields, with no quoting (no field holds a comma).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Csv<'a> {
+    /// The text after `#` of each comment line, trimmed, in file order.
+    pub comments: Vec<&'a str>,
+    /// The fields of the first line that is not a comment (empty for an empty file).
+    pub header: Vec<&'a str>,
+    /// The fields of every later non-empty, non-comment line.
+    pub records: Vec<Vec<&'a str>>,
+}
+
+/// Splits a committed CSV text into comments, header and records.
+///
+/// # Examples
+/// ```
+/// let csv = hw3::data::csv("# one run\nn,ns\n1,2.5\n\n4,9.0\n");
+/// assert_eq!(csv.comments, ["one run"]);
+/// assert_eq!(csv.header, ["n", "ns"]);
+/// assert_eq!(csv.records, [["1", "2.5"], ["4", "9.0"]]);
+/// ```
+#[must_use]
+pub fn csv(text: &str) -> Csv<'_> {
+    let mut comments = Vec::new();
+    let mut lines = Vec::new();
+    for line in text.lines() {
+        match line.strip_prefix('#') {
+            Some(comment) => comments.push(comment.trim()),
+            None if !line.is_empty() => lines.push(line.split(',').collect::<Vec<_>>()),
+            None => {}
+        }
+    }
+    let mut lines = lines.into_iter();
+    let header = lines.next().unwrap_or_default();
+    Csv { comments, header, records: lines.collect() }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn committed_files_have_a_header_and_records() {
+        for (text, first) in [
+            (Q1_ACCURACY, "scene"),
+            (Q2_COST, "kind"),
+            (Q3_KDTREE_PERF, "density"),
+            (Q4_ACCURACY_TIME, "map"),
+            (Q5_PHOTON_ACCURACY, "photons"),
+            (Q5_PHOTON_CORNELL, "photons"),
+        ] {
+            let csv = csv(text);
+            assert_eq!(csv.header[0], first);
+            assert!(!csv.records.is_empty());
+            assert!(csv.records.iter().all(|r| r.len() == csv.header.len()), "{first}: every record is complete");
+        }
+    }
+}

@@ -1,0 +1,182 @@
+//! Q1(a) clutter: a random forest of spheres in a slab, where the gap fraction, the depth
+//! complexity and the visible fraction follow the Boolean model's transmission law.
+
+use crate::geometry::{InputError, Ray};
+use crate::render::catalogue::{self, CLUTTER_HALF_WIDTH, CLUTTER_RADIUS};
+use crate::render::sampling::Sampler;
+use crate::render::{
+    camera::{Camera, CameraFrame},
+    scene::{Scene, Shape},
+};
+use glam::DVec3;
+use std::collections::BTreeSet;
+use std::f64::consts::PI;
+use std::fmt::Write as _;
+
+/// Sphere counts of the clutter experiment.
+pub const CLUTTER_COUNTS: [usize; 5] = [250, 500, 1000, 2000, 4000];
+
+/// One row of the clutter experiment (averaged over [`CLUTTER_SEEDS`] random forests).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ClutterRow {
+    /// Number of spheres `N`.
+    pub count: usize,
+    /// Optical depth of the slab `τ = N·p`, `p = πa²/(W + 2a)²` (the probability that one sphere
+    /// blocks a given ray); equal to `n π a² Z` with `n = N / ((W + 2a)² Z)`.
+    pub optical_depth: f64,
+    /// Measured fraction of probe rays that cross the slab without a hit (mean over forests).
+    pub gap_fraction: f64,
+    /// Standard error of that mean (spread between forests / √forests).
+    pub gap_standard_error: f64,
+    /// The exact law for `N` uniform spheres, `(1 − p)^N`.
+    pub gap_exact: f64,
+    /// The Boolean-model (Beer–Lambert-for-geometry) limit `e^(−τ)`.
+    pub gap_beer_lambert: f64,
+    /// Measured mean number of spheres pierced per probe ray (depth complexity).
+    pub depth_complexity: f64,
+    /// Fraction of the spheres inside a camera's view that at least one pixel sees (mean over
+    /// cameras and forests).
+    pub visible_fraction: f64,
+}
+
+/// Random forests per clutter row.
+pub const CLUTTER_SEEDS: u64 = 4;
+/// Probe rays per side of the square grid of the gap-fraction measurement.
+const PROBE_GRID: usize = 48;
+/// Half-width of the probe square: well inside the slab, so every probe ray sees a full forest.
+const PROBE_HALF_WIDTH: f64 = 15.0;
+/// Cameras per forest, and their ID-buffer size, for the visible fraction.
+const VISIBILITY_CAMERAS: usize = 3;
+const VISIBILITY_SIZE: (u32, u32) = (64, 48);
+
+/// Measures gap fraction, depth complexity and visible fraction for `count` spheres.
+///
+/// Probe rays run along `−z` through the slab from a 48×48 grid over `|x|, |y| ≤ 15`; the visible
+/// fraction uses ID buffers of 64×48 pixels from three cameras 12 units in front of the slab.
+///
+/// # Errors
+/// [`InputError`] only if a scene could not be built (never for the built-in numbers).
+///
+/// # Examples
+/// ```
+/// use hw3::q1_hard_scenes::clutter_row;
+/// // 250 spheres (τ ≈ 0.12): most probe rays cross the slab, as the exact law says.
+/// let row = clutter_row(250).unwrap();
+/// assert!((row.gap_fraction - row.gap_exact).abs() < 3.0 * row.gap_standard_error);
+/// assert!((row.depth_complexity / row.optical_depth - 1.0).abs() < 0.05);
+/// assert!(row.visible_fraction > 0.9);
+/// ```
+pub fn clutter_row(count: usize) -> Result<ClutterRow, InputError> {
+    let mut gaps = Vec::new();
+    let mut pierced_total = 0.0;
+    let mut visible_total = 0.0;
+    for seed in 1..=CLUTTER_SEEDS {
+        let scene = catalogue::clutter_forest(count, seed)?;
+        let mut open = 0usize;
+        let mut pierced = 0usize;
+        for i in 0..PROBE_GRID * PROBE_GRID {
+            let cell = |k: usize| -PROBE_HALF_WIDTH + 2.0 * PROBE_HALF_WIDTH * (k as f64 + 0.5) / PROBE_GRID as f64;
+            let ray = Ray { origin: DVec3::new(cell(i % PROBE_GRID), cell(i / PROBE_GRID), 1.0), dir: DVec3::NEG_Z };
+            open += usize::from(scene.closest_hit(&ray, 0.0, f64::INFINITY).is_none());
+            pierced += scene.objects_pierced(&ray, 0.0, f64::INFINITY);
+        }
+        let rays = (PROBE_GRID * PROBE_GRID) as f64;
+        gaps.push(open as f64 / rays);
+        pierced_total += pierced as f64 / rays;
+        visible_total += visible_fraction(&scene, seed)?;
+    }
+    let seeds = CLUTTER_SEEDS as f64;
+    let gap_fraction = gaps.iter().sum::<f64>() / seeds;
+    let spread = (gaps.iter().map(|g| (g - gap_fraction).powi(2)).sum::<f64>() / (seeds - 1.0)).sqrt();
+    let side = 2.0 * (CLUTTER_HALF_WIDTH + CLUTTER_RADIUS);
+    let p = PI * CLUTTER_RADIUS * CLUTTER_RADIUS / (side * side);
+    let optical_depth = count as f64 * p;
+    Ok(ClutterRow {
+        count,
+        optical_depth,
+        gap_fraction,
+        gap_standard_error: spread / seeds.sqrt(),
+        gap_exact: (1.0 - p).powi(count as i32),
+        gap_beer_lambert: (-optical_depth).exp(),
+        depth_complexity: pierced_total / seeds,
+        visible_fraction: visible_total / seeds,
+    })
+}
+
+/// Fraction of the spheres whose centre is inside the view of a camera that at least one pixel
+/// (ray through the pixel centre) hits (spheres seen only by a sliver at the image border, with
+/// their centre outside, are not counted), averaged over [`VISIBILITY_CAMERAS`] cameras.
+fn visible_fraction(scene: &Scene, seed: u64) -> Result<f64, InputError> {
+    let mut sampler = Sampler::new(seed, 0, 7);
+    let mut total = 0.0;
+    for _ in 0..VISIBILITY_CAMERAS {
+        let offset = DVec3::new(8.0 * (2.0 * sampler.uniform() - 1.0), 8.0 * (2.0 * sampler.uniform() - 1.0), 0.0);
+        let camera =
+            Camera { eye: scene.camera().eye + offset, look_at: scene.camera().look_at + offset, ..*scene.camera() };
+        let view = scene.with_camera(camera)?;
+        let (width, height) = VISIBILITY_SIZE;
+        let frame = CameraFrame::new(&camera);
+        let aspect = f64::from(width) / f64::from(height);
+        let seen: BTreeSet<usize> = (0..width * height)
+            .filter_map(|k| {
+                let u = (f64::from(k % width) + 0.5) / f64::from(width);
+                let v = (f64::from(k / width) + 0.5) / f64::from(height);
+                view.closest_hit(&frame.ray(u, v, aspect), 0.0, f64::INFINITY).map(|h| h.object)
+            })
+            .collect();
+        let in_view: BTreeSet<usize> = (0..view.objects().len())
+            .filter(|&i| match view.objects()[i].shape {
+                Shape::Sphere { sphere, .. } => frame.sees(sphere.center, aspect),
+                Shape::Quad { .. } => false,
+            })
+            .collect();
+        let seen_in_view = seen.intersection(&in_view).count();
+        total += seen_in_view as f64 / in_view.len().max(1) as f64;
+    }
+    Ok(total / VISIBILITY_CAMERAS as f64)
+}
+
+pub(super) fn clutter_table(rows: &[ClutterRow]) -> String {
+    let mut text = String::from(
+        "| N | τ = Np | gap measured | ± s.e. | (1−p)^N | e^(−τ) | depth complexity | law τ | visible fraction |\n|---|---|---|---|---|---|---|---|---|\n",
+    );
+    for r in rows {
+        let _ = writeln!(
+            text,
+            "| {} | {:.3} | {:.4} | {:.4} | {:.4} | {:.4} | {:.3} | {:.3} | {:.3} |",
+            r.count,
+            r.optical_depth,
+            r.gap_fraction,
+            r.gap_standard_error,
+            r.gap_exact,
+            r.gap_beer_lambert,
+            r.depth_complexity,
+            r.optical_depth,
+            r.visible_fraction
+        );
+    }
+    text
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::q1_hard_scenes::metric::snapshot;
+
+    /// The gap fraction and depth complexity follow the exact law within 3 standard errors of
+    /// the mean over forests (a z-test), and the visible fraction falls as the forest grows.
+    #[test]
+    fn clutter_follows_the_transmission_law() {
+        let rows: Vec<ClutterRow> = CLUTTER_COUNTS.iter().map(|&n| clutter_row(n).unwrap()).collect();
+        for r in &rows {
+            let z = (r.gap_fraction - r.gap_exact) / r.gap_standard_error;
+            assert!(z.abs() < 3.0, "N = {}: z = {z:.2}", r.count);
+            assert!(((r.gap_exact - r.gap_beer_lambert) / r.gap_exact).abs() < 1e-3);
+            // Depth complexity: Poisson count with mean τ per ray; 4 × 2304 rays.
+            let depth_error = (r.depth_complexity - r.optical_depth).abs();
+            assert!(depth_error < 0.03 * r.optical_depth, "N = {}", r.count);
+        }
+        assert!(rows.windows(2).all(|w| w[1].visible_fraction < w[0].visible_fraction));
+        snapshot("q1_clutter_metrics", &clutter_table(&rows));
+    }
+}

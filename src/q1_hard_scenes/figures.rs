@@ -1,0 +1,203 @@
+//! Every Q1 figure: renders of the four scenes and their easy twins, one chart per metric, and
+//! the measured tables that the chapter includes.
+
+use super::accuracy::committed_accuracy_figures;
+use super::chart::{chart, series};
+use super::clutter::{CLUTTER_COUNTS, ClutterRow, clutter_row, clutter_table};
+use super::fog::{FOG_SIGMAS, FogRow, airlight_rows, airlight_table, fog_probe_direction, fog_rows, fog_table};
+use super::mirrors::{
+    DIVERGENCE_TRIALS, MirrorDivergence, divergence_table, mirror_divergence, mirror_sensitivity, mirror_table,
+};
+use super::motion::{MOTION_SPEED, MotionChange, MotionNoise, motion_change, motion_noise, motion_tables};
+use crate::geometry::InputError;
+use crate::plot::{self, Axis, Figure, PALETTE, PlotError};
+use crate::render::analysis::analyze;
+use crate::render::catalogue;
+use crate::render::scene::Scene;
+use crate::render::{Settings, render};
+use plotters::prelude::*;
+
+/// A text file placed among the figures (the chapter includes it as a generated table).
+fn table_figure(file_name: &str, text: String) -> Figure {
+    Figure { file_name: file_name.into(), bytes: text.into_bytes() }
+}
+
+/// Renders `scene` (Whitted, its own plan) at the figure size and encodes it as a PNG figure.
+fn render_figure(file_name: &str, scene: &Scene, spp: u32) -> Result<Figure, PlotError> {
+    let settings = Settings::whitted(160, 120, spp, analyze(scene).plan);
+    let image = render(scene, &settings, &|_| {}).expect("the figure settings are within limits");
+    plot::png_bytes(file_name, &image.to_rgb8())
+}
+
+fn input_error(figure: &str, e: InputError) -> PlotError {
+    PlotError::Draw { figure: figure.into(), message: e.to_string() }
+}
+
+/// The clutter figures: render, gap-fraction chart, table.
+fn clutter_figures(rows: &[ClutterRow]) -> Result<Vec<Figure>, PlotError> {
+    let forest = catalogue::clutter_forest(1500, 1).map_err(|e| input_error("q1_clutter.png", e))?;
+    let counts: Vec<f64> = rows.iter().map(|r| r.count as f64).collect();
+    let pick =
+        |f: fn(&ClutterRow) -> f64| -> Vec<(f64, f64)> { counts.iter().copied().zip(rows.iter().map(f)).collect() };
+    let gap = chart(
+        "q1_clutter_gap.svg",
+        "Clutter: gap fraction and visible fraction vs sphere count",
+        ("spheres N in the slab", "fraction"),
+        (Axis::log(200.0, 5000.0, ""), Axis::linear(0.0, 1.05, "")),
+        SeriesLabelPosition::LowerLeft,
+        &[
+            series("gap fraction, measured", pick(|r| r.gap_fraction), false, PALETTE[0]),
+            series("law (1−p)^N", pick(|r| r.gap_exact), true, PALETTE[0]),
+            series("visible fraction (3 cameras, 64×48)", pick(|r| r.visible_fraction), false, PALETTE[1]),
+            series(
+                "centre-ray estimate (1 − e^(−τ))/τ",
+                pick(|r| -(-r.optical_depth).exp_m1() / r.optical_depth),
+                true,
+                PALETTE[1],
+            ),
+        ],
+    )?;
+    Ok(vec![
+        render_figure("q1_clutter.png", &forest, 4)?,
+        gap,
+        table_figure("q1_clutter_table.md", clutter_table(rows)),
+    ])
+}
+
+fn fog_figures(rows: &[FogRow]) -> Result<Vec<Figure>, PlotError> {
+    let scene = |sigma| catalogue::fog_street(sigma).map_err(|e| input_error("q1_fog.png", e));
+    let mut plotted = Vec::new();
+    for (k, &sigma) in FOG_SIGMAS.iter().enumerate() {
+        let of_sigma = rows.iter().filter(|r| r.sigma_t == sigma);
+        plotted.push(series(
+            format!("σ_t = {sigma}: measured"),
+            of_sigma.clone().map(|r| (r.distance, r.transmittance)).collect(),
+            false,
+            PALETTE[k],
+        ));
+        let path_factor = 1.0 / -fog_probe_direction().z;
+        plotted.push(series(
+            format!("e^(−σ_t ℓ), σ_t = {sigma}"),
+            (0..=80)
+                .map(|i| {
+                    let d = f64::from(i) * 0.5;
+                    (d, (-sigma * d * path_factor).exp())
+                })
+                .collect(),
+            true,
+            PALETTE[k],
+        ));
+    }
+    let transmittance = chart(
+        "q1_fog_transmittance.svg",
+        "Fog: contrast (transmittance) vs distance",
+        ("target distance d", "transmittance T = ΔL / L_emitted"),
+        (Axis::linear(0.0, 41.0, ""), Axis::log(1e-4, 1.2, "")),
+        SeriesLabelPosition::LowerLeft,
+        &plotted,
+    )?;
+    Ok(vec![
+        render_figure("q1_fog.png", &scene(0.08)?, 2)?,
+        render_figure("q1_fog_clear.png", &scene(0.0)?, 2)?,
+        transmittance,
+        table_figure("q1_fog_table.md", fog_table(rows)),
+        table_figure(
+            "q1_airlight_table.md",
+            airlight_table(&airlight_rows().map_err(|e| input_error("q1_airlight_table.md", e))?),
+        ),
+    ])
+}
+
+fn mirror_figures(rows: &[(f64, f64, f64)], divergence: &MirrorDivergence) -> Result<Vec<Figure>, PlotError> {
+    let scene = |m| catalogue::mirror_spheres(m).map_err(|e| input_error("q1_mirrors.png", e));
+    let sensitivity = chart(
+        "q1_mirror_sensitivity.svg",
+        "Mirrors: image change per unit camera move (sphere pixels)",
+        ("camera displacement δ", "S(δ) = mean |ΔI| / δ"),
+        (Axis::log(0.004, 0.12, ""), Axis::linear(0.0, 0.6, "")),
+        SeriesLabelPosition::LowerRight,
+        &[
+            series("mirror spheres", rows.iter().map(|r| (r.0, r.1)).collect(), true, PALETTE[0]),
+            series("same spheres, diffuse", rows.iter().map(|r| (r.0, r.2)).collect(), true, PALETTE[1]),
+        ],
+    )?;
+    Ok(vec![
+        render_figure("q1_mirrors.png", &scene(true)?, 4)?,
+        render_figure("q1_mirrors_diffuse.png", &scene(false)?, 4)?,
+        sensitivity,
+        table_figure("q1_mirror_table.md", mirror_table(rows)),
+        table_figure("q1_mirror_divergence_table.md", divergence_table(divergence)),
+    ])
+}
+
+fn motion_figures(change: &MotionChange, noise: &MotionNoise) -> Result<Vec<Figure>, PlotError> {
+    let scene = |speed| catalogue::moving_ball(speed).map_err(|e| input_error("q1_motion.png", e));
+    let law = |c: f64| -> Vec<(f64, f64)> { [1.0, 32.0].iter().map(|&s| (s, c / f64::sqrt(s))).collect() };
+    let curve = chart(
+        "q1_motion_noise.svg",
+        "Motion blur: RMS error vs samples per pixel",
+        ("samples per pixel", "RMS luminance error"),
+        (Axis::log(0.8, 40.0, ""), Axis::log(4e-3, 5e-2, "")),
+        SeriesLabelPosition::LowerLeft,
+        &[
+            series("moving ball", noise.rows.iter().map(|r| (f64::from(r.0), r.1)).collect(), false, PALETTE[0]),
+            series("c/√spp, moving", law(noise.constant_moving), true, PALETTE[0]),
+            series("ball at rest", noise.rows.iter().map(|r| (f64::from(r.0), r.2)).collect(), false, PALETTE[1]),
+            series("c/√spp, at rest", law(noise.constant_resting), true, PALETTE[1]),
+        ],
+    )?;
+    Ok(vec![
+        render_figure("q1_motion.png", &scene(MOTION_SPEED)?, 64)?,
+        render_figure("q1_motion_still.png", &scene(0.0)?, 4)?,
+        curve,
+        table_figure("q1_motion_table.md", motion_tables(change, noise)),
+    ])
+}
+
+/// Every Q1 figure: renders of the four scenes and their easy twins (PNG), one chart per metric
+/// (SVG), and the measured tables (Markdown, included by the chapter).
+///
+/// # Errors
+/// [`PlotError`] if a chart cannot be drawn.
+///
+/// # Examples
+/// ```no_run
+/// // Not run here: it runs every Q1 measurement; `tests/docs.rs` compares its output with the
+/// // committed figures byte for byte.
+/// let figures = hw3::q1_hard_scenes::figures().unwrap();
+/// assert!(figures.iter().any(|f| f.file_name == "q1_clutter_table.md"));
+/// ```
+pub fn figures() -> Result<Vec<Figure>, PlotError> {
+    let clutter: Vec<ClutterRow> = CLUTTER_COUNTS
+        .iter()
+        .map(|&n| clutter_row(n))
+        .collect::<Result<_, _>>()
+        .map_err(|e| input_error("q1_clutter_table.md", e))?;
+    let fog = fog_rows().map_err(|e| input_error("q1_fog_table.md", e))?;
+    let mirrors = mirror_sensitivity().map_err(|e| input_error("q1_mirror_table.md", e))?;
+    let change = motion_change().map_err(|e| input_error("q1_motion_table.md", e))?;
+    let noise = motion_noise().map_err(|e| input_error("q1_motion_table.md", e))?;
+    let mut figures = clutter_figures(&clutter)?;
+    figures.extend(fog_figures(&fog)?);
+    let divergence =
+        mirror_divergence(DIVERGENCE_TRIALS).map_err(|e| input_error("q1_mirror_divergence_table.md", e))?;
+    figures.extend(mirror_figures(&mirrors, &divergence)?);
+    figures.extend(motion_figures(&change, &noise)?);
+    figures.extend(committed_accuracy_figures()?);
+    Ok(figures)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn charts_are_deterministic() {
+        let rows = [(0.01, 0.5, 0.3), (0.1, 0.3, 0.25)];
+        let divergence = MirrorDivergence { trials: 2, trapped: 1, median_factor: 2.5, flat: vec![(10, 1e-11, 1e-11)] };
+        let a = mirror_figures(&rows, &divergence).unwrap();
+        let b = mirror_figures(&rows, &divergence).unwrap();
+        assert_eq!(a, b);
+        assert!(String::from_utf8_lossy(&a[2].bytes).contains("mirror spheres"));
+    }
+}

@@ -1,0 +1,226 @@
+//! Q1(c) mirrors: curved mirrors separate nearby rays exponentially (per bounce), flat ones
+//! linearly, and the image of mirror spheres changes faster per unit camera move than the same
+//! spheres made diffuse.
+
+use super::metric::{METRIC_SIZE, render_metric};
+use crate::geometry::sphere::{reflect, spawn_origin};
+use crate::geometry::{InputError, Ray, Sphere};
+use crate::render::Image;
+use crate::render::catalogue;
+use crate::render::sampling::Sampler;
+use crate::render::{
+    camera::{Camera, CameraFrame},
+    scene::{Material, Object, Scene, Shape},
+};
+use glam::DVec3;
+use std::f64::consts::PI;
+use std::fmt::Write as _;
+
+/// Camera displacements (along `+x`) of the mirror experiment.
+pub const MIRROR_STEPS: [f64; 5] = [0.005, 0.01, 0.02, 0.05, 0.1];
+/// Samples per pixel of the mirror experiment.
+const MIRROR_SPP: u32 = 4;
+
+/// Image sensitivity `S(δ) = mean_p |I_p(c + δ x̂) − I_p(c)| / δ` over the pixels where the
+/// undisplaced camera sees a sphere, for the mirror scene and its diffuse twin, one
+/// `(δ, S_mirror, S_diffuse)` per step. Whitted, 64×48 pixels, 4 spp with the
+/// same per-pixel random numbers at every camera position (common random numbers).
+///
+/// # Errors
+/// [`InputError`] never for the built-in numbers.
+///
+/// # Examples
+/// ```no_run
+/// // Not run here: it renders twelve images; `mirrors::tests` runs it and pins the table.
+/// let rows = hw3::q1_hard_scenes::mirror_sensitivity().unwrap();
+/// assert!(rows.iter().all(|&(_, mirror, diffuse)| mirror > diffuse));
+/// ```
+pub fn mirror_sensitivity() -> Result<Vec<(f64, f64, f64)>, InputError> {
+    let mask = sphere_pixels(&catalogue::mirror_spheres(true)?);
+    let masked_change = |a: &Image, b: &Image| {
+        let (a, b) = (a.luminance(), b.luminance());
+        let sum: f64 = (0..a.len()).filter(|&i| mask[i]).map(|i| (a[i] - b[i]).abs()).sum();
+        sum / mask.iter().filter(|&&m| m).count() as f64
+    };
+    let sensitivity = |mirror: bool| -> Result<Vec<f64>, InputError> {
+        let scene = catalogue::mirror_spheres(mirror)?;
+        let base = render_metric(&scene, MIRROR_SPP, 1)?;
+        MIRROR_STEPS
+            .iter()
+            .map(|&delta| {
+                let moved = scene.with_camera(catalogue::mirror_camera(DVec3::X * delta))?;
+                Ok(masked_change(&render_metric(&moved, MIRROR_SPP, 1)?, &base) / delta)
+            })
+            .collect()
+    };
+    let (mirror, diffuse) = (sensitivity(true)?, sensitivity(false)?);
+    Ok(MIRROR_STEPS.iter().zip(mirror.iter().zip(&diffuse)).map(|(&d, (&m, &f))| (d, m, f)).collect())
+}
+
+/// Which pixels of the metric-size image see a sphere first (rays through pixel centres).
+fn sphere_pixels(scene: &Scene) -> Vec<bool> {
+    let (width, height) = METRIC_SIZE;
+    let frame = CameraFrame::new(scene.camera());
+    let aspect = f64::from(width) / f64::from(height);
+    (0..width * height)
+        .map(|k| {
+            let u = (f64::from(k % width) + 0.5) / f64::from(width);
+            let v = (f64::from(k / width) + 0.5) / f64::from(height);
+            scene
+                .closest_hit(&frame.ray(u, v, aspect), 0.0, f64::INFINITY)
+                .is_some_and(|h| matches!(scene.objects()[h.object].shape, Shape::Sphere { .. }))
+        })
+        .collect()
+}
+
+pub(super) fn mirror_table(rows: &[(f64, f64, f64)]) -> String {
+    let mut text = String::from("| δ | S mirror | S diffuse | ratio |\n|---|---|---|---|\n");
+    for (delta, mirror, diffuse) in rows {
+        let _ = writeln!(text, "| {delta} | {mirror:.4e} | {diffuse:.4e} | {:.3} |", mirror / diffuse);
+    }
+    text
+}
+
+/// How fast nearby rays separate between mirrors: curved (chaotic) versus flat (linear).
+#[derive(Debug, Clone, PartialEq)]
+pub struct MirrorDivergence {
+    /// Ray pairs launched at the four mirror spheres.
+    pub trials: usize,
+    /// Pairs that stayed trapped for at least 4 bounces with separation below 1e-3.
+    pub trapped: usize,
+    /// Median separation growth factor per bounce among the trapped pairs.
+    pub median_factor: f64,
+    /// Between two parallel flat mirrors: `(bounces, measured separation, law k h δ / cos²θ)`.
+    pub flat: Vec<(usize, f64, f64)>,
+}
+
+/// Ray pairs of the divergence measurement.
+pub const DIVERGENCE_TRIALS: usize = 2000;
+
+/// Angular offset between the two rays of a pair (radians).
+const PAIR_OFFSET: f64 = 1e-12;
+
+/// The hit points of a ray bouncing between the mirrors of `scene`, at most `bounces` of them.
+fn mirror_path(scene: &Scene, mut ray: Ray<f64>, bounces: usize) -> Vec<DVec3> {
+    let mut points = Vec::new();
+    while points.len() < bounces {
+        let Some(hit) = scene.closest_hit(&ray, 0.0, f64::INFINITY) else {
+            break;
+        };
+        let dir = reflect::<f64>(ray.dir, hit.normal);
+        ray = Ray { origin: spawn_origin::<f64>(hit.point, hit.normal, dir), dir };
+        points.push(hit.point);
+    }
+    points
+}
+
+/// Measures [`MirrorDivergence`]: `trials` ray pairs `1e-12` rad apart aimed from 6 units away
+/// at four mirror spheres (radius 1, tetrahedron with edge 2.2, the reference note's set-up),
+/// and one pair at 30° between two parallel mirrors 1 apart.
+///
+/// # Errors
+/// [`InputError`] never for the built-in numbers.
+///
+/// # Examples
+/// ```
+/// let divergence = hw3::q1_hard_scenes::mirror_divergence(200).unwrap();
+/// assert!(divergence.trapped > 0 && divergence.median_factor > 1.5);
+/// for &(_, measured, law) in &divergence.flat {
+///     assert!((measured / law - 1.0).abs() < 0.05);
+/// }
+/// ```
+pub fn mirror_divergence(trials: usize) -> Result<MirrorDivergence, InputError> {
+    let mirror = Material::Mirror { reflectance: DVec3::ONE };
+    let corners = [[1.0, 1.0, 1.0], [1.0, -1.0, -1.0], [-1.0, 1.0, -1.0], [-1.0, -1.0, 1.0]];
+    // Vertices of the tetrahedron at distance √3 from its centre have edge √8; scale to 2.2.
+    let scale = 2.2 / 8f64.sqrt();
+    let spheres = corners
+        .iter()
+        .map(|&c| Ok(Object::sphere(Sphere::new(DVec3::from(c) * scale, 1.0)?, mirror)))
+        .collect::<Result<Vec<_>, InputError>>()?;
+    let camera = Camera::looking_at(DVec3::new(0.0, 0.0, 6.0), DVec3::ZERO, 40.0);
+    let cluster = Scene::new(camera, spheres, vec![], None, DVec3::ZERO)?;
+    let mut sampler = Sampler::new(7, 0, 3);
+    let mut rates = Vec::new();
+    for _ in 0..trials {
+        let z = 2.0 * sampler.uniform() - 1.0;
+        let phi = 2.0 * PI * sampler.uniform();
+        let ring = (1.0 - z * z).sqrt();
+        let origin = DVec3::new(ring * phi.cos(), ring * phi.sin(), z) * 6.0;
+        let aim = DVec3::new(sampler.uniform(), sampler.uniform(), sampler.uniform()) * 0.3 - DVec3::splat(0.15);
+        let dir = (aim - origin).normalize();
+        let perpendicular = dir.cross(DVec3::new(0.3, 0.5, 0.8)).normalize();
+        let twin = (dir + perpendicular * PAIR_OFFSET).normalize();
+        let first = mirror_path(&cluster, Ray { origin, dir }, 60);
+        let second = mirror_path(&cluster, Ray { origin, dir: twin }, 60);
+        let separations: Vec<f64> = first.iter().zip(&second).map(|(a, b)| (*a - *b).length()).collect();
+        // Stay in the linear regime: the last bounce still closer than 1e-3.
+        let linear = separations.iter().take_while(|&&d| d < 1e-3).count();
+        if linear >= 4 && separations[0] > 0.0 {
+            let k = linear - 1;
+            rates.push((separations[k] / separations[0]).ln() / k as f64);
+        }
+    }
+    rates.sort_by(f64::total_cmp);
+    let median_factor = rates.get(rates.len() / 2).map_or(f64::NAN, |rate| rate.exp());
+    Ok(MirrorDivergence { trials, trapped: rates.len(), median_factor, flat: flat_mirror_separation(mirror)? })
+}
+
+/// Two parallel mirrors `y = 0` and `y = 1`; a pair of rays at 30° from the normal.
+fn flat_mirror_separation(mirror: Material) -> Result<Vec<(usize, f64, f64)>, InputError> {
+    let plane =
+        |y: f64| Object::quad(DVec3::new(-1e3, y, -1e3), DVec3::new(0.0, 0.0, 2e3), DVec3::new(2e3, 0.0, 0.0), mirror);
+    let camera = Camera::looking_at(DVec3::new(0.0, 0.5, 0.0), DVec3::new(1.0, 0.5, 0.0), 40.0);
+    let pair = Scene::new(camera, vec![plane(0.0), plane(1.0)], vec![], None, DVec3::ZERO)?;
+    let theta = 30f64.to_radians();
+    let ray = |angle: f64| Ray {
+        origin: DVec3::new(0.0, 0.0, 0.0) + DVec3::Y * 1e-9,
+        dir: DVec3::new(angle.sin(), angle.cos(), 0.0),
+    };
+    let first = mirror_path(&pair, ray(theta), 40);
+    let second = mirror_path(&pair, ray(theta + PAIR_OFFSET), 40);
+    Ok([10usize, 40]
+        .iter()
+        .map(|&k| {
+            let measured = (first[k - 1] - second[k - 1]).length();
+            // Hit k lies k units of height from the start: x = k tanθ, dx/dθ = k / cos²θ.
+            let law = k as f64 * PAIR_OFFSET / theta.cos().powi(2);
+            (k, measured, law)
+        })
+        .collect())
+}
+
+pub(super) fn divergence_table(result: &MirrorDivergence) -> String {
+    let mut text = format!(
+        "four mirror spheres: {} of {} pairs trapped ≥ 4 bounces; median growth ×{:.2} per bounce (reference note: ×2.45)\n\n| flat mirrors, bounces | separation | law k δ / cos²θ |\n|---|---|---|\n",
+        result.trapped, result.trials, result.median_factor
+    );
+    for (k, measured, law) in &result.flat {
+        let _ = writeln!(text, "| {k} | {measured:.2e} | {law:.2e} |");
+    }
+    text
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::q1_hard_scenes::metric::snapshot;
+
+    #[test]
+    fn mirrors_change_faster_than_the_same_scene_made_diffuse() {
+        let rows = mirror_sensitivity().unwrap();
+        assert!(rows.iter().all(|&(_, mirror, diffuse)| mirror > diffuse));
+        snapshot("q1_mirror_metrics", &mirror_table(&rows));
+    }
+
+    #[test]
+    fn rays_separate_exponentially_between_curved_mirrors_and_linearly_between_flat_ones() {
+        let result = mirror_divergence(DIVERGENCE_TRIALS).unwrap();
+        assert!(result.trapped >= 100, "{} trapped", result.trapped);
+        assert!(result.median_factor > 2.0 && result.median_factor < 3.0);
+        for &(_, measured, law) in &result.flat {
+            assert!((measured / law - 1.0).abs() < 0.05, "{measured:e} vs {law:e}");
+        }
+        snapshot("q1_mirror_divergence", &divergence_table(&result));
+    }
+}

@@ -1,0 +1,199 @@
+//! Q1(d) change over time: a moving ball changes the image every frame, and its motion blur
+//! needs more samples per pixel than the still scene for the same noise.
+
+use super::metric::{METRIC_SIZE, render_metric};
+use crate::geometry::InputError;
+use crate::render::Image;
+use crate::render::catalogue;
+use glam::DVec3;
+use std::fmt::Write as _;
+
+/// Speed of the moving ball (units per unit time) and number of instantaneous frames.
+pub(super) const MOTION_SPEED: f64 = 2.0;
+const MOTION_FRAMES: usize = 10;
+/// Samples per pixel of the noise measurement and of its reference.
+pub const MOTION_SPP: [u32; 6] = [1, 2, 4, 8, 16, 32];
+const REFERENCE_SPP: u32 = 256;
+/// The noise level for which the needed spp is reported (RMS luminance error).
+pub const NOISE_TARGET: f64 = 0.005;
+
+/// Image change between consecutive instantaneous frames of the moving ball.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MotionChange {
+    /// Mean absolute luminance change per frame (time step `1/MOTION_FRAMES`).
+    pub mean_change: Vec<f64>,
+    /// Fraction of pixels whose luminance changes by more than 0.05 per frame.
+    pub changed_fraction: Vec<f64>,
+    /// The ball's image speed, in pixels per frame, at the image centre's depth.
+    pub pixels_per_frame: f64,
+}
+
+/// Renders instantaneous frames `t = k/10`, `k = 0…10`, and measures the change per step.
+///
+/// # Errors
+/// [`InputError`] never for the built-in numbers.
+///
+/// # Examples
+/// ```
+/// let change = hw3::q1_hard_scenes::motion_change().unwrap();
+/// assert_eq!(change.mean_change.len(), 10);
+/// assert!(change.mean_change.iter().all(|&c| c > 0.0) && change.pixels_per_frame > 0.5);
+/// ```
+pub fn motion_change() -> Result<MotionChange, InputError> {
+    let frames: Vec<Image> = (0..=MOTION_FRAMES)
+        .map(|k| {
+            let t = k as f64 / MOTION_FRAMES as f64;
+            let scene = catalogue::moving_ball_with_shutter(MOTION_SPEED, (t, t))?;
+            render_metric(&scene, 1, 1)
+        })
+        .collect::<Result<_, _>>()?;
+    let mut mean_change = Vec::new();
+    let mut changed_fraction = Vec::new();
+    for pair in frames.windows(2) {
+        mean_change.push(pair[1].mean_abs_difference(&pair[0]));
+        let (a, b) = (pair[0].luminance(), pair[1].luminance());
+        let changed = a.iter().zip(&b).filter(|(x, y)| (*x - *y).abs() > 0.05).count();
+        changed_fraction.push(changed as f64 / a.len() as f64);
+    }
+    Ok(MotionChange { mean_change, changed_fraction, pixels_per_frame: ball_pixels_per_frame()? })
+}
+
+/// The ball's image speed in pixels per frame at the metric size, at the depth of the image
+/// centre: geometry only, no rendering.
+pub(super) fn ball_pixels_per_frame() -> Result<f64, InputError> {
+    let camera = catalogue::moving_ball(MOTION_SPEED)?.camera().to_owned();
+    let depth = (DVec3::new(0.0, 0.5, -3.0) - camera.eye).length();
+    let focal_pixels = f64::from(METRIC_SIZE.1) / 2.0 / (camera.vfov_degrees.to_radians() / 2.0).tan();
+    Ok(MOTION_SPEED / MOTION_FRAMES as f64 * focal_pixels / depth)
+}
+
+/// RMS error against a 256-spp reference (another seed) versus spp, for the moving and the
+/// resting ball; the free log-log slope, the constant `c` of `RMSE² ≈ c² (1/spp + 1/256)` (the
+/// second term is the reference's own noise), and from it the spp needed for [`NOISE_TARGET`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct MotionNoise {
+    /// `(spp, RMSE moving, RMSE resting)`.
+    pub rows: Vec<(u32, f64, f64)>,
+    /// Fitted log-log slope for the moving ball (free fit).
+    pub slope_moving: f64,
+    /// Fitted log-log slope for the resting ball.
+    pub slope_resting: f64,
+    /// `c` for the moving ball.
+    pub constant_moving: f64,
+    /// `c` for the resting ball.
+    pub constant_resting: f64,
+}
+
+impl MotionNoise {
+    /// Samples per pixel needed for RMSE ≤ `target`: `(c / target)²`, rounded up.
+    ///
+    /// # Examples
+    /// ```
+    /// use hw3::q1_hard_scenes::MotionNoise;
+    /// assert_eq!(MotionNoise::spp_needed(0.5, 0.125), 16.0);
+    /// assert_eq!(MotionNoise::spp_needed(0.5, 0.2), 7.0); // 6.25, rounded up
+    /// ```
+    #[must_use]
+    pub fn spp_needed(constant: f64, target: f64) -> f64 {
+        (constant / target).powi(2).ceil()
+    }
+}
+
+/// Measures [`MotionNoise`].
+///
+/// # Errors
+/// [`InputError`] never for the built-in numbers.
+///
+/// # Examples
+/// ```no_run
+/// // Not run here: it renders two 256-spp references; `motion::tests` runs it and pins the table.
+/// let noise = hw3::q1_hard_scenes::motion_noise().unwrap();
+/// assert!((noise.slope_moving + 0.5).abs() < 0.05);
+/// assert!(noise.constant_moving > noise.constant_resting);
+/// ```
+pub fn motion_noise() -> Result<MotionNoise, InputError> {
+    let curve = |speed: f64| -> Result<Vec<f64>, InputError> {
+        let scene = catalogue::moving_ball(speed)?;
+        let reference = render_metric(&scene, REFERENCE_SPP, 1_000_003)?;
+        MOTION_SPP.iter().map(|&spp| Ok(render_metric(&scene, spp, 1)?.rms_difference(&reference))).collect()
+    };
+    let (moving, resting) = (curve(MOTION_SPEED)?, curve(0.0)?);
+    let fit = |errors: &[f64]| {
+        let xs: Vec<f64> = MOTION_SPP.iter().map(|&s| f64::from(s).ln()).collect();
+        let ys: Vec<f64> = errors.iter().map(|e| e.ln()).collect();
+        let n = xs.len() as f64;
+        let (mx, my) = (xs.iter().sum::<f64>() / n, ys.iter().sum::<f64>() / n);
+        let sxy: f64 = xs.iter().zip(&ys).map(|(x, y)| (x - mx) * (y - my)).sum();
+        let sxx: f64 = xs.iter().map(|x| (x - mx).powi(2)).sum();
+        // The reference has noise of its own: E[RMSE²] = c² (1/spp + 1/REFERENCE_SPP), so c² is
+        // the mean of RMSE² / (1/spp + 1/REFERENCE_SPP).
+        let c_squared = MOTION_SPP
+            .iter()
+            .zip(errors)
+            .map(|(&spp, e)| e * e / (1.0 / f64::from(spp) + 1.0 / f64::from(REFERENCE_SPP)))
+            .sum::<f64>()
+            / n;
+        (sxy / sxx, c_squared.sqrt())
+    };
+    let ((slope_moving, constant_moving), (slope_resting, constant_resting)) = (fit(&moving), fit(&resting));
+    Ok(MotionNoise {
+        rows: MOTION_SPP.iter().zip(moving.iter().zip(&resting)).map(|(&s, (&m, &r))| (s, m, r)).collect(),
+        slope_moving,
+        slope_resting,
+        constant_moving,
+        constant_resting,
+    })
+}
+
+pub(super) fn motion_tables(change: &MotionChange, noise: &MotionNoise) -> String {
+    let mut text = format!(
+        "image speed of the ball: {:.3} px/frame\n\n| step | mean abs change | pixels changed > 0.05 |\n|---|---|---|\n",
+        change.pixels_per_frame
+    );
+    for (k, (m, f)) in change.mean_change.iter().zip(&change.changed_fraction).enumerate() {
+        let _ = writeln!(text, "| {} → {} | {m:.4e} | {f:.4} |", k, k + 1);
+    }
+    text.push_str("\n| spp | RMSE moving | RMSE resting |\n|---|---|---|\n");
+    for (spp, m, r) in &noise.rows {
+        let _ = writeln!(text, "| {spp} | {m:.4e} | {r:.4e} |");
+    }
+    let _ = writeln!(
+        text,
+        "\nslope moving {:.3}, resting {:.3}; c moving {:.4e}, resting {:.4e}; spp for RMSE {NOISE_TARGET}: moving {}, resting {}",
+        noise.slope_moving,
+        noise.slope_resting,
+        noise.constant_moving,
+        noise.constant_resting,
+        MotionNoise::spp_needed(noise.constant_moving, NOISE_TARGET),
+        MotionNoise::spp_needed(noise.constant_resting, NOISE_TARGET)
+    );
+    text
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::q1_hard_scenes::metric::snapshot;
+
+    #[test]
+    fn motion_changes_every_frame_and_blur_costs_samples() {
+        let change = motion_change().unwrap();
+        assert!(change.mean_change.iter().all(|&c| c > 0.0));
+        assert!(change.pixels_per_frame > 0.5, "faster than the 0.5 px/frame limit");
+        let noise = motion_noise().unwrap();
+        for slope in [noise.slope_moving, noise.slope_resting] {
+            assert!((slope + 0.5).abs() < 0.05, "slope {slope}");
+        }
+        assert!(noise.constant_moving > noise.constant_resting);
+        snapshot("q1_motion_metrics", &motion_tables(&change, &noise));
+    }
+
+    #[test]
+    fn still_frames_do_not_change() {
+        let frames: Vec<Image> = [0.0, 0.5]
+            .iter()
+            .map(|&t| render_metric(&catalogue::moving_ball_with_shutter(0.0, (t, t)).unwrap(), 1, 1).unwrap())
+            .collect();
+        assert_eq!(frames[0], frames[1]);
+    }
+}

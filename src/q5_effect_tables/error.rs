@@ -1,0 +1,26 @@
+//! Why an experiment could not run.
+
+use super::radiosity::RadiosityError;
+use crate::geometry::InputError;
+use crate::render::photon::PhotonError;
+
+/// Why an experiment could not run.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ExperimentError {
+    /// The radiosity system could not be built.
+    #[error(transparent)]
+    Radiosity(#[from] RadiosityError),
+    /// Photon tracing or a photon-map estimate failed.
+    #[error(transparent)]
+    Photon(#[from] PhotonError),
+    /// A scene failed validation (never for the built-in scenes).
+    #[error(transparent)]
+    Scene(#[from] InputError),
+    /// A figure could not be rendered or encoded.
+    #[error("rendering a figure failed: {0}")]
+    Render(String),
+    /// A table row or column id that [`EFFECTS`](crate::q5_effect_tables::EFFECTS) or
+    /// [`METHODS`](crate::q5_effect_tables::METHODS) does not list.
+    #[error("no effect or method with id {0:?}")]
+    UnknownId(&'static str),
+}
