@@ -32,10 +32,10 @@ mod setting;
 
 pub use answer_key::{answer_key_table, figures};
 
-use crate::checker::{self, CheckError, ExpectedLeaf};
+use crate::checker::{self, CheckError, ExpectedLeaf, ExpectedPlane};
 
-/// The questions a solution can be asked for, in homework order (Q1 has no variants: its solution
-/// says so and points at its chapter).
+/// The questions a solution can be asked for, in homework order (Q1's solution points at its
+/// chapter and at `hw3 answers --question q1`).
 pub const QUESTIONS: [&str; 5] = ["q1", "q2", "q3", "q4", "q5"];
 
 /// How a solution is printed.
@@ -98,8 +98,18 @@ pub enum Value {
     Vector([f64; 3]),
     /// The leaves of a kd-tree traversal, in order.
     Leaves(Vec<ExpectedLeaf>),
-    /// One word: `yes`, `no` or `impractical`.
+    /// One word: `yes`, `no` or `impractical`; Q2's case.
     Word(String),
+    /// `true` or `false` (does the ray hit?).
+    Flag(bool),
+    /// No such value (a ray that does not hit has no first intersection): written `"none"`.
+    None,
+    /// A formula in the checker's syntax (`2*dot(e - o, d)`).
+    Formula(String),
+    /// A class of light paths in Heckbert's notation (`LD+E`, or `none`).
+    Paths(String),
+    /// The planes met in a kd-tree traversal, in order.
+    Planes(Vec<ExpectedPlane>),
 }
 
 /// A final answer: the part's key in the answers file (`q2a.t`) and its value.
@@ -223,14 +233,14 @@ pub fn solution(question: &str, seed: u64) -> Result<Solution, SolutionError> {
     Ok(Solution { question: variant.question, seed, statement: variant.statement, sections })
 }
 
-/// Q1 has no variants: the checker grades Q2–Q5 only, and Q1's answers are measurements.
+/// Q1's worked numbers are the Q1 chapter's: this solution points there.
 fn q1(seed: u64) -> Solution {
     Solution {
         question: "q1",
         seed,
         statement: format!(
-            "Q1 (seed {seed} ignored). The checker has no Q1 variants: Q1 asks why four scenes are hard to \
-             render, and its answers are measurements, not numbers to grade."
+            "Q1 (seed {seed} ignored). Q1 asks why four scenes are hard to render; its worked numbers are \
+             derived and measured in its chapter, not written out here."
         ),
         sections: vec![Section {
             title: "where the answers are".into(),
@@ -264,12 +274,12 @@ mod tests {
     use super::*;
 
     #[test]
-    fn every_question_has_a_solution_and_q1_says_why_it_is_not_graded() {
+    fn every_question_has_a_solution_and_q1_points_at_its_chapter() {
         for question in QUESTIONS {
             let s = solution(question, 0).unwrap();
             assert!(!s.sections.is_empty(), "{question}");
         }
-        assert!(solution("q1", 0).unwrap().statement.contains("no Q1 variants"));
+        assert!(solution("q1", 0).unwrap().statement.contains("its chapter"));
     }
 
     #[test]

@@ -22,7 +22,13 @@ fn equals_key(value: &Value, expected: &Expected) -> bool {
             v.iter().zip(value).all(|(a, b)| (a - b).abs() <= 1e-12 * (1.0 + b.abs()))
         }
         (Value::Leaves(given), Expected::Trace { leaves, .. }) => given == leaves,
-        (Value::Word(word), Expected::Choice { value }) => word == value,
+        (Value::Word(word), Expected::Choice { value, .. }) => word == value,
+        (Value::Flag(flag), Expected::Flag { value }) => flag == value,
+        (Value::None, Expected::OrNone { none, .. }) => *none,
+        (value, Expected::OrNone { value: inner, none: false }) => equals_key(value, inner),
+        (Value::Formula(formula), Expected::Formula { source, .. }) => formula == source,
+        (Value::Paths(paths), Expected::Paths { value }) => paths == value,
+        (Value::Planes(given), Expected::Planes { steps }) => given == steps,
         _ => false,
     }
 }
@@ -30,7 +36,8 @@ fn equals_key(value: &Value, expected: &Expected) -> bool {
 #[test]
 fn every_final_number_is_the_checkers_key_for_seeds_0_to_20() {
     for seed in 0..=20 {
-        for question in QUESTIONS {
+        // Q1's variants are measurements of the chapter's scenes; its solution points there.
+        for question in QUESTIONS.into_iter().filter(|q| *q != "q1") {
             let key = variant(question, seed).unwrap();
             let solved = solution(question, seed).unwrap();
             assert_eq!(
@@ -57,11 +64,13 @@ fn every_final_number_is_the_checkers_key_for_seeds_0_to_20() {
 fn the_solution_as_printed_grades_full_marks_for_seeds_0_to_20() {
     for seed in 0..=20 {
         let mut file = format!("[meta]\nseed = {seed}\n");
-        for question in QUESTIONS {
+        for question in QUESTIONS.into_iter().filter(|q| *q != "q1") {
             file.push_str(&solution(question, seed).unwrap().answers_toml());
         }
         let report = check(&file, None).unwrap();
-        assert!(report.all_correct(), "seed {seed}:\n{}", hw3::checker::report_text(&report));
+        let graded = report.parts.iter().filter(|p| !p.key.starts_with("q1"));
+        assert!(graded.clone().all(|p| p.status == "correct"), "seed {seed}:\n{}", hw3::checker::report_text(&report));
+        assert!(graded.count() > 0, "seed {seed}: Q2-Q5 parts were graded");
         assert!(report.unknown_keys.is_empty(), "seed {seed}: {:?}", report.unknown_keys);
     }
 }
@@ -70,8 +79,10 @@ fn the_solution_as_printed_grades_full_marks_for_seeds_0_to_20() {
 fn q2_intermediate_roots_are_the_final_hit() {
     // The working shows the homework's t1, t2; the final t is the stable solver's. They must be the
     // same number as printed, or the working would contradict its answer.
-    for seed in 0..=20 {
+    // Seeds 1, 7, 13, 19 (and 0) are the "outside" case, where the first hit is t2.
+    for seed in [0, 1, 7, 13, 19] {
         let text = solution("q2", seed).unwrap().render(Format::Text);
+        assert!(text.contains("case outside"), "seed {seed}:\n{text}");
         let value = |prefix: &str| {
             let line =
                 text.lines().map(str::trim).find(|l| l.starts_with(prefix)).unwrap_or_else(|| panic!("{prefix}"));
@@ -98,11 +109,11 @@ fn the_command_prints_what_the_library_writes() {
 }
 
 #[test]
-fn q1_says_it_has_no_variants() {
+fn q1_points_at_its_answers() {
     let out = hw3(&["solution", "--question", "q1", "--seed", "3"]);
     assert_eq!(out.status.code(), Some(0));
     let text = String::from_utf8(out.stdout).unwrap();
-    assert!(text.contains("no Q1 variants") && text.contains("hw3 answers --question q1"), "{text}");
+    assert!(text.contains("its chapter") && text.contains("hw3 answers --question q1"), "{text}");
 }
 
 #[test]

@@ -7,12 +7,13 @@
 
 use super::render::{num, operand};
 use super::{Section, SolutionError, Step, Value, setting};
-use crate::checker::{ExpectedLeaf, Variant};
+use crate::checker::{ExpectedLeaf, ExpectedPlane, Variant};
 use crate::kdtree::{QuotientAxis, Visit, split_interval};
 use crate::q3_kd_traversal::{Branch, Interval, Node2, Ray2, Step as TraceStep, traverse};
 
-/// The parts, each with the statement's label of its ray.
-const PARTS: [(char, &str); 2] = [('d', "q3d.leaves"), ('e', "q3e.leaves")];
+/// The parts, each with the statement's label of its ray: its planes, descents and leaves.
+const PARTS: [(char, [&str; 3]); 2] =
+    [('d', ["q3d.planes", "q3d.descents", "q3d.leaves"]), ('e', ["q3e.planes", "q3e.descents", "q3e.leaves"])];
 
 fn path_text(path: &[Branch]) -> String {
     if path.is_empty() { "root".into() } else { path.iter().map(ToString::to_string).collect::<Vec<_>>().join(", ") }
@@ -73,14 +74,28 @@ fn visit_text(ray: &Ray2, axis: crate::q3_kd_traversal::Axis2, split: f64, inter
     format!("{plane}; {why}")
 }
 
-fn part(ray: &Ray2, key: &'static str, label: char) -> Section {
+fn names(path: &[Branch]) -> Vec<String> {
+    path.iter().map(ToString::to_string).collect()
+}
+
+fn part(ray: &Ray2, [planes_key, descents_key, key]: [&'static str; 3], label: char) -> Section {
     let trace = traverse(&Node2::homework(), ray);
     let root = Interval { t_min: 0.0, t_max: f64::INFINITY };
     let mut intervals: Vec<(Vec<Branch>, Interval)> = vec![(Vec::new(), root)];
     let mut steps = vec![Step::work(format!("start at the root with t in {}", interval_text(root)))];
-    for step in &trace.steps {
+    let mut planes = Vec::new();
+    let mut descents = Vec::new();
+    for (i, step) in trace.steps.iter().enumerate() {
         match step {
-            TraceStep::Plane { path, axis, split, .. } => {
+            TraceStep::Plane { path, axis, split, t } => {
+                // The walk descends into the child it visits first right after meeting the plane.
+                let first = match trace.steps.get(i + 1) {
+                    Some(TraceStep::Descend { path: child, .. }) => {
+                        child.last().map(ToString::to_string).unwrap_or_default()
+                    }
+                    _ => String::new(),
+                };
+                planes.push(ExpectedPlane { node: names(path), t: *t, first });
                 let interval = intervals.iter().rev().find(|(p, _)| p == path).map_or(root, |(_, i)| *i);
                 let text = format!(
                     "at {}: plane {axis} = {split}: {}",
@@ -89,7 +104,10 @@ fn part(ray: &Ray2, key: &'static str, label: char) -> Section {
                 );
                 steps.push(Step::work(text).at(path.len()));
             }
-            TraceStep::Descend { path, interval } => intervals.push((path.clone(), *interval)),
+            TraceStep::Descend { path, interval } => {
+                intervals.push((path.clone(), *interval));
+                descents.push(ExpectedLeaf { path: names(path), t_min: interval.t_min, t_max: interval.t_max });
+            }
             TraceStep::Leaf { path, interval } => {
                 steps.push(
                     Step::work(format!("leaf {} reached with t in {}", path_text(path), interval_text(*interval)))
@@ -107,6 +125,13 @@ fn part(ray: &Ray2, key: &'static str, label: char) -> Section {
             t_max: l.interval.t_max,
         })
         .collect();
+    steps.push(Step::answer(
+        format!("planes met in order: {}", super::render::value(&Value::Planes(planes.clone()))),
+        planes_key,
+        Value::Planes(planes),
+    ));
+    let listed = descents.iter().map(super::render::leaf).collect::<Vec<_>>().join("; then ");
+    steps.push(Step::answer(format!("descents in order: {listed}"), descents_key, Value::Leaves(descents)));
     let listed = leaves.iter().map(super::render::leaf).collect::<Vec<_>>().join("; then ");
     steps.push(Step::answer(format!("leaves in order: {listed}"), key, Value::Leaves(leaves)));
     let title = format!(
@@ -120,5 +145,25 @@ fn part(ray: &Ray2, key: &'static str, label: char) -> Section {
 }
 
 pub(super) fn sections(variant: &Variant) -> Result<Vec<Section>, SolutionError> {
-    PARTS.iter().map(|&(label, key)| Ok(part(&setting::q3(variant, label)?, key, label))).collect()
+    // (b) and (c) in symbols: the plane `axis = s` is met where `e_axis + d_axis t = s`.
+    let formulas = Section {
+        title: "(b), (c) the plane parameter in symbols".into(),
+        steps: vec![
+            Step::answer(
+                "x = 3: e_x + d_x t = 3, so t = (3 - e_x)/d_x",
+                "q3b.t_formula",
+                Value::Formula("(3 - e_x)/d_x".into()),
+            ),
+            Step::answer(
+                "y = 1: e_y + d_y t = 1, so t = (1 - e_y)/d_y",
+                "q3c.t_formula",
+                Value::Formula("(1 - e_y)/d_y".into()),
+            ),
+        ],
+    };
+    let mut sections = vec![formulas];
+    for &(label, keys) in &PARTS {
+        sections.push(part(&setting::q3(variant, label)?, keys, label));
+    }
+    Ok(sections)
 }

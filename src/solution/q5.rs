@@ -22,18 +22,46 @@ pub(super) fn cell_of(key: &str) -> Option<(&'static Method, &'static Effect)> {
 pub(super) fn sections(variant: &Variant) -> Result<Vec<Section>, SolutionError> {
     let unreadable = |what| SolutionError::Statement { question: "q5", seed: variant.seed, what };
     let mut sections: Vec<Section> = Vec::new();
+    let mut push = |title: String, step: Step| {
+        if sections.last().is_none_or(|s| s.title != title) {
+            sections.push(Section { title, steps: Vec::new() });
+        }
+        sections.last_mut().expect("pushed above").steps.push(step);
+    };
     for part in &variant.parts {
-        let (method, effect) = cell_of(part.key).ok_or_else(|| unreadable("a part key's method and effect"))?;
-        let (table, row) = part.key.split_once('.').unwrap_or((part.key, ""));
+        if let Some(row) = part.key.strip_prefix("q5paths.") {
+            let effect = EFFECTS.iter().find(|e| e.id == row).ok_or_else(|| unreadable("an effect row"))?;
+            let text = format!("{row}. {}: light first, eye last: `{}`", effect.name, effect.paths);
+            push(
+                "(q5paths) each effect's light paths".into(),
+                Step::answer(text, part.key, Value::Paths(effect.paths.into())),
+            );
+            continue;
+        }
+        let (cell_key, missed) = match part.key.strip_suffix("_missed") {
+            Some(cell) => (cell, true),
+            None => (part.key, false),
+        };
+        let (method, effect) = cell_of(cell_key).ok_or_else(|| unreadable("a part key's method and effect"))?;
+        let (table, row) = cell_key.split_once('.').unwrap_or((cell_key, ""));
         let cell = decide(effect, method, LightKind::Area).map_err(|_| unreadable("a decidable cell"))?;
         let title = format!(
             "({table}) {}, area light: can produce `{}`, efficiently `{}`",
             method.name, method.paths[0], method.efficient[0]
         );
-        if sections.last().is_none_or(|s| s.title != title) {
-            sections.push(Section { title, steps: Vec::new() });
-        }
         let witness = cell.witness.as_deref().unwrap_or("");
+        if missed {
+            // An effect is a narrow class of paths: a method gets all of it or misses all of it.
+            let (paths, text) = match cell.verdict {
+                Verdict::Yes => ("none", format!("{row}, reason: the method misses none of `{}`: none", effect.paths)),
+                Verdict::Impractical | Verdict::No => (
+                    effect.paths,
+                    format!("{row}, reason: `{witness}` is one of them, so the whole class `{}`", effect.paths),
+                ),
+            };
+            push(title, Step::answer(text, part.key, Value::Paths(paths.into())));
+            continue;
+        }
         let why = match cell.verdict {
             Verdict::Yes => format!("every path of `{}` is sampled efficiently", effect.paths),
             Verdict::Impractical => format!(
@@ -44,7 +72,7 @@ pub(super) fn sections(variant: &Variant) -> Result<Vec<Section>, SolutionError>
         };
         let word = cell.verdict.text().to_lowercase();
         let text = format!("{row}. {}: paths `{}`; {why}: {word}", effect.name, effect.paths);
-        sections.last_mut().expect("pushed above").steps.push(Step::answer(text, part.key, Value::Word(word)));
+        push(title, Step::answer(text, part.key, Value::Word(word)));
     }
     Ok(sections)
 }

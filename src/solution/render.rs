@@ -1,7 +1,7 @@
 //! Solutions as text and markdown, and their final answers as an answers file.
 
 use super::{Format, Solution, Value};
-use crate::checker::ExpectedLeaf;
+use crate::checker::{ExpectedLeaf, ExpectedPlane};
 use std::fmt::Write as _;
 
 /// A number as a student writes it: six decimals with trailing zeros dropped (`5`, `3.267949`),
@@ -31,13 +31,23 @@ pub(super) fn leaf(l: &ExpectedLeaf) -> String {
     format!("[{}] t in [{}, {}]", l.path.join(", "), num(l.t_min), num(l.t_max))
 }
 
+/// A plane as the answers file writes it: `root: t = 2, first x>=3`.
+fn plane(p: &ExpectedPlane) -> String {
+    let node = if p.node.is_empty() { "root".to_owned() } else { p.node.join(", ") };
+    let t = p.t.map_or_else(|| "parallel".to_owned(), |t| format!("t = {}", num(t)));
+    format!("[{node}] {t}, first {}", p.first)
+}
+
 /// The value as the solution prints it.
 pub(super) fn value(value: &Value) -> String {
     match value {
         Value::Number(x) => num(*x),
         Value::Vector(v) => vector(*v),
         Value::Leaves(leaves) => leaves.iter().map(leaf).collect::<Vec<_>>().join("; "),
-        Value::Word(w) => w.clone(),
+        Value::Word(w) | Value::Formula(w) | Value::Paths(w) => w.clone(),
+        Value::Flag(flag) => flag.to_string(),
+        Value::None => "none".into(),
+        Value::Planes(planes) => planes.iter().map(plane).collect::<Vec<_>>().join("; "),
     }
 }
 
@@ -100,7 +110,24 @@ fn toml_value(value: &Value) -> toml::Value {
     match value {
         Value::Number(x) => printed(*x),
         Value::Vector(v) => toml::Value::Array(v.iter().map(|&x| printed(x)).collect()),
-        Value::Word(w) => toml::Value::String(w.clone()),
+        Value::Word(w) | Value::Formula(w) | Value::Paths(w) => toml::Value::String(w.clone()),
+        Value::Flag(flag) => toml::Value::Boolean(*flag),
+        Value::None => toml::Value::String("none".into()),
+        Value::Planes(planes) => toml::Value::Array(
+            planes
+                .iter()
+                .map(|p| {
+                    let mut row = toml::Table::new();
+                    row.insert(
+                        "node".into(),
+                        toml::Value::Array(p.node.iter().cloned().map(toml::Value::String).collect()),
+                    );
+                    row.insert("t".into(), p.t.map_or_else(|| toml::Value::String("parallel".into()), printed));
+                    row.insert("first".into(), toml::Value::String(p.first.clone()));
+                    toml::Value::Table(row)
+                })
+                .collect(),
+        ),
         Value::Leaves(leaves) => toml::Value::Array(
             leaves
                 .iter()
