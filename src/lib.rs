@@ -26,6 +26,7 @@ pub mod q5_effect_tables;
 
 pub mod checker;
 pub mod notes;
+pub mod solution;
 
 pub use answers::Answers;
 
@@ -81,6 +82,7 @@ pub fn drawn_figures() -> Result<Vec<plot::Figure>, plot::PlotError> {
     figures.extend(q3_kd_traversal::figures()?);
     figures.extend(q4_light_probe::figures()?);
     figures.extend(q5_effect_tables::figures()?);
+    figures.extend(solution::figures()?);
     Ok(figures)
 }
 

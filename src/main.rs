@@ -82,6 +82,18 @@ enum Command {
         #[arg(long, default_value_t = 0, value_parser = seed_arg, allow_hyphen_values = true)]
         seed: u64,
     },
+    /// Print the step-by-step solution of a variant: every intermediate number, then the answers.
+    Solution {
+        /// Variant seed, 0 … 2^63 − 1 (0 = the homework's own numbers).
+        #[arg(long, default_value_t = 0, value_parser = seed_arg, allow_hyphen_values = true)]
+        seed: u64,
+        /// Only this question (q1 … q5).
+        #[arg(long)]
+        question: Option<String>,
+        /// `text` for a terminal, `markdown` for a hand-out.
+        #[arg(long, default_value = "text", value_parser = ["text", "markdown"])]
+        format: String,
+    },
     /// Q4: irradiance E(n) of an environment map through a light probe.
     Irradiance(Q4IrradianceArgs),
     /// Regenerate every figure of the course notes.
@@ -332,6 +344,17 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             let variant = hw3::checker::variant(&question, seed).map_err(|e| UsageError(e.to_string()))?;
             let key = hw3::checker::answers_key_for(&question, seed).map_err(|e| UsageError(e.to_string()))?;
             emit_line(&format!("{}\n\nSolution, as an answers file:\n[meta]\nseed = {seed}\n{key}", variant.statement))
+        }
+        Some(Command::Solution { seed, question, format }) => {
+            use hw3::solution::SolutionError;
+            // A question or format the user typed is a usage error; a statement that no longer
+            // reads is the program's (exit 1).
+            let usage = |e: SolutionError| match e {
+                SolutionError::Statement { .. } => anyhow::Error::new(e),
+                other => UsageError(other.to_string()).into(),
+            };
+            let format = format.parse().map_err(usage)?;
+            emit_line(&hw3::solution::command(question.as_deref(), seed, format).map_err(usage)?)
         }
         Some(Command::Check { file, seed, format }) => {
             let text = limits::read_text_bounded(&file, limits::ANSWERS_FILE_BYTES).map_err(UsageError)?;

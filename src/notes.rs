@@ -7,6 +7,12 @@ pub mod glossary {
     #![doc = include_str!(concat!(env!("OUT_DIR"), "/glossary.md"))]
 }
 
+/// The printable answer key: every part's answer, the seed's answer and its grade, and the
+/// section that explains it.
+pub mod answer_key {
+    #![doc = include_str!(concat!(env!("OUT_DIR"), "/answer_key.md"))]
+}
+
 /// Engineering notes for Q1 (hard scenes): benchmark method, machine load, thread scaling.
 pub mod engineering_q1 {
     #![doc = include_str!(concat!(env!("OUT_DIR"), "/engineering_q1.md"))]

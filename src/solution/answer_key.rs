@@ -1,0 +1,198 @@
+//! The printable answer key of the notes: every part's final answer for seed 0, the seed's own
+//! answer beside it with the grade the checker gives it, and where the chapter explains it.
+
+use super::render::value;
+use super::{QUESTIONS, SolutionError, solution};
+use crate::checker::{self, PartResult};
+use crate::plot::{Figure, PlotError};
+use std::fmt::Write as _;
+
+/// The homework's own answers, transcribed as an answers file for seed 0 (the file the checker's
+/// tests grade).
+const SEED_ANSWERS: &str = include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/tests/answers/seed_hw3.toml"));
+
+/// The chapter section that derives each part, by key prefix (first match wins): the heading's
+/// text, as written in the chapter.
+const SECTIONS: [(&str, &str); 7] = [
+    ("q2a", "(a) Derivation"),
+    ("q2b", "(b) Reflection"),
+    ("q2c", "(c) The closest approach, two ways"),
+    ("q3", "Derivation"),
+    ("q4a", "Oracles"),
+    ("q4b", "The blind spot"),
+    ("q5", "Deciding a cell from light paths"),
+];
+
+/// A heading's anchor as rustdoc writes it: lower case, spaces to `-`, other punctuation dropped.
+fn anchor(heading: &str) -> String {
+    heading
+        .to_lowercase()
+        .chars()
+        .filter_map(|c| match c {
+            ' ' => Some('-'),
+            c if c.is_alphanumeric() || c == '-' || c == '_' => Some(c),
+            _ => None,
+        })
+        .collect()
+}
+
+/// The chapter's module (`q2_ray_sphere`) from a checker `explained_in` path
+/// (`hw3/q2_ray_sphere/index.html`), and the anchor it names, if any.
+fn chapter_of(explained_in: &str) -> (String, Option<String>) {
+    let (path, anchor) = explained_in.split_once('#').map_or((explained_in, None), |(p, a)| (p, Some(a.to_owned())));
+    let module = path.trim_start_matches("hw3/").trim_end_matches("/index.html").replace('/', "::");
+    (module, anchor)
+}
+
+/// A markdown link to the section explaining `part`: the checker's anchor when it names one,
+/// else the section of [`SECTIONS`].
+fn section_link(key: &str, explained_in: &str) -> String {
+    let (module, given) = chapter_of(explained_in);
+    let heading = SECTIONS.iter().find(|(prefix, _)| key.starts_with(prefix)).map(|(_, h)| *h);
+    match (given, heading) {
+        (Some(anchor), _) => format!("[{module} §](crate::{module}#{anchor})"),
+        (None, Some(heading)) => format!("[§ {heading}](crate::{module}#{})", anchor(heading)),
+        (None, None) => format!("[{module}](crate::{module})"),
+    }
+}
+
+/// What a part asks, in a few words: the checker's prompt, or for a Q5 cell its method and effect
+/// (the prompt is the same for every cell).
+fn asked(key: &str, prompt: &str) -> String {
+    match super::q5::cell_of(key) {
+        Some((method, effect)) => format!("{}: {}", method.name, effect.name),
+        None => prompt.to_owned(),
+    }
+}
+
+/// Text for a table cell: pipes and brackets escaped (a leaf `[x<3, y<1]` is not a link).
+fn cell(text: &str) -> String {
+    text.replace('|', "\\|").replace('[', "\\[").replace(']', "\\]").replace('\n', " ")
+}
+
+fn grade(result: &PartResult) -> String {
+    let points = |x: f64| format!("{x}");
+    format!("{}/{} {}", points(result.score), points(result.max_score), result.status)
+}
+
+/// The answer key as markdown: one table per question (part, what is asked, the answer, the
+/// seed's answer, its grade, the section explaining it), the seed's total, and the checker's
+/// feedback on every part the seed lost points on.
+///
+/// # Errors
+/// [`SolutionError`] if a solution cannot be written (a bug: seed 0 of every question is tested).
+///
+/// # Panics
+/// If the transcribed seed's answers no longer grade (the checker's tests pin that they do).
+///
+/// # Examples
+/// ```
+/// let key = hw3::solution::answer_key_table().unwrap();
+/// assert!(key.contains("| `q2a.t` |") && key.contains("partial"));
+/// ```
+pub fn answer_key_table() -> Result<String, SolutionError> {
+    let report = checker::check(SEED_ANSWERS, Some(0)).expect("the seed's transcribed answers grade");
+    let mut out = String::new();
+    for question in QUESTIONS {
+        let heading = question.to_uppercase();
+        if question == "q1" {
+            // Q1's worked numbers are its chapter's.
+            let _ = writeln!(
+                out,
+                "### {heading}\n\nIts numbers are derived and measured in \
+                 [the Q1 chapter](crate::q1_hard_scenes); `hw3 answers --question q1` prints them.\n"
+            );
+            continue;
+        }
+        let variant = checker::variant(question, 0).expect("Q2-Q5 have a variant 0");
+        let solved = solution(question, 0)?;
+        // One block per question, so that printing never parts a heading from its table.
+        let _ = writeln!(out, "<div class=\"answer-key-question\">\n\n### {heading}\n");
+        let _ = writeln!(
+            out,
+            "| part | asked | answer | the seed's answer | its grade | explained in |\n|---|---|---|---|---|---|"
+        );
+        let mut lost = Vec::new();
+        for part in &variant.parts {
+            let answer = solved.answers().find(|a| a.key == part.key).map_or("—".into(), |a| value(&a.value));
+            let result = report.parts.iter().find(|r| r.key == part.key).expect("the report grades every part");
+            let given = result.given.as_deref().unwrap_or("—");
+            let _ = writeln!(
+                out,
+                "| `{}` | {} | {} | {} | {} | {} |",
+                part.key,
+                cell(&asked(part.key, part.prompt)),
+                // A trace's leaves, one a line.
+                cell(&answer).replace("; ", "<br>"),
+                cell(given).replace("; ", "<br>"),
+                grade(result),
+                section_link(part.key, part.explained_in)
+            );
+            if result.status != "correct" && result.status != "missing" {
+                // Escaped as a cell is: a path such as `[x<3]` would read as a link.
+                lost.push(format!("- `{}`: {}", part.key, cell(&result.feedback)));
+            }
+        }
+        out.push('\n');
+        if !lost.is_empty() {
+            let _ = writeln!(out, "Where the seed lost points:\n\n{}\n", lost.join("\n"));
+        }
+        let _ = writeln!(out, "</div>\n");
+    }
+    let _ = writeln!(
+        out,
+        "The seed's total: **{} / {}** over {} parts.",
+        report.score,
+        report.max_score,
+        report.parts.len()
+    );
+    Ok(out)
+}
+
+/// The answer key's generated table, `answer_key_table.md`, for the figures pipeline.
+///
+/// # Errors
+/// [`PlotError::Draw`] if the table cannot be written (see [`answer_key_table`]).
+pub fn figures() -> Result<Vec<Figure>, PlotError> {
+    let file_name = "answer_key_table.md".to_string();
+    let table =
+        answer_key_table().map_err(|e| PlotError::Draw { figure: file_name.clone(), message: e.to_string() })?;
+    Ok(vec![Figure { file_name, bytes: table.into_bytes() }])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_linked_section_is_a_heading_of_its_chapter() {
+        for question in ["q2", "q3", "q4", "q5"] {
+            for part in checker::variant(question, 0).unwrap().parts {
+                let (module, _) = chapter_of(part.explained_in);
+                let path = format!("{}/docs/{module}.md", env!("CARGO_MANIFEST_DIR"));
+                let chapter = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}"));
+                let (_, heading) = SECTIONS.iter().find(|(p, _)| part.key.starts_with(p)).expect("a section per part");
+                let found = chapter.lines().any(|l| l.trim_start_matches('#').trim() == *heading && l.starts_with('#'));
+                assert!(found, "{module}.md has no heading `{heading}` for {}", part.key);
+            }
+        }
+    }
+
+    #[test]
+    fn anchors_are_rustdocs() {
+        assert_eq!(anchor("(c) The closest approach, two ways"), "c-the-closest-approach-two-ways");
+        assert_eq!(anchor("The seed's answer, checked"), "the-seeds-answer-checked");
+    }
+
+    #[test]
+    fn the_key_carries_the_seeds_grade_for_every_part() {
+        let table = answer_key_table().unwrap();
+        let report = checker::check(SEED_ANSWERS, Some(0)).unwrap();
+        // Q1's rows are its chapter's (the key points there).
+        for part in report.parts.iter().filter(|p| !p.key.starts_with("q1")) {
+            let row = table.lines().find(|l| l.starts_with(&format!("| `{}` |", part.key))).expect("a row per part");
+            assert!(row.contains(&grade(part)), "{row}");
+        }
+        assert!(table.contains(&format!("**{} / {}**", report.score, report.max_score)));
+    }
+}

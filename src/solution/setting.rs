@@ -1,0 +1,133 @@
+//! A variant's setting, read back from the checker's statement of it.
+//!
+//! The checker draws each variant's numbers and states them; it keeps the drawn values to itself.
+//! Reading them back from the statement (rather than drawing them again) means a solution can never
+//! solve a different problem from the one the student was given: the statement is the problem. A
+//! change of wording fails here, loudly, and the tests run every variant 0–20 through it.
+
+use super::SolutionError;
+use crate::checker::Variant;
+use crate::geometry::{Ray, Sphere};
+use crate::q3_kd_traversal::Ray2;
+use glam::DVec3;
+
+/// Q4's setting: the sky `L(ω) = a + b ω_z`, the normal's tilt from up towards +x, and the
+/// ball's distance in radii.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) struct Q4Setting {
+    pub a: f64,
+    pub b: f64,
+    pub tilt_deg: f64,
+    pub distance_over_radius: f64,
+}
+
+fn error(variant: &Variant, what: &'static str) -> SolutionError {
+    SolutionError::Statement { question: variant.question, seed: variant.seed, what }
+}
+
+/// The text right after the first `marker`.
+fn after<'a>(text: &'a str, marker: &str) -> Option<&'a str> {
+    text.find(marker).map(|i| &text[i + marker.len()..])
+}
+
+/// The numbers of the parenthesised tuple right after `marker` (`e = (` → `-5, 1, 0`).
+fn tuple(text: &str, marker: &str) -> Option<Vec<f64>> {
+    let inside = after(text, marker)?.split(')').next()?;
+    inside.split(',').map(|p| p.trim().parse().ok()).collect()
+}
+
+/// The number right after `marker`.
+fn number(text: &str, marker: &str) -> Option<f64> {
+    let rest = after(text, marker)?;
+    let end = rest.find(|c: char| !(c.is_ascii_digit() || matches!(c, '.' | '-' | '+' | 'e'))).unwrap_or(rest.len());
+    // A sentence's full stop is not part of the number.
+    rest[..end].trim_end_matches('.').parse().ok()
+}
+
+fn vec3(values: Option<Vec<f64>>) -> Option<DVec3> {
+    match values.as_deref() {
+        Some(&[x, y, z]) => Some(DVec3::new(x, y, z)),
+        _ => None,
+    }
+}
+
+/// Q2: the ray and the sphere.
+pub(super) fn q2(variant: &Variant) -> Result<(Ray<f64>, Sphere<f64>), SolutionError> {
+    let s = &variant.statement;
+    let origin = vec3(tuple(s, "with e = (")).ok_or_else(|| error(variant, "the eye e"))?;
+    let dir = vec3(tuple(s, ", d = (")).ok_or_else(|| error(variant, "the direction d"))?;
+    let center = vec3(tuple(s, "centre o = (")).ok_or_else(|| error(variant, "the centre o"))?;
+    let radius = number(s, "radius r = ").ok_or_else(|| error(variant, "the radius r"))?;
+    let ray = Ray::new(origin, dir).map_err(|_| error(variant, "a valid ray"))?;
+    let sphere = Sphere::new(center, radius).map_err(|_| error(variant, "a valid sphere"))?;
+    Ok((ray, sphere))
+}
+
+/// Q3: the ray of part `label` (`'d'` or `'e'`).
+pub(super) fn q3(variant: &Variant, label: char) -> Result<Ray2, SolutionError> {
+    let line = variant
+        .statement
+        .lines()
+        .find(|l| l.starts_with(&format!("({label}) ")))
+        .ok_or_else(|| error(variant, "a ray's line"))?;
+    let pair = |marker| match tuple(line, marker).as_deref() {
+        Some(&[x, y]) => Some([x, y]),
+        _ => None,
+    };
+    let origin = pair("e = (").ok_or_else(|| error(variant, "a ray's origin"))?;
+    let dir = pair("d = (").ok_or_else(|| error(variant, "a ray's direction"))?;
+    Ray2::new(origin, dir).map_err(|_| error(variant, "a valid 2-D ray"))
+}
+
+/// Q4: the sky, the tilt and the ball's distance.
+pub(super) fn q4(variant: &Variant) -> Result<Q4Setting, SolutionError> {
+    let s = &variant.statement;
+    let sky = after(s, "L(w) = ").ok_or_else(|| error(variant, "the sky"))?;
+    let words: Vec<&str> = sky.split_whitespace().take(4).collect();
+    let (a, b) = match words[..] {
+        [a, sign, b, "w_z"] => {
+            let a: f64 = a.parse().map_err(|_| error(variant, "the sky's constant"))?;
+            let b: f64 = b.parse().map_err(|_| error(variant, "the sky's gradient"))?;
+            match sign {
+                "+" => (a, b),
+                "-" => (a, -b),
+                _ => return Err(error(variant, "the sky's sign")),
+            }
+        }
+        _ => return Err(error(variant, "the sky")),
+    };
+    let tilt_deg = number(s, "tilted ").ok_or_else(|| error(variant, "the normal's tilt"))?;
+    let distance_over_radius = number(s, "distance D = ").ok_or_else(|| error(variant, "the ball's distance"))?;
+    Ok(Q4Setting { a, b, tilt_deg, distance_over_radius })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::checker::variant;
+
+    #[test]
+    fn seed_zero_reads_back_the_homeworks_numbers() {
+        let (ray, sphere) = q2(&variant("q2", 0).unwrap()).unwrap();
+        assert_eq!((ray, sphere), crate::q2_ray_sphere::worked_example());
+        let q3_variant = variant("q3", 0).unwrap();
+        let cases = crate::q3_kd_traversal::seed::cases();
+        assert_eq!([q3(&q3_variant, 'd').unwrap(), q3(&q3_variant, 'e').unwrap()], [cases[0].ray, cases[1].ray]);
+        let setting = q4(&variant("q4", 0).unwrap()).unwrap();
+        assert_eq!(setting, Q4Setting { a: 1.0, b: 1.0, tilt_deg: 60.0, distance_over_radius: 3.0 });
+    }
+
+    #[test]
+    fn a_changed_statement_is_an_error_not_a_guess() {
+        let mut v = variant("q2", 1).unwrap();
+        v.statement = v.statement.replace("radius r", "size");
+        assert_eq!(q2(&v), Err(SolutionError::Statement { question: "q2", seed: 1, what: "the radius r" }));
+    }
+
+    #[test]
+    fn negative_gradients_read_with_their_sign() {
+        let negative = (1..=200).map(|s| variant("q4", s).unwrap()).find(|v| v.statement.contains(" - 1 w_z"));
+        let v = negative.expect("some variant has a sky darkening upwards");
+        assert_eq!(q4(&v).unwrap().b, -1.0);
+    }
+}
