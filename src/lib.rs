@@ -48,13 +48,22 @@ pub fn all_answers() -> Vec<Answers> {
     ]
 }
 
-/// Every figure of the course notes: [`drawn_figures`] and [`rendered_figures`].
+/// Every figure of the course notes: [`drawn_figures`] and [`rendered_figures`], each file name
+/// once (two figures of one name would overwrite each other in `docs/figures/`).
 ///
 /// # Errors
-/// [`plot::PlotError`] if a figure cannot be drawn.
+/// [`plot::PlotError`] if a figure cannot be drawn, or if two figures share a file name.
 pub fn all_figures() -> Result<Vec<plot::Figure>, plot::PlotError> {
     let mut figures = drawn_figures()?;
     figures.extend(rendered_figures()?);
+    let mut names: Vec<&str> = figures.iter().map(|f| f.file_name.as_str()).collect();
+    names.sort_unstable();
+    if let Some(pair) = names.windows(2).find(|pair| pair[0] == pair[1]) {
+        return Err(plot::PlotError::Draw {
+            figure: pair[0].to_owned(),
+            message: "two figures share this file name".into(),
+        });
+    }
     Ok(figures)
 }
 
