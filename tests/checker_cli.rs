@@ -19,7 +19,8 @@ fn wrong_answers_get_per_part_feedback_and_exit_1() {
     let text = String::from_utf8(out.stdout).unwrap();
     assert!(text.contains("that is the larger root"), "{text}");
     assert!(text.contains("sign error"), "{text}");
-    assert!(text.contains("did you mean `q2c.t_closest`"), "{text}");
+    // The misspelt `t_closet` is close to one unanswered part only: graded there, with a warning.
+    assert!(text.contains("! graded `q2c.t_closest` for `q2c.t_closet`"), "{text}");
     assert!(text.contains("the factor 2 is missing: B = 2 (e - o) . d"), "{text}");
     assert!(text.contains("|d| for |d|^2"), "{text}");
     assert!(text.contains("the key says outside"), "{text}");
@@ -87,7 +88,9 @@ fn the_seeds_own_answers_graded() {
     assert!(text.contains("t = 3 is where the ray crosses y = 3, not where it enters this cell"), "{text}");
     let line =
         |key: &str| text.lines().find(|l| l.contains(key)).unwrap_or_default().split_whitespace().collect::<Vec<_>>();
-    assert_eq!(line("q3d.leaves")[2..], ["1.50/3", "partial"], "{text}");
+    // Its leaves follow from its own descents: the erratum is charged once, in q3d.descents.
+    assert_eq!(line("q3d.leaves")[2..], ["3.00/3", "correct"], "{text}");
+    assert_eq!(line("q3d.descents")[2..], ["1.13/1.5", "partial"], "{text}");
     assert_eq!(line("q3e.leaves")[2..], ["2.00/2", "correct"], "{text}");
     // The chapter quotes this score; it must be the one the checker prints.
     let score = text.lines().last().unwrap().trim_start_matches("score ").split(" over").next().unwrap();

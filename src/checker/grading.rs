@@ -1,9 +1,11 @@
 //! Grading: each part's answer against its key, with partial credit and feedback.
 
+use super::carried::recompute;
 use super::error::CheckError;
 use super::formula::compare_formulas;
-use super::key::{Expected, Part, Variant};
+use super::key::{Expected, Follows, Part, Variant};
 use super::paths::compare_paths;
+use super::policy::Rule;
 use super::reading::{Given, lookup, read_seed, read_value, require_tables};
 use super::suggest::unknown_keys;
 use super::traces::{grade_planes, grade_trace, show_leaf, show_plane};
@@ -26,15 +28,19 @@ pub struct PartResult {
     pub score: f64,
     /// Points available.
     pub max_score: f64,
-    /// `"correct"`, `"partial"`, `"wrong"` or `"missing"`.
+    /// `"correct"` (full points: the key's answer, or one a full-credit rule accepts),
+    /// `"partial"`, `"wrong"` or `"missing"`.
     pub status: &'static str,
     /// The answer given, as text.
     pub given: Option<String>,
     /// The key's answer, as text.
     pub expected: String,
-    /// One-line feedback: the error, the tolerance in words, a mal-rule message.
+    /// One-line feedback: the error, the tolerance in words, a mal-rule message, the first wrong
+    /// step, and for a wrong answer one sentence on the method.
     pub feedback: String,
-    /// Where the notes explain it.
+    /// The recognised mistake's rule id, if a rule matched.
+    pub mistake: Option<&'static str>,
+    /// Where the notes explain it: the chapter's page and the section's anchor.
     pub explained_in: &'static str,
 }
 
@@ -44,7 +50,7 @@ pub struct PartResult {
 /// ```
 /// let report = hw3::checker::check("[meta]\nseed = 4", None).unwrap();
 /// assert_eq!((report.seed, report.score), (4, 0.0));
-/// assert!(report.unknown_keys.is_empty());
+/// assert!(report.unknown_keys.is_empty() && report.warnings.is_empty());
 /// ```
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Report {
@@ -58,6 +64,9 @@ pub struct Report {
     pub parts: Vec<PartResult>,
     /// Keys in the file that no part asks for (with a suggestion when one is close).
     pub unknown_keys: Vec<String>,
+    /// Misspelt keys graded under the one unanswered part they are close to
+    /// (``"graded `q2a.t` for `q2a.tt`"``).
+    pub warnings: Vec<String>,
 }
 
 impl Report {
@@ -77,6 +86,11 @@ impl Report {
 
 /// Grades an answers file (TOML text). The seed comes from `seed_override`, else `[meta] seed`,
 /// else 0.
+///
+/// Each part earns the best of: the key's answer (full points), a step that follows from the
+/// student's own wrong answer to the part it depends on ([`Rule::CarriedForward`]), a trace's
+/// share of right entries, or a recognised mistake's [`Rule`] credit. A key no part asks for but
+/// within two edits of exactly one unanswered part is graded under that part, with a warning.
 ///
 /// # Errors
 /// [`CheckError`] when the file is not valid TOML, a value has the wrong type or is not finite,
@@ -98,15 +112,127 @@ pub fn check(text: &str, seed_override: Option<u64>) -> Result<Report, CheckErro
     };
     let variants: Vec<Variant> = QUESTIONS.iter().map(|q| variant(q, seed)).collect::<Result<_, _>>()?;
     let parts: Vec<&Part> = variants.iter().flat_map(|v| &v.parts).collect();
-    let unknown_keys = unknown_keys(&table, &parts);
-    let mut results = Vec::new();
-    for part in parts {
+    let follows: Vec<&Follows> = variants.iter().flat_map(|v| &v.follows).collect();
+    let mut unknown = unknown_keys(&table, &parts);
+    let mut givens = Vec::new();
+    for part in &parts {
         let given = lookup(&table, part.key).map(|v| read_value(part.key, v, &part.expected)).transpose()?;
-        results.push(grade(part, given.as_ref()));
+        givens.push(given);
+    }
+    // A misspelt key is graded under its part only when its value has that part's shape.
+    let mut warnings = Vec::new();
+    let mut renamed = vec![None; parts.len()];
+    for u in &mut unknown {
+        let (Some(target), Some(key)) = (u.graded_as, u.key.as_deref()) else { continue };
+        let at = parts.iter().position(|p| p.key == target).expect("suggestions are part keys");
+        let value = lookup(&table, key).expect("an unknown key is in the file");
+        if let Ok(given) = read_value(target, value, &parts[at].expected) {
+            givens[at] = Some(given);
+            let warning = format!("graded `{target}` for `{key}`");
+            renamed[at] = Some(warning.clone());
+            warnings.push(warning);
+            u.graded_as = None;
+            u.described.clear();
+        }
+    }
+    let unknown_keys = unknown.into_iter().map(|u| u.described).filter(|d| !d.is_empty()).collect();
+    let mut results: Vec<PartResult> =
+        parts.iter().zip(&givens).map(|(part, given)| grade(part, given.as_ref())).collect();
+    carry_forward(&parts, &givens, &follows, &mut results);
+    for ((result, part), warning) in results.iter_mut().zip(&parts).zip(renamed) {
+        if result.score < part.points && result.status != "missing" {
+            result.feedback = format!("{} — {}", result.feedback, part.method);
+        }
+        if let Some(warning) = warning {
+            result.feedback = format!("{warning}: {}", result.feedback);
+        }
     }
     let score = round2(results.iter().map(|r| r.score).sum());
     let max_score = round2(results.iter().map(|r| r.max_score).sum());
-    Ok(Report { seed, score, max_score, parts: results, unknown_keys })
+    Ok(Report { seed, score, max_score, parts: results, unknown_keys, warnings })
+}
+
+/// Error carried forward: a later part that follows correctly from the student's own wrong
+/// answer to the part it depends on earns [`Rule::CarriedForward`]'s credit; a later part that is
+/// wrong anyway is told the first wrong step of its chain.
+fn carry_forward(parts: &[&Part], givens: &[Option<Given>], follows: &[&Follows], results: &mut [PartResult]) {
+    let at = |key: &str| parts.iter().position(|p| p.key == key);
+    // Dependencies come in order (t before the point before the normal), so one pass suffices.
+    for f in follows {
+        let (Some(later), Some(earlier)) = (at(f.key), at(f.from)) else { continue };
+        if results[earlier].status == "missing"
+            || results[earlier].mistake.is_none() && results[earlier].status == "correct"
+        {
+            continue;
+        }
+        // The first wrong step of the chain: the earlier part, or the step it carried its error from.
+        let root = match results[earlier].mistake {
+            Some(id) if id == Rule::CarriedForward.id() => {
+                first_wrong_step(&results[earlier].feedback).unwrap_or(f.from).to_string()
+            }
+            _ => f.from.to_string(),
+        };
+        let part = parts[later];
+        if results[later].score >= part.points {
+            continue;
+        }
+        let (Some(given), Some(from)) = (&givens[later], &givens[earlier]) else { continue };
+        let Some(expected) = recompute(&f.derivation, from, &part.expected) else {
+            results[later].feedback = format!("{}; first wrong step: `{root}`", results[later].feedback);
+            continue;
+        };
+        // An earlier slip this step does not depend on (an inward normal reflects the same way)
+        // leaves the step's own mistake as its first.
+        if as_given(&expected).is_some_and(|g| compare(&part.expected, &g).0) {
+            continue;
+        }
+        let credit = match (&expected, given) {
+            (Expected::Trace { leaves, planes, descents }, Given::Trace(g)) => {
+                grade_trace(leaves, planes, g, *descents).credit
+            }
+            _ => f64::from(u8::from(compare(&expected, given).0)),
+        } * Rule::CarriedForward.credit();
+        let score = round2(part.points * credit);
+        if score > results[later].score {
+            let result = &mut results[later];
+            result.score = score;
+            result.status = status(score, part.points);
+            result.mistake = Some(Rule::CarriedForward.id());
+            let share = if credit < 1.0 { format!(" ({:.0} % of it)", 100.0 * credit) } else { String::new() };
+            result.feedback = format!(
+                "follows from your `{}`{share}: right for the value you had (error carried forward); first wrong step: `{root}`",
+                f.from
+            );
+        } else {
+            results[later].feedback = format!("{}; first wrong step: `{root}`", results[later].feedback);
+        }
+    }
+}
+
+/// A recomputed key as if it were an answer, to compare with the key itself.
+fn as_given(expected: &Expected) -> Option<Given> {
+    match expected {
+        Expected::Number { value, .. } => Some(Given::Number(*value)),
+        Expected::Vector { value, .. } | Expected::Direction { value, .. } => Some(Given::Vector(*value)),
+        Expected::Trace { leaves, .. } => Some(Given::Trace(leaves.clone())),
+        _ => None,
+    }
+}
+
+/// The part a carried-forward feedback names as the first wrong step.
+fn first_wrong_step(feedback: &str) -> Option<&str> {
+    let (_, rest) = feedback.rsplit_once("first wrong step: `")?;
+    rest.split('`').next()
+}
+
+fn status(score: f64, points: f64) -> &'static str {
+    if score >= points {
+        "correct"
+    } else if score > 0.0 {
+        "partial"
+    } else {
+        "wrong"
+    }
 }
 fn norm(v: [f64; 3]) -> f64 {
     v.iter().map(|x| x * x).sum::<f64>().sqrt()
@@ -145,8 +271,8 @@ fn compare(expected: &Expected, given: &Given) -> (bool, String) {
             (angle <= *angle_tol && unit, words)
         }
         (Expected::Trace { leaves, planes, descents }, Given::Trace(given)) => {
-            let (credit, words) = grade_trace(leaves, planes, given, *descents);
-            (credit == 1.0, words)
+            let graded = grade_trace(leaves, planes, given, *descents);
+            (graded.exact, graded.words)
         }
         (Expected::Planes { steps }, Given::Planes(given)) => {
             let (credit, words) = grade_planes(steps, given);
@@ -208,6 +334,7 @@ fn grade(part: &Part, given: Option<&Given>) -> PartResult {
             given: None,
             expected,
             feedback: format!("no answer for `{}`", part.key),
+            mistake: None,
             explained_in: part.explained_in,
         };
     };
@@ -222,31 +349,35 @@ fn grade(part: &Part, given: Option<&Given>) -> PartResult {
         Given::None => "none".into(),
     };
     let (ok, words) = compare(&part.expected, given);
-    let trace_credit = match (&part.expected, given) {
+    // A trace's share of right entries, and whether some of them carried an earlier bound forward.
+    let trace = match (&part.expected, given) {
         (Expected::Trace { leaves, planes, descents }, Given::Trace(g)) => {
-            Some(grade_trace(leaves, planes, g, *descents).0)
+            let graded = grade_trace(leaves, planes, g, *descents);
+            Some((graded.credit, (graded.carried > 0).then_some(Rule::CarriedForward)))
         }
-        (Expected::Planes { steps }, Given::Planes(g)) => Some(grade_planes(steps, g).0),
+        (Expected::Planes { steps }, Given::Planes(g)) => Some((grade_planes(steps, g).0, None)),
         _ => None,
     };
-    let (score, status, feedback) = if ok {
-        (part.points, "correct", words)
-    } else if let Some(credit) = trace_credit.filter(|&c| c > 0.0) {
-        (part.points * credit, "partial", words)
-    } else if let Some(rule) = part.mal_rules.iter().find(|rule| compare(&rule.value, given).0) {
-        let status = if rule.credit > 0.0 { "partial" } else { "wrong" };
-        (part.points * rule.credit, status, format!("{} ({words})", rule.message))
+    let mal_rule = part.mal_rules.iter().find(|rule| compare(&rule.value, given).0);
+    let (credit, feedback, mistake) = if ok {
+        (1.0, words, None)
     } else {
-        (0.0, "wrong", words)
+        match (trace, mal_rule) {
+            (Some((share, rule)), _) if mal_rule.is_none_or(|m| share >= m.credit()) => (share, words, rule),
+            (_, Some(m)) => (m.credit(), format!("{} ({words})", m.message), Some(m.rule)),
+            _ => (0.0, words, None),
+        }
     };
+    let score = round2(part.points * credit);
     PartResult {
         key: part.key,
-        score: round2(score),
+        score,
         max_score: part.points,
-        status,
+        status: status(score, part.points),
         given: Some(shown),
         expected,
         feedback,
+        mistake: mistake.map(Rule::id),
         explained_in: part.explained_in,
     }
 }
@@ -301,10 +432,11 @@ mod tests {
         let d = report.parts.iter().find(|p| p.key == "q3d.leaves").unwrap();
         assert_eq!((d.status, d.score), ("partial", 1.5));
         assert!(d.feedback.contains("you kept tmin at 0 after crossing the plane"), "{}", d.feedback);
-        // An unclipped interval.
+        // An unclipped interval: the first leaf is wrong (a mistake of method, not carried
+        // forward), the second is right on its own.
         let unclipped = in_leaves("tmax = 2.0", "tmax = \"inf\"");
         let d = check(&unclipped, None).unwrap().parts.into_iter().find(|p| p.key == "q3d.leaves").unwrap();
-        assert_eq!(d.score, 0.0);
+        assert_eq!((d.score, d.mistake), (1.5, None));
         assert!(d.feedback.contains("not clipped"), "{}", d.feedback);
         // A missing leaf.
         let short = "[q3d]\nleaves = [{ path = [\"x>=3\", \"y<3\"], tmin = 0, tmax = 2 }]";

@@ -2,6 +2,7 @@
 //! recognises.
 
 use super::formula::{Formula, Kind, Point};
+use super::policy::Rule;
 
 /// The answer a part expects, with how it is compared.
 ///
@@ -132,14 +133,17 @@ pub struct ExpectedLeaf {
     pub t_max: f64,
 }
 
-/// A wrong answer we expect students to give, with its own message and partial credit.
+/// A wrong answer we expect students to give, with its own message; its credit is its
+/// [`Rule`]'s, the same in every question.
 ///
 /// # Examples
 /// ```
+/// use hw3::checker::Rule;
 /// let q2 = hw3::checker::variant("q2", 0).unwrap();
 /// let t = q2.parts.iter().find(|p| p.key == "q2a.t").unwrap();
-/// let rule = &t.mal_rules[0];
-/// assert!(rule.message.contains("larger root") && rule.credit == 0.0);
+/// let mal_rule = &t.mal_rules[0];
+/// assert!(mal_rule.message.contains("larger root"));
+/// assert_eq!((mal_rule.rule, mal_rule.credit()), (Rule::WrongRoot, 0.0));
 /// ```
 #[derive(Debug, Clone, PartialEq)]
 pub struct MalRule {
@@ -147,8 +151,23 @@ pub struct MalRule {
     pub value: Expected,
     /// What went wrong, in one line.
     pub message: &'static str,
-    /// Fraction of the part's points it still earns (0 to 1).
-    pub credit: f64,
+    /// The policy's rule it is an instance of (its credit and reason).
+    pub rule: Rule,
+}
+
+impl MalRule {
+    /// Fraction of the part's points it still earns (0 to 1): its rule's credit.
+    ///
+    /// # Examples
+    /// ```
+    /// use hw3::checker::{Expected, MalRule, Rule};
+    /// let radians = MalRule { value: Expected::Flag { value: true }, message: "radians", rule: Rule::Unit };
+    /// assert_eq!(radians.credit(), 0.5);
+    /// ```
+    #[must_use]
+    pub const fn credit(&self) -> f64 {
+        self.rule.credit()
+    }
 }
 
 /// One gradable part of a question: `key` is the TOML path (`q2a.t`).
@@ -158,7 +177,7 @@ pub struct MalRule {
 /// let q2 = hw3::checker::variant("q2", 0).unwrap();
 /// let part = q2.parts.iter().find(|p| p.key == "q2a.t").unwrap();
 /// assert_eq!(part.points, 2.0);
-/// assert!(part.explained_in.starts_with("hw3/q2_ray_sphere"));
+/// assert_eq!(part.explained_in, "hw3/q2_ray_sphere/index.html#a-derivation");
 /// ```
 #[derive(Debug, Clone, PartialEq)]
 pub struct Part {
@@ -172,8 +191,11 @@ pub struct Part {
     pub expected: Expected,
     /// Recognised wrong answers.
     pub mal_rules: Vec<MalRule>,
-    /// Where the notes explain it (a path inside the rustdoc, e.g. `hw3/q2_ray_sphere/index.html`).
+    /// Where the notes explain it: a path inside the rustdoc and the section's anchor
+    /// (`hw3/q2_ray_sphere/index.html#a-derivation`).
     pub explained_in: &'static str,
+    /// How the key is computed, in one sentence (the feedback on a wrong answer ends with it).
+    pub method: &'static str,
 }
 
 /// A question variant: its parameters in words and its parts.
@@ -194,6 +216,62 @@ pub struct Variant {
     pub statement: String,
     /// Its parts, in order.
     pub parts: Vec<Part>,
+    /// The parts whose key follows from the answer to an earlier part (error carried forward).
+    pub follows: Vec<Follows>,
+}
+
+/// A part whose key can be recomputed from the student's own answer to an earlier part: when
+/// the later answer follows correctly from a wrong earlier one, it earns
+/// [`Rule::CarriedForward`]'s credit.
+///
+/// # Examples
+/// ```
+/// let q2 = hw3::checker::variant("q2", 0).unwrap();
+/// let point = q2.follows.iter().find(|f| f.key == "q2a.point").unwrap();
+/// assert_eq!(point.from, "q2a.t");
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct Follows {
+    /// The later part.
+    pub key: &'static str,
+    /// The earlier part it is computed from.
+    pub from: &'static str,
+    /// How.
+    pub derivation: Derivation,
+}
+
+/// How a later part's key follows from an earlier answer.
+///
+/// # Examples
+/// ```
+/// use hw3::checker::Derivation;
+/// let q4 = hw3::checker::variant("q4", 0).unwrap();
+/// assert!(q4.follows.iter().any(|f| f.derivation == Derivation::LostFromHalfAngle));
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub enum Derivation {
+    /// Q2: the point `e + d t` from the student's t.
+    PointFromT {
+        /// The ray's origin `e`.
+        origin: [f64; 3],
+        /// The ray's direction `d`.
+        dir: [f64; 3],
+    },
+    /// Q2: the unit normal `(p − o)/|p − o|` from the student's point.
+    NormalFromPoint {
+        /// The sphere's centre `o`.
+        center: [f64; 3],
+    },
+    /// Q2: the reflection `d̂ − 2 (n̂ · d̂) n̂` from the student's normal (normalised).
+    ReflectionFromNormal {
+        /// The ray's direction `d`.
+        dir: [f64; 3],
+    },
+    /// Q3: the leaves are the student's descents into cells that are not split further.
+    LeavesFromDescents,
+    /// Q4: the irradiance lost for a normal into the blind cone, `sin² γ`, from the student's
+    /// half-angle `γ` in degrees.
+    LostFromHalfAngle,
 }
 
 /// One plane of a traversal: the node, where the ray crosses its plane, and which child comes first.
@@ -217,7 +295,7 @@ pub struct ExpectedPlane {
 }
 
 /// A formula part: the key `source` in `symbols`, compared at `points`; each slip is a formula
-/// with its message and credit.
+/// with its message and the policy's rule.
 ///
 /// # Panics
 /// If the key or a slip does not parse (a bug in the question, caught by every test).
@@ -229,8 +307,9 @@ pub(super) fn formula_part(
     source: &'static str,
     symbols: &'static [(&'static str, Kind)],
     points: &[Point],
-    slips: &[(&'static str, &'static str, f64)],
+    slips: &[(&'static str, &'static str, Rule)],
     explained_in: &'static str,
+    method: &'static str,
 ) -> Part {
     let formula = |text: &str| Formula::parse(text, symbols).unwrap_or_else(|e| panic!("{key}: `{text}`: {e}"));
     let expected =
@@ -242,8 +321,9 @@ pub(super) fn formula_part(
         expected: expected(source),
         mal_rules: slips
             .iter()
-            .map(|&(slip, message, credit)| MalRule { value: expected(slip), message, credit })
+            .map(|&(slip, message, rule)| MalRule { value: expected(slip), message, rule })
             .collect(),
         explained_in,
+        method,
     }
 }

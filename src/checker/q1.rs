@@ -3,6 +3,7 @@
 //! shift of a moving object per frame), and the built-in scenes matched to the difficulties.
 
 use super::key::{Expected, MalRule, Part, Variant};
+use super::policy::Rule;
 use crate::render::catalogue::{CATALOGUE, CLUTTER_COUNT, CLUTTER_HALF_WIDTH, CLUTTER_RADIUS};
 use crate::rng;
 use rand_core::Rng;
@@ -11,7 +12,12 @@ use std::f64::consts::PI;
 /// The RNG stream of Q1 variants.
 const STREAM: u64 = 1;
 
-const NOTES: &str = "hw3/q1_hard_scenes/index.html";
+/// The chapter's sections each part is explained in.
+const CLUTTER_NOTES: &str = "hw3/q1_hard_scenes/index.html#a-clutter-a-forest-of-spheres";
+const FOG_NOTES: &str = "hw3/q1_hard_scenes/index.html#b-fog-contrast-and-transmittance-versus-distance";
+const MIRROR_NOTES: &str = "hw3/q1_hard_scenes/index.html#c-mirrors-image-change-per-unit-camera-move";
+const MOTION_NOTES: &str = "hw3/q1_hard_scenes/index.html#d-change-over-time";
+const ANSWER_NOTES: &str = "hw3/q1_hard_scenes/index.html#the-answer";
 
 /// The difficulties of Q1, by the homework's letters.
 const DIFFICULTIES: [&str; 4] = ["a", "b", "c", "d"];
@@ -142,9 +148,10 @@ pub(super) fn variant(seed: u64) -> Variant {
             mal_rules: vec![MalRule {
                 value: number(1.0 - n.count * p, 1e-2),
                 message: "that is the first-order term 1 - N p; the misses multiply: (1 - p)^N",
-                credit: 0.0,
+                rule: Rule::OtherQuantity,
             }],
-            explained_in: NOTES,
+            explained_in: CLUTTER_NOTES,
+            method: "One sphere blocks a ray with probability p = pi a^2/(W + 2a)^2; the N spheres miss independently: (1 - p)^N.",
         },
         Part {
             key: "q1b.transmittance",
@@ -154,9 +161,10 @@ pub(super) fn variant(seed: u64) -> Variant {
             mal_rules: vec![MalRule {
                 value: number(1.0 - n.sigma_t * n.path, 1e-3),
                 message: "that is the first-order term 1 - sigma_t l; the transmittance is e^(-sigma_t l)",
-                credit: 0.0,
+                rule: Rule::OtherQuantity,
             }],
-            explained_in: NOTES,
+            explained_in: FOG_NOTES,
+            method: "Each length dl removes the fraction sigma_t dl: the transmittance is e^(-sigma_t l) (Beer-Lambert).",
         },
         Part {
             key: "q1b.visual_range",
@@ -166,9 +174,10 @@ pub(super) fn variant(seed: u64) -> Variant {
             mal_rules: vec![MalRule {
                 value: number(1.0 / n.sigma_t, 1e-3),
                 message: "that is the mean free path 1/sigma_t; the visual range is where e^(-sigma_t d) = 2 %: ln 50/sigma_t",
-                credit: 0.0,
+                rule: Rule::OtherQuantity,
             }],
-            explained_in: NOTES,
+            explained_in: FOG_NOTES,
+            method: "Contrast falls as e^(-sigma_t d); it reaches 2 % at d = ln 50/sigma_t (Koschmieder).",
         },
         Part {
             key: "q1c.reflection_turn_deg",
@@ -179,15 +188,16 @@ pub(super) fn variant(seed: u64) -> Variant {
                 MalRule {
                     value: number(turn / 2.0, 1e-2),
                     message: "that is the turn of the normal, step/R; the reflected ray turns twice as much",
-                    credit: 0.0,
+                    rule: Rule::OtherQuantity,
                 },
                 MalRule {
                     value: number(turn.to_radians(), 1e-2),
                     message: "that is the angle in radians; degrees are asked",
-                    credit: 0.5,
+                    rule: Rule::Unit,
                 },
             ],
-            explained_in: NOTES,
+            explained_in: MIRROR_NOTES,
+            method: "A sideways step turns the normal at the ball's centre by step/R, and a reflection turns by twice its normal: 2 step/R radians, in degrees.",
         },
         Part {
             key: "q1d.pixels_per_frame",
@@ -197,9 +207,10 @@ pub(super) fn variant(seed: u64) -> Variant {
             mal_rules: vec![MalRule {
                 value: number(n.speed / n.fps * n.height / n.fov_deg.to_radians().tan() / n.depth, 1e-2),
                 message: "the focal length in pixels is (H/2)/tan(fov/2): half the image over the tangent of half the angle",
-                credit: 0.0,
+                rule: Rule::WrongTerm,
             }],
-            explained_in: NOTES,
+            explained_in: MOTION_NOTES,
+            method: "The object moves v/fps per frame; at depth z the image moves that times the focal length in pixels, (H/2)/tan(fov/2), over z.",
         },
     ];
     for (scene, key) in SCENES {
@@ -209,10 +220,11 @@ pub(super) fn variant(seed: u64) -> Variant {
             points: 0.5,
             expected: Expected::Choice { value: difficulty_of(scene), options: &DIFFICULTIES },
             mal_rules: vec![],
-            explained_in: NOTES,
+            explained_in: ANSWER_NOTES,
+            method: "Render the scene and see what makes it hard: many small occluders, fog, mirrors, or motion.",
         });
     }
-    Variant { question: "q1", seed, statement, parts }
+    Variant { question: "q1", seed, statement, parts, follows: vec![] }
 }
 
 #[cfg(test)]

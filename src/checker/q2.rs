@@ -1,7 +1,8 @@
 //! Q2 variants: a ray and a sphere with small integer coordinates, and the parts a–c.
 
 use super::formula::{Kind, Point, Value};
-use super::key::{Expected, MalRule, Part, Variant, formula_part};
+use super::key::{Derivation, Expected, Follows, MalRule, Part, Variant, formula_part};
+use super::policy::Rule;
 use crate::geometry::sphere::{Roots, closest_approach_t, first_hit_stable, roots_stable, surface_hit};
 use crate::geometry::{Ray, Sphere};
 use crate::q2_ray_sphere::worked_example;
@@ -12,7 +13,16 @@ use rand_core::Rng;
 /// The RNG stream of Q2 variants: changing another question's generator never changes Q2's.
 const STREAM: u64 = 2;
 
-const NOTES: &str = "hw3/q2_ray_sphere/index.html";
+/// The chapter's sections each part is explained in.
+const DERIVATION: &str = "hw3/q2_ray_sphere/index.html#a-derivation";
+const REFLECTION_NOTES: &str = "hw3/q2_ray_sphere/index.html#b-reflection";
+const CLOSEST_NOTES: &str = "hw3/q2_ray_sphere/index.html#c-the-closest-approach-two-ways";
+
+const T_METHOD: &str = "Solve A t^2 + B t + C = 0 and take the smallest positive root (t = 0 is the eye, not a hit).";
+const POINT_METHOD: &str = "Put the first hit's t into the ray: p = e + d t.";
+const NORMAL_METHOD: &str =
+    "The outward normal at p is (p - o)/r: from the centre to the hit, of unit length on the sphere.";
+const REFLECTED_METHOD: &str = "With dhat = d/|d|, flip the normal component: dhat - 2 (n . dhat) n.";
 
 /// Draws an integer in `low..=high` from 64 random bits (a tiny modulo bias is irrelevant here,
 /// and integer draws keep variants identical on every platform).
@@ -166,15 +176,18 @@ pub(super) fn formula_points() -> Vec<Point> {
 }
 
 fn formula_parts(points: &[Point]) -> [Part; 7] {
-    let part =
-        |key, prompt, source, symbols, slips| formula_part(key, prompt, 1.0, source, symbols, points, slips, NOTES);
+    let part = |key, prompt, source, symbols, slips, notes, method| {
+        formula_part(key, prompt, 1.0, source, symbols, points, slips, notes, method)
+    };
     [
         part(
             "q2a.A",
             "A of A t^2 + B t + C = 0, in e, d, o, r",
             "dot(d, d)",
             &RAY_SPHERE,
-            &[("norm(d)", "|d| for |d|^2: A = d . d", 0.0)],
+            &[("norm(d)", "|d| for |d|^2: A = d . d", Rule::Power)],
+            DERIVATION,
+            "Put e + d t into |p - o|^2 = r^2 and collect the powers of t: A = d . d.",
         ),
         part(
             "q2a.B",
@@ -182,10 +195,12 @@ fn formula_parts(points: &[Point]) -> [Part; 7] {
             "2*dot(e - o, d)",
             &RAY_SPHERE,
             &[
-                ("dot(e - o, d)", "the factor 2 is missing: B = 2 (e - o) . d", 0.5),
-                ("2*dot(o - e, d)", "sign error: B = 2 (e - o) . d", 0.0),
-                ("2*dot(e, d)", "the centre is missing: (e - o), not e", 0.0),
+                ("dot(e - o, d)", "the factor 2 is missing: B = 2 (e - o) . d", Rule::Factor),
+                ("2*dot(o - e, d)", "sign error: B = 2 (e - o) . d", Rule::Sign),
+                ("2*dot(e, d)", "the centre is missing: (e - o), not e", Rule::WrongTerm),
             ],
+            DERIVATION,
+            "Expand |(e - o) + d t|^2: the cross term is 2 (e - o) . d t, so B = 2 (e - o) . d.",
         ),
         part(
             "q2a.C",
@@ -193,10 +208,12 @@ fn formula_parts(points: &[Point]) -> [Part; 7] {
             "dot(e - o, e - o) - r^2",
             &RAY_SPHERE,
             &[
-                ("dot(e - o, e - o) - r", "r for r^2: C = |e - o|^2 - r^2", 0.0),
-                ("dot(e, e) - r^2", "the centre is missing: C = |e - o|^2 - r^2", 0.0),
-                ("r^2 - dot(e - o, e - o)", "sign error: C = |e - o|^2 - r^2", 0.0),
+                ("dot(e - o, e - o) - r", "r for r^2: C = |e - o|^2 - r^2", Rule::Power),
+                ("dot(e, e) - r^2", "the centre is missing: C = |e - o|^2 - r^2", Rule::WrongTerm),
+                ("r^2 - dot(e - o, e - o)", "sign error: C = |e - o|^2 - r^2", Rule::Sign),
             ],
+            DERIVATION,
+            "The terms without t: C = |e - o|^2 - r^2 (its sign says whether the eye is outside).",
         ),
         part(
             "q2a.t_formula",
@@ -207,12 +224,14 @@ fn formula_parts(points: &[Point]) -> [Part; 7] {
                 (
                     "(-B + sqrt(B^2 - 4*A*C))/(2*A)",
                     "that is the larger root: from outside, the first hit is the smaller",
-                    0.0,
+                    Rule::WrongRoot,
                 ),
-                ("(-B - sqrt(B^2 - 4*A*C))/A", "the factor 2 is missing: divide by 2A", 0.5),
-                ("(B - sqrt(B^2 - 4*A*C))/(2*A)", "sign error: the roots are (-B ± sqrt(B^2 - 4AC))/2A", 0.0),
-                ("(-B - sqrt(B^2 - A*C))/(2*A)", "the factor 4 is missing: B^2 - 4AC", 0.5),
+                ("(-B - sqrt(B^2 - 4*A*C))/A", "the factor 2 is missing: divide by 2A", Rule::Factor),
+                ("(B - sqrt(B^2 - 4*A*C))/(2*A)", "sign error: the roots are (-B ± sqrt(B^2 - 4AC))/2A", Rule::Sign),
+                ("(-B - sqrt(B^2 - A*C))/(2*A)", "the factor 4 is missing: B^2 - 4AC", Rule::Factor),
             ],
+            DERIVATION,
+            "The roots are (-B ± sqrt(B^2 - 4AC))/2A; from outside both are positive and the first hit is the smaller.",
         ),
         part(
             "q2b.normal_formula",
@@ -220,9 +239,11 @@ fn formula_parts(points: &[Point]) -> [Part; 7] {
             "(p - o)/r",
             &AT_HIT,
             &[
-                ("(o - p)/r", "the normal points inward: p - o, not o - p", 0.0),
-                ("p - o", "not unit length: divide by r", 0.5),
+                ("(o - p)/r", "the normal points inward: p - o, not o - p", Rule::Sign),
+                ("p - o", "not unit length: divide by r", Rule::NotNormalised),
             ],
+            REFLECTION_NOTES,
+            "The outward normal points from the centre to the hit, and |p - o| = r on the sphere: n = (p - o)/r.",
         ),
         part(
             "q2b.reflected_formula",
@@ -230,10 +251,20 @@ fn formula_parts(points: &[Point]) -> [Part; 7] {
             "dhat - 2*dot(n, dhat)*n",
             &REFLECTION,
             &[
-                ("dhat + 2*dot(n, dhat)*n", "sign error: r = d - 2 (n . d) n (the normal component flips)", 0.0),
-                ("dhat - dot(n, dhat)*n", "the factor 2 is missing: that only removes the normal component", 0.0),
-                ("d - 2*dot(n, d)*n", "right direction, but not unit length: use dhat = d/norm(d)", 0.5),
+                ("dhat + 2*dot(n, dhat)*n", "sign error: r = d - 2 (n . d) n (the normal component flips)", Rule::Sign),
+                (
+                    "dhat - dot(n, dhat)*n",
+                    "that is the projection onto the tangent plane: removing the normal component once does not reflect, flipping it (twice) does",
+                    Rule::OtherQuantity,
+                ),
+                (
+                    "d - 2*dot(n, d)*n",
+                    "right direction, but not unit length: use dhat = d/norm(d)",
+                    Rule::NotNormalised,
+                ),
             ],
+            REFLECTION_NOTES,
+            "Split dhat into its parts along n and along the surface, and flip the normal part: dhat - 2 (n . dhat) n.",
         ),
         part(
             "q2c.t_formula",
@@ -244,11 +275,13 @@ fn formula_parts(points: &[Point]) -> [Part; 7] {
                 (
                     "-dot(e - o, d)/norm(d)",
                     "|d| for |d|^2: that is the distance along the ray; divide by |d| once more for t",
-                    0.5,
+                    Rule::DistanceForParameter,
                 ),
-                ("dot(e - o, d)/dot(d, d)", "sign error: t = -(e - o) . d / |d|^2", 0.0),
-                ("-dot(e - o, d)", "divide by |d|^2 (t is in units of d)", 0.0),
+                ("dot(e - o, d)/dot(d, d)", "sign error: t = -(e - o) . d / |d|^2", Rule::Sign),
+                ("-dot(e - o, d)", "divide by |d|^2 (t is in units of d)", Rule::WrongTerm),
             ],
+            CLOSEST_NOTES,
+            "At the closest approach e + d t - o is perpendicular to d: (e - o + d t) . d = 0 gives t = -(e - o) . d / (d . d).",
         ),
     ]
 }
@@ -280,8 +313,13 @@ pub(super) fn variant(seed: u64) -> Variant {
     let wrong_cases: Vec<MalRule> = CASES
         .iter()
         .filter(|c| **c != case)
-        .map(|c| MalRule { value: Expected::Choice { value: c, options: &CASES }, message: reason, credit: 0.0 })
+        .map(|c| MalRule {
+            value: Expected::Choice { value: c, options: &CASES },
+            message: reason,
+            rule: Rule::WrongCase,
+        })
         .collect();
+    let mut follows = Vec::new();
     let mut parts = vec![
         Part {
             key: "q2a.case",
@@ -289,15 +327,21 @@ pub(super) fn variant(seed: u64) -> Variant {
             points: 1.0,
             expected: Expected::Choice { value: case, options: &CASES },
             mal_rules: wrong_cases,
-            explained_in: NOTES,
+            explained_in: DERIVATION,
+            method: "Decide by signs, in order: the discriminant B^2 - 4AC (no real root: miss; zero: tangent), then C (eye outside, inside or on the sphere), then the signs of the roots.",
         },
         Part {
             key: "q2a.hit",
             prompt: "does the ray hit the sphere at some t > 0",
             points: 1.0,
             expected: Expected::Flag { value: first.is_some() },
-            mal_rules: vec![MalRule { value: Expected::Flag { value: first.is_none() }, message: reason, credit: 0.0 }],
-            explained_in: NOTES,
+            mal_rules: vec![MalRule {
+                value: Expected::Flag { value: first.is_none() },
+                message: reason,
+                rule: Rule::WrongCase,
+            }],
+            explained_in: DERIVATION,
+            method: "The ray hits when the quadratic has a root t > 0 (t = 0 is the eye itself).",
         },
     ];
     let points = formula_points();
@@ -318,10 +362,11 @@ pub(super) fn variant(seed: u64) -> Variant {
             points: 2.0,
             expected: or_none(number(t)),
             mal_rules: vec![],
-            explained_in: NOTES,
+            explained_in: DERIVATION,
+            method: T_METHOD,
         };
         if other != t {
-            t_part.mal_rules.push(MalRule { value: number(other), message: other_message, credit: 0.0 });
+            t_part.mal_rules.push(MalRule { value: number(other), message: other_message, rule: Rule::WrongRoot });
         }
         let mut point_part = Part {
             key: "q2a.point",
@@ -329,13 +374,14 @@ pub(super) fn variant(seed: u64) -> Variant {
             points: 1.0,
             expected: or_none(vector(hit.point)),
             mal_rules: vec![],
-            explained_in: NOTES,
+            explained_in: DERIVATION,
+            method: POINT_METHOD,
         };
         if other != t {
             point_part.mal_rules.push(MalRule {
                 value: vector(ray.at(other)),
                 message: "that is the other intersection: use the smallest positive root",
-                credit: 0.0,
+                rule: Rule::WrongRoot,
             });
         }
         let mut reflected_part = Part {
@@ -344,14 +390,15 @@ pub(super) fn variant(seed: u64) -> Variant {
             points: 2.0,
             expected: or_none(direction(reflected)),
             mal_rules: vec![],
-            explained_in: NOTES,
+            explained_in: REFLECTION_NOTES,
+            method: REFLECTED_METHOD,
         };
         if case != "tangent" {
             // At a grazing hit n . d = 0: the sign slip gives the same direction.
             reflected_part.mal_rules.push(MalRule {
                 value: parallel(d_hat + hit.normal * (2.0 * hit.normal.dot(d_hat))),
                 message: "sign error: r = d - 2 (n . d) n (the normal component flips)",
-                credit: 0.0,
+                rule: Rule::Sign,
             });
         }
         if (length - 1.0).abs() > 1e-3 {
@@ -359,15 +406,25 @@ pub(super) fn variant(seed: u64) -> Variant {
             t_part.mal_rules.push(MalRule {
                 value: number(t * length),
                 message: "that is the distance to the hit; t is the distance divided by |d|",
-                credit: 0.0,
+                rule: Rule::DistanceForParameter,
             });
             let unnormalised = ray.dir - hit.normal * (2.0 * hit.normal.dot(ray.dir));
             reflected_part.mal_rules.push(MalRule {
                 value: Expected::Vector { value: unnormalised.to_array(), rtol: 1e-3, atol: 1e-6 },
                 message: "right direction, but not unit length: normalise d first",
-                credit: 0.5,
+                rule: Rule::NotNormalised,
             });
         }
+        let (origin, dir, center) = (ray.origin.to_array(), ray.dir.to_array(), sphere.center.to_array());
+        follows.extend([
+            Follows { key: "q2a.point", from: "q2a.t", derivation: Derivation::PointFromT { origin, dir } },
+            Follows { key: "q2b.normal", from: "q2a.point", derivation: Derivation::NormalFromPoint { center } },
+            Follows {
+                key: "q2b.reflected_dir",
+                from: "q2b.normal",
+                derivation: Derivation::ReflectionFromNormal { dir },
+            },
+        ]);
         parts.extend([t_part, point_part]);
         parts.extend([a, b, c, t_formula]);
         parts.extend([
@@ -379,32 +436,48 @@ pub(super) fn variant(seed: u64) -> Variant {
                 mal_rules: vec![MalRule {
                     value: parallel(-hit.normal),
                     message: "the normal points inward: use p - o, not o - p",
-                    credit: 0.0,
+                    rule: Rule::Sign,
                 }],
-                explained_in: NOTES,
+                explained_in: REFLECTION_NOTES,
+                method: NORMAL_METHOD,
             },
             reflected_part,
         ]);
     } else {
         // No hit: the same parts, each answered "none", so the template does not give it away.
-        let none = |key, prompt, points, like| Part {
+        let none = |key, prompt, points, like, explained_in, method| Part {
             key,
             prompt,
             points,
             expected: Expected::OrNone { value: Box::new(like), none: true },
             mal_rules: vec![],
-            explained_in: NOTES,
+            explained_in,
+            method,
         };
         let zero = DVec3::X;
         parts.extend([
-            none("q2a.t", "first intersection parameter t", 2.0, number(0.0)),
-            none("q2a.point", "intersection point e + d t", 1.0, vector(zero)),
+            none("q2a.t", "first intersection parameter t", 2.0, number(0.0), DERIVATION, T_METHOD),
+            none("q2a.point", "intersection point e + d t", 1.0, vector(zero), DERIVATION, POINT_METHOD),
             a,
             b,
             c,
             t_formula,
-            none("q2b.normal", "unit normal (p - o)/r at the hit", 1.0, direction(zero)),
-            none("q2b.reflected_dir", "unit reflected direction d^ - 2 (n . d^) n", 2.0, direction(zero)),
+            none(
+                "q2b.normal",
+                "unit normal (p - o)/r at the hit",
+                1.0,
+                direction(zero),
+                REFLECTION_NOTES,
+                NORMAL_METHOD,
+            ),
+            none(
+                "q2b.reflected_dir",
+                "unit reflected direction d^ - 2 (n . d^) n",
+                2.0,
+                direction(zero),
+                REFLECTION_NOTES,
+                REFLECTED_METHOD,
+            ),
         ]);
     }
     parts.extend([normal_formula, reflected_formula]);
@@ -414,17 +487,18 @@ pub(super) fn variant(seed: u64) -> Variant {
         points: 2.0,
         expected: number(t_closest),
         mal_rules: vec![],
-        explained_in: NOTES,
+        explained_in: CLOSEST_NOTES,
+        method: "At the closest approach e + d t - o is perpendicular to d: t = -(e - o) . d / |d|^2.",
     };
     if (length - 1.0).abs() > 1e-3 {
         closest.mal_rules.push(MalRule {
             value: number(t_closest * length),
             message: "that is the distance along the ray, (o - e) . d^; divide by |d| once more for t",
-            credit: 0.5,
+            rule: Rule::DistanceForParameter,
         });
     }
     parts.extend([closest, t_closest_formula]);
-    Variant { question: "q2", seed, statement, parts }
+    Variant { question: "q2", seed, statement, parts, follows }
 }
 
 #[cfg(test)]

@@ -1,7 +1,8 @@
 //! Q3 variants: rays through the homework's kd-tree, graded leaf by leaf (path and t-interval).
 
 use super::formula::{Kind, Point, Value};
-use super::key::{Expected, ExpectedLeaf, ExpectedPlane, Part, Variant, formula_part};
+use super::key::{Derivation, Expected, ExpectedLeaf, ExpectedPlane, Follows, Part, Variant, formula_part};
+use super::policy::Rule;
 use crate::q3_kd_traversal::seed::cases;
 use crate::q3_kd_traversal::{Node2, Ray2, Step, traverse};
 use crate::rng;
@@ -11,7 +12,9 @@ use rand_core::Rng;
 /// The RNG stream of Q3 variants.
 const STREAM: u64 = 3;
 
-const NOTES: &str = "hw3/q3_kd_traversal/index.html";
+/// The chapter's sections each part is explained in.
+const DERIVATION: &str = "hw3/q3_kd_traversal/index.html#derivation";
+const TRAVERSAL_METHOD: &str = "At each node cut [tmin, tmax] at the plane's t = (s - e_a)/d_a: the near child gets [tmin, min(t, tmax)], the far child [max(t, tmin), tmax], and a piece of zero length is not visited.";
 
 /// The key of one ray: its leaves, every descent, its planes, and the plane crossings (for the
 /// feedback on a wrong bound).
@@ -155,6 +158,7 @@ pub(super) fn variant(seed: u64) -> Variant {
         show(&e)
     );
     let points = formula_points();
+    let mut follows = Vec::new();
     let mut parts = vec![
         formula_part(
             "q3b.t_formula",
@@ -164,10 +168,11 @@ pub(super) fn variant(seed: u64) -> Variant {
             &RAY_2D,
             &points,
             &[
-                ("(e_x - 3)/d_x", "sign error: e_x + d_x t = 3 gives t = (3 - e_x)/d_x", 0.0),
-                ("3/d_x", "the origin is missing: t = (3 - e_x)/d_x", 0.0),
+                ("(e_x - 3)/d_x", "sign error: e_x + d_x t = 3 gives t = (3 - e_x)/d_x", Rule::Sign),
+                ("3/d_x", "the origin is missing: t = (3 - e_x)/d_x", Rule::WrongTerm),
             ],
-            NOTES,
+            DERIVATION,
+            "The ray's x is e_x + d_x t; it equals 3 at t = (3 - e_x)/d_x.",
         ),
         formula_part(
             "q3c.t_formula",
@@ -177,10 +182,11 @@ pub(super) fn variant(seed: u64) -> Variant {
             &RAY_2D,
             &points,
             &[
-                ("(e_y - 1)/d_y", "sign error: e_y + d_y t = 1 gives t = (1 - e_y)/d_y", 0.0),
-                ("(1 - e_x)/d_x", "that is the x-axis: the plane y = 1 uses e_y and d_y", 0.0),
+                ("(e_y - 1)/d_y", "sign error: e_y + d_y t = 1 gives t = (1 - e_y)/d_y", Rule::Sign),
+                ("(1 - e_x)/d_x", "that is the x-axis: the plane y = 1 uses e_y and d_y", Rule::WrongTerm),
             ],
-            NOTES,
+            DERIVATION,
+            "The ray's y is e_y + d_y t; it equals 1 at t = (1 - e_y)/d_y.",
         ),
     ];
     for (table, ray, leaf_points) in [("q3d", &d, 3.0), ("q3e", &e, 2.0)] {
@@ -201,7 +207,8 @@ pub(super) fn variant(seed: u64) -> Variant {
             points: 1.5,
             expected: Expected::Planes { steps: key.planes },
             mal_rules: vec![],
-            explained_in: NOTES,
+            explained_in: DERIVATION,
+            method: "At each node reached, t = (s - e_a)/d_a (none for a parallel ray), and first the child the ray is in just after tmin.",
         });
         parts.push(Part {
             key: name("descents"),
@@ -209,7 +216,8 @@ pub(super) fn variant(seed: u64) -> Variant {
             points: 1.5,
             expected: Expected::Trace { leaves: key.descents, planes: key.crossings.clone(), descents: true },
             mal_rules: vec![],
-            explained_in: NOTES,
+            explained_in: DERIVATION,
+            method: TRAVERSAL_METHOD,
         });
         parts.push(Part {
             key: name("leaves"),
@@ -217,10 +225,16 @@ pub(super) fn variant(seed: u64) -> Variant {
             points: leaf_points,
             expected: Expected::Trace { leaves: key.leaves, planes: key.crossings, descents: false },
             mal_rules: vec![],
-            explained_in: NOTES,
+            explained_in: DERIVATION,
+            method: TRAVERSAL_METHOD,
+        });
+        follows.push(Follows {
+            key: name("leaves"),
+            from: name("descents"),
+            derivation: Derivation::LeavesFromDescents,
         });
     }
-    Variant { question: "q3", seed, statement, parts }
+    Variant { question: "q3", seed, statement, parts, follows }
 }
 
 #[cfg(test)]

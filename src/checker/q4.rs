@@ -1,6 +1,7 @@
 //! Q4 variants: irradiance from an analytic sky with a closed form, and the mirror ball's blind spot.
 
-use super::key::{Expected, MalRule, Part, Variant};
+use super::key::{Derivation, Expected, Follows, MalRule, Part, Variant};
+use super::policy::Rule;
 use crate::q4_light_probe::blind_spot;
 use crate::q4_light_probe::maps::{AnalyticMap, Term};
 use crate::rng;
@@ -11,7 +12,9 @@ use std::f64::consts::PI;
 /// The RNG stream of Q4 variants.
 const STREAM: u64 = 4;
 
-const NOTES: &str = "hw3/q4_light_probe/index.html";
+/// The chapter's sections each part is explained in.
+const IRRADIANCE_NOTES: &str = "hw3/q4_light_probe/index.html#oracles";
+const BLIND_NOTES: &str = "hw3/q4_light_probe/index.html#the-blind-spot";
 
 fn number(value: f64) -> Expected {
     Expected::Number { value, rtol: 1e-3, atol: 1e-9 }
@@ -60,15 +63,16 @@ pub(super) fn variant(seed: u64) -> Variant {
                 MalRule {
                     value: number(no_cosine),
                     message: "the cosine factor max(0, n . w) is missing: that is the integral of L alone",
-                    credit: 0.0,
+                    rule: Rule::OtherQuantity,
                 },
                 MalRule {
                     value: number(irradiance / PI),
                     message: "that is E/π, the outgoing radiance of a white diffuse surface, not the irradiance",
-                    credit: 0.5,
+                    rule: Rule::Factor,
                 },
             ],
-            explained_in: NOTES,
+            explained_in: IRRADIANCE_NOTES,
+            method: "Integrate L(w) max(0, n . w) over the sphere: a constant A gives pi A, a linear B w_z gives (2 pi/3) B n_z.",
         },
         Part {
             key: "q4b.blind_half_angle_deg",
@@ -79,15 +83,16 @@ pub(super) fn variant(seed: u64) -> Variant {
                 MalRule {
                     value: number(gamma),
                     message: "that is the angle in radians; degrees are asked",
-                    credit: 0.5,
+                    rule: Rule::Unit,
                 },
                 MalRule {
                     value: number(2.0 * gamma.to_degrees()),
                     message: "that is the full cone angle; the half-angle is arcsin(R/D)",
-                    credit: 0.0,
+                    rule: Rule::FullForHalfAngle,
                 },
             ],
-            explained_in: NOTES,
+            explained_in: BLIND_NOTES,
+            method: "The camera's rays graze the ball where they are tangent to it: the hidden cone behind the ball has half-angle arcsin(R/D).",
         },
         Part {
             key: "q4b.lost_fraction",
@@ -97,12 +102,18 @@ pub(super) fn variant(seed: u64) -> Variant {
             mal_rules: vec![MalRule {
                 value: number(blind_spot::solid_angle(distance_over_radius).expect("D > R") / (4.0 * PI)),
                 message: "that is the cone's share of the sphere of directions; irradiance weights by the cosine",
-                credit: 0.0,
+                rule: Rule::OtherQuantity,
             }],
-            explained_in: NOTES,
+            explained_in: BLIND_NOTES,
+            method: "Weight the hidden cone by the cosine: for a normal along its axis the lost share of pi is sin^2 of the half-angle, (R/D)^2.",
         },
     ];
-    Variant { question: "q4", seed, statement, parts }
+    let follows = vec![Follows {
+        key: "q4b.lost_fraction",
+        from: "q4b.blind_half_angle_deg",
+        derivation: Derivation::LostFromHalfAngle,
+    }];
+    Variant { question: "q4", seed, statement, parts, follows }
 }
 
 #[cfg(test)]

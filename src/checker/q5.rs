@@ -2,9 +2,18 @@
 //! verdicts (area light, the homework's setting). Q5 has one variant: the seed is ignored.
 
 use super::key::{Expected, MalRule, Part, Variant};
+use super::policy::Rule;
 use crate::q5_effect_tables::{EFFECTS, LightKind, Verdict, grammar_table};
 
-const NOTES: &str = "hw3/q5_effect_tables/index.html";
+/// The chapter's section on deciding a cell.
+const NOTES: &str = "hw3/q5_effect_tables/index.html#deciding-a-cell-from-light-paths";
+
+/// The cells (method, effect) whose paths are possible but impractical by the grammar and which
+/// the chapter's experiment measures No: there "no" is a reading the notes support
+/// ([`Rule::MeasuredNo`]). Checked against the committed measured table by a test.
+const MEASURED_NO: [(&str, &str); 1] = [("two_pass", "d_caustic")];
+
+const CELL_METHOD: &str = "Write the effect as light paths and compare with the paths the method produces: all of them is yes, none is no, only by chance (noise) is impractical.";
 
 /// The part keys: one per table and effect row of the Q5 chapter.
 const KEYS: [&str; 12] = [
@@ -62,18 +71,21 @@ pub(super) fn variant(seed: u64) -> Variant {
             let name = format!("{table}.{}", cell.effect);
             let key = *KEYS.iter().find(|k| **k == name).expect("every Q5 effect row has a key");
             let mal_rules = if cell.verdict == Verdict::Impractical {
-                vec![
-                    MalRule {
-                        value: Expected::Choice { value: "yes", options: &VERDICTS },
-                        message: "possible in principle, but only by chance (noise): impractical, not a practical yes",
-                        credit: 0.5,
-                    },
-                    MalRule {
+                let mut rules = vec![MalRule {
+                    value: Expected::Choice { value: "yes", options: &VERDICTS },
+                    message: "possible in principle, but only by chance (noise): impractical, not a practical yes",
+                    rule: Rule::ImpracticalAsYes,
+                }];
+                // "no" is an answer only where the chapter's experiment measures No; elsewhere
+                // the method does produce the paths, and "no" is plainly wrong.
+                if MEASURED_NO.contains(&(method, cell.effect)) {
+                    rules.push(MalRule {
                         value: Expected::Choice { value: "no", options: &VERDICTS },
-                        message: "the method can produce these paths, only by chance (noise): impractical, not impossible",
-                        credit: 0.5,
-                    },
-                ]
+                        message: "the chapter's experiment measures No here (its photon pass stores no photon that came straight through the glass); the path analysis says impractical: the paths exist, found only by chance",
+                        rule: Rule::MeasuredNo,
+                    });
+                }
+                rules
             } else {
                 vec![]
             };
@@ -84,6 +96,7 @@ pub(super) fn variant(seed: u64) -> Variant {
                 expected: Expected::Choice { value: word(cell.verdict), options: &VERDICTS },
                 mal_rules,
                 explained_in: NOTES,
+                method: CELL_METHOD,
             });
             let name = format!("{table}.{}_missed", cell.effect);
             let effect = EFFECTS.iter().find(|e| e.id == cell.effect).expect("every cell has an effect");
@@ -96,6 +109,7 @@ pub(super) fn variant(seed: u64) -> Variant {
                 expected: Expected::Paths { value: missed.to_string() },
                 mal_rules: vec![],
                 explained_in: NOTES,
+                method: "The effect's paths that are outside the method's language (or outside its efficient part), in Heckbert's notation.",
             });
         }
         parts.extend(cell_parts);
@@ -109,6 +123,7 @@ pub(super) fn variant(seed: u64) -> Variant {
             expected: Expected::Paths { value: effect.paths.to_string() },
             mal_rules: vec![],
             explained_in: NOTES,
+            method: "Follow the light from L to E and name each surface it meets: D diffuse, G glossy, S specular, V a volume.",
         });
     }
     let statement = format!(
@@ -122,7 +137,7 @@ pub(super) fn variant(seed: u64) -> Variant {
          are the same answer (LDD*E = LD+E).\n\
          q5paths: each effect's own class of light paths, light first and eye last."
     );
-    Variant { question: "q5", seed, statement, parts }
+    Variant { question: "q5", seed, statement, parts, follows: vec![] }
 }
 
 #[cfg(test)]
@@ -130,6 +145,25 @@ mod tests {
     use super::*;
     use crate::q5_effect_tables::METHODS;
     use crate::render::analysis::grammar::{Lang, shortest_word};
+
+    /// [`MEASURED_NO`] is exactly the cells of the committed measured table (the chapter's
+    /// experiment) whose measured verdict is No where the grammar says Impractical.
+    #[test]
+    fn measured_no_cells_are_the_measured_tables() {
+        let table =
+            std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/figures/q5_measured_table.md")).unwrap();
+        let mut found = Vec::new();
+        for row in table.lines().skip(2) {
+            let cells: Vec<&str> = row.split('|').map(str::trim).collect();
+            // | effect | method | measured | reference | fraction | measured verdict | grammar | seed |
+            if cells.len() > 7 && cells[6] == "No" && cells[7] == "Impractical" {
+                let effect = cells[1].trim_matches(|c| c == '(' || c == ')').replace(' ', "_");
+                found.push((cells[2].to_string(), effect));
+            }
+        }
+        let wanted: Vec<(String, String)> = MEASURED_NO.iter().map(|(m, e)| (m.to_string(), e.to_string())).collect();
+        assert_eq!(found, wanted, "{table}");
+    }
 
     /// The reason key is the effect's paths outside the method's language (Impractical: outside
     /// its efficient language), decided by the grammar: for the built-in effects that is all of

@@ -20,11 +20,14 @@ pub fn report_text(report: &Report) -> String {
             _ => "✗",
         };
         let _ = writeln!(out, "{mark} {:<26} {:>5.2}/{:<4} {}", part.key, part.score, part.max_score, part.status);
-        if part.status != "correct" {
+        if part.status != "correct" || part.mistake.is_some() {
             let given = part.given.as_deref().unwrap_or("—");
             let _ = writeln!(out, "    given {given}, expected {}\n    {}", part.expected, part.feedback);
             let _ = writeln!(out, "    explained in {}", part.explained_in);
         }
+    }
+    for warning in &report.warnings {
+        let _ = writeln!(out, "! {warning}");
     }
     for key in &report.unknown_keys {
         let _ = writeln!(out, "? unknown key {key}: not graded");

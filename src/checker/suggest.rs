@@ -1,16 +1,33 @@
-//! "Did you mean": keys in the file that no part asks for, with the closest known key.
+//! "Did you mean": keys in the file that no part asks for, with the closest known key; a key close
+//! enough to exactly one unanswered part is graded under that part.
 
 use super::key::Part;
+use super::reading::lookup;
 
-pub(super) fn unknown_keys(table: &toml::Table, parts: &[&Part]) -> Vec<String> {
-    let known: Vec<&str> = parts.iter().map(|p| p.key).collect();
+/// The largest edit distance at which a misspelt key is graded under the part it suggests
+/// (a suggestion alone goes up to 3).
+const GRADED_DISTANCE: usize = 2;
+
+/// A key of the file that no part asks for.
+pub(super) struct Unknown {
+    /// How the report lists it.
+    pub described: String,
+    /// The file's key (`q2a.tt`), when it is one inside a table.
+    pub key: Option<String>,
+    /// The one unanswered part it is graded under, when its spelling points to exactly one.
+    pub graded_as: Option<&'static str>,
+}
+
+pub(super) fn unknown_keys(table: &toml::Table, parts: &[&Part]) -> Vec<Unknown> {
+    let known: Vec<&'static str> = parts.iter().map(|p| p.key).collect();
     let mut unknown = Vec::new();
     for (section, value) in table {
         if section == "meta" {
             continue;
         }
         let Some(inner) = value.as_table() else {
-            unknown.push(format!("`{section}` (answers go in tables such as [q2a])"));
+            let described = format!("`{section}` (answers go in tables such as [q2a])");
+            unknown.push(Unknown { described, key: None, graded_as: None });
             continue;
         };
         for name in inner.keys() {
@@ -18,12 +35,25 @@ pub(super) fn unknown_keys(table: &toml::Table, parts: &[&Part]) -> Vec<String> 
             if known.contains(&key.as_str()) {
                 continue;
             }
-            let suggestion =
-                known.iter().min_by_key(|k| edit_distance(k, &key)).filter(|k| edit_distance(k, &key) <= 3);
-            unknown.push(match suggestion {
+            let nearest = known.iter().map(|k| edit_distance(k, &key)).min().filter(|&d| d <= 3);
+            let candidates: Vec<&'static str> =
+                known.iter().copied().filter(|k| Some(edit_distance(k, &key)) == nearest).collect();
+            let described = match candidates.first() {
                 Some(s) => format!("`{key}` (did you mean `{s}`?)"),
                 None => format!("`{key}`"),
-            });
+            };
+            let graded_as = match (candidates.as_slice(), nearest) {
+                ([only], Some(d)) if d <= GRADED_DISTANCE && lookup(table, only).is_none() => Some(*only),
+                _ => None,
+            };
+            unknown.push(Unknown { described, key: Some(key), graded_as });
+        }
+    }
+    // Two misspellings of one part: neither is graded (which one meant it is a guess).
+    let targets: Vec<&'static str> = unknown.iter().filter_map(|u| u.graded_as).collect();
+    for u in &mut unknown {
+        if u.graded_as.is_some_and(|t| targets.iter().filter(|&&x| x == t).count() > 1) {
+            u.graded_as = None;
         }
     }
     unknown
@@ -53,14 +83,45 @@ mod tests {
     #[test]
     fn misspelt_key_gets_a_suggestion() {
         let report = check("[q2a]\npiont = [1, 2, 3]\n[q2c]\nt_closet = 5.0\nwhatever = 1", None).unwrap();
+        // Both misspellings are close to one unanswered part each: graded there, with a warning.
+        assert_eq!(
+            report.warnings,
+            ["graded `q2a.point` for `q2a.piont`", "graded `q2c.t_closest` for `q2c.t_closet`"]
+        );
+        assert_eq!(report.unknown_keys, vec!["`q2c.whatever`".to_string()]);
+        let part = |key: &str| report.parts.iter().find(|p| p.key == key).unwrap();
+        assert_eq!((part("q2c.t_closest").status, part("q2c.t_closest").score), ("correct", 2.0));
+        assert_eq!(part("q2a.point").status, "wrong");
+        assert!(part("q2a.point").feedback.starts_with("graded `q2a.point` for `q2a.piont`"));
+    }
+
+    #[test]
+    fn ambiguous_far_or_answered_keys_stay_unknown() {
+        // `q2a.D` is one edit from t, A, B and C; `q2a.pointt` is one from a part already
+        // answered; `q1a.share_of_gaps` is far from every part; two spellings of one part are both
+        // a guess.
+        let text = "[q2a]\nD = \"1\"\npoint = [1, 2, 3]\npointt = [1, 2, 3]\n[q1a]\nshare_of_gaps = 0.5\n[q2c]\nt_closet = 5.0\nt_closeste = 5.0";
+        let report = check(text, None).unwrap();
+        assert!(report.warnings.is_empty(), "{:?}", report.warnings);
         assert_eq!(
             report.unknown_keys,
-            vec![
-                "`q2a.piont` (did you mean `q2a.point`?)".to_string(),
-                "`q2c.t_closet` (did you mean `q2c.t_closest`?)".to_string(),
-                "`q2c.whatever`".to_string(),
+            [
+                "`q1a.share_of_gaps`",
+                "`q2a.D` (did you mean `q2a.t`?)",
+                "`q2a.pointt` (did you mean `q2a.point`?)",
+                "`q2c.t_closeste` (did you mean `q2c.t_closest`?)",
+                "`q2c.t_closet` (did you mean `q2c.t_closest`?)",
             ]
         );
+        assert_eq!(report.parts.iter().find(|p| p.key == "q2c.t_closest").unwrap().status, "missing");
+    }
+
+    #[test]
+    fn a_misspelt_key_of_the_wrong_shape_stays_unknown() {
+        // `t_closet` is close to `t_closest`, but a string is no number: not graded, not an error.
+        let report = check("[q2c]\nt_closet = \"five\"", None).unwrap();
+        assert!(report.warnings.is_empty());
+        assert_eq!(report.unknown_keys, ["`q2c.t_closet` (did you mean `q2c.t_closest`?)"]);
     }
 
     #[test]

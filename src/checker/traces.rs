@@ -2,6 +2,7 @@
 //! each up to the first divergence, with the reason it diverged.
 
 use super::key::{ExpectedLeaf, ExpectedPlane};
+use super::policy::Rule;
 
 pub(super) fn same_bound(a: f64, b: f64) -> bool {
     a == b || (a - b).abs() <= 1e-6 * (1.0 + b.abs())
@@ -15,22 +16,67 @@ pub(super) fn show_leaf(leaf: &ExpectedLeaf) -> String {
     format!("[{}] t in [{}, {}]", leaf.path.join(", "), show_bound(leaf.t_min), show_bound(leaf.t_max))
 }
 
-/// Credit for a trace (its leaves, or every descent): the share of entries right before the first divergence, and why it diverged.
+/// A graded trace: its credit, the feedback, and how many entries earned credit by following
+/// from an earlier wrong bound.
+pub(super) struct TraceGrade {
+    /// Share of the entries right or carried forward, times their rules' credit.
+    pub credit: f64,
+    /// Every entry right.
+    pub exact: bool,
+    /// Entries that follow from the student's own earlier wrong plane parameter.
+    pub carried: usize,
+    /// The first divergence and why.
+    pub words: String,
+}
+
+/// Grades a trace (its leaves, or every descent) entry by entry.
+///
+/// An entry is right when its cell and bounds are the key's. A wrong *plane parameter* is carried
+/// forward: once an entry has a wrong finite, non-zero bound where the key's bound is a plane
+/// crossing, later entries are expected with that crossing at the student's value, and an entry
+/// that follows earns [`Rule::CarriedForward`]'s credit. A bound kept at 0 or left at `inf` is a
+/// mistake of method, not of arithmetic, and is not carried; a wrong cell ends the credit (the
+/// entries after it are not comparable).
 pub(super) fn grade_trace(
     expected: &[ExpectedLeaf],
     planes: &[(String, f64)],
     given: &[ExpectedLeaf],
     descents: bool,
-) -> (f64, String) {
+) -> TraceGrade {
     let (one, many) = if descents { ("descent", "descents") } else { ("leaf", "leaves") };
     let agree = |e: &ExpectedLeaf, g: &ExpectedLeaf| {
         e.path == g.path && same_bound(g.t_min, e.t_min) && same_bound(g.t_max, e.t_max)
     };
     let prefix = expected.iter().zip(given).take_while(|(e, g)| agree(e, g)).count();
-    let credit = prefix as f64 / expected.len().max(given.len()).max(1) as f64;
+    let entries = expected.len().max(given.len()).max(1);
     if prefix == expected.len() && prefix == given.len() {
-        return (1.0, format!("all {prefix} {many} right"));
+        return TraceGrade { credit: 1.0, exact: true, carried: 0, words: format!("all {prefix} {many} right") };
     }
+    let is_crossing = |t: f64| planes.iter().any(|(_, pt)| same_bound(t, *pt));
+    // Key crossing → the student's value for it.
+    let mut substituted: Vec<(f64, f64)> = Vec::new();
+    let (mut right, mut carried) = (prefix, 0);
+    for (e, g) in expected.iter().zip(given).skip(prefix) {
+        if e.path != g.path {
+            break;
+        }
+        if agree(e, g) {
+            right += 1;
+            continue;
+        }
+        let carry = |t: f64| substituted.iter().find(|(key, _)| same_bound(t, *key)).map_or(t, |&(_, s)| s);
+        if !substituted.is_empty() && same_bound(g.t_min, carry(e.t_min)) && same_bound(g.t_max, carry(e.t_max)) {
+            carried += 1;
+            continue;
+        }
+        for (key, student) in [(e.t_min, g.t_min), (e.t_max, g.t_max)] {
+            let slip = student.is_finite() && student != 0.0 && !same_bound(student, key);
+            if slip && is_crossing(key) && !substituted.iter().any(|(k, _)| same_bound(*k, key)) {
+                substituted.push((key, student));
+            }
+        }
+    }
+    let credit = (right as f64 + carried as f64 * Rule::CarriedForward.credit()) / entries as f64;
     let plane_at = |t: f64| planes.iter().find(|(_, pt)| same_bound(t, *pt)).map(|(name, _)| name.clone());
     let reason = match (expected.get(prefix), given.get(prefix)) {
         (Some(e), None) => format!("{one} {} missing: the ray goes on into {}", prefix + 1, show_leaf(e)),
@@ -62,7 +108,12 @@ pub(super) fn grade_trace(
         }
         (None, None) => unreachable!("a divergence exists when the lengths or a leaf differ"),
     };
-    (credit, format!("first {prefix} {many} right; {reason}"))
+    let follow = match carried {
+        0 => String::new(),
+        1 => format!("; 1 later {one} follows from that bound (error carried forward)"),
+        n => format!("; {n} later {many} follow from that bound (error carried forward)"),
+    };
+    TraceGrade { credit, exact: false, carried, words: format!("first {prefix} {many} right; {reason}{follow}") }
 }
 
 fn show_t(t: Option<f64>) -> String {

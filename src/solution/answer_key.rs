@@ -50,7 +50,10 @@ fn section_link(key: &str, explained_in: &str) -> String {
     let (module, given) = chapter_of(explained_in);
     let heading = SECTIONS.iter().find(|(prefix, _)| key.starts_with(prefix)).map(|(_, h)| *h);
     match (given, heading) {
-        (Some(anchor), _) => format!("[{module} §](crate::{module}#{anchor})"),
+        (Some(given), _) => match SECTIONS.iter().find(|(_, h)| anchor(h) == given) {
+            Some((_, heading)) => format!("[§ {heading}](crate::{module}#{given})"),
+            None => format!("[{module} §](crate::{module}#{given})"),
+        },
         (None, Some(heading)) => format!("[§ {heading}](crate::{module}#{})", anchor(heading)),
         (None, None) => format!("[{module}](crate::{module})"),
     }

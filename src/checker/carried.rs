@@ -1,0 +1,100 @@
+//! Error carried forward: a later part's key recomputed from the student's own earlier answer.
+
+use super::key::{Derivation, Expected, ExpectedLeaf};
+use super::reading::Given;
+use glam::DVec3;
+
+/// The later part's key as it would be from `earlier` (the student's answer to the part it
+/// follows from), compared with the later part's own tolerance; `None` when the earlier answer
+/// gives nothing to compute from (missing, "none", a zero vector).
+pub(super) fn recompute(derivation: &Derivation, earlier: &Given, later: &Expected) -> Option<Expected> {
+    let later = match later {
+        Expected::OrNone { value, none: false } => value.as_ref(),
+        other => other,
+    };
+    match (derivation, earlier, later) {
+        (Derivation::PointFromT { origin, dir }, Given::Number(t), Expected::Vector { rtol, atol, .. }) => {
+            let point = DVec3::from_array(*origin) + DVec3::from_array(*dir) * *t;
+            Some(Expected::Vector { value: point.to_array(), rtol: *rtol, atol: *atol })
+        }
+        (Derivation::NormalFromPoint { center }, Given::Vector(point), Expected::Direction { angle_tol, .. }) => {
+            let normal = (DVec3::from_array(*point) - DVec3::from_array(*center)).try_normalize()?;
+            Some(Expected::Direction { value: normal.to_array(), angle_tol: *angle_tol })
+        }
+        (Derivation::ReflectionFromNormal { dir }, Given::Vector(normal), Expected::Direction { angle_tol, .. }) => {
+            let n = DVec3::from_array(*normal).try_normalize()?;
+            let d = DVec3::from_array(*dir).normalize();
+            let reflected = d - n * (2.0 * n.dot(d));
+            Some(Expected::Direction { value: reflected.to_array(), angle_tol: *angle_tol })
+        }
+        (Derivation::LostFromHalfAngle, Given::Number(degrees), Expected::Number { rtol, atol, .. }) => {
+            let lost = degrees.to_radians().sin().powi(2);
+            Some(Expected::Number { value: lost, rtol: *rtol, atol: *atol })
+        }
+        (Derivation::LeavesFromDescents, Given::Trace(descents), Expected::Trace { planes, .. }) => {
+            Some(Expected::Trace { leaves: leaves_of(descents), planes: planes.clone(), descents: false })
+        }
+        _ => None,
+    }
+}
+
+/// The descents into cells the trace does not split further: a descent is a leaf unless the next
+/// descent goes into one of its children.
+fn leaves_of(descents: &[ExpectedLeaf]) -> Vec<ExpectedLeaf> {
+    descents
+        .iter()
+        .enumerate()
+        .filter(|(i, d)| descents.get(i + 1).is_none_or(|next| !next.path.starts_with(&d.path)))
+        .map(|(_, d)| d.clone())
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::checker::variant;
+
+    /// Each derivation applied to the key's own earlier answer gives the key's later answer: the
+    /// dependency is the one the key itself is computed by.
+    #[test]
+    fn derivations_reproduce_the_key_from_the_keys_own_answers() {
+        let mut checked = 0;
+        for question in ["q2", "q3", "q4"] {
+            for seed in 0..40 {
+                let v = variant(question, seed).unwrap();
+                for follows in &v.follows {
+                    let part = |key| v.parts.iter().find(|p| p.key == key).unwrap();
+                    let (later, earlier) = (part(follows.key), part(follows.from));
+                    let inner = |e: &Expected| match e {
+                        Expected::OrNone { value, none: false } => value.as_ref().clone(),
+                        other => other.clone(),
+                    };
+                    let given = match inner(&earlier.expected) {
+                        Expected::Number { value, .. } => Given::Number(value),
+                        Expected::Vector { value, .. } | Expected::Direction { value, .. } => Given::Vector(value),
+                        Expected::Trace { leaves, .. } => Given::Trace(leaves),
+                        other => panic!("{question} {seed} {}: {other:?}", follows.from),
+                    };
+                    let recomputed = recompute(&follows.derivation, &given, &later.expected).unwrap();
+                    let key = inner(&later.expected);
+                    let close = |a: &[f64; 3], b: &[f64; 3]| a.iter().zip(b).all(|(x, y)| (x - y).abs() < 1e-9);
+                    match (&recomputed, &key) {
+                        (Expected::Number { value: a, .. }, Expected::Number { value: b, .. }) => {
+                            assert!((a - b).abs() < 1e-9 * b.abs().max(1.0), "{question} {seed}: {a} vs {b}")
+                        }
+                        (Expected::Vector { value: a, .. }, Expected::Vector { value: b, .. })
+                        | (Expected::Direction { value: a, .. }, Expected::Direction { value: b, .. }) => {
+                            assert!(close(a, b), "{question} {seed} {}: {a:?} vs {b:?}", follows.key)
+                        }
+                        (Expected::Trace { leaves: a, .. }, Expected::Trace { leaves: b, .. }) => {
+                            assert_eq!(a, b, "{question} {seed}")
+                        }
+                        other => panic!("{other:?}"),
+                    }
+                    checked += 1;
+                }
+            }
+        }
+        assert!(checked > 100, "{checked}");
+    }
+}

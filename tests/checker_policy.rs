@@ -1,0 +1,238 @@
+//! The partial-credit policy: each rule earns the same credit in every question where it occurs,
+//! the chapter's table is the code's, an error carried forward is charged once, and every part's
+//! link goes to a section that exists.
+
+use hw3::checker::{Expected, PartResult, QUESTIONS, Rule, check, policy_table, variant};
+use std::path::Path;
+
+/// Seeds enough to reach every Q2 case twice, every Q3 second-ray kind and several Q1/Q4 grids.
+const SEEDS: std::ops::Range<u64> = 0..13;
+
+/// A wrong value as the TOML a student would write.
+fn toml_value(expected: &Expected) -> String {
+    let vector = |v: &[f64; 3]| format!("[{:?}, {:?}, {:?}]", v[0], v[1], v[2]);
+    match expected {
+        Expected::Number { value, .. } => format!("{value:?}"),
+        Expected::Vector { value, .. } | Expected::Direction { value, .. } | Expected::Parallel { value, .. } => {
+            vector(value)
+        }
+        Expected::Choice { value, .. } => format!("{value:?}"),
+        Expected::Flag { value } => value.to_string(),
+        Expected::Formula { source, .. } => format!("{source:?}"),
+        Expected::Paths { value } => format!("{value:?}"),
+        other => panic!("no mal-rule has a value like {other:?}"),
+    }
+}
+
+fn graded(question: &str, seed: u64, key: &str, value: &str) -> PartResult {
+    let (table, name) = key.split_once('.').unwrap();
+    let text = format!("[meta]\nseed = {seed}\n[{table}]\n{name} = {value}\n");
+    let report = check(&text, None).unwrap_or_else(|e| panic!("{question} {seed} {key} = {value}: {e}"));
+    report.parts.into_iter().find(|p| p.key == key).unwrap()
+}
+
+/// Every part where `rule` occurs, in every question and seed: answering its wrong value earns
+/// the policy's credit, names the rule, and is not the key.
+fn applied_alike(rule: Rule) {
+    let mut questions = Vec::new();
+    for question in QUESTIONS {
+        for seed in SEEDS {
+            let v = variant(question, seed).unwrap();
+            for part in &v.parts {
+                for mal_rule in part.mal_rules.iter().filter(|m| m.rule == rule) {
+                    let value = toml_value(&mal_rule.value);
+                    let result = graded(question, seed, part.key, &value);
+                    let what = format!("{question} seed {seed} {} = {value}: {result:?}", part.key);
+                    assert_eq!(result.mistake, Some(rule.id()), "{what}");
+                    assert_eq!(result.score, (part.points * rule.credit() * 100.0).round() / 100.0, "{what}");
+                    assert!(result.feedback.contains(mal_rule.message), "{what}");
+                    if rule.credit() < 1.0 {
+                        assert_ne!(result.status, "correct", "{what}");
+                    }
+                    if !questions.contains(&question) {
+                        questions.push(question);
+                    }
+                }
+            }
+        }
+    }
+    assert!(!questions.is_empty(), "rule {} occurs in no part", rule.id());
+}
+
+macro_rules! one_test_per_rule {
+    ($($name:ident => $rule:expr,)*) => {
+        $(
+            #[test]
+            fn $name() {
+                applied_alike($rule);
+            }
+        )*
+
+        /// Every rule but the carried-forward one (tested on whole files below) has its test.
+        #[test]
+        fn every_rule_has_its_test() {
+            let tested = [$($rule),*];
+            for rule in Rule::ALL {
+                assert!(tested.contains(&rule) || rule == Rule::CarriedForward, "no test for {}", rule.id());
+            }
+        }
+    };
+}
+
+one_test_per_rule! {
+    sign_earns_nothing_everywhere => Rule::Sign,
+    factor_earns_half_everywhere => Rule::Factor,
+    power_earns_nothing_everywhere => Rule::Power,
+    wrong_term_earns_nothing_everywhere => Rule::WrongTerm,
+    wrong_root_earns_nothing_everywhere => Rule::WrongRoot,
+    distance_for_parameter_earns_half_everywhere => Rule::DistanceForParameter,
+    not_normalised_earns_half_everywhere => Rule::NotNormalised,
+    unit_earns_half_everywhere => Rule::Unit,
+    full_for_half_angle_earns_half => Rule::FullForHalfAngle,
+    other_quantity_earns_nothing_everywhere => Rule::OtherQuantity,
+    wrong_case_earns_nothing_everywhere => Rule::WrongCase,
+    impractical_as_yes_earns_half => Rule::ImpracticalAsYes,
+    measured_no_earns_full_credit => Rule::MeasuredNo,
+}
+
+/// The issue's inconsistencies, each resolved by one rule: the distance for t earns the same in
+/// q2a as in q2c; radians and the full cone angle both earn half.
+#[test]
+fn the_same_slip_earns_the_same_in_every_part() {
+    // Seed 1: an outside ray with |d| ≠ 1, so the distance and the parameter differ.
+    let v = variant("q2", 1).unwrap();
+    let rule_of = |key: &str, rule: Rule| {
+        let part = v.parts.iter().find(|p| p.key == key).unwrap();
+        part.mal_rules.iter().find(|m| m.rule == rule).map(|m| (part.points, toml_value(&m.value)))
+    };
+    for key in ["q2a.t", "q2c.t_closest", "q2c.t_formula"] {
+        let (points, value) = rule_of(key, Rule::DistanceForParameter).unwrap_or_else(|| panic!("{key}"));
+        assert_eq!(graded("q2", 1, key, &value).score, points / 2.0, "{key}");
+    }
+    let q4 = variant("q4", 0).unwrap();
+    let blind = q4.parts.iter().find(|p| p.key == "q4b.blind_half_angle_deg").unwrap();
+    let credits: Vec<f64> = blind.mal_rules.iter().map(|m| m.credit()).collect();
+    assert_eq!(credits, [0.5, 0.5], "radians and the full cone angle");
+}
+
+/// The chapter's policy table is the code's.
+#[test]
+fn the_chapters_policy_table_is_the_codes() {
+    let chapter = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/checker.md")).unwrap();
+    assert!(
+        chapter.contains(&policy_table()),
+        "paste hw3::checker::policy_table() into docs/checker.md:\n{}",
+        policy_table()
+    );
+}
+
+fn part<'a>(report: &'a hw3::checker::Report, key: &str) -> &'a PartResult {
+    report.parts.iter().find(|p| p.key == key).unwrap()
+}
+
+/// Q2 seed 0 (e = (-5, 1, 0), d = (1, 0, 0), o = 0, r = 2) with one early slip, t = 3 instead of
+/// 5 − √3, and every later step computed correctly from it: the point e + 3 d = (-2, 1, 0), its
+/// normal (-2, 1, 0)/√5, and the reflection of d about that normal. Only t loses its points.
+#[test]
+fn q2_an_early_slip_is_charged_once() {
+    let s5 = 5f64.sqrt();
+    let n = [-2.0 / s5, 1.0 / s5, 0.0];
+    // r = d − 2 (n · d) n with d = x̂: n · d = −2/√5.
+    let r = [1.0 - 2.0 * (-2.0 / s5) * n[0], -2.0 * (-2.0 / s5) * n[1], 0.0];
+    let text = format!(
+        "[q2a]\nt = 3.0\npoint = [-2.0, 1.0, 0.0]\n[q2b]\nnormal = [{:?}, {:?}, 0.0]\nreflected_dir = [{:?}, {:?}, 0.0]\n",
+        n[0], n[1], r[0], r[1]
+    );
+    let report = check(&text, None).unwrap();
+    assert_eq!(part(&report, "q2a.t").status, "wrong");
+    for key in ["q2a.point", "q2b.normal", "q2b.reflected_dir"] {
+        let p = part(&report, key);
+        assert_eq!((p.score, p.max_score, p.mistake), (p.max_score, p.max_score, Some("carried_forward")), "{p:?}");
+        assert!(p.feedback.contains("first wrong step: `q2a.t`"), "{key}: {}", p.feedback);
+    }
+    // A point that follows from nothing the student wrote is wrong, and told where the chain broke.
+    let broken = check("[q2a]\nt = 3.0\npoint = [-2.0, 1.5, 0.0]\n", None).unwrap();
+    let p = part(&broken, "q2a.point");
+    assert_eq!((p.status, p.mistake), ("wrong", None));
+    assert!(p.feedback.contains("first wrong step: `q2a.t`"), "{}", p.feedback);
+}
+
+/// Q3 (d) with a wrong root crossing, t = 2.5 instead of 2 for x = 3, and every descent and leaf
+/// after it consistent with 2.5: the descents lose only the first wrong entry, the leaves nothing
+/// (they are the student's own descents into leaf cells).
+#[test]
+fn q3_a_wrong_plane_parameter_is_carried_through_the_trace() {
+    let text = r#"
+[q3d]
+descents = [
+  { path = ["x>=3"], tmin = 0, tmax = 2.5 },
+  { path = ["x>=3", "y<3"], tmin = 0, tmax = 2.5 },
+  { path = ["x<3"], tmin = 2.5, tmax = "inf" },
+  { path = ["x<3", "y>=1"], tmin = 2.5, tmax = "inf" },
+]
+leaves = [
+  { path = ["x>=3", "y<3"], tmin = 0, tmax = 2.5 },
+  { path = ["x<3", "y>=1"], tmin = 2.5, tmax = "inf" },
+]
+"#;
+    let report = check(text, None).unwrap();
+    let descents = part(&report, "q3d.descents");
+    // Four descents: the first wrong, three follow from its 2.5.
+    assert_eq!((descents.score, descents.mistake), (1.13, Some("carried_forward")), "{descents:?}");
+    assert!(descents.feedback.contains("3 later descents follow from that bound"), "{}", descents.feedback);
+    let leaves = part(&report, "q3d.leaves");
+    assert_eq!((leaves.score, leaves.status, leaves.mistake), (3.0, "correct", Some("carried_forward")), "{leaves:?}");
+    assert!(leaves.feedback.contains("follows from your `q3d.descents`"), "{}", leaves.feedback);
+}
+
+/// Q4 seed 0 (D = 3R) with the half-angle taken as arctan(R/D) = 18.43° instead of arcsin: the
+/// lost fraction sin²(18.43°) = 0.1 follows from it and earns its points.
+#[test]
+fn q4_the_lost_fraction_follows_from_the_students_half_angle() {
+    let gamma = (1.0f64 / 3.0).atan().to_degrees();
+    let lost = gamma.to_radians().sin().powi(2);
+    let report = check(&format!("[q4b]\nblind_half_angle_deg = {gamma:?}\nlost_fraction = {lost:?}"), None).unwrap();
+    assert_eq!(part(&report, "q4b.blind_half_angle_deg").score, 0.0);
+    let p = part(&report, "q4b.lost_fraction");
+    assert_eq!((p.score, p.mistake), (2.0, Some("carried_forward")), "{p:?}");
+}
+
+/// The section a part links to, as rustdoc numbers a chapter's headings (lower case,
+/// alphanumerics and hyphens kept, spaces to hyphens).
+fn heading_ids(chapter: &str) -> Vec<String> {
+    let id = |title: &str| -> String {
+        title
+            .to_lowercase()
+            .replace(' ', "-")
+            .chars()
+            .filter(|c| c.is_alphanumeric() || matches!(c, '-' | '_'))
+            .collect()
+    };
+    chapter.lines().filter_map(|l| l.strip_prefix('#')).map(|l| id(l.trim_start_matches('#').trim())).collect()
+}
+
+/// Every part of every question links to a section (`#anchor`) that its chapter has, and every
+/// wrong answer's feedback ends with a sentence on the method.
+#[test]
+fn every_part_links_an_existing_section_and_teaches_its_method() {
+    let docs = Path::new(env!("CARGO_MANIFEST_DIR")).join("docs");
+    for question in QUESTIONS {
+        for seed in 0..7 {
+            for part in variant(question, seed).unwrap().parts {
+                let (page, anchor) =
+                    part.explained_in.split_once('#').unwrap_or_else(|| panic!("{}: no anchor", part.key));
+                let module = page.strip_prefix("hw3/").and_then(|p| p.strip_suffix("/index.html")).unwrap();
+                let chapter = std::fs::read_to_string(docs.join(format!("{module}.md"))).unwrap();
+                assert!(
+                    heading_ids(&chapter).iter().any(|id| id == anchor),
+                    "{}: no section #{anchor} in {module}",
+                    part.key
+                );
+                assert!(part.method.ends_with('.') && part.method.len() > 20, "{}: {}", part.key, part.method);
+            }
+        }
+    }
+    let report = check("[q2a]\nt = 1.0", None).unwrap();
+    let t = part(&report, "q2a.t");
+    assert!(t.feedback.ends_with(variant("q2", 0).unwrap().parts.iter().find(|p| p.key == "q2a.t").unwrap().method));
+}
