@@ -1,5 +1,6 @@
 #![doc = include_str!(concat!(env!("OUT_DIR"), "/checker.md"))]
 
+mod class;
 mod error;
 mod formula;
 mod grading;
@@ -17,6 +18,10 @@ mod template;
 mod traces;
 mod variants;
 
+pub use class::{
+    ClassReport, MAX_CLASS_BYTES, MAX_CLASS_FILES, PartStatistics, Submission, check_class, class_csv, class_files,
+    class_gradescope, class_text, gradescope_files, read_class,
+};
 pub use error::CheckError;
 pub use formula::{Formula, FormulaError, Kind, Point, Value};
 pub use grading::{PartResult, Report, check};

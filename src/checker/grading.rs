@@ -34,6 +34,8 @@ pub struct PartResult {
     pub expected: String,
     /// One-line feedback: the error, the tolerance in words, a mal-rule message.
     pub feedback: String,
+    /// The recognised mistake's rule id, if a rule matched.
+    pub mistake: Option<&'static str>,
     /// Where the notes explain it.
     pub explained_in: &'static str,
 }
@@ -208,6 +210,7 @@ fn grade(part: &Part, given: Option<&Given>) -> PartResult {
             given: None,
             expected,
             feedback: format!("no answer for `{}`", part.key),
+            mistake: None,
             explained_in: part.explained_in,
         };
     };
@@ -229,15 +232,15 @@ fn grade(part: &Part, given: Option<&Given>) -> PartResult {
         (Expected::Planes { steps }, Given::Planes(g)) => Some(grade_planes(steps, g).0),
         _ => None,
     };
-    let (score, status, feedback) = if ok {
-        (part.points, "correct", words)
+    let (score, status, feedback, mistake) = if ok {
+        (part.points, "correct", words, None)
     } else if let Some(credit) = trace_credit.filter(|&c| c > 0.0) {
-        (part.points * credit, "partial", words)
+        (part.points * credit, "partial", words, None)
     } else if let Some(rule) = part.mal_rules.iter().find(|rule| compare(&rule.value, given).0) {
         let status = if rule.credit > 0.0 { "partial" } else { "wrong" };
-        (part.points * rule.credit, status, format!("{} ({words})", rule.message))
+        (part.points * rule.credit, status, format!("{} ({words})", rule.message), Some(rule.message))
     } else {
-        (0.0, "wrong", words)
+        (0.0, "wrong", words, None)
     };
     PartResult {
         key: part.key,
@@ -247,6 +250,7 @@ fn grade(part: &Part, given: Option<&Given>) -> PartResult {
         given: Some(shown),
         expected,
         feedback,
+        mistake,
         explained_in: part.explained_in,
     }
 }
