@@ -226,16 +226,40 @@ mod class_demo {
         format!("# {about}\n{}", toml::to_string(file).unwrap()).into_bytes()
     }
 
-    /// Every recognised mistake of variant 0, in question order: the part's key and the rule.
-    pub fn mistakes() -> Vec<(&'static str, MalRule)> {
-        let mut out = Vec::new();
-        for question in hw3::checker::QUESTIONS {
-            for part in variant(question, 0).unwrap().parts {
-                for rule in &part.mal_rules {
-                    // Q2's wrong cases share one message (why the key's case holds): one file.
-                    let seen = out.iter().any(|(k, r): &(&str, MalRule)| *k == part.key && r.message == rule.message);
-                    if toml_of(&rule.value).is_some() && !seen {
-                        out.push((part.key, rule.clone()));
+    /// The variants whose mistakes the class makes: seed 0 and one of each Q2 case (seeds 1 to 6:
+    /// outside, inside, behind, tangent, miss, on the surface), which have mistakes of their own.
+    const MISTAKE_SEEDS: std::ops::RangeInclusive<u64> = 0..=6;
+
+    /// Mistakes packed into one file: at most this many, each in a different part.
+    const MISTAKES_PER_FILE: usize = 3;
+
+    /// One recognised mistake: the variant, the part's key and the rule.
+    #[derive(Debug, Clone)]
+    pub struct Mistake {
+        pub seed: u64,
+        pub key: &'static str,
+        pub rule: MalRule,
+    }
+
+    /// Every recognised mistake of the variants [`MISTAKE_SEEDS`], once per part and message, in
+    /// variant and question order: each rule whose wrong value, written alone into the variant's
+    /// key, is graded as that rule (a value the key also accepts, or that an earlier rule of the
+    /// part already names, is not a mistake of its own).
+    pub fn mistakes() -> Vec<Mistake> {
+        let mut out: Vec<Mistake> = Vec::new();
+        for seed in MISTAKE_SEEDS {
+            for question in hw3::checker::QUESTIONS {
+                for part in variant(question, seed).unwrap().parts {
+                    for rule in &part.mal_rules {
+                        let seen = out.iter().any(|m| m.key == part.key && m.rule.message == rule.message);
+                        let Some(value) = toml_of(&rule.value).filter(|_| !seen) else { continue };
+                        let mut file = key_table(seed);
+                        set(&mut file, part.key, value);
+                        let report = hw3::checker::check(&toml::to_string(&file).unwrap(), None).unwrap();
+                        let graded = report.parts.iter().find(|p| p.key == part.key).unwrap();
+                        if graded.status != "correct" && graded.mistake == Some(rule_id(rule)) {
+                            out.push(Mistake { seed, key: part.key, rule: rule.clone() });
+                        }
                     }
                 }
             }
@@ -243,18 +267,20 @@ mod class_demo {
         out
     }
 
-    /// The mistakes packed two to a file (the first half of the list with the second, so the two
-    /// are in different parts), to leave room for right files in a class of 50.
-    pub fn mistake_files() -> Vec<Vec<(&'static str, MalRule)>> {
-        let all = mistakes();
-        let half = all.len().div_ceil(2);
-        (0..half)
-            .map(|i| {
-                let pair: Vec<_> = [all.get(i), all.get(i + half)].into_iter().flatten().cloned().collect();
-                assert!(pair.len() < 2 || pair[0].0 != pair[1].0, "{pair:?}");
-                pair
-            })
-            .collect()
+    /// The mistakes packed [`MISTAKES_PER_FILE`] to a file, each file one variant's and its
+    /// mistakes in different parts, to leave room for right files in a class of 50.
+    pub fn mistake_files() -> Vec<Vec<Mistake>> {
+        let mut files: Vec<Vec<Mistake>> = Vec::new();
+        for mistake in mistakes() {
+            let room = files.iter_mut().find(|f| {
+                f.len() < MISTAKES_PER_FILE && f[0].seed == mistake.seed && f.iter().all(|m| m.key != mistake.key)
+            });
+            match room {
+                Some(file) => file.push(mistake),
+                None => files.push(vec![mistake]),
+            }
+        }
+        files
     }
 
     /// Q2's worked example (seed 0: e = (-5, 1, 0), d = (1, 0, 0), o = 0, r = 2) answered from a
@@ -287,16 +313,16 @@ mod class_demo {
             let about = format!("right: the key of variant {seed}");
             push(about.clone(), written(&about, &key_table(seed)), &format!("right_seed{seed}"));
         }
-        for pair in mistake_files() {
-            let mut file = key_table(0);
+        for group in mistake_files() {
+            let seed = group[0].seed;
+            let mut file = key_table(seed);
             let mut about = Vec::new();
-            for (key, rule) in &pair {
-                set(&mut file, key, toml_of(&rule.value).unwrap());
-                about.push(format!("{key}: {}", rule.message));
+            for m in &group {
+                set(&mut file, m.key, toml_of(&m.rule.value).unwrap());
+                about.push(format!("{}: {}", m.key, m.rule.message));
             }
-            let about = format!("recognised mistakes in {}", about.join("; "));
-            let keys: Vec<&str> = pair.iter().map(|(k, _)| *k).collect();
-            push(about.clone(), written(&about, &file), &format!("mistake_{}", keys.join("_")));
+            let about = format!("recognised mistakes (variant {seed}) in {}", about.join("; "));
+            push(about.clone(), written(&about, &file), &format!("mistakes_seed{seed}"));
         }
         // Early errors carried forward: each later answer follows correctly from the wrong one.
         let mut file = key_table(0);
@@ -415,15 +441,18 @@ fn a_class_of_50_graded_in_one_command() {
     }
     // Recognised mistakes: those parts only, each recognised by its rule.
     let files = class_demo::mistake_files();
-    assert_eq!(named("_mistake_").len(), files.len());
-    for (s, pair) in named("_mistake_").into_iter().zip(&files) {
+    assert_eq!(named("_mistakes_").len(), files.len());
+    for (s, group) in named("_mistakes_").into_iter().zip(&files) {
         let off: Vec<_> = parts(s)
             .into_iter()
             .filter(|p| p["status"] != "correct")
             .map(|p| (p["key"].as_str().unwrap().to_owned(), p["mistake"].as_str().map(str::to_owned)))
             .collect();
-        let injected: Vec<_> =
-            pair.iter().map(|(key, rule)| ((*key).to_owned(), Some(class_demo::rule_id(rule).to_owned()))).collect();
+        let mut injected: Vec<_> =
+            group.iter().map(|m| (m.key.to_owned(), Some(class_demo::rule_id(&m.rule).to_owned()))).collect();
+        // The report lists parts in question order.
+        let order = |key: &str| parts(s).iter().position(|p| p["key"] == key).unwrap();
+        injected.sort_by_key(|(key, _)| order(key));
         assert_eq!(off, injected, "{}", s["file"]);
     }
     // Not gradable: a row each, with its one-line reason.
