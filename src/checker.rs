@@ -1,6 +1,7 @@
 #![doc = include_str!(concat!(env!("OUT_DIR"), "/checker.md"))]
 
 mod carried;
+mod class;
 mod error;
 mod formula;
 mod grading;
@@ -19,6 +20,10 @@ mod template;
 mod traces;
 mod variants;
 
+pub use class::{
+    ClassReport, MAX_CLASS_BYTES, MAX_CLASS_FILES, PartStatistics, Submission, check_class, class_csv, class_files,
+    class_gradescope, class_text, gradescope_files, read_class,
+};
 pub use error::CheckError;
 pub use formula::{Formula, FormulaError, Kind, Point, Value};
 pub use grading::{PartResult, Report, check};
@@ -27,3 +32,8 @@ pub use policy::{Rule, policy_table};
 pub use reports::{report_gradescope, report_text};
 pub use template::{answers_key, answers_key_for, template};
 pub use variants::{QUESTIONS, variant};
+
+#[cfg(test)]
+pub(crate) use q1::numbers as q1_numbers;
+/// Q1's key numbers, for the worked solution (which computes each step from them).
+pub(crate) use q1::{Numbers as Q1Numbers, SCENES as Q1_SCENES, difficulty_of, key as q1_key};

@@ -56,16 +56,25 @@ enum Command {
         #[arg(long, default_value_t = 0, value_parser = seed_arg, allow_hyphen_values = true)]
         seed: u64,
     },
-    /// Grade an answers file (TOML). Exit status 0 = all correct, 1 = some wrong, 2 = unreadable.
+    /// Grade answers files (TOML): one, or a class at once. Exit status 0 = all correct, 1 = some wrong, 2 = unreadable.
+    ///
+    /// One file: its report; an unreadable file is exit status 2. Several files or a folder (its
+    /// *.toml files, sorted): one class report with per-part statistics; a file that cannot be
+    /// graded is a row of the report (exit status 1), and exit status 2 means no file could be.
     Check {
-        /// The answers file.
-        file: PathBuf,
+        /// The answers file; for a class, several files or folders.
+        #[arg(required = true)]
+        files: Vec<PathBuf>,
         /// Variant seed, 0 … 2^63 − 1 (overrides `[meta] seed` in the file).
         #[arg(long, value_parser = seed_arg, allow_hyphen_values = true)]
         seed: Option<u64>,
         /// Report format.
         #[arg(long, value_enum, default_value_t = FormatArg::Text)]
         format: FormatArg,
+        /// Write the report to this file instead of stdout (replaced atomically); for a class
+        /// with --format gradescope, a folder that receives one results file per student.
+        #[arg(long)]
+        out: Option<PathBuf>,
     },
     /// Q5: the effect tables (light-path grammar, seed's answers, measured cells).
     EffectsTable {
@@ -162,6 +171,7 @@ enum MethodArg {
 enum FormatArg {
     Text,
     Json,
+    Csv,
     Gradescope,
 }
 
@@ -330,13 +340,13 @@ fn run(cli: Cli) -> anyhow::Result<()> {
     match cli.command {
         None => {
             let out = PathBuf::from("docs/figures");
-            prepare_figures_dir(&out)?;
+            prepare_out_dir(&out)?;
             print_answers(None)?;
             write_figures(&out)
         }
         Some(Command::Answers { question }) => print_answers(question.as_deref()),
         Some(Command::Figures { out }) => {
-            prepare_figures_dir(&out)?;
+            prepare_out_dir(&out)?;
             write_figures(&out)
         }
         Some(Command::Template { seed }) => emit(&hw3::checker::template(seed).map_err(|e| UsageError(e.to_string()))?),
@@ -356,20 +366,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             let format = format.parse().map_err(usage)?;
             emit_line(&hw3::solution::command(question.as_deref(), seed, format).map_err(usage)?)
         }
-        Some(Command::Check { file, seed, format }) => {
-            let text = limits::read_text_bounded(&file, limits::ANSWERS_FILE_BYTES).map_err(UsageError)?;
-            let report = hw3::checker::check(&text, seed)
-                .map_err(|e| UsageError(format!("{}: {e}", limits::quote(&file.display().to_string()))))?;
-            match format {
-                // A student's file may hold terminal escapes: the text report shows them escaped.
-                FormatArg::Text => emit_line(&limits::terminal_text(&hw3::checker::report_text(&report)))?,
-                FormatArg::Json => emit_line(&serde_json::to_string_pretty(&report)?)?,
-                FormatArg::Gradescope => {
-                    emit_line(&serde_json::to_string_pretty(&hw3::checker::report_gradescope(&report))?)?
-                }
-            }
-            if report.all_correct() { Ok(()) } else { Err(SomeWrong.into()) }
-        }
+        Some(Command::Check { files, seed, format, out }) => check(&files, seed, format, out.as_deref()),
         Some(Command::KdTrace { origin, dir, json }) => {
             let out =
                 hw3::q3_kd_traversal::kd_trace_command(&origin, &dir, json).map_err(|e| UsageError(e.to_string()))?;
@@ -402,6 +399,88 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         Some(Command::EffectsTable { json }) => {
             emit_line(&hw3::q5_effect_tables::effects_table_command(json).map_err(anyhow::Error::msg)?)
         }
+    }
+}
+
+/// `hw3 check`: one file keeps the single-file contract (an unreadable file is exit status 2);
+/// several files or a folder are a class, graded into one report.
+fn check(files: &[PathBuf], seed: Option<u64>, format: FormatArg, out: Option<&Path>) -> anyhow::Result<()> {
+    use hw3::checker::{check_class, class_csv, class_gradescope, class_text, report_gradescope, report_text};
+    let class = files.len() > 1 || files.iter().any(|f| f.is_dir());
+    let per_student = class && matches!(format, FormatArg::Gradescope);
+    if let Some(out) = out {
+        check_report_out(out, per_student)?;
+    }
+    if !class {
+        let file = &files[0];
+        let text = limits::read_text_bounded(file, limits::ANSWERS_FILE_BYTES).map_err(UsageError)?;
+        let name = file.display().to_string();
+        let report =
+            hw3::checker::check(&text, seed).map_err(|e| UsageError(format!("{}: {e}", limits::quote(&name))))?;
+        let body = match format {
+            // A student's file may hold terminal escapes: the text report shows them escaped.
+            FormatArg::Text => limits::terminal_text(&report_text(&report)),
+            FormatArg::Json => serde_json::to_string_pretty(&report)?,
+            FormatArg::Csv => class_csv(&check_class(&[(name, Ok(text))], seed)),
+            FormatArg::Gradescope => serde_json::to_string_pretty(&report_gradescope(&report))?,
+        };
+        deliver(out, &body)?;
+        return if report.all_correct() { Ok(()) } else { Err(SomeWrong.into()) };
+    }
+    let paths = hw3::checker::class_files(files).map_err(UsageError)?;
+    let graded = check_class(&hw3::checker::read_class(&paths), seed);
+    if graded.graded == 0 {
+        let first = &graded.submissions[0];
+        return Err(UsageError(format!(
+            "no file could be graded ({} files); `{}`: {}",
+            graded.submissions.len(),
+            limits::quote(&first.file),
+            first.error.as_deref().unwrap_or_default()
+        ))
+        .into());
+    }
+    match (format, out) {
+        (FormatArg::Gradescope, Some(folder)) => {
+            let results = hw3::checker::gradescope_files(&graded).map_err(UsageError)?;
+            for (name, json) in &results {
+                let path = folder.join(name);
+                hw3::fsio::write_atomic(&path, format!("{}\n", serde_json::to_string_pretty(json)?).as_bytes())
+                    .map_err(|e| OutputError(format!("writing {}: {}", path.display(), io_reason(&e))))?;
+            }
+            let _ = writeln!(std::io::stderr(), "{} results files in {}", results.len(), folder.display());
+        }
+        _ => {
+            let body = match format {
+                FormatArg::Text => limits::terminal_text(&class_text(&graded)),
+                FormatArg::Json => serde_json::to_string_pretty(&graded)?,
+                FormatArg::Csv => class_csv(&graded),
+                FormatArg::Gradescope => serde_json::to_string_pretty(&class_gradescope(&graded))?,
+            };
+            deliver(out, &body)?;
+        }
+    }
+    if graded.all_correct() { Ok(()) } else { Err(SomeWrong.into()) }
+}
+
+/// Checks `check --out` before any grading: a file in a folder that accepts files, or, for one
+/// results file per student, a folder (created if missing).
+fn check_report_out(out: &Path, folder: bool) -> Result<(), UsageError> {
+    let shown = || limits::quote(&out.display().to_string());
+    if folder {
+        return prepare_out_dir(out);
+    }
+    if out.is_dir() {
+        return Err(UsageError(format!("--out: `{}` is a folder", shown())));
+    }
+    hw3::fsio::check_writable_dir(hw3::fsio::parent_dir(out)).map_err(|e| UsageError(format!("--out: {e}")))
+}
+
+/// The report to `out` (replaced atomically), or to stdout.
+fn deliver(out: Option<&Path>, body: &str) -> anyhow::Result<()> {
+    match out {
+        Some(path) => hw3::fsio::write_atomic(path, format!("{body}\n").as_bytes())
+            .map_err(|e| OutputError(format!("writing {}: {}", path.display(), io_reason(&e))).into()),
+        None => emit_line(body),
     }
 }
 
@@ -480,9 +559,9 @@ fn print_answers(question: Option<&str>) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// Checks (and creates) the figures folder before any figure is drawn: a path that is a file, or a
-/// folder that cannot be created or written, is bad input.
-fn prepare_figures_dir(out: &Path) -> Result<(), UsageError> {
+/// Checks (and creates) an output folder before any work (the figures, a class's results files): a
+/// path that is a file, or a folder that cannot be created or written, is bad input.
+fn prepare_out_dir(out: &Path) -> Result<(), UsageError> {
     let shown = || limits::quote(&out.display().to_string());
     if out.exists() && !out.is_dir() {
         return Err(UsageError(format!("--out: `{}` is a file, not a folder", shown())));

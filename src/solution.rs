@@ -3,14 +3,14 @@
 //!
 //! A solution is computed, never typed: the variant's setting comes from
 //! [`checker::variant`], every step from the functions the checker's key
-//! is built from (the stable ray/sphere solver and the homework's own `A, B, C` algorithm for Q2,
+//! is built from (Q1's laws of clutter, fog, mirrors and motion, the stable ray/sphere solver and the homework's own `A, B, C` algorithm for Q2,
 //! the kd-tree traversal and its interval rule for Q3, the analytic sky and the blind-spot
 //! formulas for Q4, the light-path decision of each table cell for Q5). The tests check, for
 //! seeds 0 to 20, that every final number equals the key, and that the solution written as an
 //! answers file, with the digits it prints, grades full marks.
 //!
 //! `hw3 solution --seed S [--question qN] [--format text|markdown]` prints it; seed 0 is the
-//! homework's own numbers (the notes' worked example for Q2 and Q4). The printable answer key of
+//! homework's own numbers (the renderer's scenes for Q1, the notes' worked example for Q2 and Q4). The printable answer key of
 //! the notes, [`crate::notes::answer_key`], is drawn from the same solutions.
 //!
 //! # Examples
@@ -23,6 +23,7 @@
 //! ```
 
 mod answer_key;
+mod q1;
 mod q2;
 mod q3;
 mod q4;
@@ -34,8 +35,7 @@ pub use answer_key::{answer_key_table, figures};
 
 use crate::checker::{self, CheckError, ExpectedLeaf, ExpectedPlane};
 
-/// The questions a solution can be asked for, in homework order (Q1's solution points at its
-/// chapter and at `hw3 answers --question q1`).
+/// The questions a solution can be asked for, in homework order.
 pub const QUESTIONS: [&str; 5] = ["q1", "q2", "q3", "q4", "q5"];
 
 /// How a solution is printed.
@@ -218,38 +218,18 @@ impl Solution {
 /// assert!(hw3::solution::solution("q7", 0).is_err());
 /// ```
 pub fn solution(question: &str, seed: u64) -> Result<Solution, SolutionError> {
-    if question == "q1" {
-        return Ok(q1(seed));
-    }
     let variant = checker::variant(question, seed).map_err(|e| match e {
         CheckError::UnknownQuestion(q) => SolutionError::UnknownQuestion(q),
         other => SolutionError::UnknownQuestion(other.to_string()),
     })?;
     let sections = match variant.question {
+        "q1" => q1::sections(&variant)?,
         "q2" => q2::sections(&variant)?,
         "q3" => q3::sections(&variant)?,
         "q4" => q4::sections(&variant)?,
         _ => q5::sections(&variant)?,
     };
     Ok(Solution { question: variant.question, seed, statement: variant.statement, sections })
-}
-
-/// Q1's worked numbers are the Q1 chapter's: this solution points there.
-fn q1(seed: u64) -> Solution {
-    Solution {
-        question: "q1",
-        seed,
-        statement: format!(
-            "Q1 (seed {seed} ignored). Q1 asks why four scenes are hard to render; its worked numbers are \
-             derived and measured in its chapter, not written out here."
-        ),
-        sections: vec![Section {
-            title: "where the answers are".into(),
-            steps: vec![Step::work(
-                "`hw3 answers --question q1` prints them; the Q1 chapter (q1_hard_scenes) derives and measures each.",
-            )],
-        }],
-    }
 }
 
 /// What `hw3 solution` prints: one question's solution, or every question's in order.
@@ -275,12 +255,11 @@ mod tests {
     use super::*;
 
     #[test]
-    fn every_question_has_a_solution_and_q1_points_at_its_chapter() {
+    fn every_question_has_a_solution() {
         for question in QUESTIONS {
             let s = solution(question, 0).unwrap();
             assert!(!s.sections.is_empty(), "{question}");
         }
-        assert!(solution("q1", 0).unwrap().statement.contains("its chapter"));
     }
 
     #[test]

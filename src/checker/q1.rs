@@ -22,8 +22,8 @@ const ANSWER_NOTES: &str = "hw3/q1_hard_scenes/index.html#the-answer";
 /// The difficulties of Q1, by the homework's letters.
 const DIFFICULTIES: [&str; 4] = ["a", "b", "c", "d"];
 
-/// The four hard scenes of the renderer, by name.
-const SCENES: [(&str, &str); 4] = [
+/// The four hard scenes of the renderer, by name, with the part that matches each.
+pub(crate) const SCENES: [(&str, &str); 4] = [
     ("clutter", "q1match.clutter"),
     ("fog", "q1match.fog"),
     ("mirrors", "q1match.mirrors"),
@@ -36,7 +36,7 @@ fn number(value: f64, rtol: f64) -> Expected {
 
 /// A variant's numbers.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub(super) struct Numbers {
+pub(crate) struct Numbers {
     /// Spheres, slab side `W`, radius `a`.
     pub count: f64,
     pub side: f64,
@@ -58,7 +58,7 @@ pub(super) struct Numbers {
 
 /// Seed 0 is the renderer's clutter scene (1500 spheres of radius 0.5 over a 40 × 40 face) and
 /// its fog street (σ_t = 0.08); other seeds draw from small grids of nice numbers.
-pub(super) fn numbers(seed: u64) -> Numbers {
+pub(crate) fn numbers(seed: u64) -> Numbers {
     if seed == 0 {
         return Numbers {
             count: CLUTTER_COUNT as f64,
@@ -94,25 +94,80 @@ pub(super) fn numbers(seed: u64) -> Numbers {
 }
 
 /// The difficulty a built-in scene illustrates: the letter its catalogue line starts with (`Q1a:`).
-fn difficulty_of(scene: &str) -> &'static str {
+pub(crate) fn difficulty_of(scene: &str) -> &'static str {
     let (_, description) = CATALOGUE.iter().find(|(name, _)| *name == scene).expect("a built-in scene");
     let letter = description.strip_prefix("Q1").and_then(|rest| rest.chars().next()).unwrap_or('?');
     DIFFICULTIES.iter().find(|d| d.starts_with(letter)).expect("the hard scenes are labelled Q1a … Q1d")
 }
 
-pub(super) fn variant(seed: u64) -> Variant {
-    let n = numbers(seed);
+/// The key's numbers of a variant, with the intermediate values the worked solution shows and
+/// the wrong answers the mal-rules recognise.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Key {
+    /// `(W + 2a)²`: the face a sphere's centre falls in, widened by `a` on each side.
+    pub widened_area: f64,
+    /// One sphere's chance of blocking a ray, `πa²/(W + 2a)²`.
+    pub p: f64,
+    /// `(1 − p)^N`.
+    pub gap: f64,
+    /// The Boolean-model limit `e^(−Np)` (within the part's 1 %).
+    pub boolean: f64,
+    /// The first-order term `1 − Np` (a recognised mistake).
+    pub first_order: f64,
+    /// The optical depth `σ_t ℓ`.
+    pub optical_depth: f64,
+    /// `e^(−σ_t ℓ)`.
+    pub transmittance: f64,
+    /// `ln 50/σ_t`.
+    pub visual_range: f64,
+    /// The mean free path `1/σ_t` (a recognised mistake).
+    pub mean_free_path: f64,
+    /// The normal's turn `δ/R`, radians.
+    pub normal_turn: f64,
+    /// The reflected ray's turn `2δ/R`, degrees.
+    pub turn_deg: f64,
+    /// The focal length in pixels, `(H/2)/tan(fov/2)`.
+    pub focal_pixels: f64,
+    /// The object's move per frame, `v/fps`.
+    pub per_frame: f64,
+    /// The image shift per frame, pixels.
+    pub shift: f64,
+}
+
+/// The key of a variant's numbers.
+pub(crate) fn key(n: &Numbers) -> Key {
     // One sphere blocks a ray with probability p = πa²/(W + 2a)² (its centre must fall in the
     // disc of radius a around the ray, out of a face widened by a on each side); misses multiply.
-    let p = PI * n.radius * n.radius / (n.side + 2.0 * n.radius).powi(2);
-    let gap = (1.0 - p).powf(n.count);
-    let transmittance = (-n.sigma_t * n.path).exp();
-    let visual_range = 50f64.ln() / n.sigma_t;
+    let widened_area = (n.side + 2.0 * n.radius).powi(2);
+    let p = PI * n.radius * n.radius / widened_area;
+    let optical_depth = n.sigma_t * n.path;
     // A sideways step δ moves where a pixel's ray meets the ball by δ; near the centre of the
     // ball the normal turns by δ/R and the reflected ray by twice that.
-    let turn = (2.0 * n.step / n.mirror_radius).to_degrees();
+    let normal_turn = n.step / n.mirror_radius;
     let focal_pixels = n.height / 2.0 / (n.fov_deg.to_radians() / 2.0).tan();
-    let shift = n.speed / n.fps * focal_pixels / n.depth;
+    let per_frame = n.speed / n.fps;
+    Key {
+        widened_area,
+        p,
+        gap: (1.0 - p).powf(n.count),
+        boolean: (-n.count * p).exp(),
+        first_order: 1.0 - n.count * p,
+        optical_depth,
+        transmittance: (-optical_depth).exp(),
+        visual_range: 50f64.ln() / n.sigma_t,
+        mean_free_path: 1.0 / n.sigma_t,
+        normal_turn,
+        turn_deg: (2.0 * n.step / n.mirror_radius).to_degrees(),
+        focal_pixels,
+        per_frame,
+        shift: per_frame * focal_pixels / n.depth,
+    }
+}
+
+pub(super) fn variant(seed: u64) -> Variant {
+    let n = numbers(seed);
+    let k = key(&n);
+    let (gap, transmittance, visual_range, turn, shift) = (k.gap, k.transmittance, k.visual_range, k.turn_deg, k.shift);
     let statement = format!(
         "Q1 (variant {seed}). What makes each scene hard, in numbers.\n\
          (a) {count} spheres of radius a = {a}, centres uniform over a slab whose front face is a {w} x {w} square \
@@ -146,7 +201,7 @@ pub(super) fn variant(seed: u64) -> Variant {
             // 1 % so that the Boolean-model limit e^(−Np) also counts: it differs by about N p²/2.
             expected: number(gap, 1e-2),
             mal_rules: vec![MalRule {
-                value: number(1.0 - n.count * p, 1e-2),
+                value: number(k.first_order, 1e-2),
                 message: "that is the first-order term 1 - N p; the misses multiply: (1 - p)^N",
                 rule: Rule::OtherQuantity,
             }],
@@ -159,7 +214,7 @@ pub(super) fn variant(seed: u64) -> Variant {
             points: 1.0,
             expected: number(transmittance, 1e-3),
             mal_rules: vec![MalRule {
-                value: number(1.0 - n.sigma_t * n.path, 1e-3),
+                value: number(1.0 - k.optical_depth, 1e-3),
                 message: "that is the first-order term 1 - sigma_t l; the transmittance is e^(-sigma_t l)",
                 rule: Rule::OtherQuantity,
             }],
@@ -172,7 +227,7 @@ pub(super) fn variant(seed: u64) -> Variant {
             points: 1.0,
             expected: number(visual_range, 1e-3),
             mal_rules: vec![MalRule {
-                value: number(1.0 / n.sigma_t, 1e-3),
+                value: number(k.mean_free_path, 1e-3),
                 message: "that is the mean free path 1/sigma_t; the visual range is where e^(-sigma_t d) = 2 %: ln 50/sigma_t",
                 rule: Rule::OtherQuantity,
             }],

@@ -13,7 +13,12 @@ const SEED_ANSWERS: &str = include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/te
 
 /// The chapter section that derives each part, by key prefix (first match wins): the heading's
 /// text, as written in the chapter.
-const SECTIONS: [(&str, &str); 7] = [
+const SECTIONS: [(&str, &str); 12] = [
+    ("q1a", "(a) Clutter: a forest of spheres"),
+    ("q1b", "(b) Fog: contrast and transmittance versus distance"),
+    ("q1c", "(c) Mirrors: image change per unit camera move"),
+    ("q1d", "(d) Change over time"),
+    ("q1match", "The answer"),
     ("q2a", "(a) Derivation"),
     ("q2b", "(b) Reflection"),
     ("q2c", "(c) The closest approach, two ways"),
@@ -59,9 +64,12 @@ fn section_link(key: &str, explained_in: &str) -> String {
     }
 }
 
-/// What a part asks, in a few words: the checker's prompt, or for a Q5 cell its method and effect
-/// (the prompt is the same for every cell).
+/// What a part asks, in a few words: the checker's prompt, or for a Q1 match its scene and for a Q5
+/// cell its method and effect (the prompt is the same for every scene and every cell).
 fn asked(key: &str, prompt: &str) -> String {
+    if let Some(scene) = key.strip_prefix("q1match.") {
+        return format!("which difficulty `{scene}` shows");
+    }
     match super::q5::cell_of(key) {
         Some((method, effect)) => format!("{}: {}", method.name, effect.name),
         None => prompt.to_owned(),
@@ -98,16 +106,7 @@ pub fn answer_key_table() -> Result<String, SolutionError> {
     let mut out = String::new();
     for question in QUESTIONS {
         let heading = question.to_uppercase();
-        if question == "q1" {
-            // Q1's worked numbers are its chapter's.
-            let _ = writeln!(
-                out,
-                "### {heading}\n\nIts numbers are derived and measured in \
-                 [the Q1 chapter](crate::q1_hard_scenes); `hw3 answers --question q1` prints them.\n"
-            );
-            continue;
-        }
-        let variant = checker::variant(question, 0).expect("Q2-Q5 have a variant 0");
+        let variant = checker::variant(question, 0).expect("every question has a variant 0");
         let solved = solution(question, 0)?;
         // One block per question, so that printing never parts a heading from its table.
         let _ = writeln!(out, "<div class=\"answer-key-question\">\n\n### {heading}\n");
@@ -169,7 +168,7 @@ mod tests {
 
     #[test]
     fn every_linked_section_is_a_heading_of_its_chapter() {
-        for question in ["q2", "q3", "q4", "q5"] {
+        for question in QUESTIONS {
             for part in checker::variant(question, 0).unwrap().parts {
                 let (module, _) = chapter_of(part.explained_in);
                 let path = format!("{}/docs/{module}.md", env!("CARGO_MANIFEST_DIR"));
@@ -191,8 +190,7 @@ mod tests {
     fn the_key_carries_the_seeds_grade_for_every_part() {
         let table = answer_key_table().unwrap();
         let report = checker::check(SEED_ANSWERS, Some(0)).unwrap();
-        // Q1's rows are its chapter's (the key points there).
-        for part in report.parts.iter().filter(|p| !p.key.starts_with("q1")) {
+        for part in &report.parts {
             let row = table.lines().find(|l| l.starts_with(&format!("| `{}` |", part.key))).expect("a row per part");
             assert!(row.contains(&grade(part)), "{row}");
         }

@@ -15,6 +15,14 @@ pub(super) fn num(x: f64) -> String {
     if text == "-0" { "0".into() } else { text.into() }
 }
 
+/// A final number, as the solution prints it and writes it to an answers file: [`num`], except
+/// that a number between 10⁻⁹ (the checker's absolute tolerance, below which 0 is accepted) and
+/// 10⁻³ keeps six significant digits, which six decimals would not (the gap fraction of a dense
+/// slab is a few millionths).
+pub(super) fn final_number(x: f64) -> String {
+    if (1e-9..1e-3).contains(&x.abs()) { format!("{x:.5e}") } else { num(x) }
+}
+
 /// [`num`], in parentheses when negative, for a number inside a formula (`(3 - 5)/(-1)`).
 pub(super) fn operand(x: f64) -> String {
     let text = num(x);
@@ -41,7 +49,7 @@ fn plane(p: &ExpectedPlane) -> String {
 /// The value as the solution prints it.
 pub(super) fn value(value: &Value) -> String {
     match value {
-        Value::Number(x) => num(*x),
+        Value::Number(x) => final_number(*x),
         Value::Vector(v) => vector(*v),
         Value::Leaves(leaves) => leaves.iter().map(leaf).collect::<Vec<_>>().join("; "),
         Value::Word(w) | Value::Formula(w) | Value::Paths(w) => w.clone(),
@@ -108,7 +116,7 @@ fn toml_value(value: &Value) -> toml::Value {
         _ => toml::Value::String(num(x)),
     };
     match value {
-        Value::Number(x) => printed(*x),
+        Value::Number(x) => final_number(*x).parse().map_or_else(|_| printed(*x), toml::Value::Float),
         Value::Vector(v) => toml::Value::Array(v.iter().map(|&x| printed(x)).collect()),
         Value::Word(w) | Value::Formula(w) | Value::Paths(w) => toml::Value::String(w.clone()),
         Value::Flag(flag) => toml::Value::Boolean(*flag),
@@ -170,5 +178,9 @@ mod tests {
         assert_eq!(num(f64::INFINITY), "inf");
         assert_eq!(num(0.5), "0.5");
         assert_eq!((operand(-1.0), operand(2.0)), ("(-1)".to_string(), "2".to_string()));
+        assert_eq!(
+            (final_number(4.6e-6), final_number(1e-17), final_number(0.5)),
+            ("4.60000e-6".into(), "0".into(), "0.5".into())
+        );
     }
 }

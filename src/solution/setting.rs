@@ -6,7 +6,7 @@
 //! change of wording fails here, loudly, and the tests run every variant 0–20 through it.
 
 use super::SolutionError;
-use crate::checker::Variant;
+use crate::checker::{Q1Numbers, Variant};
 use crate::geometry::{Ray, Sphere};
 use crate::q3_kd_traversal::Ray2;
 use glam::DVec3;
@@ -49,6 +49,26 @@ fn vec3(values: Option<Vec<f64>>) -> Option<DVec3> {
         Some(&[x, y, z]) => Some(DVec3::new(x, y, z)),
         _ => None,
     }
+}
+
+/// Q1: the numbers of each difficulty.
+pub(super) fn q1(variant: &Variant) -> Result<Q1Numbers, SolutionError> {
+    let s = &variant.statement;
+    let read = |marker: &str, what: &'static str| number(s, marker).ok_or_else(|| error(variant, what));
+    Ok(Q1Numbers {
+        count: read("(a) ", "the number of spheres")?,
+        side: read("front face is a ", "the slab's side")?,
+        radius: read("radius a = ", "the spheres' radius")?,
+        sigma_t: read("sigma_t = ", "the fog's sigma_t")?,
+        path: read("path of length ", "the fog path's length")?,
+        mirror_radius: read("radius R = ", "the mirror's radius")?,
+        step: read("steps sideways by ", "the camera step")?,
+        speed: read("moving at ", "the object's speed")?,
+        fps: read("filmed at ", "the frame rate")?,
+        depth: read("across the view, ", "the object's distance")?,
+        fov_deg: read("field of view of ", "the field of view")?,
+        height: read("an image ", "the image height")?,
+    })
 }
 
 /// Q2: the ray and the sphere.
@@ -115,6 +135,14 @@ mod tests {
         assert_eq!([q3(&q3_variant, 'd').unwrap(), q3(&q3_variant, 'e').unwrap()], [cases[0].ray, cases[1].ray]);
         let setting = q4(&variant("q4", 0).unwrap()).unwrap();
         assert_eq!(setting, Q4Setting { a: 1.0, b: 1.0, tilt_deg: 60.0, distance_over_radius: 3.0 });
+    }
+
+    #[test]
+    fn q1_reads_back_the_drawn_numbers() {
+        for seed in 0..=20 {
+            let numbers = q1(&variant("q1", seed).unwrap()).unwrap();
+            assert_eq!(numbers, crate::checker::q1_numbers(seed), "seed {seed}");
+        }
     }
 
     #[test]
