@@ -472,7 +472,7 @@ fn a_class_of_50_graded_in_one_command() {
         assert!(s["report"].is_null());
     }
     // Statistics: each part's counts cover the graded files, its mean is the files' mean, and the
-    // larger root (one mistake file and one carried) is q2a.t's most common mistake.
+    // larger root's rule (at least one mistake file and one carried) is q2a.t's most common mistake.
     let graded: Vec<_> = submissions.iter().filter(|s| !s["report"].is_null()).collect();
     let t_rule = variant("q2", 0).unwrap().parts.into_iter().find(|p| p.key == "q2a.t").unwrap().mal_rules;
     let larger = t_rule.iter().find(|r| r.message.contains("larger root")).unwrap();
@@ -491,7 +491,18 @@ fn a_class_of_50_graded_in_one_command() {
         assert_eq!(stat["correct"].as_u64().unwrap() as usize, right, "{key}");
         if key == "q2a.t" {
             assert_eq!(stat["most_common_mistake"].as_str(), Some(class_demo::rule_id(larger)));
-            assert_eq!(stat["most_common_mistake_count"], 2);
+            // Every q2a.t answer the policy files under the larger root's rule (the rule id groups
+            // the larger root with the other wrong-root slips of that part).
+            let larger_count = graded
+                .iter()
+                .filter(|s| {
+                    parts(s)
+                        .iter()
+                        .any(|p| p["key"] == key && p["mistake"].as_str() == Some(class_demo::rule_id(larger)))
+                })
+                .count();
+            assert!(larger_count >= 2, "{larger_count}");
+            assert_eq!(stat["most_common_mistake_count"].as_u64().unwrap() as usize, larger_count);
         }
     }
     let mean = graded.iter().map(|s| s["report"]["score"].as_f64().unwrap()).sum::<f64>() / graded.len() as f64;
