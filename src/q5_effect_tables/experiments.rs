@@ -7,14 +7,13 @@ use super::grammar::{EFFECTS, LightKind, METHODS, SeedAnswer, Verdict, decide, s
 use super::radiosity::{Mesh, Solver, System};
 use super::scenes::{bleeding_region, cornell_box, glow_region, grey};
 use crate::geometry::Ray;
-use crate::render::photon::{PhotonError, PhotonMap, PhotonMaps, trace_photons};
+use crate::render::photon::{Gather, PhotonError, PhotonMaps, trace_photons};
 use crate::render::scene::{Material, Scene};
 use crate::render::{
     analysis::analyze,
     passes::{Pass, Passes},
 };
 use crate::render::{
-    bsdf::{dielectric_split, facing_normal, reflected_ray},
     integrator::{Integrator, Tracer},
     sampling::Sampler,
 };
@@ -119,15 +118,13 @@ fn mean_radiance(scene: &Scene, method: Measured, probes: &[Ray<f64>]) -> Result
                 .sum()
         }
         Measured::TwoPass | Measured::PhotonMapping => {
-            let maps = trace_photons(scene, PHOTONS, 3)?;
-            let photon_mapping = method == Measured::PhotonMapping;
-            let eye = PhotonEye::new(scene, &maps, photon_mapping);
-            let mut total = DVec3::ZERO;
-            for (k, ray) in probes.iter().enumerate() {
-                let mut sampler = Sampler::new(5, k as u64, 0);
-                total += eye.radiance(ray, if photon_mapping { SPECULAR_DEPTH } else { 0 }, &mut sampler)?;
-            }
-            total
+            let maps = trace_photons(scene, PHOTONS, PHOTON_SEED)?;
+            let (tracer, integrator) = photon_eye(scene, &maps, method == Measured::PhotonMapping)?;
+            probes
+                .iter()
+                .enumerate()
+                .map(|(k, ray)| tracer.radiance(integrator, ray, 0.0, &mut Sampler::new(5, k as u64, 0)))
+                .sum()
         }
     };
     Ok(sum / probes.len() as f64)
@@ -140,65 +137,31 @@ pub(super) fn reference_passes(scene: &Scene) -> Passes {
     analyze(scene).plan.with(Pass::IndirectBounces, true).with(Pass::SpecularRecursion, true)
 }
 
-/// The eye pass of the two photon methods. The seed's two-pass method: the eye ray's first hit
-/// gets direct light from shadow rays (Whitted at depth 0: a mirror or glass hit stays black, the
-/// ray is not traced further) plus the *indirect* photon map (photons after a diffuse bounce).
-/// Photon mapping (Jensen): eye rays are traced through mirrors and glass, and the diffuse hit
-/// adds the *caustic* map too.
-struct PhotonEye<'a> {
+/// Random seed of the photon pass of the two photon methods.
+pub(super) const PHOTON_SEED: u64 = 3;
+
+/// The eye pass of the two photon methods, as the renderer's [`Tracer`] and the integrator to
+/// run it with. The seed's two-pass method: the eye ray's first hit gets direct light from shadow
+/// rays (Whitted at depth 0, the mean of [`DIRECT_SPP`] light samples: a mirror or glass hit stays
+/// black, the ray is not traced further) plus the *indirect* photon map (photons after a diffuse
+/// bounce). Photon mapping (`caustics`, Jensen): eye rays are traced through up to
+/// [`SPECULAR_DEPTH`] mirror and glass bounces, and the diffuse hit adds the *caustic* map of the
+/// same photon pass too. Both maps are read with the plain [`NEIGHBOURS`]-nearest estimate (no
+/// radius limit), which is zero on a map of fewer photons (an open scene with no second diffuse
+/// surface holds no measurable density).
+///
+/// # Errors
+/// [`PhotonError`] never for the built-in neighbour count (a [`Gather`] needs k ≥ 2).
+pub(super) fn photon_eye<'a>(
     scene: &'a Scene,
-    tracer: Tracer<'a>,
     maps: &'a PhotonMaps,
     caustics: bool,
-}
-
-impl<'a> PhotonEye<'a> {
-    fn new(scene: &'a Scene, maps: &'a PhotonMaps, caustics: bool) -> Self {
-        let direct = Integrator::Whitted { max_depth: 0 };
-        Self { scene, tracer: Tracer::new(scene, direct.restrict(analyze(scene).plan)), maps, caustics }
-    }
-
-    /// Radiance along `ray`, following at most `depth` specular bounces.
-    fn radiance(&self, ray: &Ray<f64>, depth: u32, sampler: &mut Sampler) -> Result<DVec3, PhotonError> {
-        let hit = self.scene.closest_hit(ray, 0.0, f64::INFINITY);
-        let material = hit.map(|h| self.scene.objects()[h.object].material);
-        match (hit, material) {
-            (Some(hit), Some(Material::Mirror { reflectance })) if depth > 0 => {
-                Ok(reflectance * self.radiance(&reflected_ray(ray, &hit), depth - 1, sampler)?)
-            }
-            (Some(hit), Some(Material::Glass { index })) if depth > 0 => {
-                let split = dielectric_split(ray, &hit, index);
-                let mut total = split.reflectance * self.radiance(&reflected_ray(ray, &hit), depth - 1, sampler)?;
-                if let Some(refracted) = split.refracted {
-                    total += (1.0 - split.reflectance) * self.radiance(&refracted, depth - 1, sampler)?;
-                }
-                Ok(total)
-            }
-            (Some(hit), Some(material @ (Material::Diffuse { .. } | Material::Glossy { .. }))) => {
-                let direct = self.direct(ray, sampler);
-                let normal = facing_normal(ray, &hit);
-                // A map with fewer than k photons (an open scene with no second diffuse surface)
-                // holds no measurable density: it contributes nothing.
-                let estimate = |map: &PhotonMap| {
-                    if map.len() < NEIGHBOURS {
-                        Ok(DVec3::ZERO)
-                    } else {
-                        map.radiance(&material, hit.point, -ray.dir, normal, NEIGHBOURS)
-                    }
-                };
-                let caustic = if self.caustics { estimate(&self.maps.caustic)? } else { DVec3::ZERO };
-                Ok(direct + estimate(&self.maps.indirect)? + caustic)
-            }
-            // Emitters, the background, and specular surfaces the ray is not traced through.
-            _ => Ok(self.direct(ray, sampler)),
-        }
-    }
-
-    /// What the eye ray sees with direct light only, averaged over [`DIRECT_SPP`] light samples.
-    fn direct(&self, ray: &Ray<f64>, sampler: &mut Sampler) -> DVec3 {
-        let direct = Integrator::Whitted { max_depth: 0 };
-        (0..DIRECT_SPP).map(|_| self.tracer.radiance(direct, ray, 0.0, sampler)).sum::<DVec3>() / f64::from(DIRECT_SPP)
-    }
+) -> Result<(Tracer<'a>, Integrator), PhotonError> {
+    let gather = Gather::new(NEIGHBOURS, f64::MAX)?;
+    let integrator = Integrator::Whitted { max_depth: if caustics { SPECULAR_DEPTH } else { 0 } };
+    let passes = integrator.restrict(analyze(scene).plan).with(Pass::SpecularRecursion, caustics);
+    let tracer = Tracer::new(scene, passes).with_light_samples(DIRECT_SPP).with_indirect(&maps.indirect, gather);
+    Ok((if caustics { tracer.with_caustics(&maps.caustic, gather) } else { tracer }, integrator))
 }
 
 /// A measured cell.
