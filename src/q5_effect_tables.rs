@@ -1,6 +1,7 @@
 #![doc = include_str!(concat!(env!("OUT_DIR"), "/q5_effect_tables.md"))]
 
 pub mod cornell_published;
+pub mod effect_grid;
 pub mod effect_scenes;
 pub mod error;
 pub mod experiments;

@@ -42,6 +42,19 @@ pub const HIGHLIGHT_EYE: DVec3 = DVec3::new(-3.0, 4.0, 0.0);
 /// The floor point whose mirror direction towards [`HIGHLIGHT_EYE`] points at the light's centre.
 pub const HIGHLIGHT_POINT: DVec3 = DVec3::new(-1.5, 0.0, 0.0);
 
+/// The camera of the highlight's pictures: at [`HIGHLIGHT_EYE`], looking past
+/// [`HIGHLIGHT_POINT`] towards the floor's centre, so that the highlight sits left of the middle.
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::effect_scenes::{HIGHLIGHT_EYE, highlight_camera};
+/// assert_eq!(highlight_camera().eye, HIGHLIGHT_EYE);
+/// ```
+#[must_use]
+pub fn highlight_camera() -> Camera {
+    Camera::looking_at(HIGHLIGHT_EYE, HIGHLIGHT_POINT + DVec3::X * 0.6, 45.0)
+}
+
 /// A 4 × 4 floor (`y = 0`, `x, z ∈ [−2, 2]`) of material `floor` under a
 /// [`FLOOR_LIGHT_SIZE`]² light facing down at height [`FLOOR_LIGHT_HEIGHT`] over the origin,
 /// with a glass ball ([`BALL_RADIUS`], [`GLASS_INDEX`]) centred [`BALL_HEIGHT`] above the origin

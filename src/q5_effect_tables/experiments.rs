@@ -62,7 +62,15 @@ pub const NEIGHBOURS: usize = 100;
 const TABLE_RADIOSITY: Measured = Measured::Radiosity { subdivisions: TABLE_MESH.0, samples: TABLE_MESH.1 };
 
 impl Measured {
-    fn id(self) -> &'static str {
+    /// The method's column id in [`METHODS`].
+    ///
+    /// # Examples
+    /// ```
+    /// use hw3::q5_effect_tables::experiments::Measured;
+    /// assert_eq!(Measured::PhotonMapping.id(), "photon_mapping");
+    /// ```
+    #[must_use]
+    pub fn id(self) -> &'static str {
         match self {
             Measured::Radiosity { .. } => "radiosity",
             Measured::Whitted => "whitted",
@@ -75,10 +83,10 @@ impl Measured {
 
 /// Samples per probe of the eye rays' direct light (Whitted's shadow rays) in the Whitted,
 /// two-pass and photon-mapping measurements.
-const DIRECT_SPP: u32 = 16;
+pub(super) const DIRECT_SPP: u32 = 16;
 
 /// Specular bounces that photon mapping's eye rays follow (and Whitted's).
-const SPECULAR_DEPTH: u32 = 5;
+pub(super) const SPECULAR_DEPTH: u32 = 5;
 
 /// Mean radiance arriving along the probe rays in `scene` by `method`.
 fn mean_radiance(scene: &Scene, method: Measured, probes: &[Ray<f64>]) -> Result<DVec3, ExperimentError> {

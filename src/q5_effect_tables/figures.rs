@@ -8,10 +8,8 @@ use super::experiments::{cornell_system, measured_table, measured_table_markdown
 use super::grammar::grammar_table_markdown;
 use super::radiosity::{Solver, relative_errors};
 use crate::plot::{self, Figure, PALETTE, Panel, PlotError, err};
-use crate::render::camera::Camera;
 use crate::render::integrator::Integrator;
 use crate::render::{Settings, render};
-use glam::DVec3;
 use plotters::prelude::*;
 
 /// The drawn figures: solver convergence (SVG), the published Cornell box's validation, the
@@ -115,6 +113,7 @@ pub fn renders() -> Result<Vec<Figure>, PlotError> {
         Panel { image: half(size), label: format!("path tracing\n{PATH_SPP} spp") },
     ];
     figures.push(plot::panel_grid(PUBLISHED_PNG, &panels, 2)?);
+    figures.push(super::effect_grid::figure()?);
     Ok(figures)
 }
 
@@ -125,11 +124,12 @@ fn effect_scenes_figure() -> Result<Figure, PlotError> {
     let render_error =
         |e: &dyn std::fmt::Display| PlotError::Draw { figure: EFFECT_SCENES_PNG.into(), message: e.to_string() };
     let (width, height) = (320, 240);
-    let highlight_view =
-        Camera::looking_at(effect_scenes::HIGHLIGHT_EYE, effect_scenes::HIGHLIGHT_POINT + DVec3::X * 0.6, 45.0);
     let scenes = (|| -> Result<_, ExperimentError> {
         Ok([
-            (lit_floor(GLOSSY_FLOOR, false)?.with_camera(highlight_view)?, "(a) highlight on a glossy floor"),
+            (
+                lit_floor(GLOSSY_FLOOR, false)?.with_camera(effect_scenes::highlight_camera())?,
+                "(a) highlight on a glossy floor",
+            ),
             (lit_floor(WHITE_FLOOR, false)?, "direct light on a white floor"),
             (mirror_room()?, "the lit red panel in a mirror"),
             (lit_floor(WHITE_FLOOR, true)?, "caustic under a glass ball"),
