@@ -19,7 +19,7 @@ pub use grammar::{
 };
 
 use crate::answers::Answers;
-use crate::plot::{Figure, PlotError};
+use crate::plot::{Figure, PlotError, markdown_table};
 use grammar::agreement;
 
 /// The cell-by-cell comparison with the seed (area light, the seed's two columns): the seed's
@@ -37,9 +37,7 @@ use grammar::agreement;
 /// ```
 pub fn seed_comparison_markdown() -> Result<String, String> {
     let measured = experiments::measured_table().map_err(|e| e.to_string())?;
-    let mut out = String::from(
-        "| seed cell | effect | seed | grammar | shortest path missed | comparison | measured |\n|---|---|---|---|---|---|---|\n",
-    );
+    let mut rows = Vec::new();
     for cell in grammar_table().map_err(|e| e.to_string())?.iter().filter(|c| c.seed != SeedAnswer::NotAsked) {
         let Some(method) = METHODS.iter().find(|m| m.id == cell.method) else { continue };
         let Some(effect) = EFFECTS.iter().find(|e| e.id == cell.effect) else { continue };
@@ -47,18 +45,18 @@ pub fn seed_comparison_markdown() -> Result<String, String> {
             .iter()
             .find(|m| m.effect == cell.effect && m.method == cell.method)
             .map_or_else(|| "–".to_string(), |m| format!("{} ({:.2})", m.verdict.text(), m.fraction));
-        out.push_str(&format!(
-            "| 5({})({}) | `{}` | {} | {} | {} | {} | {experiment} |\n",
-            method.seed_part.unwrap_or('?'),
-            effect.id.replace('_', " "),
-            effect.paths,
-            cell.seed.text(),
-            cell.verdict.text(),
-            cell.witness.as_deref().unwrap_or("–"),
-            agreement(cell)
-        ));
+        rows.push([
+            format!("5({})({})", method.seed_part.unwrap_or('?'), effect.id.replace('_', " ")),
+            format!("`{}`", effect.paths),
+            cell.seed.text().to_string(),
+            cell.verdict.text().to_string(),
+            cell.witness.as_deref().unwrap_or("–").to_string(),
+            agreement(cell).to_string(),
+            experiment,
+        ]);
     }
-    Ok(out)
+    let header = ["seed cell", "effect", "seed", "grammar", "shortest path missed", "comparison", "measured"];
+    Ok(markdown_table(&header, rows))
 }
 
 /// The output of `hw3 effects-table`: the grammar tables, the seed comparison and the measured

@@ -7,6 +7,7 @@ use super::grammar::{EFFECTS, LightKind, METHODS, SeedAnswer, Verdict, decide, s
 use super::radiosity::{Mesh, Solver, System};
 use super::scenes::{bleeding_region, cornell_box, glow_region, grey};
 use crate::geometry::Ray;
+use crate::plot::markdown_table;
 use crate::render::photon::{Gather, PhotonError, PhotonMaps, trace_photons};
 use crate::render::scene::{Material, Scene};
 use crate::render::{
@@ -23,15 +24,50 @@ use std::sync::OnceLock;
 
 /// Radiosity mesh used by the measured table: patches per quad edge and form-factor samples per
 /// patch edge.
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::{experiments::TABLE_MESH, radiosity::Mesh, scenes::cornell_box};
+/// // The box's 11 quads at 6 × 6 patches each.
+/// let scene = cornell_box(true).unwrap();
+/// assert_eq!(Mesh::new(&scene, TABLE_MESH.0).unwrap().patches.len(), 11 * 36);
+/// ```
 pub const TABLE_MESH: (usize, usize) = (6, 2);
 /// Path-traced reference: samples per measurement point.
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::{PATH_SPP, experiments::REFERENCE_SPP};
+/// // The reference takes far more samples than any picture.
+/// assert!(REFERENCE_SPP >= 32 * PATH_SPP);
+/// ```
 pub const REFERENCE_SPP: u32 = 1024;
 /// A cell is Yes when the method captures at least this fraction of the reference's effect.
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::{Verdict, experiments::{YES_FRACTION, verdict}};
+/// assert_eq!(verdict(YES_FRACTION), Verdict::Yes);
+/// assert_eq!(verdict(YES_FRACTION - 0.01), Verdict::Impractical);
+/// ```
 pub const YES_FRACTION: f64 = 0.8;
 /// A cell is No when it captures at most this fraction.
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::{Verdict, experiments::{NO_FRACTION, verdict}};
+/// assert_eq!(verdict(NO_FRACTION), Verdict::No);
+/// assert_eq!(verdict(NO_FRACTION + 0.01), Verdict::Impractical);
+/// ```
 pub const NO_FRACTION: f64 = 0.2;
 
 /// A method that the experiments run.
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::experiments::{Measured, TABLE_METHODS};
+/// assert_eq!(TABLE_METHODS.map(Measured::id), ["radiosity", "two_pass", "whitted", "photon_mapping"]);
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Measured {
     /// Radiosity with `subdivisions²` patches per quad and `samples²` form-factor samples per patch.
@@ -54,8 +90,22 @@ pub enum Measured {
 }
 
 /// Photons emitted for the two-pass and photon-mapping cells.
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::experiments::{NEIGHBOURS, PHOTONS};
+/// // Each estimate reads a small fraction of the map.
+/// assert!(NEIGHBOURS * 1000 < PHOTONS);
+/// ```
 pub const PHOTONS: usize = 200_000;
 /// Neighbours of the photon-map radiance estimate for those cells.
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::experiments::NEIGHBOURS;
+/// // A valid gather (k ≥ 2), with no radius limit: the plain k-nearest estimate.
+/// assert!(hw3::render::photon::Gather::new(NEIGHBOURS, f64::MAX).is_ok());
+/// ```
 pub const NEIGHBOURS: usize = 100;
 
 /// Radiosity at the measured table's mesh ([`TABLE_MESH`]).
@@ -173,6 +223,23 @@ pub(super) fn photon_eye<'a>(
 }
 
 /// A measured cell.
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::{SeedAnswer, Verdict, experiments::{MeasuredCell, verdict}};
+/// let (value, reference) = (0.29, 0.30);
+/// let cell = MeasuredCell {
+///     effect: "d_mirror",
+///     method: "whitted",
+///     value,
+///     reference,
+///     fraction: value / reference,
+///     verdict: verdict(value / reference),
+///     grammar: Verdict::Yes,
+///     seed: SeedAnswer::NotAsked,
+/// };
+/// assert_eq!(cell.verdict, cell.grammar);
+/// ```
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct MeasuredCell {
     /// Effect id (a row of [`EFFECTS`]).
@@ -308,9 +375,22 @@ pub fn glow(method: Measured) -> Result<f64, ExperimentError> {
 }
 
 /// A measurement: the size of one effect for one method.
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::experiments::{Experiment, Measured, glow};
+/// let measure: Experiment = glow;
+/// assert_eq!(measure(Measured::Whitted).unwrap(), 0.0);
+/// ```
 pub type Experiment = fn(Measured) -> Result<f64, ExperimentError>;
 
 /// Every effect row of [`EFFECTS`] with its experiment, in table order.
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::{EFFECTS, experiments::EXPERIMENTS};
+/// assert_eq!(EXPERIMENTS.map(|(id, _)| id), EFFECTS.map(|e| e.id));
+/// ```
 pub const EXPERIMENTS: [(&str, Experiment); 6] = [
     ("a", highlight),
     ("b", bleeding),
@@ -321,6 +401,13 @@ pub const EXPERIMENTS: [(&str, Experiment); 6] = [
 ];
 
 /// The methods of the measured table, in column order.
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::{METHODS, experiments::TABLE_METHODS};
+/// // Every measured method is a column of the grammar's table.
+/// assert!(TABLE_METHODS.iter().all(|m| METHODS.iter().any(|column| column.id == m.id())));
+/// ```
 pub const TABLE_METHODS: [Measured; 4] =
     [TABLE_RADIOSITY, Measured::TwoPass, Measured::Whitted, Measured::PhotonMapping];
 
@@ -412,23 +499,23 @@ fn measure_table() -> Result<Vec<MeasuredCell>, ExperimentError> {
 /// ```
 #[must_use]
 pub fn measured_table_markdown(cells: &[MeasuredCell]) -> String {
-    let mut out = String::from(
-        "| effect | method | measured | path-traced reference | fraction | measured verdict | grammar | seed |\n|---|---|---|---|---|---|---|---|\n",
-    );
-    for c in cells {
-        out.push_str(&format!(
-            "| ({}) | {} | {:.4} | {:.4} | {:.3} | {} | {} | {} |\n",
-            c.effect.replace('_', " "),
-            c.method,
-            c.value,
-            c.reference,
-            c.fraction,
-            c.verdict.text(),
-            c.grammar.text(),
-            c.seed.text()
-        ));
-    }
-    out
+    let header =
+        ["effect", "method", "measured", "path-traced reference", "fraction", "measured verdict", "grammar", "seed"];
+    markdown_table(
+        &header,
+        cells.iter().map(|c| {
+            [
+                format!("({})", c.effect.replace('_', " ")),
+                c.method.to_string(),
+                format!("{:.4}", c.value),
+                format!("{:.4}", c.reference),
+                format!("{:.3}", c.fraction),
+                c.verdict.text().to_string(),
+                c.grammar.text().to_string(),
+                c.seed.text().to_string(),
+            ]
+        }),
+    )
 }
 
 /// The radiosity system of the Cornell box at `n × n` patches per quad (figures and benchmarks).
