@@ -221,4 +221,50 @@ mod tests {
             assert_eq!(c.verdict.text(), c.seed.text(), "{c:?}");
         }
     }
+
+    /// The verdict words and missed paths that [`answers`] prints for radiosity are the grammar's
+    /// (area light), and the two-pass ones for (a)–(c) and the mirror image too.
+    #[test]
+    fn printed_verdicts_are_the_grammar_ones() {
+        let cells = grammar_table().unwrap();
+        let cell = |method: &str, effect: &str| {
+            cells.iter().find(|c| c.light == LightKind::Area && c.method == method && c.effect == effect).unwrap()
+        };
+        let text = answers().text;
+        let radiosity = |effect| cell("radiosity", effect);
+        let expected = [
+            format!(
+                "(a) highlight {} (misses {})",
+                radiosity("a").verdict.text(),
+                radiosity("a").witness.as_deref().unwrap()
+            ),
+            format!("(b) colour bleeding {}", radiosity("b").verdict.text()),
+            format!("(c) diffuse shading {}", radiosity("c").verdict.text()),
+            format!(
+                "(d) specular effects {} (misses {}, {})",
+                radiosity("d_mirror").verdict.text(),
+                radiosity("d_mirror").witness.as_deref().unwrap(),
+                radiosity("d_caustic").witness.as_deref().unwrap()
+            ),
+            format!("(e) ambient glow {}", radiosity("e").verdict.text()),
+        ];
+        for fragment in &expected {
+            assert!(text.contains(fragment.as_str()), "{fragment}");
+        }
+        assert_eq!(radiosity("d_caustic").verdict, Verdict::No);
+        let two_pass = |effect| cell("two_pass", effect).verdict.text();
+        let line = text.lines().find(|l| l.starts_with("(b) two-pass")).unwrap();
+        let expected = format!(
+            "(a) {}, (b) {}, (c) {}, (d) mirror images {} (misses {}",
+            two_pass("a"),
+            two_pass("b"),
+            two_pass("c"),
+            two_pass("d_mirror"),
+            cell("two_pass", "d_mirror").witness.as_deref().unwrap()
+        );
+        assert!(line.contains(&expected), "{expected}");
+        assert_eq!(cell("two_pass", "d_caustic").verdict, Verdict::Impractical, "printed as possible but impractical");
+        // "all five as the seed says": one seed answer per letter of Q5(a).
+        assert_eq!(SEED_ANSWERS.iter().filter(|(part, _, _)| *part == 'a').count(), 5);
+    }
 }

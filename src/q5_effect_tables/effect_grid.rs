@@ -19,9 +19,22 @@ use crate::render::scene::{Material, Scene};
 use crate::render::{Image, Settings, render, render_with};
 
 /// File name of the grid.
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::effect_grid::GRID_PNG;
+/// assert!(GRID_PNG.starts_with("q5_") && GRID_PNG.ends_with(".png"));
+/// ```
 pub const GRID_PNG: &str = "q5_effect_grid.png";
 
 /// Size of one panel of the grid, in pixels.
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::{effect_grid::PANEL_SIZE, experiments::TABLE_METHODS};
+/// // Four columns of panels: 1280 pixels wide.
+/// assert_eq!(PANEL_SIZE.0 * TABLE_METHODS.len() as u32, 1280);
+/// ```
 pub const PANEL_SIZE: (u32, u32) = (320, 240);
 
 /// A row of the grid: the effect's id (a row of [`EXPERIMENTS`]), its title, and the exposure its
