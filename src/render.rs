@@ -219,9 +219,10 @@ pub fn render(scene: &Scene, settings: &Settings, progress: &(dyn Fn(u32) + Sync
 ///
 /// # Examples
 /// ```
-/// use hw3::render::{Settings, analysis::analyze, catalogue, integrator::Tracer, render, render_with};
+/// use hw3::render::{Settings, analysis::analyze, catalogue, integrator::Tracer, passes::Pass, render, render_with};
 /// let scene = catalogue::mirror_spheres(true).unwrap();
-/// let settings = Settings::whitted(16, 12, 1, analyze(&scene).plan);
+/// // Without the caustic pass, `render` builds exactly this tracer.
+/// let settings = Settings::whitted(16, 12, 1, analyze(&scene).plan.with(Pass::Caustics, false));
 /// let tracer = Tracer::new(&scene, settings.passes);
 /// assert_eq!(render_with(&tracer, &settings, &|_| {}).unwrap(), render(&scene, &settings, &|_| {}).unwrap());
 /// ```
