@@ -1,6 +1,7 @@
 #![doc = include_str!(concat!(env!("OUT_DIR"), "/q5_effect_tables.md"))]
 
 pub mod cornell_published;
+pub mod effect_grid;
 pub mod effect_scenes;
 pub mod error;
 pub mod experiments;
@@ -18,7 +19,7 @@ pub use grammar::{
 };
 
 use crate::answers::Answers;
-use crate::plot::{Figure, PlotError};
+use crate::plot::{Figure, PlotError, markdown_table};
 use grammar::agreement;
 
 /// The cell-by-cell comparison with the seed (area light, the seed's two columns): the seed's
@@ -36,9 +37,7 @@ use grammar::agreement;
 /// ```
 pub fn seed_comparison_markdown() -> Result<String, String> {
     let measured = experiments::measured_table().map_err(|e| e.to_string())?;
-    let mut out = String::from(
-        "| seed cell | effect | seed | grammar | shortest path missed | comparison | measured |\n|---|---|---|---|---|---|---|\n",
-    );
+    let mut rows = Vec::new();
     for cell in grammar_table().map_err(|e| e.to_string())?.iter().filter(|c| c.seed != SeedAnswer::NotAsked) {
         let Some(method) = METHODS.iter().find(|m| m.id == cell.method) else { continue };
         let Some(effect) = EFFECTS.iter().find(|e| e.id == cell.effect) else { continue };
@@ -46,18 +45,18 @@ pub fn seed_comparison_markdown() -> Result<String, String> {
             .iter()
             .find(|m| m.effect == cell.effect && m.method == cell.method)
             .map_or_else(|| "–".to_string(), |m| format!("{} ({:.2})", m.verdict.text(), m.fraction));
-        out.push_str(&format!(
-            "| 5({})({}) | `{}` | {} | {} | {} | {} | {experiment} |\n",
-            method.seed_part.unwrap_or('?'),
-            effect.id.replace('_', " "),
-            effect.paths,
-            cell.seed.text(),
-            cell.verdict.text(),
-            cell.witness.as_deref().unwrap_or("–"),
-            agreement(cell)
-        ));
+        rows.push([
+            format!("5({})({})", method.seed_part.unwrap_or('?'), effect.id.replace('_', " ")),
+            format!("`{}`", effect.paths),
+            cell.seed.text().to_string(),
+            cell.verdict.text().to_string(),
+            cell.witness.as_deref().unwrap_or("–").to_string(),
+            agreement(cell).to_string(),
+            experiment,
+        ]);
     }
-    Ok(out)
+    let header = ["seed cell", "effect", "seed", "grammar", "shortest path missed", "comparison", "measured"];
+    Ok(markdown_table(&header, rows))
 }
 
 /// The output of `hw3 effects-table`: the grammar tables, the seed comparison and the measured
@@ -221,5 +220,51 @@ mod tests {
         for c in cells.iter().filter(|c| c.method == "radiosity") {
             assert_eq!(c.verdict.text(), c.seed.text(), "{c:?}");
         }
+    }
+
+    /// The verdict words and missed paths that [`answers`] prints for radiosity are the grammar's
+    /// (area light), and the two-pass ones for (a)–(c) and the mirror image too.
+    #[test]
+    fn printed_verdicts_are_the_grammar_ones() {
+        let cells = grammar_table().unwrap();
+        let cell = |method: &str, effect: &str| {
+            cells.iter().find(|c| c.light == LightKind::Area && c.method == method && c.effect == effect).unwrap()
+        };
+        let text = answers().text;
+        let radiosity = |effect| cell("radiosity", effect);
+        let expected = [
+            format!(
+                "(a) highlight {} (misses {})",
+                radiosity("a").verdict.text(),
+                radiosity("a").witness.as_deref().unwrap()
+            ),
+            format!("(b) colour bleeding {}", radiosity("b").verdict.text()),
+            format!("(c) diffuse shading {}", radiosity("c").verdict.text()),
+            format!(
+                "(d) specular effects {} (misses {}, {})",
+                radiosity("d_mirror").verdict.text(),
+                radiosity("d_mirror").witness.as_deref().unwrap(),
+                radiosity("d_caustic").witness.as_deref().unwrap()
+            ),
+            format!("(e) ambient glow {}", radiosity("e").verdict.text()),
+        ];
+        for fragment in &expected {
+            assert!(text.contains(fragment.as_str()), "{fragment}");
+        }
+        assert_eq!(radiosity("d_caustic").verdict, Verdict::No);
+        let two_pass = |effect| cell("two_pass", effect).verdict.text();
+        let line = text.lines().find(|l| l.starts_with("(b) two-pass")).unwrap();
+        let expected = format!(
+            "(a) {}, (b) {}, (c) {}, (d) mirror images {} (misses {}",
+            two_pass("a"),
+            two_pass("b"),
+            two_pass("c"),
+            two_pass("d_mirror"),
+            cell("two_pass", "d_mirror").witness.as_deref().unwrap()
+        );
+        assert!(line.contains(&expected), "{expected}");
+        assert_eq!(cell("two_pass", "d_caustic").verdict, Verdict::Impractical, "printed as possible but impractical");
+        // "all five as the seed says": one seed answer per letter of Q5(a).
+        assert_eq!(SEED_ANSWERS.iter().filter(|(part, _, _)| *part == 'a').count(), 5);
     }
 }

@@ -197,7 +197,6 @@ pub fn check_settings(settings: &Settings) -> Result<(), RenderError> {
 /// ```
 pub fn render(scene: &Scene, settings: &Settings, progress: &(dyn Fn(u32) + Sync)) -> Result<Image, RenderError> {
     check_settings(settings)?;
-    let frame = CameraFrame::new(scene.camera());
     let caustic_map = match settings.integrator {
         Integrator::Whitted { .. } if settings.passes.caustics => {
             Some(photon::trace_caustic_photons(scene, settings.caustics.photons, settings.seed)?)
@@ -208,6 +207,33 @@ pub fn render(scene: &Scene, settings: &Settings, progress: &(dyn Fn(u32) + Sync
         Some(map) => Tracer::new(scene, settings.passes).with_caustics(map, settings.caustics.gather),
         None => Tracer::new(scene, settings.passes),
     };
+    render_with(&tracer, settings, progress)
+}
+
+/// Renders [`Tracer::scene`] with `tracer` as given (its passes, photon maps and options; the
+/// passes of `settings` only decide time sampling, its caustic settings are unused), by
+/// [`render`]'s pixel loop: the same streams, so the same bytes for any thread count.
+///
+/// # Errors
+/// As [`render`].
+///
+/// # Examples
+/// ```
+/// use hw3::render::{Settings, analysis::analyze, catalogue, integrator::Tracer, passes::Pass, render, render_with};
+/// let scene = catalogue::mirror_spheres(true).unwrap();
+/// // Without the caustic pass, `render` builds exactly this tracer.
+/// let settings = Settings::whitted(16, 12, 1, analyze(&scene).plan.with(Pass::Caustics, false));
+/// let tracer = Tracer::new(&scene, settings.passes);
+/// assert_eq!(render_with(&tracer, &settings, &|_| {}).unwrap(), render(&scene, &settings, &|_| {}).unwrap());
+/// ```
+pub fn render_with(
+    tracer: &Tracer,
+    settings: &Settings,
+    progress: &(dyn Fn(u32) + Sync),
+) -> Result<Image, RenderError> {
+    check_settings(settings)?;
+    let scene = tracer.scene();
+    let frame = CameraFrame::new(scene.camera());
     let (open, close) = scene.camera().shutter;
     let (width, height) = (settings.width, settings.height);
     let aspect = f64::from(width) / f64::from(height);

@@ -370,9 +370,10 @@ fn legend_mark<DB: DrawingBackend>(annotation: &mut SeriesAnno<'_, DB>, mark: Le
     };
 }
 
-/// The charts of Q1, Q4 and Q5 are still built by hand; each test below draws one of them the way
-/// its module does (same calls, small data) and demands the same bytes from a [`Chart`], so that
-/// converting them later is a change of code, not of figures.
+/// Each test below draws a chart by hand with plotters the way a question's figure code draws
+/// it (Q1's chart, Q4's Pareto charts, Q5's log-log chart; same calls, small data) and demands the
+/// same bytes from a [`Chart`], so that converting a chart to it is a change of code, not of
+/// figures.
 #[cfg(test)]
 mod tests {
     use super::*;

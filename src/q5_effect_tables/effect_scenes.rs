@@ -20,27 +20,109 @@ use crate::render::{
 use glam::DVec3;
 
 /// Radiance of the small lights of the open scenes (brighter than the box's: one light, no walls).
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::{effect_scenes::OPEN_LIGHT_RADIANCE, scenes::LIGHT_RADIANCE};
+/// assert!(OPEN_LIGHT_RADIANCE > LIGHT_RADIANCE);
+/// ```
 pub const OPEN_LIGHT_RADIANCE: f64 = 50.0;
 /// Side of the square light over the floor.
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::effect_scenes::{FLOOR_LIGHT_SIZE, WHITE_FLOOR, lit_floor};
+/// let scene = lit_floor(WHITE_FLOOR, false).unwrap();
+/// let light = scene.area_lights().next().unwrap();
+/// assert_eq!((light.edge_u.length(), light.edge_v.length()), (FLOOR_LIGHT_SIZE, FLOOR_LIGHT_SIZE));
+/// ```
 pub const FLOOR_LIGHT_SIZE: f64 = 0.5;
 /// Height of that light above the floor.
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::effect_scenes::{FLOOR_LIGHT_HEIGHT, WHITE_FLOOR, lit_floor};
+/// let light = lit_floor(WHITE_FLOOR, false).unwrap().area_lights().next().unwrap();
+/// assert_eq!(light.corner.y, FLOOR_LIGHT_HEIGHT);
+/// ```
 pub const FLOOR_LIGHT_HEIGHT: f64 = 4.0;
 /// Radius of the glass ball of the caustic scene (refractive index [`GLASS_INDEX`]).
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::effect_scenes::{BALL_HEIGHT, BALL_RADIUS};
+/// // The ball floats: its lowest point is above the floor.
+/// assert!(BALL_HEIGHT - BALL_RADIUS > 0.2);
+/// ```
 pub const BALL_RADIUS: f64 = 0.5;
 /// Refractive index of the ball.
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::effect_scenes::{GLASS_INDEX, WHITE_FLOOR, lit_floor};
+/// use hw3::render::scene::Material;
+/// let scene = lit_floor(WHITE_FLOOR, true).unwrap();
+/// assert_eq!(scene.objects()[2].material, Material::Glass { index: GLASS_INDEX });
+/// ```
 pub const GLASS_INDEX: f64 = 1.5;
 /// Height of the ball's centre: the paraxial focal length of a ball lens, `nR/(2(n − 1))` from
 /// its centre, puts the focus of parallel light on the floor (the light, 3.25 above the centre, is
 /// imaged 0.975 below it, 0.225 below the floor).
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::effect_scenes::{BALL_HEIGHT, FLOOR_LIGHT_HEIGHT};
+/// // The paraxial focus, 0.75 above the floor, and the light's image 0.225 below it.
+/// assert!((BALL_HEIGHT - 0.75).abs() < 1e-12);
+/// let f = BALL_HEIGHT;
+/// let s = FLOOR_LIGHT_HEIGHT - BALL_HEIGHT;
+/// assert!((1.0 / (1.0 / f - 1.0 / s) - BALL_HEIGHT - 0.225).abs() < 1e-12);
+/// ```
 pub const BALL_HEIGHT: f64 = GLASS_INDEX * BALL_RADIUS / (2.0 * (GLASS_INDEX - 1.0));
 /// The glossy floor of the highlight experiment: modified Phong with this diffuse and specular
 /// reflectance and exponent.
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::effect_scenes::{GLOSSY_FLOOR, lit_floor};
+/// // A valid material (kd + ks ≤ 1): the scene builds.
+/// assert!(lit_floor(GLOSSY_FLOOR, false).is_ok());
+/// ```
 pub const GLOSSY_FLOOR: Material =
     Material::Glossy { diffuse: DVec3::splat(0.3), specular: DVec3::splat(0.5), exponent: 30.0 };
 /// The eye of the highlight probes: it sees the light's mirror image at [`HIGHLIGHT_POINT`].
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::effect_scenes::{FLOOR_LIGHT_HEIGHT, HIGHLIGHT_EYE, HIGHLIGHT_POINT};
+/// // Mirrored in the floor, the direction to the eye is the direction to the light's centre.
+/// let to_eye = HIGHLIGHT_EYE - HIGHLIGHT_POINT;
+/// let to_light = glam::DVec3::Y * FLOOR_LIGHT_HEIGHT - HIGHLIGHT_POINT;
+/// assert_eq!(glam::DVec3::new(-to_eye.x, to_eye.y, to_eye.z), to_light);
+/// ```
 pub const HIGHLIGHT_EYE: DVec3 = DVec3::new(-3.0, 4.0, 0.0);
 /// The floor point whose mirror direction towards [`HIGHLIGHT_EYE`] points at the light's centre.
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::effect_scenes::HIGHLIGHT_POINT;
+/// // On the floor, inside its 4 × 4 square.
+/// assert!(HIGHLIGHT_POINT.y == 0.0 && HIGHLIGHT_POINT.x.abs() < 2.0);
+/// ```
 pub const HIGHLIGHT_POINT: DVec3 = DVec3::new(-1.5, 0.0, 0.0);
+
+/// The camera of the highlight's pictures: at [`HIGHLIGHT_EYE`], looking past
+/// [`HIGHLIGHT_POINT`] towards the floor's centre, so that the highlight sits left of the middle.
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::effect_scenes::{HIGHLIGHT_EYE, highlight_camera};
+/// assert_eq!(highlight_camera().eye, HIGHLIGHT_EYE);
+/// ```
+#[must_use]
+pub fn highlight_camera() -> Camera {
+    Camera::looking_at(HIGHLIGHT_EYE, HIGHLIGHT_POINT + DVec3::X * 0.6, 45.0)
+}
 
 /// A 4 × 4 floor (`y = 0`, `x, z ∈ [−2, 2]`) of material `floor` under a
 /// [`FLOOR_LIGHT_SIZE`]² light facing down at height [`FLOOR_LIGHT_HEIGHT`] over the origin,
@@ -78,6 +160,13 @@ pub fn lit_floor(floor: Material, glass_ball: bool) -> Result<Scene, InputError>
 }
 
 /// The white diffuse floor of the direct-shading and caustic experiments.
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::{effect_scenes::WHITE_FLOOR, scenes::WHITE};
+/// use hw3::render::scene::Material;
+/// assert_eq!(WHITE_FLOOR, Material::Diffuse { albedo: WHITE });
+/// ```
 pub const WHITE_FLOOR: Material = Material::Diffuse { albedo: WHITE };
 
 /// A red diffuse panel (`x = −1`, facing `+x`, `y ∈ [0, 2]`, `z ∈ [−1, 1]`), a 0.6 × 0.4 light
@@ -115,6 +204,13 @@ pub fn mirror_room() -> Result<Scene, InputError> {
 }
 
 /// The eye of the mirror probes, between the light's plane and the mirror.
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::effect_scenes::MIRROR_EYE;
+/// // Between the light's plane (x = 0) and the mirror (x = 1).
+/// assert!(MIRROR_EYE.x > 0.0 && MIRROR_EYE.x < 1.0);
+/// ```
 pub const MIRROR_EYE: DVec3 = DVec3::new(0.4, 1.0, 0.0);
 
 /// A 4 × 4 grid of offsets `spacing` apart, centred on 0, in the plane spanned by `u` and `v`.

@@ -5,6 +5,13 @@ use crate::geometry::InputError;
 use crate::render::photon::PhotonError;
 
 /// Why an experiment could not run.
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::{error::ExperimentError, radiosity::RadiosityError};
+/// let error: ExperimentError = RadiosityError::NoPatches.into();
+/// assert_eq!(error.to_string(), "the scene has no diffuse or emitting quad to mesh");
+/// ```
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum ExperimentError {
     /// The radiosity system could not be built.

@@ -7,14 +7,14 @@ use super::grammar::{EFFECTS, LightKind, METHODS, SeedAnswer, Verdict, decide, s
 use super::radiosity::{Mesh, Solver, System};
 use super::scenes::{bleeding_region, cornell_box, glow_region, grey};
 use crate::geometry::Ray;
-use crate::render::photon::{PhotonError, PhotonMap, PhotonMaps, trace_photons};
+use crate::plot::markdown_table;
+use crate::render::photon::{Gather, PhotonError, PhotonMaps, trace_photons};
 use crate::render::scene::{Material, Scene};
 use crate::render::{
     analysis::analyze,
     passes::{Pass, Passes},
 };
 use crate::render::{
-    bsdf::{dielectric_split, facing_normal, reflected_ray},
     integrator::{Integrator, Tracer},
     sampling::Sampler,
 };
@@ -24,15 +24,50 @@ use std::sync::OnceLock;
 
 /// Radiosity mesh used by the measured table: patches per quad edge and form-factor samples per
 /// patch edge.
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::{experiments::TABLE_MESH, radiosity::Mesh, scenes::cornell_box};
+/// // The box's 11 quads at 6 × 6 patches each.
+/// let scene = cornell_box(true).unwrap();
+/// assert_eq!(Mesh::new(&scene, TABLE_MESH.0).unwrap().patches.len(), 11 * 36);
+/// ```
 pub const TABLE_MESH: (usize, usize) = (6, 2);
 /// Path-traced reference: samples per measurement point.
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::{PATH_SPP, experiments::REFERENCE_SPP};
+/// // The reference takes far more samples than any picture.
+/// assert!(REFERENCE_SPP >= 32 * PATH_SPP);
+/// ```
 pub const REFERENCE_SPP: u32 = 1024;
 /// A cell is Yes when the method captures at least this fraction of the reference's effect.
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::{Verdict, experiments::{YES_FRACTION, verdict}};
+/// assert_eq!(verdict(YES_FRACTION), Verdict::Yes);
+/// assert_eq!(verdict(YES_FRACTION - 0.01), Verdict::Impractical);
+/// ```
 pub const YES_FRACTION: f64 = 0.8;
 /// A cell is No when it captures at most this fraction.
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::{Verdict, experiments::{NO_FRACTION, verdict}};
+/// assert_eq!(verdict(NO_FRACTION), Verdict::No);
+/// assert_eq!(verdict(NO_FRACTION + 0.01), Verdict::Impractical);
+/// ```
 pub const NO_FRACTION: f64 = 0.2;
 
 /// A method that the experiments run.
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::experiments::{Measured, TABLE_METHODS};
+/// assert_eq!(TABLE_METHODS.map(Measured::id), ["radiosity", "two_pass", "whitted", "photon_mapping"]);
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Measured {
     /// Radiosity with `subdivisions²` patches per quad and `samples²` form-factor samples per patch.
@@ -55,15 +90,37 @@ pub enum Measured {
 }
 
 /// Photons emitted for the two-pass and photon-mapping cells.
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::experiments::{NEIGHBOURS, PHOTONS};
+/// // Each estimate reads a small fraction of the map.
+/// assert!(NEIGHBOURS * 1000 < PHOTONS);
+/// ```
 pub const PHOTONS: usize = 200_000;
 /// Neighbours of the photon-map radiance estimate for those cells.
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::experiments::NEIGHBOURS;
+/// // A valid gather (k ≥ 2), with no radius limit: the plain k-nearest estimate.
+/// assert!(hw3::render::photon::Gather::new(NEIGHBOURS, f64::MAX).is_ok());
+/// ```
 pub const NEIGHBOURS: usize = 100;
 
 /// Radiosity at the measured table's mesh ([`TABLE_MESH`]).
 const TABLE_RADIOSITY: Measured = Measured::Radiosity { subdivisions: TABLE_MESH.0, samples: TABLE_MESH.1 };
 
 impl Measured {
-    fn id(self) -> &'static str {
+    /// The method's column id in [`METHODS`].
+    ///
+    /// # Examples
+    /// ```
+    /// use hw3::q5_effect_tables::experiments::Measured;
+    /// assert_eq!(Measured::PhotonMapping.id(), "photon_mapping");
+    /// ```
+    #[must_use]
+    pub fn id(self) -> &'static str {
         match self {
             Measured::Radiosity { .. } => "radiosity",
             Measured::Whitted => "whitted",
@@ -76,10 +133,10 @@ impl Measured {
 
 /// Samples per probe of the eye rays' direct light (Whitted's shadow rays) in the Whitted,
 /// two-pass and photon-mapping measurements.
-const DIRECT_SPP: u32 = 16;
+pub(super) const DIRECT_SPP: u32 = 16;
 
 /// Specular bounces that photon mapping's eye rays follow (and Whitted's).
-const SPECULAR_DEPTH: u32 = 5;
+pub(super) const SPECULAR_DEPTH: u32 = 5;
 
 /// Mean radiance arriving along the probe rays in `scene` by `method`.
 fn mean_radiance(scene: &Scene, method: Measured, probes: &[Ray<f64>]) -> Result<DVec3, ExperimentError> {
@@ -119,15 +176,13 @@ fn mean_radiance(scene: &Scene, method: Measured, probes: &[Ray<f64>]) -> Result
                 .sum()
         }
         Measured::TwoPass | Measured::PhotonMapping => {
-            let maps = trace_photons(scene, PHOTONS, 3)?;
-            let photon_mapping = method == Measured::PhotonMapping;
-            let eye = PhotonEye::new(scene, &maps, photon_mapping);
-            let mut total = DVec3::ZERO;
-            for (k, ray) in probes.iter().enumerate() {
-                let mut sampler = Sampler::new(5, k as u64, 0);
-                total += eye.radiance(ray, if photon_mapping { SPECULAR_DEPTH } else { 0 }, &mut sampler)?;
-            }
-            total
+            let maps = trace_photons(scene, PHOTONS, PHOTON_SEED)?;
+            let (tracer, integrator) = photon_eye(scene, &maps, method == Measured::PhotonMapping)?;
+            probes
+                .iter()
+                .enumerate()
+                .map(|(k, ray)| tracer.radiance(integrator, ray, 0.0, &mut Sampler::new(5, k as u64, 0)))
+                .sum()
         }
     };
     Ok(sum / probes.len() as f64)
@@ -140,68 +195,51 @@ pub(super) fn reference_passes(scene: &Scene) -> Passes {
     analyze(scene).plan.with(Pass::IndirectBounces, true).with(Pass::SpecularRecursion, true)
 }
 
-/// The eye pass of the two photon methods. The seed's two-pass method: the eye ray's first hit
-/// gets direct light from shadow rays (Whitted at depth 0: a mirror or glass hit stays black, the
-/// ray is not traced further) plus the *indirect* photon map (photons after a diffuse bounce).
-/// Photon mapping (Jensen): eye rays are traced through mirrors and glass, and the diffuse hit
-/// adds the *caustic* map too.
-struct PhotonEye<'a> {
+/// Random seed of the photon pass of the two photon methods.
+pub(super) const PHOTON_SEED: u64 = 3;
+
+/// The eye pass of the two photon methods, as the renderer's [`Tracer`] and the integrator to
+/// run it with. The seed's two-pass method: the eye ray's first hit gets direct light from shadow
+/// rays (Whitted at depth 0, the mean of [`DIRECT_SPP`] light samples: a mirror or glass hit stays
+/// black, the ray is not traced further) plus the *indirect* photon map (photons after a diffuse
+/// bounce). Photon mapping (`caustics`, Jensen): eye rays are traced through up to
+/// [`SPECULAR_DEPTH`] mirror and glass bounces, and the diffuse hit adds the *caustic* map of the
+/// same photon pass too. Both maps are read with the plain [`NEIGHBOURS`]-nearest estimate (no
+/// radius limit), which is zero on a map of fewer photons (an open scene with no second diffuse
+/// surface holds no measurable density).
+///
+/// # Errors
+/// [`PhotonError`] never for the built-in neighbour count (a [`Gather`] needs k ≥ 2).
+pub(super) fn photon_eye<'a>(
     scene: &'a Scene,
-    tracer: Tracer<'a>,
     maps: &'a PhotonMaps,
     caustics: bool,
-}
-
-impl<'a> PhotonEye<'a> {
-    fn new(scene: &'a Scene, maps: &'a PhotonMaps, caustics: bool) -> Self {
-        let direct = Integrator::Whitted { max_depth: 0 };
-        Self { scene, tracer: Tracer::new(scene, direct.restrict(analyze(scene).plan)), maps, caustics }
-    }
-
-    /// Radiance along `ray`, following at most `depth` specular bounces.
-    fn radiance(&self, ray: &Ray<f64>, depth: u32, sampler: &mut Sampler) -> Result<DVec3, PhotonError> {
-        let hit = self.scene.closest_hit(ray, 0.0, f64::INFINITY);
-        let material = hit.map(|h| self.scene.objects()[h.object].material);
-        match (hit, material) {
-            (Some(hit), Some(Material::Mirror { reflectance })) if depth > 0 => {
-                Ok(reflectance * self.radiance(&reflected_ray(ray, &hit), depth - 1, sampler)?)
-            }
-            (Some(hit), Some(Material::Glass { index })) if depth > 0 => {
-                let split = dielectric_split(ray, &hit, index);
-                let mut total = split.reflectance * self.radiance(&reflected_ray(ray, &hit), depth - 1, sampler)?;
-                if let Some(refracted) = split.refracted {
-                    total += (1.0 - split.reflectance) * self.radiance(&refracted, depth - 1, sampler)?;
-                }
-                Ok(total)
-            }
-            (Some(hit), Some(material @ (Material::Diffuse { .. } | Material::Glossy { .. }))) => {
-                let direct = self.direct(ray, sampler);
-                let normal = facing_normal(ray, &hit);
-                // A map with fewer than k photons (an open scene with no second diffuse surface)
-                // holds no measurable density: it contributes nothing.
-                let estimate = |map: &PhotonMap| {
-                    if map.len() < NEIGHBOURS {
-                        Ok(DVec3::ZERO)
-                    } else {
-                        map.radiance(&material, hit.point, -ray.dir, normal, NEIGHBOURS)
-                    }
-                };
-                let caustic = if self.caustics { estimate(&self.maps.caustic)? } else { DVec3::ZERO };
-                Ok(direct + estimate(&self.maps.indirect)? + caustic)
-            }
-            // Emitters, the background, and specular surfaces the ray is not traced through.
-            _ => Ok(self.direct(ray, sampler)),
-        }
-    }
-
-    /// What the eye ray sees with direct light only, averaged over [`DIRECT_SPP`] light samples.
-    fn direct(&self, ray: &Ray<f64>, sampler: &mut Sampler) -> DVec3 {
-        let direct = Integrator::Whitted { max_depth: 0 };
-        (0..DIRECT_SPP).map(|_| self.tracer.radiance(direct, ray, 0.0, sampler)).sum::<DVec3>() / f64::from(DIRECT_SPP)
-    }
+) -> Result<(Tracer<'a>, Integrator), PhotonError> {
+    let gather = Gather::new(NEIGHBOURS, f64::MAX)?;
+    let integrator = Integrator::Whitted { max_depth: if caustics { SPECULAR_DEPTH } else { 0 } };
+    let passes = integrator.restrict(analyze(scene).plan).with(Pass::SpecularRecursion, caustics);
+    let tracer = Tracer::new(scene, passes).with_light_samples(DIRECT_SPP).with_indirect(&maps.indirect, gather);
+    Ok((if caustics { tracer.with_caustics(&maps.caustic, gather) } else { tracer }, integrator))
 }
 
 /// A measured cell.
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::{SeedAnswer, Verdict, experiments::{MeasuredCell, verdict}};
+/// let (value, reference) = (0.29, 0.30);
+/// let cell = MeasuredCell {
+///     effect: "d_mirror",
+///     method: "whitted",
+///     value,
+///     reference,
+///     fraction: value / reference,
+///     verdict: verdict(value / reference),
+///     grammar: Verdict::Yes,
+///     seed: SeedAnswer::NotAsked,
+/// };
+/// assert_eq!(cell.verdict, cell.grammar);
+/// ```
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct MeasuredCell {
     /// Effect id (a row of [`EFFECTS`]).
@@ -337,9 +375,22 @@ pub fn glow(method: Measured) -> Result<f64, ExperimentError> {
 }
 
 /// A measurement: the size of one effect for one method.
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::experiments::{Experiment, Measured, glow};
+/// let measure: Experiment = glow;
+/// assert_eq!(measure(Measured::Whitted).unwrap(), 0.0);
+/// ```
 pub type Experiment = fn(Measured) -> Result<f64, ExperimentError>;
 
 /// Every effect row of [`EFFECTS`] with its experiment, in table order.
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::{EFFECTS, experiments::EXPERIMENTS};
+/// assert_eq!(EXPERIMENTS.map(|(id, _)| id), EFFECTS.map(|e| e.id));
+/// ```
 pub const EXPERIMENTS: [(&str, Experiment); 6] = [
     ("a", highlight),
     ("b", bleeding),
@@ -350,6 +401,13 @@ pub const EXPERIMENTS: [(&str, Experiment); 6] = [
 ];
 
 /// The methods of the measured table, in column order.
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::{METHODS, experiments::TABLE_METHODS};
+/// // Every measured method is a column of the grammar's table.
+/// assert!(TABLE_METHODS.iter().all(|m| METHODS.iter().any(|column| column.id == m.id())));
+/// ```
 pub const TABLE_METHODS: [Measured; 4] =
     [TABLE_RADIOSITY, Measured::TwoPass, Measured::Whitted, Measured::PhotonMapping];
 
@@ -441,23 +499,23 @@ fn measure_table() -> Result<Vec<MeasuredCell>, ExperimentError> {
 /// ```
 #[must_use]
 pub fn measured_table_markdown(cells: &[MeasuredCell]) -> String {
-    let mut out = String::from(
-        "| effect | method | measured | path-traced reference | fraction | measured verdict | grammar | seed |\n|---|---|---|---|---|---|---|---|\n",
-    );
-    for c in cells {
-        out.push_str(&format!(
-            "| ({}) | {} | {:.4} | {:.4} | {:.3} | {} | {} | {} |\n",
-            c.effect.replace('_', " "),
-            c.method,
-            c.value,
-            c.reference,
-            c.fraction,
-            c.verdict.text(),
-            c.grammar.text(),
-            c.seed.text()
-        ));
-    }
-    out
+    let header =
+        ["effect", "method", "measured", "path-traced reference", "fraction", "measured verdict", "grammar", "seed"];
+    markdown_table(
+        &header,
+        cells.iter().map(|c| {
+            [
+                format!("({})", c.effect.replace('_', " ")),
+                c.method.to_string(),
+                format!("{:.4}", c.value),
+                format!("{:.4}", c.reference),
+                format!("{:.3}", c.fraction),
+                c.verdict.text().to_string(),
+                c.grammar.text().to_string(),
+                c.seed.text().to_string(),
+            ]
+        }),
+    )
 }
 
 /// The radiosity system of the Cornell box at `n × n` patches per quad (figures and benchmarks).

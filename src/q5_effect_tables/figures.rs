@@ -7,12 +7,9 @@ use super::error::ExperimentError;
 use super::experiments::{cornell_system, measured_table, measured_table_markdown, reference_passes};
 use super::grammar::grammar_table_markdown;
 use super::radiosity::{Solver, relative_errors};
-use crate::plot::{self, Figure, PALETTE, Panel, PlotError, err};
-use crate::render::camera::Camera;
+use crate::plot::{self, Axis, Chart, Figure, Legend, PALETTE, Panel, PlotError, Series};
 use crate::render::integrator::Integrator;
 use crate::render::{Settings, render};
-use glam::DVec3;
-use plotters::prelude::*;
 
 /// The drawn figures: solver convergence (SVG), the published Cornell box's validation, the
 /// measured table and the grammar tables (markdown); the renders are [`renders`].
@@ -27,40 +24,26 @@ pub(super) fn figures() -> Result<Vec<Figure>, PlotError> {
     let reference = small.solve(Solver::GaussSeidel, 200).pop().unwrap_or_default();
     let curves: Vec<(Solver, Vec<f64>)> =
         Solver::ALL.iter().map(|&s| (s, relative_errors(&small.solve(s, 20), &reference))).collect();
-    figures.push(plot::svg_figure("q5_radiosity_convergence.svg", (640, 400), |root| {
-        root.fill(&WHITE_BG).map_err(err)?;
-        let mut chart = ChartBuilder::on(root)
-            .caption("Radiosity solvers: error vs sweeps (176 patches)", ("sans-serif", 18))
-            .margin(12)
-            .x_label_area_size(40)
-            .y_label_area_size(60)
-            .build_cartesian_2d(0f64..20f64, (1e-12f64..1f64).log_scale())
-            .map_err(err)?;
-        chart
-            .configure_mesh()
-            .x_desc("sweeps (Southwell: N shots)")
-            .y_desc("max |B − B*| / max B*")
-            .label_style(("sans-serif", 12))
-            .draw()
-            .map_err(err)?;
-        for (k, (solver, errors)) in curves.iter().enumerate() {
-            let color = PALETTE[k % PALETTE.len()];
-            let points: Vec<(f64, f64)> =
+    let series = curves
+        .iter()
+        .enumerate()
+        .map(|(k, (solver, errors))| {
+            let points =
                 errors.iter().enumerate().filter(|(_, e)| **e > 0.0).map(|(i, &e)| (i as f64, e.max(1e-12))).collect();
-            chart
-                .draw_series(LineSeries::new(points, color.stroke_width(2)))
-                .map_err(err)?
-                .label(solver.name())
-                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], color.stroke_width(2)));
-        }
-        chart
-            .configure_series_labels()
-            .background_style(WHITE_BG.mix(0.8))
-            .border_style(BLACK)
-            .label_font(("sans-serif", 13))
-            .draw()
-            .map_err(err)
-    })?);
+            Series::line(solver.name(), points, PALETTE[k % PALETTE.len()], 2)
+        })
+        .collect();
+    let convergence = Chart {
+        fill: true,
+        series,
+        legend: Some(Legend { position: None, font: 13, opacity: 0.8 }),
+        ..Chart::new(
+            "Radiosity solvers: error vs sweeps (176 patches)",
+            Axis::linear(0.0, 20.0, "sweeps (Southwell: N shots)"),
+            Axis::log(1e-12, 1.0, "max |B − B*| / max B*"),
+        )
+    };
+    figures.push(convergence.svg("q5_radiosity_convergence.svg", (640, 400))?);
     let validation = cornell_published::validation_table().map_err(|e| draw_error("q5_cornell_published.md", &e))?;
     figures.push(Figure { file_name: "q5_cornell_published.md".into(), bytes: validation.into_bytes() });
     let measured = measured_table().map_err(|e| draw_error("q5_measured_table.md", &e))?;
@@ -80,6 +63,12 @@ const PUBLISHED_PNG: &str = "q5_cornell_published.png";
 const EFFECT_SCENES_PNG: &str = "q5_effect_scenes.png";
 
 /// Samples per pixel of the path-traced renders of Q5's figures.
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::{PATH_SPP, experiments::REFERENCE_SPP};
+/// assert!(PATH_SPP < REFERENCE_SPP);
+/// ```
 pub const PATH_SPP: u32 = 32;
 
 /// Q5's renders (PNG, seeded: the same bytes on every run and thread count): the radiosity
@@ -115,6 +104,7 @@ pub fn renders() -> Result<Vec<Figure>, PlotError> {
         Panel { image: half(size), label: format!("path tracing\n{PATH_SPP} spp") },
     ];
     figures.push(plot::panel_grid(PUBLISHED_PNG, &panels, 2)?);
+    figures.push(super::effect_grid::figure()?);
     Ok(figures)
 }
 
@@ -125,11 +115,12 @@ fn effect_scenes_figure() -> Result<Figure, PlotError> {
     let render_error =
         |e: &dyn std::fmt::Display| PlotError::Draw { figure: EFFECT_SCENES_PNG.into(), message: e.to_string() };
     let (width, height) = (320, 240);
-    let highlight_view =
-        Camera::looking_at(effect_scenes::HIGHLIGHT_EYE, effect_scenes::HIGHLIGHT_POINT + DVec3::X * 0.6, 45.0);
     let scenes = (|| -> Result<_, ExperimentError> {
         Ok([
-            (lit_floor(GLOSSY_FLOOR, false)?.with_camera(highlight_view)?, "(a) highlight on a glossy floor"),
+            (
+                lit_floor(GLOSSY_FLOOR, false)?.with_camera(effect_scenes::highlight_camera())?,
+                "(a) highlight on a glossy floor",
+            ),
             (lit_floor(WHITE_FLOOR, false)?, "direct light on a white floor"),
             (mirror_room()?, "the lit red panel in a mirror"),
             (lit_floor(WHITE_FLOOR, true)?, "caustic under a glass ball"),
@@ -147,6 +138,3 @@ fn effect_scenes_figure() -> Result<Figure, PlotError> {
     }
     plot::panel_grid(EFFECT_SCENES_PNG, &panels, 2)
 }
-
-/// Plotters' white (the crate's [`WHITE`](super::scenes::WHITE) is a reflectance).
-const WHITE_BG: RGBColor = RGBColor(255, 255, 255);

@@ -2,11 +2,19 @@
 //! each method two languages (paths it can produce, paths it samples efficiently), and a cell's
 //! verdict is decided by language inclusion.
 
+use crate::plot::markdown_table;
 use crate::render::analysis::grammar::{GrammarError, Lang, shortest_word, word_text};
 use serde::Serialize;
 
 /// A lighting effect of Q5, reconstructed from the seed's reasons (the effect list itself is
 /// missing from the transcription).
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::EFFECTS;
+/// let highlight = &EFFECTS[0];
+/// assert_eq!((highlight.id, highlight.seed_letter, highlight.paths), ("a", 'a', "LGE"));
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 pub struct Effect {
     /// Row id: `a` … `e`; the seed's (d) "a specular effect" is split into `d_mirror` and `d_caustic`.
@@ -22,6 +30,15 @@ pub struct Effect {
 }
 
 /// The reconstructed effects, in table order.
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::EFFECTS;
+/// use hw3::render::analysis::grammar::Lang;
+/// // The seed's (d) is two rows; every row's paths parse.
+/// assert_eq!(EFFECTS.iter().filter(|e| e.seed_letter == 'd').count(), 2);
+/// assert!(EFFECTS.iter().all(|e| Lang::parse(e.paths).is_ok()));
+/// ```
 pub const EFFECTS: [Effect; 6] = [
     Effect {
         id: "a",
@@ -68,6 +85,14 @@ pub const EFFECTS: [Effect; 6] = [
 ];
 
 /// The kind of light the table assumes; it changes which paths exist and which a method samples.
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::{EFFECTS, LightKind, METHODS, Verdict, decide};
+/// // The path tracer's caustic: impractical with an area light, impossible with a point light.
+/// let verdict = |light| decide(&EFFECTS[4], &METHODS[3], light).unwrap().verdict;
+/// assert_eq!((verdict(LightKind::Area), verdict(LightKind::Point)), (Verdict::Impractical, Verdict::No));
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum LightKind {
@@ -80,6 +105,12 @@ pub enum LightKind {
 
 impl LightKind {
     /// Both kinds, area first (the seed names no light; an area light is the general case).
+    ///
+    /// # Examples
+    /// ```
+    /// use hw3::q5_effect_tables::LightKind;
+    /// assert_eq!(LightKind::ALL, [LightKind::Area, LightKind::Point]);
+    /// ```
     pub const ALL: [LightKind; 2] = [LightKind::Area, LightKind::Point];
 
     /// Paths that carry energy from this kind of light: all of `L…E` for area lights, those with
@@ -94,6 +125,13 @@ impl LightKind {
 
 /// A rendering method as two languages: the paths it can produce at all, and the ones it samples
 /// efficiently (the rest are "possible but impractical": noise, not missing paths).
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::METHODS;
+/// let radiosity = &METHODS[0];
+/// assert_eq!((radiosity.id, radiosity.seed_part, radiosity.paths[0]), ("radiosity", Some('a'), "LD*E"));
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 pub struct Method {
     /// Column id.
@@ -109,6 +147,13 @@ pub struct Method {
 }
 
 /// The methods (columns): the seed's two, then three more.
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::METHODS;
+/// // The seed's two columns come first.
+/// assert_eq!(METHODS.map(|m| m.seed_part)[..3], [Some('a'), Some('b'), None]);
+/// ```
 pub const METHODS: [Method; 5] = [
     Method {
         id: "radiosity",
@@ -152,6 +197,13 @@ pub const METHODS: [Method; 5] = [
 ];
 
 /// A cell's verdict.
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::{EFFECTS, LightKind, METHODS, Verdict, decide};
+/// // Radiosity misses the highlight.
+/// assert_eq!(decide(&EFFECTS[0], &METHODS[0], LightKind::Area).unwrap().verdict, Verdict::No);
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Verdict {
@@ -182,6 +234,13 @@ impl Verdict {
 }
 
 /// The seed's answer for a cell.
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::{EFFECTS, METHODS, SeedAnswer, seed_answer};
+/// // Q5(b)(d): the seed says the two-pass method misses the mirror image.
+/// assert_eq!(seed_answer(&METHODS[1], &EFFECTS[3]), SeedAnswer::No);
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum SeedAnswer {
@@ -213,6 +272,13 @@ impl SeedAnswer {
 
 /// The seed's answers, as transcribed: Q5(a) radiosity a–e, Q5(b) two-pass a–e (the last line of
 /// the homework is (b)(e), "Yes - as in (b)").
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::{SEED_ANSWERS, SeedAnswer};
+/// assert_eq!(SEED_ANSWERS.len(), 10);
+/// assert!(SEED_ANSWERS.contains(&('b', 'e', SeedAnswer::Yes)));
+/// ```
 pub const SEED_ANSWERS: [(char, char, SeedAnswer); 10] = [
     ('a', 'a', SeedAnswer::No),
     ('a', 'b', SeedAnswer::Yes),
@@ -246,6 +312,15 @@ pub fn seed_answer(method: &Method, effect: &Effect) -> SeedAnswer {
 }
 
 /// One cell of the derived table.
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::{LightKind, Verdict, grammar_table};
+/// let cells = grammar_table().unwrap();
+/// let first = &cells[0];
+/// assert_eq!((first.effect, first.method, first.light), ("a", "radiosity", LightKind::Area));
+/// assert_eq!((first.verdict, first.witness.as_deref()), (Verdict::No, Some("LGE")));
+/// ```
 #[derive(Debug, Clone, PartialEq, Eq, Serialize)]
 pub struct Cell {
     /// Effect id (row).
@@ -363,25 +438,21 @@ pub fn grammar_table_markdown() -> Result<String, GrammarError> {
             LightKind::Area => "Area light",
             LightKind::Point => "Point light",
         };
-        out.push_str(&format!("**{title}**\n\n| effect | paths |"));
-        for method in &METHODS {
-            out.push_str(&format!(" {} |", method.name));
-        }
-        out.push_str("\n|---|---|");
-        out.push_str(&"---|".repeat(METHODS.len()));
-        out.push('\n');
-        for effect in &EFFECTS {
-            out.push_str(&format!("| ({}) {} | `{}` |", effect.id.replace('_', " "), effect.name, effect.paths));
-            for method in &METHODS {
-                let cell = cells
+        let header: Vec<&str> = ["effect", "paths"].into_iter().chain(METHODS.iter().map(|m| m.name)).collect();
+        let rows = EFFECTS.iter().map(|effect| {
+            let verdicts = METHODS.iter().map(|method| {
+                cells
                     .iter()
                     .find(|c| c.light == light && c.effect == effect.id && c.method == method.id)
                     .map(cell_text)
-                    .unwrap_or_default();
-                out.push_str(&format!(" {cell} |"));
-            }
-            out.push('\n');
-        }
+                    .unwrap_or_default()
+            });
+            [format!("({}) {}", effect.id.replace('_', " "), effect.name), format!("`{}`", effect.paths)]
+                .into_iter()
+                .chain(verdicts)
+                .collect::<Vec<_>>()
+        });
+        out.push_str(&format!("**{title}**\n\n{}", markdown_table(&header, rows)));
         out.push('\n');
     }
     Ok(out)

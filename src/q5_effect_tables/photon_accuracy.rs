@@ -2,10 +2,17 @@
 //! `cargo bench --bench q5_photon` writes (`docs/data/q5_photon_accuracy.csv`), so that
 //! [`super::figures`] stays deterministic: timings come only from the benchmark.
 
-use crate::plot::{self, Figure, PALETTE, PlotError, err};
-use plotters::prelude::*;
+use crate::plot::{Axis, Chart, Dots, Figure, Legend, PALETTE, PlotError, Series, Stroke, TickFormat};
+use plotters::prelude::{BLACK, SeriesLabelPosition};
 
 /// One row of the photon accuracy CSV.
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::photon_accuracy::{AccuracyRow, parse};
+/// let rows: Vec<AccuracyRow> = parse("header\n10000,19823,8,4.8e-2,1.8e-3,4.2e-1,2.0e-2\n").unwrap();
+/// assert_eq!((rows[0].photons, rows[0].rms_error), (10000.0, 0.42));
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct AccuracyRow {
     /// Photons emitted.
@@ -117,9 +124,6 @@ pub fn figure() -> Result<Figure, PlotError> {
     .draw()
 }
 
-/// Formats an axis tick value.
-pub(super) type TickFormat = fn(&f64) -> String;
-
 /// A log-log chart of marked lines and one dashed reference line (the photon accuracy figures).
 pub(super) struct LogLogChart<'a> {
     /// File name.
@@ -145,51 +149,36 @@ pub(super) struct LogLogChart<'a> {
 }
 
 impl LogLogChart<'_> {
-    /// The chart as an SVG figure (640 × 400).
+    /// The chart as an SVG figure (640 × 400), drawn by [`Chart`]: each line solid (2 px) with a
+    /// 3 px dot at every point, the reference line dashed black, the legend box at 80 % opacity.
     pub(super) fn draw(self) -> Result<Figure, PlotError> {
-        plot::svg_figure(self.name, (640, 400), |root| {
-            root.fill(&WHITE).map_err(err)?;
-            let mut chart = ChartBuilder::on(root)
-                .caption(self.caption, ("sans-serif", 18))
-                .margin(12)
-                .x_label_area_size(40)
-                .y_label_area_size(60)
-                .build_cartesian_2d(
-                    (self.x_range.0..self.x_range.1).log_scale(),
-                    (self.y_range.0..self.y_range.1).log_scale(),
-                )
-                .map_err(err)?;
-            let mut mesh = chart.configure_mesh();
-            mesh.x_desc(self.x_desc).y_desc(self.y_desc).label_style(("sans-serif", 12));
-            if let Some((x_format, y_format)) = &self.tick_formats {
-                mesh.x_label_formatter(x_format).y_label_formatter(y_format);
-            }
-            mesh.draw().map_err(err)?;
-            for (index, (label, points)) in self.lines.iter().enumerate() {
-                let color = PALETTE[index % PALETTE.len()];
-                chart
-                    .draw_series(LineSeries::new(points.clone(), color.stroke_width(2)))
-                    .map_err(err)?
-                    .label(label)
-                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], color.stroke_width(2)));
-                chart.draw_series(points.iter().map(|&p| Circle::new(p, 3, color.filled()))).map_err(err)?;
-            }
-            chart
-                .draw_series(DashedLineSeries::new(self.dashed.1.clone(), 6, 4, BLACK.stroke_width(1)))
-                .map_err(err)?
-                .label(&self.dashed.0)
-                .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], BLACK.stroke_width(1)));
-            let mut labels = chart.configure_series_labels();
-            if let Some(position) = self.legend {
-                labels.position(position);
-            }
-            labels
-                .background_style(WHITE.mix(0.8))
-                .border_style(BLACK)
-                .label_font(("sans-serif", 13))
-                .draw()
-                .map_err(err)
-        })
+        let axis = |(low, high), desc, format| Axis { format, ..Axis::log(low, high, desc) };
+        let (x_format, y_format) = self.tick_formats.map_or((None, None), |(x, y)| (Some(x), Some(y)));
+        let mut series: Vec<Series> = self
+            .lines
+            .into_iter()
+            .enumerate()
+            .map(|(index, (label, points))| Series {
+                dots: Some(Dots { radius: 3, ring: None }),
+                ..Series::line(label, points, PALETTE[index % PALETTE.len()], 2)
+            })
+            .collect();
+        let (label, points) = self.dashed;
+        series.push(Series {
+            line: Some(Stroke { width: 1, dash: Some((6, 4)) }),
+            ..Series::line(label, points, BLACK, 1)
+        });
+        Chart {
+            fill: true,
+            series,
+            legend: Some(Legend { position: self.legend, font: 13, opacity: 0.8 }),
+            ..Chart::new(
+                self.caption,
+                axis(self.x_range, self.x_desc, x_format),
+                axis(self.y_range, self.y_desc, y_format),
+            )
+        }
+        .svg(self.name, (640, 400))
     }
 }
 

@@ -18,6 +18,13 @@ use rayon::prelude::*;
 use std::f64::consts::PI;
 
 /// Why a radiosity system cannot be built.
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::{radiosity::{Mesh, RadiosityError}, scenes::cornell_box};
+/// let scene = cornell_box(true).unwrap();
+/// assert_eq!(Mesh::new(&scene, 0).unwrap_err(), RadiosityError::ZeroCount { name: "subdivisions" });
+/// ```
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 pub enum RadiosityError {
     /// A subdivision or sample count of zero.
@@ -32,6 +39,15 @@ pub enum RadiosityError {
 }
 
 /// One patch: a sub-parallelogram of a scene quad.
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::{radiosity::Mesh, scenes::cornell_box};
+/// // The 2 × 2 floor in 2 × 2 patches: each 1 × 1, facing up.
+/// let mesh = Mesh::new(&cornell_box(true).unwrap(), 2).unwrap();
+/// let patch = mesh.patches[0];
+/// assert_eq!((patch.object, patch.area, patch.normal), (0, 1.0, glam::DVec3::Y));
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Patch {
     /// Index of the scene object it belongs to.
@@ -78,6 +94,13 @@ impl Patch {
 }
 
 /// Patches of a scene, with the `n × n` block of each meshed object.
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::{radiosity::Mesh, scenes::cornell_box};
+/// let mesh = Mesh::new(&cornell_box(true).unwrap(), 3).unwrap();
+/// assert_eq!((mesh.patches.len(), mesh.first_patch[1]), (11 * 9, Some(9)));
+/// ```
 #[derive(Debug, Clone, PartialEq)]
 pub struct Mesh {
     /// Every patch; those of one object are contiguous, row-major in `(b, a)`.
@@ -195,6 +218,15 @@ pub fn point_to_polygon(point: DVec3, normal: DVec3, vertices: &[DVec3]) -> f64 
 
 /// A radiosity system: the mesh and its form-factor matrix `F[i][j]` (fraction of the energy
 /// leaving patch i that reaches patch j).
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::{radiosity::{Mesh, System}, scenes::cornell_box};
+/// // The box is open at the front: every row of form factors sums to at most 1.
+/// let scene = cornell_box(true).unwrap();
+/// let system = System::new(&scene, Mesh::new(&scene, 2).unwrap(), 1).unwrap();
+/// assert!(system.form_factors.iter().all(|row| row.iter().sum::<f64>() <= 1.0 + 1e-9));
+/// ```
 #[derive(Debug, Clone, PartialEq)]
 pub struct System {
     /// The patches.
@@ -417,6 +449,16 @@ fn visible_fraction(scene: &Scene, point: DVec3, normal: DVec3, source: &Patch, 
 }
 
 /// A radiosity solver.
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::{experiments::cornell_system, radiosity::Solver};
+/// // Jacobi and Gauss–Seidel reach one fixed point.
+/// let (_, system) = cornell_system(2, 1).unwrap();
+/// let last = |solver| system.solve(solver, 60).pop().unwrap();
+/// let (jacobi, gauss_seidel) = (last(Solver::Jacobi), last(Solver::GaussSeidel));
+/// assert!(jacobi.iter().zip(&gauss_seidel).all(|(a, b)| (*a - *b).abs().max_element() < 1e-6));
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
 pub enum Solver {
     /// Every patch gathers from the previous sweep's radiosities.
@@ -429,6 +471,12 @@ pub enum Solver {
 
 impl Solver {
     /// All three, in the order the plots use.
+    ///
+    /// # Examples
+    /// ```
+    /// use hw3::q5_effect_tables::radiosity::Solver;
+    /// assert_eq!(Solver::ALL.len(), 3);
+    /// ```
     pub const ALL: [Solver; 3] = [Solver::Jacobi, Solver::GaussSeidel, Solver::Southwell];
 
     /// Display name.

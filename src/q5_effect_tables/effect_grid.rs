@@ -1,0 +1,239 @@
+//! The measured table as pictures: each effect's scene rendered by every method of the table,
+//! one row per effect and one column per method, each panel labelled with the method, its cost
+//! and the fraction of the path-traced effect it captured in [`measured_table`].
+
+use super::effect_scenes::{GLOSSY_FLOOR, WHITE_FLOOR, highlight_camera, lit_floor, mirror_room};
+use super::error::ExperimentError;
+use super::experiments::{
+    DIRECT_SPP, EXPERIMENTS, Measured, MeasuredCell, NEIGHBOURS, PHOTON_SEED, PHOTONS, SPECULAR_DEPTH, TABLE_METHODS,
+    measured_table, photon_eye,
+};
+use super::radiosity::{Mesh, Solver, System};
+use super::scenes::cornell_box;
+use crate::plot::{self, Figure, Panel, PlotError};
+use crate::render::analysis::analyze;
+use crate::render::integrator::Integrator;
+use crate::render::passes::{Pass, Passes};
+use crate::render::photon::trace_photons;
+use crate::render::scene::{Material, Scene};
+use crate::render::{Image, Settings, render, render_with};
+
+/// File name of the grid.
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::effect_grid::GRID_PNG;
+/// assert!(GRID_PNG.starts_with("q5_") && GRID_PNG.ends_with(".png"));
+/// ```
+pub const GRID_PNG: &str = "q5_effect_grid.png";
+
+/// Size of one panel of the grid, in pixels.
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::{effect_grid::PANEL_SIZE, experiments::TABLE_METHODS};
+/// // Four columns of panels: 1280 pixels wide.
+/// assert_eq!(PANEL_SIZE.0 * TABLE_METHODS.len() as u32, 1280);
+/// ```
+pub const PANEL_SIZE: (u32, u32) = (320, 240);
+
+/// A row of the grid: the effect's id (a row of [`EXPERIMENTS`]), its title, and the exposure its
+/// panels share (radiance is multiplied by it before the sRGB curve clips at 1).
+struct Row {
+    effect: &'static str,
+    title: &'static str,
+    exposure: f64,
+}
+
+/// The rows in table order. Colour bleeding and ambient glow are one scene (the red-walled box,
+/// rendered once); the glow row shows it 4 times brighter, since the ceiling away from the light
+/// receives only interreflected light.
+const ROWS: [Row; 6] = [
+    Row { effect: "a", title: "(a) highlight", exposure: 1.0 },
+    Row { effect: "b", title: "(b) colour bleeding", exposure: 1.0 },
+    Row { effect: "c", title: "(c) direct shading", exposure: 1.0 },
+    Row { effect: "d_mirror", title: "(d) panel in a mirror", exposure: 1.0 },
+    Row { effect: "d_caustic", title: "(d) caustic", exposure: 1.0 },
+    Row { effect: "e", title: "(e) ambient glow", exposure: 4.0 },
+];
+
+/// The scene a row shows: the one whose probes measure the effect (for the highlight, seen from
+/// the probes' eye).
+fn row_scene(effect: &str) -> Result<Scene, ExperimentError> {
+    Ok(match effect {
+        "a" => lit_floor(GLOSSY_FLOOR, false)?.with_camera(highlight_camera())?,
+        "b" | "e" => cornell_box(true)?,
+        "c" => lit_floor(WHITE_FLOOR, false)?,
+        "d_mirror" => mirror_room()?,
+        "d_caustic" => lit_floor(WHITE_FLOOR, true)?,
+        _ => return Err(ExperimentError::UnknownId("a grid row")),
+    })
+}
+
+/// Whether `scene` has a mirror or glass object.
+fn has_specular(scene: &Scene) -> bool {
+    scene.objects().iter().any(|o| matches!(o.material, Material::Mirror { .. } | Material::Glass { .. }))
+}
+
+/// One scene rendered by every method of [`TABLE_METHODS`], with each method's cost as text.
+fn render_methods(scene: &Scene) -> Result<Vec<(Image, String)>, ExperimentError> {
+    let (width, height) = PANEL_SIZE;
+    let render_error = |e: crate::render::RenderError| ExperimentError::Render(e.to_string());
+    let maps = trace_photons(scene, PHOTONS, PHOTON_SEED)?;
+    let mut images = Vec::new();
+    let mut two_pass = None;
+    for method in TABLE_METHODS {
+        images.push(match method {
+            Measured::Radiosity { subdivisions, samples } => {
+                let system = System::new(scene, Mesh::new(scene, subdivisions)?, samples)?;
+                let solution = system.solve(Solver::GaussSeidel, 60).pop().unwrap_or_default();
+                let cost = format!("{} patches", system.mesh.patches.len());
+                (system.render(scene, &solution, width, height), cost)
+            }
+            Measured::Whitted => {
+                let integrator = Integrator::Whitted { max_depth: SPECULAR_DEPTH };
+                // The table's Whitted reads no caustic map: the renderer's caustic pass is off.
+                let passes = integrator.restrict(analyze(scene).plan).with(Pass::Caustics, false);
+                let settings = Settings { integrator, ..Settings::whitted(width, height, DIRECT_SPP, passes) };
+                (render(scene, &settings, &|_| {}).map_err(render_error)?, format!("{DIRECT_SPP} spp"))
+            }
+            // Without a mirror or glass, and so with an empty caustic map, photon mapping traces
+            // exactly the two-pass method's rays and estimates (the caustic map adds nothing, bit
+            // for bit): its image is the two-pass one, not rendered again.
+            Measured::PhotonMapping if maps.caustic.is_empty() && !has_specular(scene) => {
+                two_pass.clone().ok_or(ExperimentError::UnknownId("two_pass"))?
+            }
+            Measured::TwoPass | Measured::PhotonMapping => {
+                let (tracer, integrator) = photon_eye(scene, &maps, method == Measured::PhotonMapping)?;
+                let settings = Settings { integrator, ..Settings::whitted(width, height, 1, Passes::default()) };
+                let cost = format!("{} photons, k = {NEIGHBOURS}", power_of_ten(PHOTONS));
+                let rendered = (render_with(&tracer, &settings, &|_| {}).map_err(render_error)?, cost);
+                if method == Measured::TwoPass {
+                    two_pass = Some(rendered.clone());
+                }
+                rendered
+            }
+            Measured::PathTracing => return Err(ExperimentError::UnknownId("path tracing is the reference")),
+        });
+    }
+    Ok(images)
+}
+
+/// The short name of a method in a label.
+fn method_name(method: Measured) -> &'static str {
+    match method {
+        Measured::Radiosity { .. } => "radiosity",
+        Measured::TwoPass => "two-pass",
+        Measured::Whitted => "Whitted",
+        Measured::PhotonMapping => "photon mapping",
+        Measured::PathTracing => "path tracing",
+    }
+}
+
+/// `n` as `m·10ᵉ` (`n` a multiple of a power of ten with one significant digit, as the photon
+/// counts are; otherwise the digits).
+fn power_of_ten(n: usize) -> String {
+    const SUPERSCRIPTS: [char; 10] = ['⁰', '¹', '²', '³', '⁴', '⁵', '⁶', '⁷', '⁸', '⁹'];
+    let digits = n.to_string();
+    let zeros = digits.len() - digits.trim_end_matches('0').len();
+    if digits.len() - zeros != 1 || zeros < 2 {
+        return digits;
+    }
+    let exponent: String =
+        zeros.to_string().chars().filter_map(|c| c.to_digit(10)).map(|d| SUPERSCRIPTS[d as usize]).collect();
+    format!("{}·10{exponent}", &digits[..1])
+}
+
+/// The label of one panel: the effect, the method and its cost, and the measured cell.
+fn label(row: &Row, method: Measured, cost: &str, cell: &MeasuredCell) -> String {
+    format!(
+        "{}\n{}: {cost}\ncaptures {:.3} of the effect: {}",
+        row.title,
+        method_name(method),
+        cell.fraction,
+        cell.verdict.text()
+    )
+}
+
+/// The grid figure ([`GRID_PNG`]): six rows (the effects of [`EXPERIMENTS`]) of four
+/// [`PANEL_SIZE`] panels (the methods of [`TABLE_METHODS`]), the same exposure across a row,
+/// each image rendered once (the bleeding and glow rows share theirs).
+///
+/// # Errors
+/// [`PlotError::Draw`] when a scene, a render or the measured table fails.
+///
+/// # Examples
+/// ```no_run
+/// // Not run here: 20 renders at 320 × 240; CI's release run compares it with the committed one.
+/// let figure = hw3::q5_effect_tables::effect_grid::figure().unwrap();
+/// assert_eq!(figure.file_name, "q5_effect_grid.png");
+/// ```
+pub fn figure() -> Result<Figure, PlotError> {
+    let draw_error = |e: &dyn std::fmt::Display| PlotError::Draw { figure: GRID_PNG.into(), message: e.to_string() };
+    let cells = measured_table().map_err(|e| draw_error(&e))?;
+    let mut rendered: Vec<(&str, Vec<(Image, String)>)> = Vec::new();
+    let mut panels = Vec::new();
+    for row in &ROWS {
+        debug_assert!(EXPERIMENTS.iter().any(|(id, _)| *id == row.effect));
+        let shared = if row.effect == "e" { "b" } else { row.effect };
+        if !rendered.iter().any(|(id, _)| *id == shared) {
+            let scene = row_scene(shared).map_err(|e| draw_error(&e))?;
+            rendered.push((shared, render_methods(&scene).map_err(|e| draw_error(&e))?));
+        }
+        let images = &rendered.iter().find(|(id, _)| *id == shared).expect("rendered above").1;
+        for (method, (image, cost)) in TABLE_METHODS.iter().zip(images) {
+            let cell = cells
+                .iter()
+                .find(|c| c.effect == row.effect && c.method == method.id())
+                .ok_or_else(|| draw_error(&"the measured table has no such cell"))?;
+            let exposed = Image { pixels: image.pixels.iter().map(|&p| p * row.exposure).collect(), ..image.clone() };
+            panels.push(Panel { image: exposed.to_rgb8(), label: label(row, *method, cost, cell) });
+        }
+    }
+    plot::panel_grid(GRID_PNG, &panels, TABLE_METHODS.len())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The reuse in [`render_methods`] is exact: in a scene with nothing specular, photon
+    /// mapping's eye pass renders the two-pass image bit for bit (a small photon pass here).
+    #[test]
+    fn photon_mapping_is_the_two_pass_image_where_nothing_is_specular() {
+        let scene = cornell_box(true).unwrap();
+        assert!(!has_specular(&scene));
+        let maps = trace_photons(&scene, 4_000, PHOTON_SEED).unwrap();
+        assert!(maps.caustic.is_empty() && !maps.indirect.is_empty());
+        let image = |caustics| {
+            let (tracer, integrator) = photon_eye(&scene, &maps, caustics).unwrap();
+            let settings = Settings { integrator, ..Settings::whitted(24, 18, 1, Passes::default()) };
+            render_with(&tracer, &settings, &|_| {}).unwrap()
+        };
+        assert_eq!(image(true), image(false));
+        assert!(has_specular(&lit_floor(WHITE_FLOOR, true).unwrap()) && has_specular(&mirror_room().unwrap()));
+    }
+
+    #[test]
+    fn labels_name_the_cost_and_the_measured_cell() {
+        assert_eq!(
+            (power_of_ten(200_000), power_of_ten(250_000), power_of_ten(10)),
+            ("2·10⁵".into(), "250000".into(), "10".into())
+        );
+        let cell = MeasuredCell {
+            effect: "d_caustic",
+            method: "photon_mapping",
+            value: 57.5,
+            reference: 57.6,
+            fraction: 57.5 / 57.6,
+            verdict: super::super::Verdict::Yes,
+            grammar: super::super::Verdict::Yes,
+            seed: super::super::SeedAnswer::NotAsked,
+        };
+        let text = label(&ROWS[4], Measured::PhotonMapping, "2·10⁵ photons, k = 100", &cell);
+        assert_eq!(text, "(d) caustic\nphoton mapping: 2·10⁵ photons, k = 100\ncaptures 0.998 of the effect: Yes");
+        for (row, (id, _)) in ROWS.iter().zip(EXPERIMENTS) {
+            assert_eq!(row.effect, id, "one row per experiment, in table order");
+        }
+    }
+}
