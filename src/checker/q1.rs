@@ -3,10 +3,13 @@
 //! shift of a moving object per frame), and the built-in scenes matched to the difficulties.
 
 use super::key::{Expected, MalRule, Part, Variant};
+use crate::q1_hard_scenes::{
+    block_probability, focal_length_pixels, gap_fraction, pixels_per_frame, reflection_turn, transmittance,
+    visual_range,
+};
 use crate::render::catalogue::{CATALOGUE, CLUTTER_COUNT, CLUTTER_HALF_WIDTH, CLUTTER_RADIUS};
 use crate::rng;
 use rand_core::Rng;
-use std::f64::consts::PI;
 
 /// The RNG stream of Q1 variants.
 const STREAM: u64 = 1;
@@ -96,17 +99,14 @@ fn difficulty_of(scene: &str) -> &'static str {
 
 pub(super) fn variant(seed: u64) -> Variant {
     let n = numbers(seed);
-    // One sphere blocks a ray with probability p = πa²/(W + 2a)² (its centre must fall in the
-    // disc of radius a around the ray, out of a face widened by a on each side); misses multiply.
-    let p = PI * n.radius * n.radius / (n.side + 2.0 * n.radius).powi(2);
-    let gap = (1.0 - p).powf(n.count);
-    let transmittance = (-n.sigma_t * n.path).exp();
-    let visual_range = 50f64.ln() / n.sigma_t;
-    // A sideways step δ moves where a pixel's ray meets the ball by δ; near the centre of the
-    // ball the normal turns by δ/R and the reflected ray by twice that.
-    let turn = (2.0 * n.step / n.mirror_radius).to_degrees();
-    let focal_pixels = n.height / 2.0 / (n.fov_deg.to_radians() / 2.0).tan();
-    let shift = n.speed / n.fps * focal_pixels / n.depth;
+    // The keys are the Q1 chapter's laws, called rather than restated, so the two cannot drift.
+    let p = block_probability(n.radius, n.side);
+    let gap = gap_fraction(n.count, n.radius, n.side);
+    let transmittance = transmittance(n.sigma_t, n.path);
+    let visual_range = visual_range(n.sigma_t);
+    let turn = reflection_turn(n.step, n.mirror_radius).to_degrees();
+    let focal_pixels = focal_length_pixels(n.height, n.fov_deg);
+    let shift = pixels_per_frame(n.speed / n.fps, n.depth, focal_pixels);
     let statement = format!(
         "Q1 (variant {seed}). What makes each scene hard, in numbers.\n\
          (a) {count} spheres of radius a = {a}, centres uniform over a slab whose front face is a {w} x {w} square \
@@ -218,6 +218,7 @@ pub(super) fn variant(seed: u64) -> Variant {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::f64::consts::PI;
 
     fn value(v: &Variant, key: &str) -> f64 {
         match v.parts.iter().find(|p| p.key == key).unwrap().expected {

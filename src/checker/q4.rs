@@ -1,10 +1,15 @@
-//! Q4 variants: irradiance from an analytic sky with a closed form, and the mirror ball's blind spot.
+//! Q4 variants: irradiance from an analytic sky with a closed form, the mirror ball's blind spot,
+//! and Q4 as the homework asks it: lighting a surface from a small probe image, texel by texel.
 
-use super::key::{Expected, MalRule, Part, Variant};
+use super::formula::{Kind, Point, Value};
+use super::key::{Expected, MalRule, Part, Variant, formula_part};
+use crate::envmap::{Probe, ProbeFormat, Texel, horizontal_camera};
+use crate::plot::markdown_table;
 use crate::q4_light_probe::blind_spot;
+use crate::q4_light_probe::irradiance::{centre_texels, equal_weight, unweighted_sum, weighted_sum};
 use crate::q4_light_probe::maps::{AnalyticMap, Term};
 use crate::rng;
-use glam::DVec3;
+use glam::{DVec2, DVec3};
 use rand_core::Rng;
 use std::f64::consts::PI;
 
@@ -18,11 +23,11 @@ fn number(value: f64) -> Expected {
 }
 
 pub(super) fn variant(seed: u64) -> Variant {
+    let mut g = rng::seeded(seed, STREAM);
     // Seed 0: a sky of radiance 1 + 1·ω_z, a normal tilted 60° from up, a ball seen from 3 radii.
     let (a, b, tilt_deg, distance_over_radius) = if seed == 0 {
         (1.0, 1.0, 60.0, 3.0)
     } else {
-        let mut g = rng::seeded(seed, STREAM);
         let mut pick = |n: u64| g.next_u64() % n;
         let a = 1.0 + pick(4) as f64;
         let b = [-1.0, 1.0, 2.0][pick(3) as usize];
@@ -48,6 +53,8 @@ pub(super) fn variant(seed: u64) -> Variant {
          in degrees, of the cone of directions the ball cannot show, and the fraction of a uniform environment's \
          irradiance lost for a normal pointing straight into that cone."
     );
+    let image = ProbeImage::draw(seed, a, b, &mut g);
+    let statement = format!("{statement}\n{}", image.statement());
     // Without the cosine: ∫ over the hemisphere of L alone, 2πA + πB n_z.
     let no_cosine = 2.0 * PI * a + PI * b * normal.z;
     let parts = vec![
@@ -102,7 +109,373 @@ pub(super) fn variant(seed: u64) -> Variant {
             explained_in: NOTES,
         },
     ];
+    let mut parts = parts;
+    parts.extend(image.parts(normal));
     Variant { question: "q4", seed, statement, parts }
+}
+
+/// Texels across the probe image of part (c): seed 0 has 5 × 5, other seeds draw one of these.
+const IMAGE_SIZES: [usize; 2] = [4, 5];
+
+/// The radiances a drawn image's texels take (never negative, never 0: a texel sum of zeros has
+/// no bias ratio).
+const RADIANCES: [f64; 6] = [0.5, 1.0, 1.5, 2.0, 3.0, 4.0];
+
+/// Angular tolerance of a texel's direction, radians: three decimals per component pass; the
+/// direction of a texel's corner (a tenth of a radian or more away) does not.
+const DIRECTION_TOL: f64 = 5e-3;
+
+/// Relative tolerance of the probe's solid angles and sums: four significant digits worked by
+/// hand pass; every slip below moves the answer by more.
+const PROBE_RTOL: f64 = 1e-2;
+
+/// Relative tolerance of the bias ratio, tighter than the sums': the ratio is within a few percent
+/// of 1, so a 1 % tolerance would accept "no bias".
+const RATIO_RTOL: f64 = 2e-3;
+
+/// The listed texels' parts: the direction and the solid angle of each.
+const LISTED: [(&str, &str); 3] = [
+    ("q4c.texel1_direction", "q4c.texel1_solid_angle"),
+    ("q4c.texel2_direction", "q4c.texel2_solid_angle"),
+    ("q4c.texel3_direction", "q4c.texel3_solid_angle"),
+];
+
+/// The symbols of the texel-term formula: radiance, normal, direction, solid angle.
+const TERM_SYMBOLS: [(&str, Kind); 4] =
+    [("L", Kind::Scalar), ("n", Kind::Vector), ("w", Kind::Vector), ("dw", Kind::Scalar)];
+
+/// Part (c): a small mirror-ball probe image, every texel's radiance given, three texels listed.
+#[derive(Debug, Clone)]
+struct ProbeImage {
+    /// Texels across and down.
+    size: usize,
+    /// The image as an orthographic mirror-ball probe seen from the `+x` horizon; texels whose
+    /// centre is outside the disc hold 0.
+    probe: Probe,
+    /// The listed texels (row-major indices): two wholly inside the disc, then one on its rim.
+    listed: [usize; 3],
+}
+
+fn direction(value: DVec3) -> Expected {
+    Expected::Direction { value: value.to_array(), angle_tol: DIRECTION_TOL }
+}
+
+fn probe_number(value: f64) -> Expected {
+    Expected::Number { value, rtol: PROBE_RTOL, atol: 1e-9 }
+}
+
+impl ProbeImage {
+    /// Seed 0 photographs the sky of part (a), each texel its centre's radiance to one decimal;
+    /// other seeds draw 4 × 4 or 5 × 5 texels from [`RADIANCES`] and which texels are listed.
+    fn draw(seed: u64, a: f64, b: f64, g: &mut rng::Generator) -> Self {
+        let size = if seed == 0 { 5 } else { IMAGE_SIZES[(g.next_u64() % 2) as usize] };
+        let format = ProbeFormat::MirrorBall;
+        let blank = Probe::from_fn(format, size, size, horizontal_camera(), |_| DVec3::ZERO)
+            .expect("a 4 × 4 or 5 × 5 probe of zeros is valid");
+        let centres = centre_texels(&blank);
+        let radiance: Vec<DVec3> = centres
+            .iter()
+            .map(|t| match (t.centre_inside, seed) {
+                (false, _) => DVec3::ZERO,
+                (true, 0) => DVec3::splat(((a + b * t.direction.z) * 10.0).round().max(0.0) / 10.0),
+                (true, _) => DVec3::splat(RADIANCES[(g.next_u64() % RADIANCES.len() as u64) as usize]),
+            })
+            .collect();
+        let probe = Probe::from_radiance(format, size, size, horizontal_camera(), radiance)
+            .expect("the radiances are finite and ≥ 0");
+        let full = (2.0 / size as f64).powi(2);
+        let (interior, rim): (Vec<usize>, Vec<usize>) = (0..centres.len())
+            .filter(|&i| centres[i].centre_inside)
+            .partition(|&i| (centres[i].area - full).abs() < 1e-12 * full);
+        let listed = if seed == 0 {
+            // Row 1 column 2 (straight above the middle), row 1 column 3, and the top rim texel.
+            [7, 8, 2]
+        } else {
+            let first = interior[(g.next_u64() % interior.len() as u64) as usize];
+            let others: Vec<usize> = interior.iter().copied().filter(|&i| i != first).collect();
+            let second = others[(g.next_u64() % others.len() as u64) as usize];
+            [first, second, rim[(g.next_u64() % rim.len() as u64) as usize]]
+        };
+        Self { size, probe, listed }
+    }
+
+    /// `(row, column)` of texel `index`.
+    fn place(&self, index: usize) -> (usize, usize) {
+        (index / self.size, index % self.size)
+    }
+
+    /// Part (c)'s statement, with the image as a table.
+    fn statement(&self) -> String {
+        let n = self.size;
+        let mut header = vec!["row".to_string()];
+        header.extend((0..n).map(|c| c.to_string()));
+        let header: Vec<&str> = header.iter().map(String::as_str).collect();
+        let rows = (0..n).map(|row| {
+            let mut cells = vec![row.to_string()];
+            cells.extend((0..n).map(|column| {
+                let texel = self.probe.texels()[row * n + column];
+                if texel.centre_inside { format!("{}", texel.radiance.x) } else { "-".into() }
+            }));
+            cells
+        });
+        let table = markdown_table(&header, rows);
+        let listed: Vec<String> = self.listed.iter().map(|&i| format!("{:?}", self.place(i))).collect();
+        format!(
+            "(c) Q4 as asked: the ball photographed from far away (an orthographic camera on the +x horizon) as a \
+             {n} x {n} image, the ball's disc of radius 1 inscribed in it; image right = world +y, image up = world +z, \
+             toward the camera = world +x. Each texel records the radiance L below (row 0 at the top, column 0 at the \
+             left; \"-\" marks a texel whose centre is outside the disc: masked, not used):\n\n{table}\n\
+             For texels {} (row, column): the world direction w of the texel's centre (unit, from the ball toward the \
+             light it shows) and the texel's solid angle dw. Over every texel used, for the normal n of (a): the \
+             weighted sum E = sum of L max(0, n . w) dw; the unweighted sum (4 pi/N) times the sum of L max(0, n . w) \
+             over the N texels used; its bias as the ratio unweighted/weighted; the solid angle the masked texels \
+             hold (4 pi minus the sum of dw); the one direction the image cannot show; and, as a formula in L, n, w \
+             and dw, the term one texel adds to E.",
+            listed.join(", ")
+        )
+    }
+
+    /// Part (c)'s parts for surface normal `normal`.
+    fn parts(&self, normal: DVec3) -> Vec<Part> {
+        let texels = centre_texels(&self.probe);
+        let camera = horizontal_camera();
+        let toward_camera = camera * DVec3::Z;
+        let used = texels.iter().filter(|t| t.centre_inside).count();
+        let share = 4.0 * PI / used as f64;
+        let full_area = (2.0 / self.size as f64).powi(2);
+        let mut parts = Vec::new();
+        for (&index, (direction_key, solid_angle_key)) in self.listed.iter().zip(LISTED) {
+            let texel = texels[index];
+            let rect = self.probe.texel_rect(index);
+            let corners = [rect.min, DVec2::new(rect.max.x, rect.min.y), rect.max, DVec2::new(rect.min.x, rect.max.y)];
+            let mut mal_rules = vec![
+                MalRule {
+                    value: direction(camera.transpose() * texel.direction),
+                    message: "that is the direction in the camera's frame (x right, y up, z toward the camera); in \
+                              the world image right is +y, image up +z, toward the camera +x",
+                    credit: 0.5,
+                },
+                MalRule {
+                    value: direction(-texel.direction),
+                    message: "that is -w, the way the light travels; w points from the ball toward the light it shows",
+                    credit: 0.0,
+                },
+                MalRule {
+                    // The ball's normal halves the angle between the view ray back to the camera
+                    // and the reflected one.
+                    value: direction((texel.direction + toward_camera).normalize()),
+                    message: "that is the ball's normal at the texel; the light comes along the view ray reflected \
+                              about it, at twice its angle from the camera",
+                    credit: 0.0,
+                },
+            ];
+            mal_rules.extend(corners.iter().filter_map(|&c| self.probe.image_to_world(c)).map(|(w, _)| MalRule {
+                value: direction(w),
+                message: "that is the direction of a corner of the texel; the texel looks along its centre's",
+                credit: 0.0,
+            }));
+            parts.push(Part {
+                key: direction_key,
+                prompt: "world direction w of the listed texel's centre",
+                points: 1.0,
+                expected: direction(texel.direction),
+                mal_rules,
+                explained_in: NOTES,
+            });
+            parts.push(Part {
+                key: solid_angle_key,
+                prompt: "solid angle dw of the listed texel, steradians",
+                points: 1.0,
+                expected: probe_number(texel.solid_angle),
+                mal_rules: vec![
+                    MalRule {
+                        value: probe_number(4.0 * full_area),
+                        message: "that is 4 x the whole texel's area; only the part inside the disc sees the sky",
+                        credit: 0.0,
+                    },
+                    MalRule {
+                        value: probe_number(texel.area),
+                        message: "that is the texel's area in the image; on the orthographic ball dw = 4 dA",
+                        credit: 0.0,
+                    },
+                    MalRule {
+                        value: probe_number(share),
+                        message: "that is 4 pi/N, the equal share the unweighted sum gives every texel",
+                        credit: 0.0,
+                    },
+                ],
+                explained_in: NOTES,
+            });
+        }
+        let weight = equal_weight(&texels);
+        let weighted = weighted_sum(normal, &texels).x;
+        let unweighted = unweighted_sum(normal, &texels, weight).x;
+        // max(0, x) − max(0, −x) = x: the sums without the clamp, from the clamped ones.
+        let unclamped = weighted - weighted_sum(-normal, &texels).x;
+        let whole: Vec<Texel> = texels
+            .iter()
+            .map(|t| Texel { solid_angle: if t.centre_inside { 4.0 * full_area } else { 0.0 }, ..*t })
+            .collect();
+        parts.push(Part {
+            key: "q4c.weighted_sum",
+            prompt: "weighted sum E = sum of L max(0, n . w) dw over the texels used",
+            points: 2.0,
+            expected: probe_number(weighted),
+            mal_rules: vec![
+                MalRule {
+                    value: probe_number(unweighted_sum(normal, &texels, 1.0).x),
+                    message: "the solid angle dw is missing: that sum counts texels, not steradians",
+                    credit: 0.0,
+                },
+                MalRule {
+                    value: probe_number(unclamped),
+                    message: "the clamp max(0, .) is missing: texels below the surface's horizon subtract light",
+                    credit: 0.0,
+                },
+                MalRule {
+                    value: probe_number(weighted_sum(-normal, &texels).x),
+                    message: "that uses -w, the way the light travels; n . w needs w from the surface toward the light",
+                    credit: 0.0,
+                },
+                MalRule {
+                    value: probe_number(weighted_sum(normal, &whole).x),
+                    message: "the rim texels are counted whole; only their part inside the disc sees the sky",
+                    credit: 0.5,
+                },
+                MalRule {
+                    value: probe_number(unweighted),
+                    message: "that is the unweighted sum; weight each texel by its own solid angle",
+                    credit: 0.0,
+                },
+            ],
+            explained_in: NOTES,
+        });
+        parts.push(Part {
+            key: "q4c.unweighted_sum",
+            prompt: "unweighted sum (4 pi/N) times the sum of L max(0, n . w)",
+            points: 1.0,
+            expected: probe_number(unweighted),
+            mal_rules: vec![
+                MalRule {
+                    value: probe_number(unweighted_sum(normal, &texels, 1.0).x),
+                    message: "that is the literal sum of L max(0, n . w): give each texel the equal share 4 pi/N",
+                    credit: 0.0,
+                },
+                MalRule {
+                    value: probe_number(unweighted - unweighted_sum(-normal, &texels, weight).x),
+                    message: "the clamp max(0, .) is missing: texels below the surface's horizon subtract light",
+                    credit: 0.0,
+                },
+                MalRule {
+                    value: probe_number(weighted),
+                    message: "that is the weighted sum; the unweighted one gives every texel 4 pi/N",
+                    credit: 0.0,
+                },
+            ],
+            explained_in: NOTES,
+        });
+        let ratio = |value| Expected::Number { value, rtol: RATIO_RTOL, atol: 1e-9 };
+        parts.push(Part {
+            key: "q4c.bias_ratio",
+            prompt: "bias of the unweighted sum, as the ratio unweighted/weighted",
+            points: 1.0,
+            expected: ratio(unweighted / weighted),
+            mal_rules: vec![
+                MalRule {
+                    value: ratio(weighted / unweighted),
+                    message: "that is weighted/unweighted; the ratio asked is unweighted/weighted",
+                    credit: 0.5,
+                },
+                MalRule {
+                    value: ratio(1.0),
+                    message: "the unweighted sum is not exact here: texels wholly inside the disc cover more than 4 pi/N, rim texels less",
+                    credit: 0.0,
+                },
+            ],
+            explained_in: NOTES,
+        });
+        let masked: f64 = texels.iter().filter(|t| !t.centre_inside).map(|t| t.solid_angle).sum();
+        parts.push(Part {
+            key: "q4c.masked_solid_angle",
+            prompt: "solid angle held by the masked texels, 4 pi minus the sum of dw, steradians",
+            points: 0.5,
+            expected: Expected::Number { value: masked, rtol: PROBE_RTOL, atol: 1e-9 },
+            mal_rules: vec![MalRule {
+                value: Expected::Number { value: 0.0, rtol: 0.0, atol: 1e-3 },
+                message: "the ball shows every direction but one, yet the masked corner texels drop the part of \
+                          the disc they hold",
+                credit: 0.0,
+            }],
+            explained_in: NOTES,
+        });
+        // The rim of the disc: every point of it sees straight behind the ball.
+        let rim = self.probe.image_to_world(DVec2::X).map_or(-toward_camera, |(w, _)| w);
+        parts.push(Part {
+            key: "q4c.blind_direction",
+            prompt: "the one world direction the image cannot show",
+            points: 0.5,
+            expected: direction(rim),
+            mal_rules: vec![MalRule {
+                value: direction(toward_camera),
+                message: "that is the direction back to the camera, seen at the ball's centre; the blind \
+                          direction is straight behind the ball, where the rim points",
+                credit: 0.0,
+            }],
+            explained_in: NOTES,
+        });
+        parts.push(formula_part(
+            "q4c.term_formula",
+            "the term one texel adds to E, as a formula",
+            1.0,
+            "L*max(0, dot(n, w))*dw",
+            &TERM_SYMBOLS,
+            &term_points(),
+            &[
+                (
+                    "L*dot(n, w)",
+                    "the solid angle dw and the clamp max(0, .) are missing (the seed's K_d L (n . l))",
+                    0.0,
+                ),
+                (
+                    "L*dot(n, w)*dw",
+                    "the clamp max(0, .) is missing: light from below the surface's horizon subtracts",
+                    0.0,
+                ),
+                (
+                    "L*max(0, dot(n, w))",
+                    "the solid angle dw is missing: the sum would count texels, not steradians",
+                    0.0,
+                ),
+                ("L*max(0, -dot(n, w))*dw", "that uses -w, the way the light travels; w points toward the light", 0.0),
+            ],
+            NOTES,
+        ));
+        parts
+    }
+}
+
+/// Where the texel-term formula is compared: 40 random radiances, unit normals, unit directions
+/// (half of them below the normal's horizon, where the clamp matters) and solid angles.
+fn term_points() -> Vec<Point> {
+    let mut g = rng::seeded(0, STREAM + 100);
+    let unit = |g: &mut rng::Generator| {
+        let z = rng::uniform_in(g, -1.0, 1.0);
+        let phi = rng::uniform_in(g, 0.0, 2.0 * PI);
+        let s = (1.0 - z * z).sqrt();
+        DVec3::new(s * phi.cos(), s * phi.sin(), z)
+    };
+    (0..40)
+        .map(|_| {
+            let (n, w) = (unit(&mut g), unit(&mut g));
+            let values = [
+                ("L", Value::Scalar(rng::uniform_in(&mut g, 0.5, 4.0))),
+                ("n", Value::Vector(n)),
+                ("w", Value::Vector(w)),
+                ("dw", Value::Scalar(rng::uniform_in(&mut g, 0.05, 1.0))),
+            ];
+            values.into_iter().collect()
+        })
+        .collect()
 }
 
 #[cfg(test)]

@@ -13,13 +13,14 @@ const SEED_ANSWERS: &str = include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/te
 
 /// The chapter section that derives each part, by key prefix (first match wins): the heading's
 /// text, as written in the chapter.
-const SECTIONS: [(&str, &str); 7] = [
+const SECTIONS: [(&str, &str); 8] = [
     ("q2a", "(a) Derivation"),
     ("q2b", "(b) Reflection"),
     ("q2c", "(c) The closest approach, two ways"),
     ("q3", "Derivation"),
     ("q4a", "Oracles"),
     ("q4b", "The blind spot"),
+    ("q4c", "A worked probe, by hand"),
     ("q5", "Deciding a cell from light paths"),
 ];
 
