@@ -124,7 +124,7 @@ pub fn weighted_sum(n: DVec3, texels: &[Texel]) -> DVec3 {
 /// use glam::{DMat3, DVec3};
 /// use hw3::envmap::{Probe, ProbeFormat};
 /// use hw3::q4_light_probe::irradiance::{equal_weight, unweighted_sum};
-/// let probe = Probe::from_fn(ProbeFormat::MirrorBall, 32, 32, DMat3::IDENTITY, |_| DVec3::ONE).unwrap();
+/// let probe = Probe::from_fn(ProbeFormat::MirrorBall, 64, 64, DMat3::IDENTITY, |_| DVec3::ONE).unwrap();
 /// let e = unweighted_sum(DVec3::Z, probe.texels(), equal_weight(probe.texels())).x;
 /// assert!((e / std::f64::consts::PI - 1.0).abs() < 1e-2); // nearly right on the equal-area ball
 /// ```
