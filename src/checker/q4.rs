@@ -134,10 +134,25 @@ const PROBE_RTOL: f64 = 1e-2;
 const RATIO_RTOL: f64 = 2e-3;
 
 /// The listed texels' parts: the direction and the solid angle of each.
-const LISTED: [(&str, &str); 3] = [
-    ("q4c.texel1_direction", "q4c.texel1_solid_angle"),
-    ("q4c.texel2_direction", "q4c.texel2_solid_angle"),
-    ("q4c.texel3_direction", "q4c.texel3_solid_angle"),
+const LISTED: [(&str, &str, &str, &str); 3] = [
+    (
+        "q4c.texel1_direction",
+        "world direction w of the first listed texel's centre",
+        "q4c.texel1_solid_angle",
+        "solid angle dw of the first listed texel, steradians",
+    ),
+    (
+        "q4c.texel2_direction",
+        "world direction w of the second listed texel's centre",
+        "q4c.texel2_solid_angle",
+        "solid angle dw of the second listed texel, steradians",
+    ),
+    (
+        "q4c.texel3_direction",
+        "world direction w of the third listed texel's centre",
+        "q4c.texel3_solid_angle",
+        "solid angle dw of the third listed texel, steradians",
+    ),
 ];
 
 /// The symbols of the texel-term formula: radiance, normal, direction, solid angle.
@@ -244,7 +259,9 @@ impl ProbeImage {
         let share = 4.0 * PI / used as f64;
         let full_area = (2.0 / self.size as f64).powi(2);
         let mut parts = Vec::new();
-        for (&index, (direction_key, solid_angle_key)) in self.listed.iter().zip(LISTED) {
+        for (&index, (direction_key, direction_prompt, solid_angle_key, solid_angle_prompt)) in
+            self.listed.iter().zip(LISTED)
+        {
             let texel = texels[index];
             let rect = self.probe.texel_rect(index);
             let corners = [rect.min, DVec2::new(rect.max.x, rect.min.y), rect.max, DVec2::new(rect.min.x, rect.max.y)];
@@ -276,7 +293,7 @@ impl ProbeImage {
             }));
             parts.push(Part {
                 key: direction_key,
-                prompt: "world direction w of the listed texel's centre",
+                prompt: direction_prompt,
                 points: 1.0,
                 expected: direction(texel.direction),
                 mal_rules,
@@ -284,7 +301,7 @@ impl ProbeImage {
             });
             parts.push(Part {
                 key: solid_angle_key,
-                prompt: "solid angle dw of the listed texel, steradians",
+                prompt: solid_angle_prompt,
                 points: 1.0,
                 expected: probe_number(texel.solid_angle),
                 mal_rules: vec![
@@ -511,6 +528,97 @@ mod tests {
             }
         }
         sum
+    }
+
+    /// Every slip the probe parts name is reachable: answering its value is graded wrong (or
+    /// partial) with a recognised message, never correct, unless the slip coincides with the key
+    /// (4 × a whole texel's area *is* the solid angle of a texel wholly inside the disc).
+    #[test]
+    fn every_probe_slip_is_recognised() {
+        use crate::checker::check;
+        for seed in 0..12 {
+            let v = variant(seed);
+            for part in v.parts.iter().filter(|p| p.key.starts_with("q4c.") && p.key != "q4c.term_formula") {
+                let toml_value = |e: &Expected| match e {
+                    Expected::Number { value, .. } => format!("{value:?}"),
+                    Expected::Direction { value, .. } => format!("[{:?}, {:?}, {:?}]", value[0], value[1], value[2]),
+                    other => unreachable!("{other:?}"),
+                };
+                let name = part.key.trim_start_matches("q4c.");
+                for rule in &part.mal_rules {
+                    let file = format!("[meta]\nseed = {seed}\n[q4c]\n{name} = {}\n", toml_value(&rule.value));
+                    let report = check(&file, None).unwrap();
+                    let result = report.parts.iter().find(|p| p.key == part.key).unwrap();
+                    if result.status == "correct" {
+                        continue;
+                    }
+                    let named = part.mal_rules.iter().any(|r| result.feedback.starts_with(r.message));
+                    assert!(named, "seed {seed} {}: `{}` not recognised: {}", part.key, rule.message, result.feedback);
+                }
+            }
+        }
+    }
+
+    /// The classic slips of seed 0, by name: the solid angle forgotten, the clamp forgotten, the
+    /// light's travel direction for the direction it comes from, a corner for the centre.
+    #[test]
+    fn seed_zero_names_the_classic_slips() {
+        use crate::checker::check;
+        let v = variant(0);
+        let feedback = |key: &str, value: String| {
+            let (table, name) = key.split_once('.').unwrap();
+            let report = check(&format!("[{table}]\n{name} = {value}\n"), None).unwrap();
+            report.parts.into_iter().find(|p| p.key == key).unwrap().feedback
+        };
+        let rule_value = |key: &str, start: &str| {
+            let part = v.parts.iter().find(|p| p.key == key).unwrap();
+            let rule = part.mal_rules.iter().find(|r| r.message.starts_with(start)).unwrap();
+            match rule.value {
+                Expected::Number { value, .. } => format!("{value:?}"),
+                Expected::Direction { value, .. } => format!("{value:?}"),
+                _ => unreachable!(),
+            }
+        };
+        for (key, slip) in [
+            ("q4c.weighted_sum", "the solid angle dw is missing"),
+            ("q4c.weighted_sum", "the clamp max(0, .) is missing"),
+            ("q4c.weighted_sum", "that uses -w"),
+            ("q4c.texel1_direction", "that is -w"),
+            ("q4c.texel1_direction", "that is the direction of a corner"),
+            ("q4c.texel3_solid_angle", "that is 4 x the whole texel's area"),
+            ("q4c.unweighted_sum", "that is the literal sum"),
+        ] {
+            let text = feedback(key, rule_value(key, slip));
+            assert!(text.starts_with(slip), "{key}: {text}");
+        }
+        // The seed's own sum as a formula, and the key's, written with the clamp as (x + |x|)/2.
+        let text = feedback("q4c.term_formula", "\"L*dot(n, w)\"".into());
+        assert!(text.contains("the seed's K_d L (n . l)"), "{text}");
+        let text = feedback("q4c.term_formula", "\"L*(dot(n, w) + abs(dot(n, w)))/2*dw\"".into());
+        assert!(!text.contains("missing"), "{text}");
+    }
+
+    /// Images drawn from 60 generator states are physical and well posed: radiances ≥ 0 inside the
+    /// disc and 0 outside, two listed texels wholly inside the disc and one cut by its rim; and
+    /// every variant's weighted sum is positive.
+    #[test]
+    fn every_probe_image_is_physical_and_lists_interior_and_rim_texels() {
+        for seed in 0..60 {
+            let mut g = rng::seeded(seed, STREAM);
+            let image = ProbeImage::draw(seed, 1.0, 1.0, &mut g);
+            let full = (2.0 / image.size as f64).powi(2);
+            for texel in image.probe.texels() {
+                assert!(texel.radiance.x >= 0.0);
+                assert!(texel.centre_inside || texel.radiance.x == 0.0);
+            }
+            let area = |i: usize| image.probe.texels()[i].area;
+            let [first, second, rim] = image.listed;
+            assert!(first != second && (area(first) - full).abs() < 1e-12 && (area(second) - full).abs() < 1e-12);
+            assert!(area(rim) < full && image.probe.texels()[rim].centre_inside, "seed {seed}");
+            let v = variant(seed);
+            let weighted = v.parts.iter().find(|p| p.key == "q4c.weighted_sum").unwrap();
+            assert!(matches!(weighted.expected, Expected::Number { value, .. } if value > 0.0));
+        }
     }
 
     #[test]
