@@ -9,11 +9,18 @@ mod metric;
 mod mirrors;
 mod motion;
 
-pub use clutter::{CLUTTER_COUNTS, CLUTTER_SEEDS, ClutterRow, clutter_row};
+pub use clutter::{CLUTTER_COUNTS, CLUTTER_SEEDS, ClutterRow, block_probability, clutter_row, gap_fraction};
 pub use figures::{RENDER_SPP, figures, renders};
-pub use fog::{FOG_DISTANCES, FOG_SIGMAS, FogRow, airlight_rows, airlight_traced, fog_row};
-pub use mirrors::{DIVERGENCE_TRIALS, MIRROR_STEPS, MirrorDivergence, mirror_divergence, mirror_sensitivity};
-pub use motion::{MOTION_SPP, MotionChange, MotionNoise, NOISE_TARGET, motion_change, motion_noise};
+pub use fog::{
+    FOG_DISTANCES, FOG_SIGMAS, FogRow, airlight_rows, airlight_traced, fog_row, transmittance, visual_range,
+};
+pub use mirrors::{
+    DIVERGENCE_TRIALS, MIRROR_STEPS, MirrorDivergence, mirror_divergence, mirror_sensitivity, reflection_turn,
+};
+pub use motion::{
+    MOTION_SPP, MotionChange, MotionNoise, NOISE_TARGET, focal_length_pixels, motion_change, motion_noise,
+    pixels_per_frame,
+};
 
 use crate::answers::Answers;
 
@@ -48,7 +55,6 @@ const CLUTTER_STANDARD_ERRORS: f64 = 2.0;
 /// ```
 #[must_use]
 pub fn answers() -> Answers {
-    let visual_range = |sigma: f64| 50f64.ln() / sigma;
     let [first_count, .., last_count] = CLUTTER_COUNTS;
     let sigmas = FOG_SIGMAS.map(|s| s.to_string()).join(" / ");
     let ranges = FOG_SIGMAS.map(|s| format!("{:.1}", visual_range(s))).join(" / ");

@@ -161,9 +161,46 @@ fn keys_agree_with_the_independent_script() {
         }
     }
     // Two Q1 variants, seven Q2 cases (the worked example and one seed per case), five Q3 rays,
-    // three Q4 skies.
-    assert_eq!(cases.len(), 17);
-    assert_eq!(checked, 65, "values compared");
+    // three Q4 skies and two Q4 probe images (5 × 5 and 4 × 4).
+    assert_eq!(cases.len(), 19);
+    assert_eq!(checked, 87, "values compared");
+}
+
+/// A file answering "none" everywhere earns exactly the parts whose key is "none" (a ray that
+/// misses has no t; a table cell that captures an effect misses no paths), and every other part
+/// is graded wrong with a reason, not refused as unreadable.
+#[test]
+fn answering_none_everywhere_scores_only_the_parts_with_no_value() {
+    use hw3::checker::{Expected, QUESTIONS, check, variant};
+    for seed in 0..12 {
+        let variants: Vec<_> = QUESTIONS.iter().map(|q| variant(q, seed).unwrap()).collect();
+        let mut file = format!("[meta]\nseed = {seed}\n");
+        let mut table = "";
+        let mut none_points = 0.0;
+        for part in variants.iter().flat_map(|v| &v.parts) {
+            let (section, name) = part.key.split_once('.').unwrap();
+            if section != table {
+                file.push_str(&format!("[{section}]\n"));
+                table = section;
+            }
+            file.push_str(&format!("{name} = \"none\"\n"));
+            if matches!(&part.expected, Expected::OrNone { none: true, .. })
+                || matches!(&part.expected, Expected::Paths { value } if value == "none")
+            {
+                none_points += part.points;
+            }
+        }
+        let report = check(&file, None).unwrap_or_else(|e| panic!("seed {seed}: {e}"));
+        assert!((report.score - none_points).abs() < 1e-9, "seed {seed}: {} vs {none_points}", report.score);
+        for part in &report.parts {
+            assert_ne!(part.status, "missing", "seed {seed} {}", part.key);
+            if part.status != "correct" {
+                assert!(!part.feedback.is_empty() && part.feedback != "answer has the wrong shape", "{}", part.key);
+            }
+        }
+        let numbers = report.parts.iter().find(|p| p.key == "q4c.weighted_sum").unwrap();
+        assert!(numbers.feedback.contains("accepted only where the template offers it"), "{}", numbers.feedback);
+    }
 }
 
 /// The demo class of `tests/answers/class/`: 50 submissions made from the checker's own key, so
@@ -532,7 +569,9 @@ fn a_class_report_as_text_csv_and_gradescope() {
     assert_eq!(written.len(), 50, "one results file per student");
     let first: serde_json::Value =
         serde_json::from_slice(&std::fs::read(out.join("01_right_seed0.json")).unwrap()).unwrap();
-    assert_eq!(first["score"], 66.0);
+    let full = hw3::checker::check(&std::fs::read_to_string(dir.join("01_right_seed0.toml")).unwrap(), None).unwrap();
+    assert!(full.all_correct());
+    assert_eq!(first["score"].as_f64(), Some(full.max_score));
     let broken: serde_json::Value =
         serde_json::from_slice(&std::fs::read(out.join("50_unreadable_shape.json")).unwrap()).unwrap();
     assert_eq!(broken["score"], 0.0);

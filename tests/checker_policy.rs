@@ -89,6 +89,7 @@ one_test_per_rule! {
     not_normalised_earns_half_everywhere => Rule::NotNormalised,
     unit_earns_half_everywhere => Rule::Unit,
     full_for_half_angle_earns_half => Rule::FullForHalfAngle,
+    convention_earns_half_everywhere => Rule::Convention,
     other_quantity_earns_nothing_everywhere => Rule::OtherQuantity,
     wrong_case_earns_nothing_everywhere => Rule::WrongCase,
     impractical_as_yes_earns_half => Rule::ImpracticalAsYes,

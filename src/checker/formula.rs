@@ -10,7 +10,7 @@
 //! unary   = "-" unary | power
 //! power   = atom [ "^" unary ]            (scalars only; right-associative)
 //! atom    = number | symbol | symbol "_" ("x" | "y" | "z") | call | "(" sum ")"
-//! call    = ("dot" | "cross") "(" sum "," sum ")" | ("norm" | "sqrt" | "abs") "(" sum ")"
+//! call    = ("dot" | "cross" | "max") "(" sum "," sum ")" | ("norm" | "sqrt" | "abs") "(" sum ")"
 //! ```
 //!
 //! The expression crates on crates.io that were considered (`evalexpr`, `meval`) evaluate
@@ -120,7 +120,7 @@ impl fmt::Display for FormulaError {
     }
 }
 
-const FUNCTIONS: [(&str, usize); 5] = [("dot", 2), ("cross", 2), ("norm", 1), ("sqrt", 1), ("abs", 1)];
+const FUNCTIONS: [(&str, usize); 6] = [("dot", 2), ("cross", 2), ("norm", 1), ("sqrt", 1), ("abs", 1), ("max", 2)];
 
 struct Parser<'a> {
     chars: Vec<char>,
@@ -273,8 +273,9 @@ impl Parser<'_> {
         let kind = match (function, kinds.as_slice()) {
             ("dot", [Kind::Vector, Kind::Vector]) | ("norm", [Kind::Vector]) => Kind::Scalar,
             ("cross", [Kind::Vector, Kind::Vector]) => Kind::Vector,
-            ("sqrt" | "abs", [Kind::Scalar]) => Kind::Scalar,
+            ("sqrt" | "abs", [Kind::Scalar]) | ("max", [Kind::Scalar, Kind::Scalar]) => Kind::Scalar,
             ("dot" | "cross" | "norm", _) => return self.error(format!("{function} takes vectors")),
+            ("max", _) => return self.error("max takes two numbers"),
             _ => return self.error(format!("{function} takes a number")),
         };
         Ok((Node::Call(function, args), kind))
@@ -374,6 +375,8 @@ fn eval(node: &Node, point: &Point) -> Value {
                 ("norm", [Vector(v)]) => Scalar(v.length()),
                 ("sqrt", [Scalar(x)]) => Scalar(x.sqrt()),
                 ("abs", [Scalar(x)]) => Scalar(x.abs()),
+                // NaN propagates: `f64::max` would drop it and let a broken formula agree.
+                ("max", [Scalar(x), Scalar(y)]) => Scalar(if x.is_nan() || y.is_nan() { f64::NAN } else { x.max(*y) }),
                 _ => nan,
             }
         }

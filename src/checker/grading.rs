@@ -298,6 +298,9 @@ fn compare(expected: &Expected, given: &Given) -> (bool, String) {
             (false, "there is one: the key is a value, not none".into())
         }
         (Expected::OrNone { value, none: false }, given) => compare(value, given),
+        (_, Given::None) => {
+            (false, "this part always has an answer: \"none\" is accepted only where the template offers it".into())
+        }
         _ => (false, "answer has the wrong shape".into()),
     }
 }

@@ -35,6 +35,8 @@ pub enum Rule {
     Unit,
     /// The full cone angle for the half-angle.
     FullForHalfAngle,
+    /// The right quantity in another convention: a vector in the camera's frame, a ratio turned over.
+    Convention,
     /// A different quantity with its own name.
     OtherQuantity,
     /// The wrong case of the analysis.
@@ -49,7 +51,7 @@ pub enum Rule {
 
 impl Rule {
     /// Every rule, in the order of the policy table.
-    pub const ALL: [Self; 14] = [
+    pub const ALL: [Self; 15] = [
         Self::Sign,
         Self::Factor,
         Self::Power,
@@ -59,6 +61,7 @@ impl Rule {
         Self::NotNormalised,
         Self::Unit,
         Self::FullForHalfAngle,
+        Self::Convention,
         Self::OtherQuantity,
         Self::WrongCase,
         Self::ImpracticalAsYes,
@@ -84,6 +87,7 @@ impl Rule {
             Self::NotNormalised => "not_normalised",
             Self::Unit => "unit",
             Self::FullForHalfAngle => "full_for_half_angle",
+            Self::Convention => "convention",
             Self::OtherQuantity => "other_quantity",
             Self::WrongCase => "wrong_case",
             Self::ImpracticalAsYes => "impractical_as_yes",
@@ -114,6 +118,7 @@ impl Rule {
             | Self::NotNormalised
             | Self::Unit
             | Self::FullForHalfAngle
+            | Self::Convention
             | Self::ImpracticalAsYes => 0.5,
             Self::MeasuredNo | Self::CarriedForward => 1.0,
         }
@@ -152,6 +157,9 @@ impl Rule {
             Self::Unit => "An angle in radians where degrees are asked: the value is right, its unit is not.",
             Self::FullForHalfAngle => {
                 "The full cone angle where the half-angle is asked: the construction is right, the convention is not (a lost factor 2)."
+            }
+            Self::Convention => {
+                "The right quantity in another convention than the one asked (a direction in the camera's frame for the world's, a ratio turned over): the construction is right, its last step of expression is not."
             }
             Self::OtherQuantity => {
                 "A different quantity with a name of its own (a first-order term, the mean free path, the normal's turn, a projection for a reflection, an integral without its cosine, a share of the sphere): the method answers another question."

@@ -4,10 +4,13 @@
 
 use super::key::{Expected, MalRule, Part, Variant};
 use super::policy::Rule;
+use crate::q1_hard_scenes::{
+    block_probability, focal_length_pixels, gap_fraction, pixels_per_frame, reflection_turn, transmittance,
+    visual_range,
+};
 use crate::render::catalogue::{CATALOGUE, CLUTTER_COUNT, CLUTTER_HALF_WIDTH, CLUTTER_RADIUS};
 use crate::rng;
 use rand_core::Rng;
-use std::f64::consts::PI;
 
 /// The RNG stream of Q1 variants.
 const STREAM: u64 = 1;
@@ -139,28 +142,29 @@ pub(crate) fn key(n: &Numbers) -> Key {
     // One sphere blocks a ray with probability p = πa²/(W + 2a)² (its centre must fall in the
     // disc of radius a around the ray, out of a face widened by a on each side); misses multiply.
     let widened_area = (n.side + 2.0 * n.radius).powi(2);
-    let p = PI * n.radius * n.radius / widened_area;
+    // The laws are the Q1 chapter's, called rather than restated, so the two cannot drift.
+    let p = block_probability(n.radius, n.side);
     let optical_depth = n.sigma_t * n.path;
     // A sideways step δ moves where a pixel's ray meets the ball by δ; near the centre of the
     // ball the normal turns by δ/R and the reflected ray by twice that.
     let normal_turn = n.step / n.mirror_radius;
-    let focal_pixels = n.height / 2.0 / (n.fov_deg.to_radians() / 2.0).tan();
+    let focal_pixels = focal_length_pixels(n.height, n.fov_deg);
     let per_frame = n.speed / n.fps;
     Key {
         widened_area,
         p,
-        gap: (1.0 - p).powf(n.count),
+        gap: gap_fraction(n.count, n.radius, n.side),
         boolean: (-n.count * p).exp(),
         first_order: 1.0 - n.count * p,
         optical_depth,
-        transmittance: (-optical_depth).exp(),
-        visual_range: 50f64.ln() / n.sigma_t,
+        transmittance: transmittance(n.sigma_t, n.path),
+        visual_range: visual_range(n.sigma_t),
         mean_free_path: 1.0 / n.sigma_t,
         normal_turn,
-        turn_deg: (2.0 * n.step / n.mirror_radius).to_degrees(),
+        turn_deg: reflection_turn(n.step, n.mirror_radius).to_degrees(),
         focal_pixels,
         per_frame,
-        shift: per_frame * focal_pixels / n.depth,
+        shift: pixels_per_frame(per_frame, n.depth, focal_pixels),
     }
 }
 
@@ -285,6 +289,7 @@ pub(super) fn variant(seed: u64) -> Variant {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::f64::consts::PI;
 
     fn value(v: &Variant, key: &str) -> f64 {
         match v.parts.iter().find(|p| p.key == key).unwrap().expected {

@@ -1,11 +1,16 @@
-//! Q4 variants: irradiance from an analytic sky with a closed form, and the mirror ball's blind spot.
+//! Q4 variants: irradiance from an analytic sky with a closed form, the mirror ball's blind spot,
+//! and Q4 as the homework asks it: lighting a surface from a small probe image, texel by texel.
 
-use super::key::{Derivation, Expected, Follows, MalRule, Part, Variant};
+use super::formula::{Kind, Point, Value};
+use super::key::{Derivation, Expected, Follows, MalRule, Part, Variant, formula_part};
 use super::policy::Rule;
+use crate::envmap::{Probe, ProbeFormat, Texel, horizontal_camera};
+use crate::plot::markdown_table;
 use crate::q4_light_probe::blind_spot;
+use crate::q4_light_probe::irradiance::{centre_texels, equal_weight, unweighted_sum, weighted_sum};
 use crate::q4_light_probe::maps::{AnalyticMap, Term};
 use crate::rng;
-use glam::DVec3;
+use glam::{DVec2, DVec3};
 use rand_core::Rng;
 use std::f64::consts::PI;
 
@@ -21,11 +26,11 @@ fn number(value: f64) -> Expected {
 }
 
 pub(super) fn variant(seed: u64) -> Variant {
+    let mut g = rng::seeded(seed, STREAM);
     // Seed 0: a sky of radiance 1 + 1·ω_z, a normal tilted 60° from up, a ball seen from 3 radii.
     let (a, b, tilt_deg, distance_over_radius) = if seed == 0 {
         (1.0, 1.0, 60.0, 3.0)
     } else {
-        let mut g = rng::seeded(seed, STREAM);
         let mut pick = |n: u64| g.next_u64() % n;
         let a = 1.0 + pick(4) as f64;
         let b = [-1.0, 1.0, 2.0][pick(3) as usize];
@@ -51,6 +56,8 @@ pub(super) fn variant(seed: u64) -> Variant {
          in degrees, of the cone of directions the ball cannot show, and the fraction of a uniform environment's \
          irradiance lost for a normal pointing straight into that cone."
     );
+    let image = ProbeImage::draw(seed, a, b, &mut g);
+    let statement = format!("{statement}\n{}", image.statement());
     // Without the cosine: ∫ over the hemisphere of L alone, 2πA + πB n_z.
     let no_cosine = 2.0 * PI * a + PI * b * normal.z;
     let parts = vec![
@@ -113,7 +120,417 @@ pub(super) fn variant(seed: u64) -> Variant {
         from: "q4b.blind_half_angle_deg",
         derivation: Derivation::LostFromHalfAngle,
     }];
+    let mut parts = parts;
+    parts.extend(image.parts(normal));
     Variant { question: "q4", seed, statement, parts, follows }
+}
+
+/// Where the notes work a probe image by hand.
+const PROBE_NOTES: &str = "hw3/q4_light_probe/index.html#a-worked-probe-by-hand";
+const DIRECTION_METHOD: &str =
+    "Reflect the view ray about the ball's normal at the texel's centre: w = 2(n . v)n - v, with v toward the camera.";
+const SOLID_ANGLE_METHOD: &str =
+    "On the orthographic ball dw = 4 dA for the part of the texel inside the disc (image units of the ball's radius).";
+const WEIGHTED_METHOD: &str =
+    "Add L max(0, n . w) dw over every texel inside the disc, each weighted by its own solid angle.";
+const UNWEIGHTED_METHOD: &str =
+    "Add L max(0, n . w) over the texels inside the disc and multiply by the equal share 4 pi/N.";
+const RATIO_METHOD: &str = "Divide the unweighted sum by the weighted one: a ratio above 1 means the equal share overweights the texels that light the surface.";
+const MASKED_METHOD: &str = "Subtract the used texels' solid angles from 4 pi: what is left is held by the texels whose centre falls outside the disc.";
+const BLIND_DIRECTION_METHOD: &str = "Every point of the rim reflects the view ray straight on, so the direction behind the ball is the one the image cannot show.";
+const TERM_METHOD: &str = "One texel adds its radiance times the clamped cosine times its solid angle.";
+
+/// Texels across the probe image of part (c): seed 0 has 5 × 5, other seeds draw one of these.
+const IMAGE_SIZES: [usize; 2] = [4, 5];
+
+/// The radiances a drawn image's texels take (never negative, never 0: a texel sum of zeros has
+/// no bias ratio).
+const RADIANCES: [f64; 6] = [0.5, 1.0, 1.5, 2.0, 3.0, 4.0];
+
+/// Angular tolerance of a texel's direction, radians: three decimals per component pass; the
+/// direction of a texel's corner (a tenth of a radian or more away) does not.
+const DIRECTION_TOL: f64 = 5e-3;
+
+/// Relative tolerance of the probe's solid angles and sums: four significant digits worked by
+/// hand pass; every slip below moves the answer by more.
+const PROBE_RTOL: f64 = 1e-2;
+
+/// Relative tolerance of the bias ratio, tighter than the sums': the ratio is within a few percent
+/// of 1, so a 1 % tolerance would accept "no bias".
+const RATIO_RTOL: f64 = 2e-3;
+
+/// The listed texels' parts: the direction and the solid angle of each.
+const LISTED: [(&str, &str, &str, &str); 3] = [
+    (
+        "q4c.texel1_direction",
+        "world direction w of the first listed texel's centre",
+        "q4c.texel1_solid_angle",
+        "solid angle dw of the first listed texel, steradians",
+    ),
+    (
+        "q4c.texel2_direction",
+        "world direction w of the second listed texel's centre",
+        "q4c.texel2_solid_angle",
+        "solid angle dw of the second listed texel, steradians",
+    ),
+    (
+        "q4c.texel3_direction",
+        "world direction w of the third listed texel's centre",
+        "q4c.texel3_solid_angle",
+        "solid angle dw of the third listed texel, steradians",
+    ),
+];
+
+/// The symbols of the texel-term formula: radiance, normal, direction, solid angle.
+const TERM_SYMBOLS: [(&str, Kind); 4] =
+    [("L", Kind::Scalar), ("n", Kind::Vector), ("w", Kind::Vector), ("dw", Kind::Scalar)];
+
+/// Part (c): a small mirror-ball probe image, every texel's radiance given, three texels listed.
+#[derive(Debug, Clone)]
+struct ProbeImage {
+    /// Texels across and down.
+    size: usize,
+    /// The image as an orthographic mirror-ball probe seen from the `+x` horizon; texels whose
+    /// centre is outside the disc hold 0.
+    probe: Probe,
+    /// The listed texels (row-major indices): two wholly inside the disc, then one on its rim.
+    listed: [usize; 3],
+}
+
+fn direction(value: DVec3) -> Expected {
+    Expected::Direction { value: value.to_array(), angle_tol: DIRECTION_TOL }
+}
+
+fn probe_number(value: f64) -> Expected {
+    Expected::Number { value, rtol: PROBE_RTOL, atol: 1e-9 }
+}
+
+impl ProbeImage {
+    /// Seed 0 photographs the sky of part (a), each texel its centre's radiance to one decimal;
+    /// other seeds draw 4 × 4 or 5 × 5 texels from [`RADIANCES`] and which texels are listed.
+    fn draw(seed: u64, a: f64, b: f64, g: &mut rng::Generator) -> Self {
+        let size = if seed == 0 { 5 } else { IMAGE_SIZES[(g.next_u64() % 2) as usize] };
+        let format = ProbeFormat::MirrorBall;
+        let blank = Probe::from_fn(format, size, size, horizontal_camera(), |_| DVec3::ZERO)
+            .expect("a 4 × 4 or 5 × 5 probe of zeros is valid");
+        let centres = centre_texels(&blank);
+        let radiance: Vec<DVec3> = centres
+            .iter()
+            .map(|t| match (t.centre_inside, seed) {
+                (false, _) => DVec3::ZERO,
+                (true, 0) => DVec3::splat(((a + b * t.direction.z) * 10.0).round().max(0.0) / 10.0),
+                (true, _) => DVec3::splat(RADIANCES[(g.next_u64() % RADIANCES.len() as u64) as usize]),
+            })
+            .collect();
+        let probe = Probe::from_radiance(format, size, size, horizontal_camera(), radiance)
+            .expect("the radiances are finite and ≥ 0");
+        let full = (2.0 / size as f64).powi(2);
+        let (interior, rim): (Vec<usize>, Vec<usize>) = (0..centres.len())
+            .filter(|&i| centres[i].centre_inside)
+            .partition(|&i| (centres[i].area - full).abs() < 1e-12 * full);
+        let listed = if seed == 0 {
+            // Row 1 column 2 (straight above the middle), row 1 column 3, and the top rim texel.
+            [7, 8, 2]
+        } else {
+            let first = interior[(g.next_u64() % interior.len() as u64) as usize];
+            let others: Vec<usize> = interior.iter().copied().filter(|&i| i != first).collect();
+            let second = others[(g.next_u64() % others.len() as u64) as usize];
+            [first, second, rim[(g.next_u64() % rim.len() as u64) as usize]]
+        };
+        Self { size, probe, listed }
+    }
+
+    /// `(row, column)` of texel `index`.
+    fn place(&self, index: usize) -> (usize, usize) {
+        (index / self.size, index % self.size)
+    }
+
+    /// Part (c)'s statement, with the image as a table.
+    fn statement(&self) -> String {
+        let n = self.size;
+        let mut header = vec!["row".to_string()];
+        header.extend((0..n).map(|c| c.to_string()));
+        let header: Vec<&str> = header.iter().map(String::as_str).collect();
+        let rows = (0..n).map(|row| {
+            let mut cells = vec![row.to_string()];
+            cells.extend((0..n).map(|column| {
+                let texel = self.probe.texels()[row * n + column];
+                if texel.centre_inside { format!("{}", texel.radiance.x) } else { "-".into() }
+            }));
+            cells
+        });
+        let table = markdown_table(&header, rows);
+        let listed: Vec<String> = self.listed.iter().map(|&i| format!("{:?}", self.place(i))).collect();
+        format!(
+            "(c) Q4 as asked: the ball photographed from far away (an orthographic camera on the +x horizon) as a \
+             {n} x {n} image, the ball's disc of radius 1 inscribed in it; image right = world +y, image up = world +z, \
+             toward the camera = world +x. Each texel records the radiance L below (row 0 at the top, column 0 at the \
+             left; \"-\" marks a texel whose centre is outside the disc: masked, not used):\n\n{table}\n\
+             For texels {} (row, column): the world direction w of the texel's centre (unit, from the ball toward the \
+             light it shows) and the texel's solid angle dw. Over every texel used, for the normal n of (a): the \
+             weighted sum E = sum of L max(0, n . w) dw; the unweighted sum (4 pi/N) times the sum of L max(0, n . w) \
+             over the N texels used; its bias as the ratio unweighted/weighted; the solid angle the masked texels \
+             hold (4 pi minus the sum of dw); the one direction the image cannot show; and, as a formula in L, n, w \
+             and dw, the term one texel adds to E.",
+            listed.join(", ")
+        )
+    }
+
+    /// Part (c)'s parts for surface normal `normal`.
+    fn parts(&self, normal: DVec3) -> Vec<Part> {
+        let texels = centre_texels(&self.probe);
+        let camera = horizontal_camera();
+        let toward_camera = camera * DVec3::Z;
+        let used = texels.iter().filter(|t| t.centre_inside).count();
+        let share = 4.0 * PI / used as f64;
+        let full_area = (2.0 / self.size as f64).powi(2);
+        let mut parts = Vec::new();
+        for (&index, (direction_key, direction_prompt, solid_angle_key, solid_angle_prompt)) in
+            self.listed.iter().zip(LISTED)
+        {
+            let texel = texels[index];
+            let rect = self.probe.texel_rect(index);
+            let corners = [rect.min, DVec2::new(rect.max.x, rect.min.y), rect.max, DVec2::new(rect.min.x, rect.max.y)];
+            let mut mal_rules = vec![
+                MalRule {
+                    value: direction(camera.transpose() * texel.direction),
+                    message: "that is the direction in the camera's frame (x right, y up, z toward the camera); in \
+                              the world image right is +y, image up +z, toward the camera +x",
+                    rule: Rule::Convention,
+                },
+                MalRule {
+                    value: direction(-texel.direction),
+                    message: "that is -w, the way the light travels; w points from the ball toward the light it shows",
+                    rule: Rule::Sign,
+                },
+                MalRule {
+                    // The ball's normal halves the angle between the view ray back to the camera
+                    // and the reflected one.
+                    value: direction((texel.direction + toward_camera).normalize()),
+                    message: "that is the ball's normal at the texel; the light comes along the view ray reflected \
+                              about it, at twice its angle from the camera",
+                    rule: Rule::OtherQuantity,
+                },
+            ];
+            mal_rules.extend(corners.iter().filter_map(|&c| self.probe.image_to_world(c)).map(|(w, _)| MalRule {
+                value: direction(w),
+                message: "that is the direction of a corner of the texel; the texel looks along its centre's",
+                rule: Rule::WrongTerm,
+            }));
+            parts.push(Part {
+                key: direction_key,
+                prompt: direction_prompt,
+                points: 1.0,
+                expected: direction(texel.direction),
+                mal_rules,
+                explained_in: PROBE_NOTES,
+                method: DIRECTION_METHOD,
+            });
+            parts.push(Part {
+                key: solid_angle_key,
+                prompt: solid_angle_prompt,
+                points: 1.0,
+                expected: probe_number(texel.solid_angle),
+                mal_rules: vec![
+                    MalRule {
+                        value: probe_number(4.0 * full_area),
+                        message: "that is 4 x the whole texel's area; only the part inside the disc sees the sky",
+                        rule: Rule::WrongTerm,
+                    },
+                    MalRule {
+                        value: probe_number(texel.area),
+                        message: "that is the texel's area in the image; on the orthographic ball dw = 4 dA",
+                        rule: Rule::OtherQuantity,
+                    },
+                    MalRule {
+                        value: probe_number(share),
+                        message: "that is 4 pi/N, the equal share the unweighted sum gives every texel",
+                        rule: Rule::OtherQuantity,
+                    },
+                ],
+                explained_in: PROBE_NOTES,
+                method: SOLID_ANGLE_METHOD,
+            });
+        }
+        let weight = equal_weight(&texels);
+        let weighted = weighted_sum(normal, &texels).x;
+        let unweighted = unweighted_sum(normal, &texels, weight).x;
+        // max(0, x) − max(0, −x) = x: the sums without the clamp, from the clamped ones.
+        let unclamped = weighted - weighted_sum(-normal, &texels).x;
+        let whole: Vec<Texel> = texels
+            .iter()
+            .map(|t| Texel { solid_angle: if t.centre_inside { 4.0 * full_area } else { 0.0 }, ..*t })
+            .collect();
+        parts.push(Part {
+            key: "q4c.weighted_sum",
+            prompt: "weighted sum E = sum of L max(0, n . w) dw over the texels used",
+            points: 2.0,
+            expected: probe_number(weighted),
+            mal_rules: vec![
+                MalRule {
+                    value: probe_number(unweighted_sum(normal, &texels, 1.0).x),
+                    message: "the solid angle dw is missing: that sum counts texels, not steradians",
+                    rule: Rule::WrongTerm,
+                },
+                MalRule {
+                    value: probe_number(unclamped),
+                    message: "the clamp max(0, .) is missing: texels below the surface's horizon subtract light",
+                    rule: Rule::WrongTerm,
+                },
+                MalRule {
+                    value: probe_number(weighted_sum(-normal, &texels).x),
+                    message: "that uses -w, the way the light travels; n . w needs w from the surface toward the light",
+                    rule: Rule::Sign,
+                },
+                MalRule {
+                    value: probe_number(weighted_sum(normal, &whole).x),
+                    message: "the rim texels are counted whole; only their part inside the disc sees the sky",
+                    rule: Rule::WrongTerm,
+                },
+                MalRule {
+                    value: probe_number(unweighted),
+                    message: "that is the unweighted sum; weight each texel by its own solid angle",
+                    rule: Rule::OtherQuantity,
+                },
+            ],
+            explained_in: PROBE_NOTES,
+            method: WEIGHTED_METHOD,
+        });
+        parts.push(Part {
+            key: "q4c.unweighted_sum",
+            prompt: "unweighted sum (4 pi/N) times the sum of L max(0, n . w)",
+            points: 1.0,
+            expected: probe_number(unweighted),
+            mal_rules: vec![
+                MalRule {
+                    value: probe_number(unweighted_sum(normal, &texels, 1.0).x),
+                    message: "that is the literal sum of L max(0, n . w): give each texel the equal share 4 pi/N",
+                    rule: Rule::Factor,
+                },
+                MalRule {
+                    value: probe_number(unweighted - unweighted_sum(-normal, &texels, weight).x),
+                    message: "the clamp max(0, .) is missing: texels below the surface's horizon subtract light",
+                    rule: Rule::WrongTerm,
+                },
+                MalRule {
+                    value: probe_number(weighted),
+                    message: "that is the weighted sum; the unweighted one gives every texel 4 pi/N",
+                    rule: Rule::OtherQuantity,
+                },
+            ],
+            explained_in: PROBE_NOTES,
+            method: UNWEIGHTED_METHOD,
+        });
+        let ratio = |value| Expected::Number { value, rtol: RATIO_RTOL, atol: 1e-9 };
+        parts.push(Part {
+            key: "q4c.bias_ratio",
+            prompt: "bias of the unweighted sum, as the ratio unweighted/weighted",
+            points: 1.0,
+            expected: ratio(unweighted / weighted),
+            mal_rules: vec![
+                MalRule {
+                    value: ratio(weighted / unweighted),
+                    message: "that is weighted/unweighted; the ratio asked is unweighted/weighted",
+                    rule: Rule::Convention,
+                },
+                MalRule {
+                    value: ratio(1.0),
+                    message: "the unweighted sum is not exact here: texels wholly inside the disc cover more than 4 pi/N, rim texels less",
+                    rule: Rule::OtherQuantity,
+                },
+            ],
+            explained_in: PROBE_NOTES,
+                method: RATIO_METHOD,
+        });
+        let masked: f64 = texels.iter().filter(|t| !t.centre_inside).map(|t| t.solid_angle).sum();
+        parts.push(Part {
+            key: "q4c.masked_solid_angle",
+            prompt: "solid angle held by the masked texels, 4 pi minus the sum of dw, steradians",
+            points: 0.5,
+            expected: Expected::Number { value: masked, rtol: PROBE_RTOL, atol: 1e-9 },
+            mal_rules: vec![MalRule {
+                value: Expected::Number { value: 0.0, rtol: 0.0, atol: 1e-3 },
+                message: "the ball shows every direction but one, yet the masked corner texels drop the part of \
+                          the disc they hold",
+                rule: Rule::WrongTerm,
+            }],
+            explained_in: PROBE_NOTES,
+            method: MASKED_METHOD,
+        });
+        // The rim of the disc: every point of it sees straight behind the ball.
+        let rim = self.probe.image_to_world(DVec2::X).map_or(-toward_camera, |(w, _)| w);
+        parts.push(Part {
+            key: "q4c.blind_direction",
+            prompt: "the one world direction the image cannot show",
+            points: 0.5,
+            expected: direction(rim),
+            mal_rules: vec![MalRule {
+                value: direction(toward_camera),
+                message: "that is the direction back to the camera, seen at the ball's centre; the blind \
+                          direction is straight behind the ball, where the rim points",
+                rule: Rule::Sign,
+            }],
+            explained_in: PROBE_NOTES,
+            method: BLIND_DIRECTION_METHOD,
+        });
+        parts.push(formula_part(
+            "q4c.term_formula",
+            "the term one texel adds to E, as a formula",
+            1.0,
+            "L*max(0, dot(n, w))*dw",
+            &TERM_SYMBOLS,
+            &term_points(),
+            &[
+                (
+                    "L*dot(n, w)",
+                    "the solid angle dw and the clamp max(0, .) are missing (the seed's K_d L (n . l))",
+                    Rule::WrongTerm,
+                ),
+                (
+                    "L*dot(n, w)*dw",
+                    "the clamp max(0, .) is missing: light from below the surface's horizon subtracts",
+                    Rule::WrongTerm,
+                ),
+                (
+                    "L*max(0, dot(n, w))",
+                    "the solid angle dw is missing: the sum would count texels, not steradians",
+                    Rule::WrongTerm,
+                ),
+                (
+                    "L*max(0, -dot(n, w))*dw",
+                    "that uses -w, the way the light travels; w points toward the light",
+                    Rule::Sign,
+                ),
+            ],
+            PROBE_NOTES,
+            TERM_METHOD,
+        ));
+        parts
+    }
+}
+
+/// Where the texel-term formula is compared: 40 random radiances, unit normals, unit directions
+/// (half of them below the normal's horizon, where the clamp matters) and solid angles.
+fn term_points() -> Vec<Point> {
+    let mut g = rng::seeded(0, STREAM + 100);
+    let unit = |g: &mut rng::Generator| {
+        let z = rng::uniform_in(g, -1.0, 1.0);
+        let phi = rng::uniform_in(g, 0.0, 2.0 * PI);
+        let s = (1.0 - z * z).sqrt();
+        DVec3::new(s * phi.cos(), s * phi.sin(), z)
+    };
+    (0..40)
+        .map(|_| {
+            let (n, w) = (unit(&mut g), unit(&mut g));
+            let values = [
+                ("L", Value::Scalar(rng::uniform_in(&mut g, 0.5, 4.0))),
+                ("n", Value::Vector(n)),
+                ("w", Value::Vector(w)),
+                ("dw", Value::Scalar(rng::uniform_in(&mut g, 0.05, 1.0))),
+            ];
+            values.into_iter().collect()
+        })
+        .collect()
 }
 
 #[cfg(test)]
@@ -149,6 +566,97 @@ mod tests {
             }
         }
         sum
+    }
+
+    /// Every slip the probe parts name is reachable: answering its value is graded wrong (or
+    /// partial) with a recognised message, never correct, unless the slip coincides with the key
+    /// (4 × a whole texel's area *is* the solid angle of a texel wholly inside the disc).
+    #[test]
+    fn every_probe_slip_is_recognised() {
+        use crate::checker::check;
+        for seed in 0..12 {
+            let v = variant(seed);
+            for part in v.parts.iter().filter(|p| p.key.starts_with("q4c.") && p.key != "q4c.term_formula") {
+                let toml_value = |e: &Expected| match e {
+                    Expected::Number { value, .. } => format!("{value:?}"),
+                    Expected::Direction { value, .. } => format!("[{:?}, {:?}, {:?}]", value[0], value[1], value[2]),
+                    other => unreachable!("{other:?}"),
+                };
+                let name = part.key.trim_start_matches("q4c.");
+                for rule in &part.mal_rules {
+                    let file = format!("[meta]\nseed = {seed}\n[q4c]\n{name} = {}\n", toml_value(&rule.value));
+                    let report = check(&file, None).unwrap();
+                    let result = report.parts.iter().find(|p| p.key == part.key).unwrap();
+                    if result.status == "correct" {
+                        continue;
+                    }
+                    let named = part.mal_rules.iter().any(|r| result.feedback.starts_with(r.message));
+                    assert!(named, "seed {seed} {}: `{}` not recognised: {}", part.key, rule.message, result.feedback);
+                }
+            }
+        }
+    }
+
+    /// The classic slips of seed 0, by name: the solid angle forgotten, the clamp forgotten, the
+    /// light's travel direction for the direction it comes from, a corner for the centre.
+    #[test]
+    fn seed_zero_names_the_classic_slips() {
+        use crate::checker::check;
+        let v = variant(0);
+        let feedback = |key: &str, value: String| {
+            let (table, name) = key.split_once('.').unwrap();
+            let report = check(&format!("[{table}]\n{name} = {value}\n"), None).unwrap();
+            report.parts.into_iter().find(|p| p.key == key).unwrap().feedback
+        };
+        let rule_value = |key: &str, start: &str| {
+            let part = v.parts.iter().find(|p| p.key == key).unwrap();
+            let rule = part.mal_rules.iter().find(|r| r.message.starts_with(start)).unwrap();
+            match rule.value {
+                Expected::Number { value, .. } => format!("{value:?}"),
+                Expected::Direction { value, .. } => format!("{value:?}"),
+                _ => unreachable!(),
+            }
+        };
+        for (key, slip) in [
+            ("q4c.weighted_sum", "the solid angle dw is missing"),
+            ("q4c.weighted_sum", "the clamp max(0, .) is missing"),
+            ("q4c.weighted_sum", "that uses -w"),
+            ("q4c.texel1_direction", "that is -w"),
+            ("q4c.texel1_direction", "that is the direction of a corner"),
+            ("q4c.texel3_solid_angle", "that is 4 x the whole texel's area"),
+            ("q4c.unweighted_sum", "that is the literal sum"),
+        ] {
+            let text = feedback(key, rule_value(key, slip));
+            assert!(text.starts_with(slip), "{key}: {text}");
+        }
+        // The seed's own sum as a formula, and the key's, written with the clamp as (x + |x|)/2.
+        let text = feedback("q4c.term_formula", "\"L*dot(n, w)\"".into());
+        assert!(text.contains("the seed's K_d L (n . l)"), "{text}");
+        let text = feedback("q4c.term_formula", "\"L*(dot(n, w) + abs(dot(n, w)))/2*dw\"".into());
+        assert!(!text.contains("missing"), "{text}");
+    }
+
+    /// Images drawn from 60 generator states are physical and well posed: radiances ≥ 0 inside the
+    /// disc and 0 outside, two listed texels wholly inside the disc and one cut by its rim; and
+    /// every variant's weighted sum is positive.
+    #[test]
+    fn every_probe_image_is_physical_and_lists_interior_and_rim_texels() {
+        for seed in 0..60 {
+            let mut g = rng::seeded(seed, STREAM);
+            let image = ProbeImage::draw(seed, 1.0, 1.0, &mut g);
+            let full = (2.0 / image.size as f64).powi(2);
+            for texel in image.probe.texels() {
+                assert!(texel.radiance.x >= 0.0);
+                assert!(texel.centre_inside || texel.radiance.x == 0.0);
+            }
+            let area = |i: usize| image.probe.texels()[i].area;
+            let [first, second, rim] = image.listed;
+            assert!(first != second && (area(first) - full).abs() < 1e-12 && (area(second) - full).abs() < 1e-12);
+            assert!(area(rim) < full && image.probe.texels()[rim].centre_inside, "seed {seed}");
+            let v = variant(seed);
+            let weighted = v.parts.iter().find(|p| p.key == "q4c.weighted_sum").unwrap();
+            assert!(matches!(weighted.expected, Expected::Number { value, .. } if value > 0.0));
+        }
     }
 
     #[test]

@@ -54,7 +54,7 @@ pub(super) enum Given {
     },
     Paths(String),
     Planes(Vec<ExpectedPlane>),
-    /// `"none"` for a part that may have no value.
+    /// `"none"`: right for a part that may have no value, wrong (with a reason) elsewhere.
     None,
     /// Some value for a part whose key is "none" (its shape is not checked: any value is wrong).
     Something(String),
@@ -130,6 +130,13 @@ fn number(key: &str, value: &toml::Value) -> Result<f64, CheckError> {
 }
 
 pub(super) fn read_value(key: &str, value: &toml::Value, expected: &Expected) -> Result<Given, CheckError> {
+    // "none" is an answer only where the part allows it (an `OrNone` value, a class of light
+    // paths); anywhere else it is read as an answer, so that it is graded wrong with a reason
+    // rather than refusing the whole file.
+    let none = matches!(value, toml::Value::String(s) if s.trim().eq_ignore_ascii_case("none"));
+    if none && !matches!(expected, Expected::OrNone { .. } | Expected::Paths { .. }) {
+        return Ok(Given::None);
+    }
     match expected {
         Expected::Number { .. } => number(key, value).map(Given::Number),
         Expected::Trace { .. } => read_trace(key, value).map(Given::Trace),

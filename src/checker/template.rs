@@ -109,7 +109,7 @@ fn shape(expected: &Expected) -> String {
                 })
                 .collect();
             format!(
-                "a formula in quotes in {}; + - * / ^, dot, cross, norm, sqrt, abs; write * for products",
+                "a formula in quotes in {}; + - * / ^, dot, cross, norm, sqrt, abs, max; write * for products",
                 names.join(", ")
             )
         }

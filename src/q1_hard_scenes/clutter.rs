@@ -2,6 +2,7 @@
 //! complexity and the visible fraction follow the Boolean model's transmission law.
 
 use crate::geometry::{InputError, Ray};
+use crate::plot::markdown_table;
 use crate::render::catalogue::{self, CLUTTER_HALF_WIDTH, CLUTTER_RADIUS};
 use crate::render::sampling::Sampler;
 use crate::render::{
@@ -11,12 +12,62 @@ use crate::render::{
 use glam::DVec3;
 use std::collections::BTreeSet;
 use std::f64::consts::PI;
-use std::fmt::Write as _;
+
+/// The probability `p = πa²/(W + 2a)²` that one sphere of radius `radius`, its centre uniform
+/// over a slab whose front face is a `face` × `face` square widened by `radius` on each side,
+/// blocks a given ray perpendicular to the face: the centre must fall in the disc of radius `a`
+/// around the ray.
+///
+/// # Examples
+/// ```
+/// use hw3::q1_hard_scenes::block_probability;
+/// // The renderer's clutter slab: spheres of radius 0.5 over a 40 × 40 face.
+/// let p = block_probability(0.5, 40.0);
+/// assert!((p - std::f64::consts::PI * 0.25 / 41.0 / 41.0).abs() < 1e-15);
+/// ```
+#[must_use]
+pub fn block_probability(radius: f64, face: f64) -> f64 {
+    PI * radius * radius / (face + 2.0 * radius).powi(2)
+}
+
+/// The gap fraction `(1 − p)^N`: the share of rays perpendicular to the face that cross a slab of
+/// `count` spheres without a hit, each sphere independently blocking with
+/// [`block_probability`]`(radius, face)`. For small `p` it is the Boolean-model limit `e^(−Np)`
+/// to within about `N p²/2`.
+///
+/// # Examples
+/// ```
+/// use hw3::q1_hard_scenes::gap_fraction;
+/// // 1500 spheres of radius 0.5 over a 40 × 40 face: about half the rays get through.
+/// assert!((gap_fraction(1500.0, 0.5, 40.0) - 0.496_091).abs() < 1e-6);
+/// assert_eq!(gap_fraction(0.0, 0.5, 40.0), 1.0);
+/// ```
+#[must_use]
+pub fn gap_fraction(count: f64, radius: f64, face: f64) -> f64 {
+    (1.0 - block_probability(radius, face)).powf(count)
+}
 
 /// Sphere counts of the clutter experiment.
+///
+/// # Examples
+/// ```
+/// use hw3::q1_hard_scenes::{CLUTTER_COUNTS, gap_fraction};
+/// // From nearly clear (τ ≈ 0.12) to nearly opaque (τ ≈ 1.9) over the renderer's slab.
+/// let gaps = CLUTTER_COUNTS.map(|n| gap_fraction(n as f64, 0.5, 40.0));
+/// assert!(gaps[0] > 0.85 && gaps[4] < 0.2 && gaps.windows(2).all(|w| w[1] < w[0]));
+/// ```
 pub const CLUTTER_COUNTS: [usize; 5] = [250, 500, 1000, 2000, 4000];
 
 /// One row of the clutter experiment (averaged over [`CLUTTER_SEEDS`] random forests).
+///
+/// # Examples
+/// ```
+/// use hw3::q1_hard_scenes::{ClutterRow, clutter_row};
+/// let row: ClutterRow = clutter_row(250).unwrap();
+/// // The Boolean-model limit and the exact law agree at this density, and τ = N p.
+/// assert!((row.gap_beer_lambert / row.gap_exact - 1.0).abs() < 1e-3);
+/// assert!((row.optical_depth / 250.0 - hw3::q1_hard_scenes::block_probability(0.5, 40.0)).abs() < 1e-15);
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ClutterRow {
     /// Number of spheres `N`.
@@ -40,6 +91,13 @@ pub struct ClutterRow {
 }
 
 /// Random forests per clutter row.
+///
+/// # Examples
+/// ```
+/// use hw3::q1_hard_scenes::CLUTTER_SEEDS;
+/// // Enough forests for a standard error between them (at least two).
+/// assert!(CLUTTER_SEEDS >= 2);
+/// ```
 pub const CLUTTER_SEEDS: u64 = 4;
 /// Probe rays per side of the square grid of the gap-fraction measurement.
 const PROBE_GRID: usize = 48;
@@ -88,15 +146,14 @@ pub fn clutter_row(count: usize) -> Result<ClutterRow, InputError> {
     let seeds = CLUTTER_SEEDS as f64;
     let gap_fraction = gaps.iter().sum::<f64>() / seeds;
     let spread = (gaps.iter().map(|g| (g - gap_fraction).powi(2)).sum::<f64>() / (seeds - 1.0)).sqrt();
-    let side = 2.0 * (CLUTTER_HALF_WIDTH + CLUTTER_RADIUS);
-    let p = PI * CLUTTER_RADIUS * CLUTTER_RADIUS / (side * side);
+    let p = block_probability(CLUTTER_RADIUS, 2.0 * CLUTTER_HALF_WIDTH);
     let optical_depth = count as f64 * p;
     Ok(ClutterRow {
         count,
         optical_depth,
         gap_fraction,
         gap_standard_error: spread / seeds.sqrt(),
-        gap_exact: (1.0 - p).powi(count as i32),
+        gap_exact: self::gap_fraction(count as f64, CLUTTER_RADIUS, 2.0 * CLUTTER_HALF_WIDTH),
         gap_beer_lambert: (-optical_depth).exp(),
         depth_complexity: pierced_total / seeds,
         visible_fraction: visible_total / seeds,
@@ -137,31 +194,46 @@ fn visible_fraction(scene: &Scene, seed: u64) -> Result<f64, InputError> {
 }
 
 pub(super) fn clutter_table(rows: &[ClutterRow]) -> String {
-    let mut text = String::from(
-        "| N | τ = Np | gap measured | ± s.e. | (1−p)^N | e^(−τ) | depth complexity | law τ | visible fraction |\n|---|---|---|---|---|---|---|---|---|\n",
-    );
-    for r in rows {
-        let _ = writeln!(
-            text,
-            "| {} | {:.3} | {:.4} | {:.4} | {:.4} | {:.4} | {:.3} | {:.3} | {:.3} |",
-            r.count,
-            r.optical_depth,
-            r.gap_fraction,
-            r.gap_standard_error,
-            r.gap_exact,
-            r.gap_beer_lambert,
-            r.depth_complexity,
-            r.optical_depth,
-            r.visible_fraction
-        );
-    }
-    text
+    let header =
+        ["N", "τ = Np", "gap measured", "± s.e.", "(1−p)^N", "e^(−τ)", "depth complexity", "law τ", "visible fraction"];
+    markdown_table(
+        &header,
+        rows.iter().map(|r| {
+            [
+                r.count.to_string(),
+                format!("{:.3}", r.optical_depth),
+                format!("{:.4}", r.gap_fraction),
+                format!("{:.4}", r.gap_standard_error),
+                format!("{:.4}", r.gap_exact),
+                format!("{:.4}", r.gap_beer_lambert),
+                format!("{:.3}", r.depth_complexity),
+                format!("{:.3}", r.optical_depth),
+                format!("{:.3}", r.visible_fraction),
+            ]
+        }),
+    )
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::q1_hard_scenes::metric::snapshot;
+
+    /// The law against the numbers it has always given: the closed form the clutter table used,
+    /// `(1 − π a²/(W + 2a)²)^N` with `W + 2a = 41`, and the checker's seed-1 slab as worked by
+    /// `tests/answers/fixtures/keys.py`.
+    #[test]
+    fn gap_fraction_is_the_closed_form_the_table_used() {
+        let side = 2.0 * (CLUTTER_HALF_WIDTH + CLUTTER_RADIUS);
+        let p = PI * CLUTTER_RADIUS * CLUTTER_RADIUS / (side * side);
+        assert_eq!(block_probability(CLUTTER_RADIUS, 2.0 * CLUTTER_HALF_WIDTH), p);
+        for count in CLUTTER_COUNTS {
+            let law = gap_fraction(count as f64, CLUTTER_RADIUS, 2.0 * CLUTTER_HALF_WIDTH);
+            assert!((law / (1.0 - p).powi(count as i32) - 1.0).abs() < 1e-13, "N = {count}");
+        }
+        assert!((gap_fraction(1500.0, 0.5, 40.0) - 0.496_091_461_426_707_07).abs() < 1e-15);
+        assert!((gap_fraction(1000.0, 1.0, 40.0) - 0.168_211_024_425_761_63).abs() < 1e-15);
+    }
 
     /// The gap fraction and depth complexity follow the exact law within 3 standard errors of
     /// the mean over forests (a z-test), and the visible fraction falls as the forest grows.

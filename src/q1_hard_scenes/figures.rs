@@ -190,6 +190,15 @@ pub fn figures() -> Result<Vec<Figure>, PlotError> {
 /// Samples per pixel of each Q1 render, chosen from the measured error against samples per pixel
 /// (`docs/data/q1_accuracy.md`, Whitted): where the error stops falling fast, so that more samples
 /// would cost time without changing what the picture shows.
+///
+/// # Examples
+/// ```
+/// use hw3::q1_hard_scenes::RENDER_SPP;
+/// // One entry per hard scene; the moving ball's motion blur needs the most samples.
+/// let names: Vec<&str> = RENDER_SPP.iter().map(|(name, _)| *name).collect();
+/// assert_eq!(names, ["clutter", "fog", "mirrors", "motion"]);
+/// assert_eq!(RENDER_SPP.iter().map(|(_, spp)| *spp).max(), Some(RENDER_SPP[3].1));
+/// ```
 pub const RENDER_SPP: [(&str, u32); 4] = [("clutter", 16), ("fog", 8), ("mirrors", 16), ("motion", 64)];
 
 fn spp_of(scene: &str) -> u32 {

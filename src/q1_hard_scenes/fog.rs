@@ -2,6 +2,7 @@
 //! airlight that the renderer's single-scattering quadrature reproduces (Sun et al. 2005).
 
 use crate::geometry::{InputError, Ray};
+use crate::plot::markdown_table;
 use crate::render::integrator::{IN_SCATTER_STEPS, Integrator, Tracer};
 use crate::render::medium::airlight_closed_form;
 use crate::render::sampling::Sampler;
@@ -14,11 +15,56 @@ use crate::render::{
     scene::{Fog, Material, Object, PointLight, Scene},
 };
 use glam::DVec3;
-use std::fmt::Write as _;
+
+/// Beer–Lambert transmittance `e^(−σ_t ℓ)`: the share of a target's light that crosses `length`
+/// units of a medium of extinction coefficient `sigma_t` (the contrast of a target against the
+/// fog falls by the same factor).
+///
+/// # Examples
+/// ```
+/// use hw3::q1_hard_scenes::transmittance;
+/// // The fog street (σ_t = 0.08) over 10 units: 45 % gets through.
+/// assert!((transmittance(0.08, 10.0) - (-0.8f64).exp()).abs() < 1e-15);
+/// assert_eq!(transmittance(0.08, 0.0), 1.0);
+/// ```
+#[must_use]
+pub fn transmittance(sigma_t: f64, length: f64) -> f64 {
+    (-sigma_t * length).exp()
+}
+
+/// Koschmieder's visual range `ln(50)/σ_t`: the distance at which a target's contrast falls to
+/// 2 % (`e^(−σ_t d) = 1/50`), the eye's threshold.
+///
+/// # Examples
+/// ```
+/// use hw3::q1_hard_scenes::{transmittance, visual_range};
+/// let d = visual_range(0.08);
+/// assert!((d - 48.9).abs() < 0.01);
+/// assert!((transmittance(0.08, d) - 0.02).abs() < 1e-15);
+/// ```
+#[must_use]
+pub fn visual_range(sigma_t: f64) -> f64 {
+    50f64.ln() / sigma_t
+}
 
 /// Extinction coefficients of the fog experiment.
+///
+/// # Examples
+/// ```
+/// use hw3::q1_hard_scenes::{FOG_SIGMAS, visual_range};
+/// // Visual ranges of 78, 39 and 20 units.
+/// let ranges = FOG_SIGMAS.map(visual_range);
+/// assert!((ranges[0] - 78.24).abs() < 0.01 && (ranges[2] - 19.56).abs() < 0.01);
+/// ```
 pub const FOG_SIGMAS: [f64; 3] = [0.05, 0.1, 0.2];
 /// Target distances (along the optical axis) of the fog experiment.
+///
+/// # Examples
+/// ```
+/// use hw3::q1_hard_scenes::{FOG_DISTANCES, FOG_SIGMAS, transmittance};
+/// // The farthest target in the densest fog keeps well under 1 % of its light.
+/// assert!(transmittance(FOG_SIGMAS[2], FOG_DISTANCES[5]) < 1e-3);
+/// ```
 pub const FOG_DISTANCES: [f64; 6] = [1.0, 2.0, 5.0, 10.0, 20.0, 40.0];
 /// Relative differences below this are rounding (they vary in the last bit between platforms'
 /// `exp`): the table prints `< 1e-13`.
@@ -32,6 +78,14 @@ pub(super) fn fog_probe_direction() -> DVec3 {
 }
 
 /// One measurement of the fog experiment.
+///
+/// # Examples
+/// ```
+/// use hw3::q1_hard_scenes::{FogRow, fog_row};
+/// let row: FogRow = fog_row(0.05, 2.0).unwrap();
+/// // Thin fog over a short path: the target keeps most of its light and outshines the airlight.
+/// assert!(row.transmittance > 0.9 && row.apparent_contrast > 1.0);
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FogRow {
     /// `σ_t` (all scattering).
@@ -87,7 +141,7 @@ pub fn fog_row(sigma_t: f64, distance: f64) -> Result<FogRow, InputError> {
         sigma_t,
         distance,
         transmittance,
-        law: (-sigma_t * path_length).exp(),
+        law: self::transmittance(sigma_t, path_length),
         airlight: dark,
         apparent_contrast: transmittance / dark,
     })
@@ -174,43 +228,46 @@ fn wall_in_fog(distance: f64, wall: Material, lamp: PointLight, sigma_s: f64) ->
 }
 
 pub(super) fn fog_table(rows: &[FogRow]) -> String {
-    let mut text = String::from(
-        "| σ_t | d | T measured | e^(−σ_t ℓ) | rel. diff | airlight | apparent contrast |\n|---|---|---|---|---|---|---|\n",
-    );
-    for r in rows {
-        let _ = writeln!(
-            text,
-            "| {} | {} | {:.6e} | {:.6e} | {} | {:.4e} | {:.4e} |",
-            r.sigma_t,
-            r.distance,
-            r.transmittance,
-            r.law,
-            // Rounding-level differences vary in the last bit between platforms' `exp`.
-            if (r.transmittance / r.law - 1.0).abs() < ROUNDING_LEVEL {
-                format!("< {ROUNDING_LEVEL:e}")
-            } else {
-                format!("{:.1e}", (r.transmittance / r.law - 1.0).abs())
-            },
-            r.airlight,
-            r.apparent_contrast
-        );
-    }
-    text
+    let header = ["σ_t", "d", "T measured", "e^(−σ_t ℓ)", "rel. diff", "airlight", "apparent contrast"];
+    markdown_table(
+        &header,
+        rows.iter().map(|r| {
+            [
+                r.sigma_t.to_string(),
+                r.distance.to_string(),
+                format!("{:.6e}", r.transmittance),
+                format!("{:.6e}", r.law),
+                // Rounding-level differences vary in the last bit between platforms' `exp`.
+                if (r.transmittance / r.law - 1.0).abs() < ROUNDING_LEVEL {
+                    format!("< {ROUNDING_LEVEL:e}")
+                } else {
+                    format!("{:.1e}", (r.transmittance / r.law - 1.0).abs())
+                },
+                format!("{:.4e}", r.airlight),
+                format!("{:.4e}", r.apparent_contrast),
+            ]
+        }),
+    )
 }
 
 pub(super) fn airlight_table(rows: &[[f64; 6]]) -> String {
-    let mut text = String::from(
-        "| β | D | γ (°) | closed form | renderer, 32 steps | rel. err | renderer, 4096 steps | rel. err |\n|---|---|---|---|---|---|---|---|\n",
-    );
-    for [beta, d, gamma, closed, coarse, fine] in rows {
-        let _ = writeln!(
-            text,
-            "| {beta} | {d} | {gamma} | {closed:.6e} | {coarse:.6e} | {:.1e} | {fine:.6e} | {:.1e} |",
-            (coarse / closed - 1.0).abs(),
-            (fine / closed - 1.0).abs()
-        );
-    }
-    text
+    let header =
+        ["β", "D", "γ (°)", "closed form", "renderer, 32 steps", "rel. err", "renderer, 4096 steps", "rel. err"];
+    markdown_table(
+        &header,
+        rows.iter().map(|[beta, d, gamma, closed, coarse, fine]| {
+            [
+                beta.to_string(),
+                d.to_string(),
+                gamma.to_string(),
+                format!("{closed:.6e}"),
+                format!("{coarse:.6e}"),
+                format!("{:.1e}", (coarse / closed - 1.0).abs()),
+                format!("{fine:.6e}"),
+                format!("{:.1e}", (fine / closed - 1.0).abs()),
+            ]
+        }),
+    )
 }
 
 /// Every row of the fog experiment: [`FOG_SIGMAS`] × [`FOG_DISTANCES`], σ_t outer.
@@ -224,6 +281,19 @@ mod tests {
     use crate::q1_hard_scenes::metric::snapshot;
     use crate::render::catalogue;
     use crate::render::{Settings, render};
+
+    /// The laws against the numbers they have always given (the checker's seeds 0 and 1, as
+    /// worked by `tests/answers/fixtures/keys.py`), and against the traced fog.
+    #[test]
+    fn transmittance_and_visual_range_are_the_numbers_they_were() {
+        assert!((transmittance(0.08, 10.0) - 0.449_328_964_117_221_56).abs() < 1e-15);
+        assert!((transmittance(0.2, 2.0) - 0.670_320_046_035_639_3).abs() < 1e-15);
+        assert!((visual_range(0.08) - 48.900_287_567_851_83).abs() < 1e-12);
+        assert!((visual_range(0.2) - 19.560_115_027_140_73).abs() < 1e-12);
+        let row = fog_row(0.1, 5.0).unwrap();
+        let path = 5.0 / -fog_probe_direction().z;
+        assert!((row.transmittance / transmittance(0.1, path) - 1.0).abs() < 1e-12, "{row:?}");
+    }
 
     #[test]
     fn fog_transmittance_is_beer_lambert_and_the_airlight_is_sun_et_al() {

@@ -5,6 +5,7 @@
 use super::metric::{METRIC_SIZE, render_metric};
 use crate::geometry::sphere::{reflect, spawn_origin};
 use crate::geometry::{InputError, Ray, Sphere};
+use crate::plot::markdown_table;
 use crate::render::Image;
 use crate::render::catalogue;
 use crate::render::sampling::Sampler;
@@ -14,9 +15,32 @@ use crate::render::{
 };
 use glam::DVec3;
 use std::f64::consts::PI;
-use std::fmt::Write as _;
+
+/// The angle, in radians, by which the reflected ray of the pixel at a mirror ball's centre turns
+/// when a camera looking straight at a ball of radius `radius` steps sideways by `step`: the ray
+/// now meets the ball `step` off centre, where the normal has turned by `step/R`, and the
+/// reflection turns by twice that (first order in `step/R`).
+///
+/// # Examples
+/// ```
+/// use hw3::q1_hard_scenes::reflection_turn;
+/// // A step of 0.01 before a unit ball turns the reflection by 0.02 rad, 1.15°.
+/// assert!((reflection_turn(0.01, 1.0).to_degrees() - 1.145_916).abs() < 1e-6);
+/// ```
+#[must_use]
+pub fn reflection_turn(step: f64, radius: f64) -> f64 {
+    2.0 * step / radius
+}
 
 /// Camera displacements (along `+x`) of the mirror experiment.
+///
+/// # Examples
+/// ```
+/// use hw3::q1_hard_scenes::{MIRROR_STEPS, reflection_turn};
+/// // Steps of 0.005 to 0.1 before a unit ball turn its central reflection by 0.01 to 0.2 rad.
+/// assert_eq!(reflection_turn(MIRROR_STEPS[0], 1.0), 0.01);
+/// assert!(MIRROR_STEPS.windows(2).all(|w| w[1] > w[0]));
+/// ```
 pub const MIRROR_STEPS: [f64; 5] = [0.005, 0.01, 0.02, 0.05, 0.1];
 /// Samples per pixel of the mirror experiment.
 const MIRROR_SPP: u32 = 4;
@@ -74,14 +98,24 @@ fn sphere_pixels(scene: &Scene) -> Vec<bool> {
 }
 
 pub(super) fn mirror_table(rows: &[(f64, f64, f64)]) -> String {
-    let mut text = String::from("| δ | S mirror | S diffuse | ratio |\n|---|---|---|---|\n");
-    for (delta, mirror, diffuse) in rows {
-        let _ = writeln!(text, "| {delta} | {mirror:.4e} | {diffuse:.4e} | {:.3} |", mirror / diffuse);
-    }
-    text
+    markdown_table(
+        &["δ", "S mirror", "S diffuse", "ratio"],
+        rows.iter().map(|(delta, mirror, diffuse)| {
+            [delta.to_string(), format!("{mirror:.4e}"), format!("{diffuse:.4e}"), format!("{:.3}", mirror / diffuse)]
+        }),
+    )
 }
 
 /// How fast nearby rays separate between mirrors: curved (chaotic) versus flat (linear).
+///
+/// # Examples
+/// ```
+/// use hw3::q1_hard_scenes::{MirrorDivergence, mirror_divergence};
+/// let result: MirrorDivergence = mirror_divergence(200).unwrap();
+/// // Between flat mirrors the separation follows its linear law.
+/// assert!(result.flat.iter().all(|&(_, measured, law)| (measured / law - 1.0).abs() < 0.05));
+/// assert_eq!(result.trials, 200);
+/// ```
 #[derive(Debug, Clone, PartialEq)]
 pub struct MirrorDivergence {
     /// Ray pairs launched at the four mirror spheres.
@@ -95,6 +129,13 @@ pub struct MirrorDivergence {
 }
 
 /// Ray pairs of the divergence measurement.
+///
+/// # Examples
+/// ```
+/// use hw3::q1_hard_scenes::DIVERGENCE_TRIALS;
+/// // Enough pairs that a hundred or more stay trapped for four bounces (the chapter's median).
+/// assert!(DIVERGENCE_TRIALS >= 1000);
+/// ```
 pub const DIVERGENCE_TRIALS: usize = 2000;
 
 /// Angular offset between the two rays of a pair (radians).
@@ -191,20 +232,36 @@ fn flat_mirror_separation(mirror: Material) -> Result<Vec<(usize, f64, f64)>, In
 }
 
 pub(super) fn divergence_table(result: &MirrorDivergence) -> String {
-    let mut text = format!(
-        "four mirror spheres: {} of {} pairs trapped ≥ 4 bounces; median growth ×{:.2} per bounce (an independent implementation: ×2.45)\n\n| flat mirrors, bounces | separation | law k δ / cos²θ |\n|---|---|---|\n",
-        result.trapped, result.trials, result.median_factor
+    let table = markdown_table(
+        &["flat mirrors, bounces", "separation", "law k δ / cos²θ"],
+        result.flat.iter().map(|(k, measured, law)| [k.to_string(), format!("{measured:.2e}"), format!("{law:.2e}")]),
     );
-    for (k, measured, law) in &result.flat {
-        let _ = writeln!(text, "| {k} | {measured:.2e} | {law:.2e} |");
-    }
-    text
+    format!(
+        "four mirror spheres: {} of {} pairs trapped ≥ 4 bounces; median growth ×{:.2} per bounce (an independent implementation: ×2.45)\n\n{table}",
+        result.trapped, result.trials, result.median_factor
+    )
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::q1_hard_scenes::metric::snapshot;
+
+    /// The first-order law against an exact reflection: a camera looking along `−z` at a ball of
+    /// radius R steps sideways by δ; its central ray now meets the ball where the normal is
+    /// `(δ/R, 0, √(1 − δ²/R²))`, and the reflected ray turns by `2 arcsin(δ/R)`.
+    #[test]
+    fn reflection_turn_is_twice_the_normals_turn() {
+        for (step, radius) in [(0.01, 1.0), (0.02, 0.5), (0.05, 2.0)] {
+            let s = step / radius;
+            let normal = DVec3::new(s, 0.0, (1.0 - s * s).sqrt());
+            let turned = reflect::<f64>(DVec3::NEG_Z, normal);
+            let exact = turned.angle_between(DVec3::Z);
+            let law = reflection_turn(step, radius);
+            assert!((law / exact - 1.0).abs() < 1e-3, "δ = {step}, R = {radius}: {law} vs {exact}");
+        }
+        assert!((reflection_turn(0.01, 1.0).to_degrees() - 1.145_915_590_261_646_5).abs() < 1e-15);
+    }
 
     #[test]
     fn mirrors_change_faster_than_the_same_scene_made_diffuse() {

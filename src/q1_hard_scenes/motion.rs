@@ -3,21 +3,75 @@
 
 use super::metric::{METRIC_SIZE, render_metric};
 use crate::geometry::InputError;
+use crate::plot::markdown_table;
 use crate::render::Image;
 use crate::render::catalogue;
 use glam::DVec3;
 use std::fmt::Write as _;
 
+/// The focal length of a pinhole camera in pixels, `(H/2)/tan(fov/2)`, for an image `height`
+/// pixels high and a vertical field of view of `vfov_degrees`: half the image over the tangent of
+/// half the angle.
+///
+/// # Examples
+/// ```
+/// use hw3::q1_hard_scenes::focal_length_pixels;
+/// // 480 pixels over 60°: 240/tan 30° = 415.7 px.
+/// assert!((focal_length_pixels(480.0, 60.0) - 240.0 * 3f64.sqrt()).abs() < 1e-9);
+/// ```
+#[must_use]
+pub fn focal_length_pixels(height: f64, vfov_degrees: f64) -> f64 {
+    height / 2.0 / (vfov_degrees.to_radians() / 2.0).tan()
+}
+
+/// The image shift, in pixels per frame, of an object that moves `movement` units per frame across
+/// the view at `depth` units from a camera of focal length `focal_pixels`
+/// ([`focal_length_pixels`]): the pinhole projection `x f / z`.
+///
+/// # Examples
+/// ```
+/// use hw3::q1_hard_scenes::{focal_length_pixels, pixels_per_frame};
+/// // 2 units/s at 24 frames/s, 5 units away, 480 px over 60°: 6.9 px per frame.
+/// let shift = pixels_per_frame(2.0 / 24.0, 5.0, focal_length_pixels(480.0, 60.0));
+/// assert!((shift - 6.928_203).abs() < 1e-6);
+/// ```
+#[must_use]
+pub fn pixels_per_frame(movement: f64, depth: f64, focal_pixels: f64) -> f64 {
+    movement * focal_pixels / depth
+}
+
 /// Speed of the moving ball (units per unit time) and number of instantaneous frames.
 pub(super) const MOTION_SPEED: f64 = 2.0;
 const MOTION_FRAMES: usize = 10;
 /// Samples per pixel of the noise measurement and of its reference.
+///
+/// # Examples
+/// ```
+/// use hw3::q1_hard_scenes::MOTION_SPP;
+/// // Doubling sample counts: evenly spaced on the log-log chart the slope is fitted on.
+/// assert!(MOTION_SPP.windows(2).all(|w| w[1] == 2 * w[0]));
+/// ```
 pub const MOTION_SPP: [u32; 6] = [1, 2, 4, 8, 16, 32];
 const REFERENCE_SPP: u32 = 256;
 /// The noise level for which the needed spp is reported (RMS luminance error).
+///
+/// # Examples
+/// ```
+/// use hw3::q1_hard_scenes::{MotionNoise, NOISE_TARGET};
+/// // A noise constant of 0.05 needs (0.05/0.005)² = 100 samples per pixel for this target.
+/// assert_eq!(MotionNoise::spp_needed(0.05, NOISE_TARGET), 100.0);
+/// ```
 pub const NOISE_TARGET: f64 = 0.005;
 
 /// Image change between consecutive instantaneous frames of the moving ball.
+///
+/// # Examples
+/// ```
+/// use hw3::q1_hard_scenes::{MotionChange, motion_change};
+/// let change: MotionChange = motion_change().unwrap();
+/// // Every step between frames changes some pixels by more than 0.05.
+/// assert!(change.changed_fraction.iter().all(|&f| f > 0.0));
+/// ```
 #[derive(Debug, Clone, PartialEq)]
 pub struct MotionChange {
     /// Mean absolute luminance change per frame (time step `1/MOTION_FRAMES`).
@@ -63,13 +117,27 @@ pub fn motion_change() -> Result<MotionChange, InputError> {
 pub(super) fn ball_pixels_per_frame() -> Result<f64, InputError> {
     let camera = catalogue::moving_ball(MOTION_SPEED)?.camera().to_owned();
     let depth = (DVec3::new(0.0, 0.5, -3.0) - camera.eye).length();
-    let focal_pixels = f64::from(METRIC_SIZE.1) / 2.0 / (camera.vfov_degrees.to_radians() / 2.0).tan();
-    Ok(MOTION_SPEED / MOTION_FRAMES as f64 * focal_pixels / depth)
+    let focal_pixels = focal_length_pixels(f64::from(METRIC_SIZE.1), camera.vfov_degrees);
+    Ok(pixels_per_frame(MOTION_SPEED / MOTION_FRAMES as f64, depth, focal_pixels))
 }
 
 /// RMS error against a 256-spp reference (another seed) versus spp, for the moving and the
 /// resting ball; the free log-log slope, the constant `c` of `RMSE² ≈ c² (1/spp + 1/256)` (the
 /// second term is the reference's own noise), and from it the spp needed for [`NOISE_TARGET`].
+///
+/// # Examples
+/// ```
+/// use hw3::q1_hard_scenes::MotionNoise;
+/// // A measurement as `motion_noise` returns it (numbers rounded from the chapter's table).
+/// let noise = MotionNoise {
+///     rows: vec![(1, 0.1, 0.05), (4, 0.05, 0.025)],
+///     slope_moving: -0.5,
+///     slope_resting: -0.5,
+///     constant_moving: 0.1,
+///     constant_resting: 0.05,
+/// };
+/// assert!(MotionNoise::spp_needed(noise.constant_moving, 0.01) > MotionNoise::spp_needed(noise.constant_resting, 0.01));
+/// ```
 #[derive(Debug, Clone, PartialEq)]
 pub struct MotionNoise {
     /// `(spp, RMSE moving, RMSE resting)`.
@@ -146,17 +214,21 @@ pub fn motion_noise() -> Result<MotionNoise, InputError> {
 }
 
 pub(super) fn motion_tables(change: &MotionChange, noise: &MotionNoise) -> String {
-    let mut text = format!(
-        "image speed of the ball: {:.3} px/frame\n\n| step | mean abs change | pixels changed > 0.05 |\n|---|---|---|\n",
-        change.pixels_per_frame
+    let changes = markdown_table(
+        &["step", "mean abs change", "pixels changed > 0.05"],
+        change
+            .mean_change
+            .iter()
+            .zip(&change.changed_fraction)
+            .enumerate()
+            .map(|(k, (m, f))| [format!("{} → {}", k, k + 1), format!("{m:.4e}"), format!("{f:.4}")]),
     );
-    for (k, (m, f)) in change.mean_change.iter().zip(&change.changed_fraction).enumerate() {
-        let _ = writeln!(text, "| {} → {} | {m:.4e} | {f:.4} |", k, k + 1);
-    }
-    text.push_str("\n| spp | RMSE moving | RMSE resting |\n|---|---|---|\n");
-    for (spp, m, r) in &noise.rows {
-        let _ = writeln!(text, "| {spp} | {m:.4e} | {r:.4e} |");
-    }
+    let noise_rows = markdown_table(
+        &["spp", "RMSE moving", "RMSE resting"],
+        noise.rows.iter().map(|(spp, m, r)| [spp.to_string(), format!("{m:.4e}"), format!("{r:.4e}")]),
+    );
+    let mut text =
+        format!("image speed of the ball: {:.3} px/frame\n\n{changes}\n{noise_rows}", change.pixels_per_frame);
     let _ = writeln!(
         text,
         "\nslope moving {:.3}, resting {:.3}; c moving {:.4e}, resting {:.4e}; spp for RMSE {NOISE_TARGET}: moving {}, resting {}",
@@ -174,6 +246,22 @@ pub(super) fn motion_tables(change: &MotionChange, noise: &MotionNoise) -> Strin
 mod tests {
     use super::*;
     use crate::q1_hard_scenes::metric::snapshot;
+
+    /// The projection against the numbers it has always given (the checker's seeds 0 and 1, as
+    /// worked by `tests/answers/fixtures/keys.py`), and against the moving ball's own camera.
+    #[test]
+    fn image_shift_is_the_numbers_it_was() {
+        let shift = pixels_per_frame(2.0 / 24.0, 5.0, focal_length_pixels(480.0, 60.0));
+        assert!((shift - 6.928_203_230_275_509).abs() < 1e-12);
+        let shift = pixels_per_frame(2.0 / 24.0, 10.0, focal_length_pixels(1080.0, 90.0));
+        assert!((shift - 4.5).abs() < 1e-12);
+        let camera = catalogue::moving_ball(MOTION_SPEED).unwrap().camera().to_owned();
+        let depth = (DVec3::new(0.0, 0.5, -3.0) - camera.eye).length();
+        let half_height = f64::from(METRIC_SIZE.1) / 2.0;
+        let by_hand =
+            MOTION_SPEED / MOTION_FRAMES as f64 * half_height / (camera.vfov_degrees.to_radians() / 2.0).tan() / depth;
+        assert!((ball_pixels_per_frame().unwrap() / by_hand - 1.0).abs() < 1e-12);
+    }
 
     #[test]
     fn motion_changes_every_frame_and_blur_costs_samples() {

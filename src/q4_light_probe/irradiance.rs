@@ -4,7 +4,7 @@
 //! value over its footprint), so they are unbiased for the same integral, which the solid-angle
 //! weighted texel sum approximates to second order in the texel size.
 
-use crate::envmap::{MapDistribution, MapSample, Probe, ProbeError};
+use crate::envmap::{MapDistribution, MapSample, Probe, ProbeError, Texel};
 use crate::geometry::{InputError, require_direction};
 use crate::rng::{Generator, uniform};
 use glam::DVec3;
@@ -96,6 +96,108 @@ impl FromStr for Method {
             format!("unknown method `{s}`; expected one of {}", names.join("|"))
         })
     }
+}
+
+/// The texel sum `Σ_t L_t max(0, n·ω_t) Δω_t` over `texels`, whatever they hold: a probe's own
+/// texels ([`Irradiance::weighted`]) or texels read by hand ([`centre_texels`]). `n` is a unit
+/// normal; texels of zero solid angle or zero radiance add nothing.
+///
+/// # Examples
+/// ```
+/// use glam::{DMat3, DVec3};
+/// use hw3::envmap::{Probe, ProbeFormat};
+/// use hw3::q4_light_probe::irradiance::weighted_sum;
+/// let probe = Probe::from_fn(ProbeFormat::MirrorBall, 32, 32, DMat3::IDENTITY, |_| DVec3::ONE).unwrap();
+/// let e = weighted_sum(DVec3::Z, probe.texels()).x;
+/// assert!((e / std::f64::consts::PI - 1.0).abs() < 1e-3); // a uniform sky of radiance 1: E = π
+/// ```
+#[must_use]
+pub fn weighted_sum(n: DVec3, texels: &[Texel]) -> DVec3 {
+    texels.iter().map(|t| t.radiance * (n.dot(t.direction).max(0.0) * t.solid_angle)).sum()
+}
+
+/// The seed's sum with equal weights: `weight · Σ_t L_t max(0, n·ω_t)` over the texels of
+/// `texels` whose centre is inside the image disk (`weight` is usually [`equal_weight`]).
+///
+/// # Examples
+/// ```
+/// use glam::{DMat3, DVec3};
+/// use hw3::envmap::{Probe, ProbeFormat};
+/// use hw3::q4_light_probe::irradiance::{equal_weight, unweighted_sum};
+/// let probe = Probe::from_fn(ProbeFormat::MirrorBall, 64, 64, DMat3::IDENTITY, |_| DVec3::ONE).unwrap();
+/// let e = unweighted_sum(DVec3::Z, probe.texels(), equal_weight(probe.texels())).x;
+/// assert!((e / std::f64::consts::PI - 1.0).abs() < 1e-2); // nearly right on the equal-area ball
+/// ```
+#[must_use]
+pub fn unweighted_sum(n: DVec3, texels: &[Texel], weight: f64) -> DVec3 {
+    texels.iter().filter(|t| t.centre_inside).map(|t| t.radiance * n.dot(t.direction).max(0.0)).sum::<DVec3>() * weight
+}
+
+/// The equal weight of the unweighted sum, `Ω_covered / N`: the solid angle all `texels` cover
+/// shared among the `N` whose centre is inside the image disk (0 when none is). On the
+/// orthographic mirror ball `Ω_covered = 4π`.
+///
+/// # Examples
+/// ```
+/// use glam::{DMat3, DVec3};
+/// use hw3::envmap::{Probe, ProbeFormat};
+/// use hw3::q4_light_probe::irradiance::equal_weight;
+/// // 5 × 5 texels: 21 centres inside the disk share the whole sphere.
+/// let probe = Probe::from_fn(ProbeFormat::MirrorBall, 5, 5, DMat3::IDENTITY, |_| DVec3::ONE).unwrap();
+/// assert!((equal_weight(probe.texels()) - 4.0 * std::f64::consts::PI / 21.0).abs() < 1e-12);
+/// ```
+#[must_use]
+pub fn equal_weight(texels: &[Texel]) -> f64 {
+    let inside = texels.iter().filter(|t| t.centre_inside).count();
+    let covered: f64 = texels.iter().map(|t| t.solid_angle).sum();
+    if inside > 0 { covered / inside as f64 } else { 0.0 }
+}
+
+/// The texels of `probe` as a student reads a small probe by hand: a texel whose centre is inside
+/// the image disk looks along the direction of its centre (not the footprint mean
+/// [`Texel::direction`] holds), and one whose centre is outside is masked (radiance 0), as a mask
+/// drawn on a photograph would. Solid angles stay exact. Same order as [`Probe::texels`].
+///
+/// # Examples
+/// ```
+/// use glam::{DMat3, DVec3};
+/// use hw3::envmap::{Probe, ProbeFormat};
+/// use hw3::q4_light_probe::irradiance::centre_texels;
+/// let probe = Probe::from_fn(ProbeFormat::MirrorBall, 5, 5, DMat3::IDENTITY, |_| DVec3::ONE).unwrap();
+/// let texels = centre_texels(&probe);
+/// assert!((texels[12].direction - DVec3::Z).length() < 1e-15); // the middle texel sees the camera
+/// assert_eq!(texels[0].radiance, DVec3::ZERO); // a corner: centre outside, masked
+/// assert_eq!(texels[0].solid_angle, probe.texels()[0].solid_angle);
+/// ```
+#[must_use]
+pub fn centre_texels(probe: &Probe) -> Vec<Texel> {
+    (0..probe.texels().len()).map(|index| centre_texel(probe, index)).collect()
+}
+
+/// Texel `index` of `probe` read by hand, as in [`centre_texels`].
+///
+/// # Panics
+/// If `index` is not a texel of `probe`.
+///
+/// # Examples
+/// ```
+/// use glam::{DMat3, DVec3};
+/// use hw3::envmap::{Probe, ProbeFormat};
+/// use hw3::q4_light_probe::irradiance::centre_texel;
+/// let probe = Probe::from_fn(ProbeFormat::MirrorBall, 5, 5, DMat3::IDENTITY, |_| DVec3::ONE).unwrap();
+/// // Row 1, column 2: centre (0, 0.4), so θ = 2 arcsin 0.4 from the camera axis, tilted up.
+/// let w = centre_texel(&probe, 7).direction;
+/// assert!((w.z - (2.0 * 0.4f64.asin()).cos()).abs() < 1e-12 && w.x.abs() < 1e-15 && w.y > 0.0);
+/// ```
+#[must_use]
+pub fn centre_texel(probe: &Probe, index: usize) -> Texel {
+    let mut texel = probe.texels()[index];
+    let rect = probe.texel_rect(index);
+    match probe.image_to_world(0.5 * (rect.min + rect.max)) {
+        Some((direction, _)) if texel.centre_inside => texel.direction = direction,
+        _ => texel.radiance = DVec3::ZERO,
+    }
+    texel
 }
 
 /// Outgoing radiance of a Lambertian surface of albedo `albedo` (`K_d` ∈ [0, 1], the fraction of
@@ -270,13 +372,11 @@ impl<'a> Irradiance<'a> {
     /// ```
     #[must_use]
     pub fn new(probe: &'a Probe) -> Self {
-        let inside = probe.texels().iter().filter(|t| t.centre_inside).count();
-        let covered: f64 = probe.texels().iter().map(|t| t.solid_angle).sum();
         Self {
             probe,
             distribution: MapDistribution::new(probe),
             sh9: Sh9::project(probe),
-            equal_weight: if inside > 0 { covered / inside as f64 } else { 0.0 },
+            equal_weight: equal_weight(probe.texels()),
         }
     }
 
@@ -355,13 +455,7 @@ impl<'a> Irradiance<'a> {
     /// ```
     #[must_use]
     pub fn unweighted(&self, n: DVec3) -> DVec3 {
-        self.probe
-            .texels()
-            .iter()
-            .filter(|t| t.centre_inside)
-            .map(|t| t.radiance * n.dot(t.direction).max(0.0))
-            .sum::<DVec3>()
-            * self.equal_weight
+        unweighted_sum(n, self.probe.texels(), self.equal_weight)
     }
 
     /// `Σ_t L_t max(0, n·ω_t) Δω_t`.
@@ -378,7 +472,7 @@ impl<'a> Irradiance<'a> {
     /// ```
     #[must_use]
     pub fn weighted(&self, n: DVec3) -> DVec3 {
-        self.probe.texels().iter().map(|t| t.radiance * (n.dot(t.direction).max(0.0) * t.solid_angle)).sum()
+        weighted_sum(n, self.probe.texels())
     }
 
     /// Uniform hemisphere sampling: `(2π/N) Σ L(ω_i) cos θ_i`.

@@ -13,7 +13,7 @@ const SEED_ANSWERS: &str = include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/te
 
 /// The chapter section that derives each part, by key prefix (first match wins): the heading's
 /// text, as written in the chapter.
-const SECTIONS: [(&str, &str); 12] = [
+const SECTIONS: [(&str, &str); 13] = [
     ("q1a", "(a) Clutter: a forest of spheres"),
     ("q1b", "(b) Fog: contrast and transmittance versus distance"),
     ("q1c", "(c) Mirrors: image change per unit camera move"),
@@ -25,6 +25,7 @@ const SECTIONS: [(&str, &str); 12] = [
     ("q3", "Derivation"),
     ("q4a", "Oracles"),
     ("q4b", "The blind spot"),
+    ("q4c", "A worked probe, by hand"),
     ("q5", "Deciding a cell from light paths"),
 ];
 
