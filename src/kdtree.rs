@@ -39,6 +39,7 @@
 #![doc = include_str!(concat!(env!("OUT_DIR"), "/q3_engineering.md"))]
 
 mod build;
+mod coarse;
 mod node;
 mod tree;
 mod tree_f32;
