@@ -33,12 +33,12 @@
 //! 3-D [`KdTree`] uses the same function at every interior node.
 //!
 //! `benches/q3_kdtree.rs` measures the tree on random sphere scenes, camera and random rays, beside
-//! peer BVHs (results in the Q3 chapter); the engineering notes below say how, and what made the
-//! tree faster.
-//!
-#![doc = include_str!(concat!(env!("OUT_DIR"), "/q3_engineering.md"))]
+//! peer BVHs and Embree (results in the Q3 chapter); the
+//! [engineering notes for Q3](crate::notes::engineering_q3) say how, describe the node and leaf
+//! layout and the build, and what made the tree faster.
 
 mod build;
+mod coarse;
 mod node;
 mod tree;
 mod tree_f32;

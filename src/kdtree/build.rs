@@ -212,10 +212,17 @@ impl Builder<'_> {
             return;
         };
         let parallel = prims.len() >= PARALLEL_MIN;
-        let (lower, upper): (Vec<u32>, Vec<u32>) = (
-            prims.iter().copied().filter(|&i| self.boxes[i as usize].min[axis] <= split).collect(),
-            prims.iter().copied().filter(|&i| self.boxes[i as usize].max[axis] >= split).collect(),
-        );
+        // One pass, each box read once (the boxes are in input order, so a read is a cache miss).
+        let (mut lower, mut upper) = (Vec::with_capacity(prims.len()), Vec::with_capacity(prims.len()));
+        for &i in &prims {
+            let b = &self.boxes[i as usize];
+            if b.min[axis] <= split {
+                lower.push(i);
+            }
+            if b.max[axis] >= split {
+                upper.push(i);
+            }
+        }
         drop(prims);
         let here = out.nodes.len();
         out.nodes.push(Node::leaf(0, 0));
@@ -281,12 +288,32 @@ impl Builder<'_> {
             for (k, &i) in prims.iter().enumerate() {
                 let b = &self.boxes[i as usize];
                 (starts[k], ends[k]) = (b.min[axis], b.max[axis]);
-                (planes[2 * k], planes[2 * k + 1]) = (f32_below(b.min[axis]), f32_above(b.max[axis]));
             }
             let (starts, ends, planes) = (&mut starts[..m], &mut ends[..m], &mut planes[..2 * m]);
             starts.sort_unstable_by(f64::total_cmp);
             ends.sort_unstable_by(f64::total_cmp);
-            planes.sort_unstable_by(f64::total_cmp);
+            // The planes in order without a third sort: `f32_below` and `f32_above` are monotone,
+            // so the sorted starts and ends give two sorted lists, merged here.
+            let (mut s, mut e) = (0, 0);
+            for plane in planes.iter_mut() {
+                let below = starts.get(s).map(|&x| f32_below(x));
+                let above = ends.get(e).map(|&x| f32_above(x));
+                *plane = match (below, above) {
+                    (Some(b), Some(a)) if b.total_cmp(&a).is_le() => {
+                        s += 1;
+                        b
+                    }
+                    (Some(b), None) => {
+                        s += 1;
+                        b
+                    }
+                    (_, Some(a)) => {
+                        e += 1;
+                        a
+                    }
+                    (None, None) => unreachable!("2m planes from m starts and m ends"),
+                };
+            }
             // n_lower = #(start ≤ split), n_upper = n − #(end < split): the builder's closed tests.
             let (mut started, mut ended) = (0, 0);
             for &split in planes.iter().filter(|&&s| lo < s && s < hi) {
@@ -316,7 +343,10 @@ impl Builder<'_> {
         let scale = extent.map(|e| bins as f64 / e);
         // starts of axis a in [2a·bins, (2a+1)·bins), ends in the next `bins`.
         let mut counts = vec![0u32; 6 * bins];
-        let bin_of = |a: usize, x: f64| (((x - lo[a]) * scale[a]).max(0.0) as usize).min(bins - 1);
+        // Clamping in floating point first (NaN included: it goes to bin 0, as `max(0.0)` sent it)
+        // leaves the conversion nothing to saturate.
+        let last = (bins - 1) as f64;
+        let bin_of = |a: usize, x: f64| ((x - lo[a]) * scale[a]).clamp(0.0, last) as usize;
         for &i in prims {
             let b = &self.boxes[i as usize];
             let (min, max) = (b.min.to_array(), b.max.to_array());

@@ -1,6 +1,7 @@
 //! The 3-D kd-tree over spheres: flat node array, closest-hit traversal with early exit.
 
 use super::build::{Builder, EXACT_MAX, SahCosts, Subtree, check_costs, max_depth, sphere_boxes};
+use super::coarse::{CoarseRay, CoarseSphere};
 use super::node::{Aabb, Node, NodeKind};
 use super::{BuildError, ReciprocalAxis, Side, split_pieces};
 use crate::geometry::sphere::roots_stable;
@@ -48,16 +49,17 @@ pub struct KdTree {
     /// The spheres' motion ([`KdTree::build_moving`]); `None` for a tree of static spheres, whose
     /// traversal then never reads it.
     motion: Option<Motion>,
-    /// A leaf's `first` indexes [`KdTree::pairs`], its `count` is its number of spheres.
+    /// A leaf's `first` indexes [`KdTree::coarse`] and [`KdTree::exact`], its `count` is its
+    /// number of spheres.
     pub(super) nodes: Vec<Node>,
-    /// The leaves' sphere lists, concatenated in node order, two spheres to a cache line: a copy
-    /// of each sphere sits beside its leaf's others instead of behind an index into the input
-    /// slice (that indirection was a cache miss per sphere test on large scenes).
-    pairs: Vec<SpherePair>,
-    /// The input index of each lane of [`KdTree::pairs`]; `u32::MAX` past the end of a leaf.
-    ids: Vec<[u32; 2]>,
-    /// Spheres listed in the leaves, with repeats.
-    references: usize,
+    /// The leaves' sphere lists, concatenated in node order, as the coarse `f32` test reads them
+    /// (16 bytes a sphere): a copy of each sphere sits beside its leaf's others instead of behind
+    /// an index into the input slice (that indirection was a cache miss per sphere test on large
+    /// scenes), in the fewest bytes that still reject safely.
+    coarse: Vec<CoarseSphere>,
+    /// The same lists exact, with each sphere's input index: read only for the spheres the
+    /// coarse test keeps.
+    exact: Vec<LeafSphere>,
     pub(super) bounds: Aabb,
 }
 
@@ -72,44 +74,11 @@ struct Motion {
     interval: (f64, f64),
 }
 
-/// Two leaf spheres side by side (structure of arrays, 64 bytes: one cache line), so that one load
-/// brings both and their rejection tests run as one two-lane computation. A lane past the end of
-/// its leaf holds NaN, which every test rejects.
+/// A leaf's sphere in `f64` with its index in the input slice.
 #[derive(Debug, Clone, Copy)]
-#[repr(C, align(64))]
-struct SpherePair {
-    x: [f64; 2],
-    y: [f64; 2],
-    z: [f64; 2],
-    radius: [f64; 2],
-}
-
-impl SpherePair {
-    const EMPTY: Self = Self { x: [f64::NAN; 2], y: [f64::NAN; 2], z: [f64::NAN; 2], radius: [f64::NAN; 2] };
-
-    #[inline]
-    fn sphere(&self, lane: usize) -> Sphere<f64> {
-        Sphere { center: DVec3::new(self.x[lane], self.y[lane], self.z[lane]), radius: self.radius[lane] }
-    }
-
-    /// The lanes whose discriminant [`roots_stable`] finds non-negative, as a bit mask: the
-    /// solver's own expressions (`|f × d|²` against `r² d·d`) in the same order, lane by lane, so
-    /// the mask rejects exactly the spheres the solver rejects, and the lanes it keeps go to the
-    /// solver unchanged.
-    #[inline]
-    fn candidates(&self, ray: &Ray<f64>) -> u32 {
-        let (o, d) = (ray.origin, ray.dir);
-        let a = d.x * d.x + d.y * d.y + d.z * d.z;
-        let mut mask = 0;
-        for lane in 0..2 {
-            let f = [o.x - self.x[lane], o.y - self.y[lane], o.z - self.z[lane]];
-            let p = [f[1] * d.z - f[2] * d.y, f[2] * d.x - f[0] * d.z, f[0] * d.y - f[1] * d.x];
-            let r2 = self.radius[lane] * self.radius[lane];
-            let disc = r2 * a - (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
-            mask |= u32::from(disc >= 0.0) << lane;
-        }
-        mask
-    }
+struct LeafSphere {
+    sphere: Sphere<f64>,
+    index: u32,
 }
 
 /// Fixed traversal stack size; the build's depth bound (at most 60) keeps pushes below it.
@@ -208,36 +177,15 @@ impl KdTree {
         } else {
             builder.build(bounds, all, 0, &mut built);
         }
-        let (mut pairs, mut ids) = (Vec::new(), Vec::new());
-        for node in &mut built.nodes {
-            let NodeKind::Leaf { first, count } = node.kind() else {
-                continue;
-            };
-            let pair_first = u32::try_from(pairs.len()).expect("pair count fits u32");
-            for chunk in built.indices[first as usize..(first + count) as usize].chunks(2) {
-                let (mut pair, mut lane_ids) = (SpherePair::EMPTY, [u32::MAX; 2]);
-                for (lane, &index) in chunk.iter().enumerate() {
-                    let s = spheres[index as usize];
-                    (pair.x[lane], pair.y[lane], pair.z[lane], pair.radius[lane]) =
-                        (s.center.x, s.center.y, s.center.z, s.radius);
-                    lane_ids[lane] = index;
-                }
-                pairs.push(pair);
-                ids.push(lane_ids);
-            }
-            *node = Node::leaf(pair_first, count);
-        }
-        Self { nodes: built.nodes, pairs, ids, references: built.indices.len(), bounds, motion: None }
+        let exact: Vec<LeafSphere> =
+            built.indices.iter().map(|&index| LeafSphere { sphere: spheres[index as usize], index }).collect();
+        let coarse = exact.iter().map(|leaf| CoarseSphere::new(&leaf.sphere)).collect();
+        Self { nodes: built.nodes, coarse, exact, bounds, motion: None }
     }
 
     /// The spheres of the leaf `(first, count)` with their input indices, in list order.
     pub(super) fn leaf_spheres(&self, first: u32, count: u32) -> impl Iterator<Item = (Sphere<f64>, u32)> + '_ {
-        let range = first as usize..first as usize + count.div_ceil(2) as usize;
-        self.pairs[range.clone()]
-            .iter()
-            .zip(&self.ids[range])
-            .flat_map(|(pair, ids)| [(pair.sphere(0), ids[0]), (pair.sphere(1), ids[1])])
-            .take(count as usize)
+        self.exact[first as usize..(first + count) as usize].iter().map(|leaf| (leaf.sphere, leaf.index))
     }
 
     /// Number of nodes (interior and leaf).
@@ -293,7 +241,7 @@ impl KdTree {
     /// Number of sphere references in the leaves (≥ the sphere count: straddling spheres repeat).
     #[must_use]
     pub fn reference_count(&self) -> usize {
-        self.references
+        self.exact.len()
     }
 
     /// The closest sphere hit with `t` strictly inside `(t_min, t_max)`: its index in the slice the
@@ -350,22 +298,12 @@ impl KdTree {
         self.motion.as_ref().map_or(0.0, |m| m.interval.0)
     }
 
-    /// The lanes of `pair` that may hit at `time`: for static spheres the exact rejection test,
-    /// for moving ones every lane that holds a sphere (the stored copy is at time 0).
+    /// The leaf sphere `leaf` at `time`: the stored copy, moved by its velocity in a moving tree.
     #[inline]
-    fn live_lanes(&self, pair: &SpherePair, ids: &[u32; 2], ray: &Ray<f64>) -> u32 {
+    fn sphere_at(&self, leaf: &LeafSphere, time: f64) -> Sphere<f64> {
         match &self.motion {
-            None => pair.candidates(ray),
-            Some(_) => u32::from(ids[0] != u32::MAX) | (u32::from(ids[1] != u32::MAX) << 1),
-        }
-    }
-
-    /// Lane `lane` of `pair` at `time`: the stored copy, moved by its velocity in a moving tree.
-    #[inline]
-    fn sphere_at(&self, pair: &SpherePair, index: u32, lane: usize, time: f64) -> Sphere<f64> {
-        match &self.motion {
-            Some(motion) => moved(pair.sphere(lane), motion.velocities[index as usize], time),
-            None => pair.sphere(lane),
+            Some(motion) => moved(leaf.sphere, motion.velocities[leaf.index as usize], time),
+            None => leaf.sphere,
         }
     }
 
@@ -412,6 +350,9 @@ impl KdTree {
         // A plain array: indexing a glam vector by a run-time axis is a three-way branch, which the
         // varying split axes make unpredictable.
         let axes = [0, 1, 2].map(|a| ReciprocalAxis::new(ray.origin[a], ray.dir[a]));
+        // The coarse copies are of the spheres at time 0: a moving tree tests every sphere exactly.
+        let coarse = CoarseRay::new(ray, self.bounds.min.to_array(), self.bounds.max.to_array());
+        let filtered = self.motion.is_none();
         loop {
             counter.node();
             match self.nodes[node as usize].kind() {
@@ -435,19 +376,20 @@ impl KdTree {
                 }
                 NodeKind::Leaf { first, count } => {
                     counter.sphere_tests(count);
-                    let range = first as usize..first as usize + count.div_ceil(2) as usize;
-                    for (pair, ids) in self.pairs[range.clone()].iter().zip(&self.ids[range]) {
-                        let live = self.live_lanes(pair, ids, ray);
-                        for lane in (0..2).filter(|lane| live & (1 << lane) != 0) {
-                            let Some(t) = roots_stable(ray, &self.sphere_at(pair, ids[lane], lane, time))
-                                .and_then(|roots| roots.first_in(t_min, t_max))
-                            else {
-                                continue;
-                            };
-                            let i = ids[lane] as usize;
-                            if best.is_none_or(|(j, u)| t < u || (t == u && i < j)) {
-                                best = Some((i, t));
-                            }
+                    let range = first as usize..(first + count) as usize;
+                    for (k, sphere) in self.coarse[range.clone()].iter().enumerate() {
+                        if filtered && !coarse.may_hit(sphere) {
+                            continue;
+                        }
+                        let leaf = &self.exact[range.start + k];
+                        let Some(t) = roots_stable(ray, &self.sphere_at(leaf, time))
+                            .and_then(|roots| roots.first_in(t_min, t_max))
+                        else {
+                            continue;
+                        };
+                        let i = leaf.index as usize;
+                        if best.is_none_or(|(j, u)| t < u || (t == u && i < j)) {
+                            best = Some((i, t));
                         }
                     }
                 }
