@@ -1,9 +1,11 @@
 //! Q4 accuracy versus time.
 //!
 //! `cargo bench --bench q4_irradiance` first sweeps every method and parameter on the soft and sun
-//! maps (error from the closed-form oracle over 64 normals, time per normal with `Instant`, best
-//! of 5 batches, each method in its own monomorphised loop, so no per-call dispatch is timed),
+//! maps (error from the closed-form oracle over 64 normals, time per normal with `Instant`: the
+//! median of 101 short samples, each method in its own monomorphised loop, so no per-call dispatch
+//! is timed),
 //! writing `docs/data/q4_accuracy_time.{csv,md}`, then runs the divan benchmarks.
+//! `cargo bench --bench q4_irradiance -- sh9` runs only the matching divan benchmarks (no sweep).
 //! `cargo test --benches` runs each divan benchmark once and skips the sweep.
 
 use divan::{Bencher, black_box};
@@ -13,6 +15,7 @@ use hw3::q4_light_probe::fibonacci_normals;
 use hw3::q4_light_probe::irradiance::{Irradiance, Method, Sh9};
 use hw3::q4_light_probe::maps::AnalyticMap;
 use hw3::q4_light_probe::study::{self, Config};
+use hw3::stats::median;
 use std::fmt::Write as _;
 use std::time::Instant;
 
@@ -78,24 +81,38 @@ fn mis_mc(bencher: Bencher, samples: usize) {
     monte_carlo(bencher, Method::Mis, samples);
 }
 
-/// Nanoseconds per call of `estimate` over `normals`: the best of 5 batches, each at least 20 ms
-/// long. `estimate` is a concrete closure, so each method's loop is monomorphised: no per-call
-/// dispatch (no `match` on the method, no validation of the normal) is timed, the way divan times
-/// one method's call. The clock is read once per pass over the normals.
-fn time_batches(normals: &[DVec3], mut estimate: impl FnMut(DVec3) -> DVec3) -> f64 {
-    let mut best = f64::INFINITY;
-    for _ in 0..5 {
-        let start = Instant::now();
-        let mut evaluations = 0usize;
-        while start.elapsed().as_secs_f64() < 0.02 {
-            for n in normals {
+/// Samples per configuration: the reported time is their median, as divan reports.
+const SAMPLES: usize = 101;
+
+/// Shortest sample: a sample holds as many calls as fill this, so that the clock's ~25 ns per read
+/// is under 0.1 % of it, yet stays far below a scheduler time slice (milliseconds), so that on a
+/// shared machine a preemption lands in few samples and the median skips it.
+const MIN_SAMPLE_NS: f64 = 50_000.0;
+
+/// Nanoseconds per call of `estimate`: the median of [`SAMPLES`] samples, each of as many
+/// consecutive calls over `normals` (cycling) as fill [`MIN_SAMPLE_NS`], divan's method (many short
+/// samples, their median). `estimate` is a concrete closure, so each method's loop is
+/// monomorphised: no per-call dispatch (no `match` on the method, no validation of the normal) is
+/// timed, the way divan times one method's call.
+fn time_per_call(normals: &[DVec3], mut estimate: impl FnMut(DVec3) -> DVec3) -> f64 {
+    // Warm-up pass (caches, branch predictors), which also sizes the samples.
+    let start = Instant::now();
+    for n in normals {
+        black_box(estimate(black_box(*n)));
+    }
+    let per_call = start.elapsed().as_secs_f64() * 1e9 / normals.len() as f64;
+    let calls = ((MIN_SAMPLE_NS / per_call.max(1.0)).ceil() as usize).max(1);
+    let mut next = normals.iter().cycle();
+    let mut samples: Vec<f64> = (0..SAMPLES)
+        .map(|_| {
+            let start = Instant::now();
+            for n in next.by_ref().take(calls) {
                 black_box(estimate(black_box(*n)));
             }
-            evaluations += normals.len();
-        }
-        best = best.min(start.elapsed().as_secs_f64() * 1e9 / evaluations as f64);
-    }
-    best
+            start.elapsed().as_secs_f64() * 1e9 / calls as f64
+        })
+        .collect();
+    median(&mut samples)
 }
 
 /// Nanoseconds per normal of one configuration: the method is chosen once, outside the timed loop
@@ -104,17 +121,25 @@ fn time_per_normal(prepared: &Irradiance<'_>, config: Config, normals: &[DVec3])
     let mut rng = hw3::rng::seeded(99, 0);
     let samples = config.samples.max(1);
     match config.method {
-        Method::Unweighted => time_batches(normals, |n| prepared.unweighted(n)),
-        Method::Weighted => time_batches(normals, |n| prepared.weighted(n)),
-        Method::Uniform => time_batches(normals, |n| prepared.uniform(n, samples, &mut rng)),
-        Method::Cosine => time_batches(normals, |n| prepared.cosine(n, samples, &mut rng)),
-        Method::Map => time_batches(normals, |n| prepared.map(n, samples, &mut rng)),
-        Method::Mis => time_batches(normals, |n| prepared.mis(n, samples, &mut rng)),
-        Method::Sh9 => time_batches(normals, |n| prepared.sh9().irradiance(n)),
+        Method::Unweighted => time_per_call(normals, |n| prepared.unweighted(n)),
+        Method::Weighted => time_per_call(normals, |n| prepared.weighted(n)),
+        Method::Uniform => time_per_call(normals, |n| prepared.uniform(n, samples, &mut rng)),
+        Method::Cosine => time_per_call(normals, |n| prepared.cosine(n, samples, &mut rng)),
+        Method::Map => time_per_call(normals, |n| prepared.map(n, samples, &mut rng)),
+        Method::Mis => time_per_call(normals, |n| prepared.mis(n, samples, &mut rng)),
+        Method::Sh9 => time_per_call(normals, |n| prepared.sh9().irradiance(n)),
     }
 }
 
+/// The machine's load while measuring, for the table's header: the 1-minute load average at the
+/// start and the end of the sweep (Linux `/proc/loadavg`), or nothing where it is not readable.
+fn load_average() -> Option<String> {
+    let text = std::fs::read_to_string("/proc/loadavg").ok()?;
+    text.split_whitespace().next().map(str::to_string)
+}
+
 fn sweep() {
+    let load_at_start = load_average();
     let normals = fibonacci_normals(64);
     let seeds: Vec<u64> = (1..=8).collect();
     let mut csv =
@@ -171,9 +196,14 @@ fn sweep() {
         let (_, weighted_error, weighted_ns) = find("weighted 256²");
         let projection = {
             let probe = &probes.iter().find(|(s, _)| *s == 256).expect("built").1;
-            let start = Instant::now();
-            black_box(Sh9::project(probe));
-            start.elapsed().as_secs_f64() * 1e9
+            let mut runs: Vec<f64> = (0..11)
+                .map(|_| {
+                    let start = Instant::now();
+                    black_box(Sh9::project(black_box(probe)));
+                    start.elapsed().as_secs_f64() * 1e9
+                })
+                .collect();
+            median(&mut runs)
         };
         let _ = writeln!(
             summary,
@@ -191,11 +221,17 @@ fn sweep() {
             human_time(projection)
         );
     }
+    let load = match (load_at_start, load_average()) {
+        (Some(start), Some(end)) => format!("1-minute load average {start} at the start, {end} at the end"),
+        _ => "load not recorded".to_string(),
+    };
     let markdown = format!(
-        "Measured by `cargo bench --bench q4_irradiance` (release, one thread, 2-core shared VM: timings \
-         vary by ±30 % between runs). Error: % of the peak exact irradiance over 64 Fibonacci normals; \
+        "Measured by `cargo bench --bench q4_irradiance` (release, one thread, 2-core shared VM; {load}). Error: % of the peak exact irradiance over 64 Fibonacci normals; \
          Relative error: per normal, against that normal's own reference, normals below 1 % of the peak left out. \
-         Time per normal: the best of 5 batches of at least 20 ms, each method in its own monomorphised          loop over the 64 normals (no per-call dispatch or input check is timed, as divan times one call).          Monte Carlo: per-normal RMS over 8 seeds, on a 256² probe. Orthographic mirror-ball probes \
+         Time per normal: the median of 101 samples of at least 50 µs of consecutive calls over the 64 \
+         normals, each method in its own monomorphised loop (no per-call dispatch or input check is \
+         timed; divan's method). \
+         Monte Carlo: per-normal RMS over 8 seeds, on a 256² probe. Orthographic mirror-ball probes \
          rasterised from the analytic soft and sun maps (exact reference: the closed forms), or \
          resampled from the vendored 256×128 CC0 lat-long maps courtyard and sunrise (reference: the \
          file's own solid-angle-weighted texel sum); no photograph of a real ball.\n\n{summary}\n{table}"
@@ -215,8 +251,14 @@ fn human_time(ns: f64) -> String {
     }
 }
 
+/// `cargo bench --bench q4_irradiance` sweeps, then runs every divan benchmark; with a divan filter
+/// (`cargo bench --bench q4_irradiance -- sh9`) only the matching divan benchmarks run, so that a
+/// quick check leaves the committed table alone.
 fn main() {
-    if std::env::args().any(|a| a == "--bench") {
+    let mut args = std::env::args().skip(1);
+    let measuring = args.any(|a| a == "--bench");
+    let filtered = std::env::args().skip(1).any(|a| !a.starts_with('-'));
+    if measuring && !filtered {
         sweep();
     }
     divan::main();
