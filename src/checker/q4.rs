@@ -197,6 +197,42 @@ struct ProbeImage {
     listed: [usize; 3],
 }
 
+/// The mistakes a grader can tell apart: a slip whose value falls within the key's tolerance (a
+/// rim texel's share when no rim texel lights the surface, say) is the key there, and of two slips
+/// that land on one value only the first is named.
+fn distinct(rules: Vec<MalRule>, key: f64, rtol: f64) -> Vec<MalRule> {
+    let mut seen = vec![key];
+    rules
+        .into_iter()
+        .filter(|rule| match rule.value {
+            Expected::Number { value, .. } => {
+                let new = seen.iter().all(|&v| (value - v).abs() > rtol * v.abs());
+                seen.push(value);
+                new
+            }
+            _ => true,
+        })
+        .collect()
+}
+
+/// [`distinct`] for directions: a slip within the angular tolerance of the key (the ball's normal
+/// at the texel that looks back at the camera, say) or of an earlier slip is not named.
+fn distinct_directions(rules: Vec<MalRule>, key: DVec3) -> Vec<MalRule> {
+    let mut seen = vec![key];
+    rules
+        .into_iter()
+        .filter(|rule| match rule.value {
+            Expected::Direction { value, angle_tol } => {
+                let value = DVec3::from_array(value);
+                let new = seen.iter().all(|v| v.angle_between(value) > angle_tol);
+                seen.push(value);
+                new
+            }
+            _ => true,
+        })
+        .collect()
+}
+
 fn direction(value: DVec3) -> Expected {
     Expected::Direction { value: value.to_array(), angle_tol: DIRECTION_TOL }
 }
@@ -322,7 +358,7 @@ impl ProbeImage {
                 prompt: direction_prompt,
                 points: 1.0,
                 expected: direction(texel.direction),
-                mal_rules,
+                mal_rules: distinct_directions(mal_rules, texel.direction),
                 explained_in: PROBE_NOTES,
                 method: DIRECTION_METHOD,
             });
@@ -331,23 +367,34 @@ impl ProbeImage {
                 prompt: solid_angle_prompt,
                 points: 1.0,
                 expected: probe_number(texel.solid_angle),
-                mal_rules: vec![
-                    MalRule {
-                        value: probe_number(4.0 * full_area),
-                        message: "that is 4 x the whole texel's area; only the part inside the disc sees the sky",
-                        rule: Rule::WrongTerm,
-                    },
-                    MalRule {
-                        value: probe_number(texel.area),
-                        message: "that is the texel's area in the image; on the orthographic ball dw = 4 dA",
-                        rule: Rule::OtherQuantity,
-                    },
-                    MalRule {
-                        value: probe_number(share),
-                        message: "that is 4 pi/N, the equal share the unweighted sum gives every texel",
-                        rule: Rule::OtherQuantity,
-                    },
-                ],
+                mal_rules: {
+                    // A texel wholly inside the disc has its whole area's solid angle: that slip
+                    // is the key there, and only a rim texel can make it.
+                    let mut rules = vec![
+                        MalRule {
+                            value: probe_number(4.0 * full_area),
+                            message: "that is 4 x the whole texel's area; only the part inside the disc sees the sky",
+                            rule: Rule::WrongTerm,
+                        },
+                        MalRule {
+                            value: probe_number(texel.area),
+                            message: "that is the texel's area in the image; on the orthographic ball dw = 4 dA",
+                            rule: Rule::OtherQuantity,
+                        },
+                        MalRule {
+                            value: probe_number(share),
+                            message: "that is 4 pi/N, the equal share the unweighted sum gives every texel",
+                            rule: Rule::OtherQuantity,
+                        },
+                    ];
+                    rules.retain(|rule| match rule.value {
+                        Expected::Number { value, .. } => {
+                            (value - texel.solid_angle).abs() > PROBE_RTOL * texel.solid_angle.abs()
+                        }
+                        _ => true,
+                    });
+                    rules
+                },
                 explained_in: PROBE_NOTES,
                 method: SOLID_ANGLE_METHOD,
             });
@@ -366,7 +413,8 @@ impl ProbeImage {
             prompt: "weighted sum E = sum of L max(0, n . w) dw over the texels used",
             points: 2.0,
             expected: probe_number(weighted),
-            mal_rules: vec![
+            mal_rules: distinct(
+                vec![
                 MalRule {
                     value: probe_number(unweighted_sum(normal, &texels, 1.0).x),
                     message: "the solid angle dw is missing: that sum counts texels, not steradians",
@@ -393,6 +441,9 @@ impl ProbeImage {
                     rule: Rule::OtherQuantity,
                 },
             ],
+                weighted,
+                PROBE_RTOL,
+            ),
             explained_in: PROBE_NOTES,
             method: WEIGHTED_METHOD,
         });
@@ -401,23 +452,27 @@ impl ProbeImage {
             prompt: "unweighted sum (4 pi/N) times the sum of L max(0, n . w)",
             points: 1.0,
             expected: probe_number(unweighted),
-            mal_rules: vec![
-                MalRule {
-                    value: probe_number(unweighted_sum(normal, &texels, 1.0).x),
-                    message: "that is the literal sum of L max(0, n . w): give each texel the equal share 4 pi/N",
-                    rule: Rule::Factor,
-                },
-                MalRule {
-                    value: probe_number(unweighted - unweighted_sum(-normal, &texels, weight).x),
-                    message: "the clamp max(0, .) is missing: texels below the surface's horizon subtract light",
-                    rule: Rule::WrongTerm,
-                },
-                MalRule {
-                    value: probe_number(weighted),
-                    message: "that is the weighted sum; the unweighted one gives every texel 4 pi/N",
-                    rule: Rule::OtherQuantity,
-                },
-            ],
+            mal_rules: distinct(
+                vec![
+                    MalRule {
+                        value: probe_number(unweighted_sum(normal, &texels, 1.0).x),
+                        message: "that is the literal sum of L max(0, n . w): give each texel the equal share 4 pi/N",
+                        rule: Rule::OtherQuantity,
+                    },
+                    MalRule {
+                        value: probe_number(unweighted - unweighted_sum(-normal, &texels, weight).x),
+                        message: "the clamp max(0, .) is missing: texels below the surface's horizon subtract light",
+                        rule: Rule::WrongTerm,
+                    },
+                    MalRule {
+                        value: probe_number(weighted),
+                        message: "that is the weighted sum; the unweighted one gives every texel 4 pi/N",
+                        rule: Rule::OtherQuantity,
+                    },
+                ],
+                unweighted,
+                PROBE_RTOL,
+            ),
             explained_in: PROBE_NOTES,
             method: UNWEIGHTED_METHOD,
         });
@@ -427,7 +482,8 @@ impl ProbeImage {
             prompt: "bias of the unweighted sum, as the ratio unweighted/weighted",
             points: 1.0,
             expected: ratio(unweighted / weighted),
-            mal_rules: vec![
+            mal_rules: distinct(
+                vec![
                 MalRule {
                     value: ratio(weighted / unweighted),
                     message: "that is weighted/unweighted; the ratio asked is unweighted/weighted",
@@ -439,6 +495,9 @@ impl ProbeImage {
                     rule: Rule::OtherQuantity,
                 },
             ],
+                unweighted / weighted,
+                RATIO_RTOL,
+            ),
             explained_in: PROBE_NOTES,
                 method: RATIO_METHOD,
         });
