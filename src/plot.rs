@@ -8,9 +8,11 @@
 //! plotters under the family name `"sans-serif"` (the name plotters' default labels ask for).
 
 mod chart;
+mod job;
 mod table;
 
 pub use chart::{Axis, Chart, Dots, Legend, LegendMark, Note, Series, Stroke, TickFormat};
+pub use job::{FigureJob, run_jobs};
 pub use table::markdown_table;
 
 use plotters::prelude::*;

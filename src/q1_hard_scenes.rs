@@ -10,7 +10,7 @@ mod mirrors;
 mod motion;
 
 pub use clutter::{CLUTTER_COUNTS, CLUTTER_SEEDS, ClutterRow, clutter_row};
-pub use figures::{RENDER_SPP, figures, renders};
+pub use figures::{RENDER_SPP, figure_jobs, figures, render_jobs, renders};
 pub use fog::{FOG_DISTANCES, FOG_SIGMAS, FogRow, airlight_rows, airlight_traced, fog_row};
 pub use mirrors::{DIVERGENCE_TRIALS, MIRROR_STEPS, MirrorDivergence, mirror_divergence, mirror_sensitivity};
 pub use motion::{MOTION_SPP, MotionChange, MotionNoise, NOISE_TARGET, motion_change, motion_noise};
