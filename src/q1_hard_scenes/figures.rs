@@ -33,17 +33,23 @@ fn render_image(scene: &Scene, (width, height): (u32, u32), spp: u32) -> image::
     render(scene, &settings, &|_| {}).expect("the figure settings are within limits").to_rgb8()
 }
 
-/// A pair of renders side by side at `size` each ([`HALF`] in the notes), labelled, as one PNG.
+/// A pair of renders side by side at `size` each ([`HALF`] in the notes), labelled, as one PNG;
+/// the right panel's label states its measured difference from the left
+/// ([`plot::rms_difference`]), how much the effect changes the picture.
 fn pair_figure(
     file_name: &str,
     size: (u32, u32),
     [left, right]: [(&Scene, u32, &str); 2],
 ) -> Result<Figure, PlotError> {
-    let panel = |(scene, spp, what): (&Scene, u32, &str)| plot::Panel {
-        image: render_image(scene, size, spp),
-        label: format!("{what}\nWhitted, {spp} spp"),
-    };
-    plot::panel_grid(file_name, &[panel(left), panel(right)], 2)
+    let label = |spp: u32, what: &str| format!("{what}\nWhitted, {spp} spp");
+    let left_image = render_image(left.0, size, left.1);
+    let right_image = render_image(right.0, size, right.1);
+    let difference = plot::difference_line("left", &right_image, &left_image);
+    let panels = [
+        plot::Panel { image: left_image, label: label(left.1, left.2) },
+        plot::Panel { image: right_image, label: format!("{}\n{difference}", label(right.1, right.2)) },
+    ];
+    plot::panel_grid(file_name, &panels, 2)
 }
 
 fn input_error(figure: &str, e: InputError) -> PlotError {

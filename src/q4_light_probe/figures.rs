@@ -277,6 +277,21 @@ struct RenderRow {
     peak: f64,
 }
 
+impl RenderRow {
+    /// The mean and the largest `|estimate − reference| / peak` over the sphere's pixels: the
+    /// numbers printed over the row's error maps.
+    fn error_of(&self, estimate: &[Option<f64>]) -> (f64, f64) {
+        let errors: Vec<f64> = self
+            .reference
+            .iter()
+            .zip(estimate)
+            .filter_map(|(r, e)| Some((e.as_ref()? - r.as_ref()?).abs() / self.peak))
+            .collect();
+        let mean = errors.iter().sum::<f64>() / errors.len().max(1) as f64;
+        (mean, errors.iter().copied().fold(0.0, f64::max))
+    }
+}
+
 /// Renders a white diffuse sphere (orthographic view, image up = world `+z`, the sun's azimuth to
 /// the right) lit through `probe`. Pixels are independent, each with its own generator stream,
 /// so the parallel loop gives the same bytes on any thread count.
@@ -332,7 +347,7 @@ fn sphere_render_figure() -> Result<Figure, PlotError> {
         render_row("sunrise (CC0)", &sunrise_ball, &|n| luminance(sunrise_reference.weighted(n)), brightest),
     ];
     let gap = 8_usize;
-    let label_band = 22_usize;
+    let label_band = 36_usize;
     let panels = 5;
     let bar_band = 80_usize;
     let width = panels * (RENDER_SIZE + gap) - gap + bar_band;
@@ -361,6 +376,9 @@ fn sphere_render_figure() -> Result<Figure, PlotError> {
                 })
             };
             let labels = [row.title, "SH9", "MIS, 16 samples", "SH9 error", "MIS error"];
+            let (sh9_error, mis_error) = (row.error_of(&row.sh9), row.error_of(&row.mis));
+            let measured = |(mean, max): (f64, f64)| format!("mean {:.1} %, max {:.1} %", 100.0 * mean, 100.0 * max);
+            let second_lines = [String::new(), String::new(), String::new(), measured(sh9_error), measured(mis_error)];
             let y0 = row_index * (RENDER_SIZE + label_band);
             let ramp = |v: f64| heat(v * 0.1 * row.peak);
             let bar_at = ((panels * (RENDER_SIZE + gap)) as i32 + 4, (y0 + label_band) as i32 + 8);
@@ -370,6 +388,9 @@ fn sphere_render_figure() -> Result<Figure, PlotError> {
             for (panel, label) in labels.iter().enumerate() {
                 let x0 = panel * (RENDER_SIZE + gap);
                 root.draw(&Text::new(*label, (x0 as i32 + 4, y0 as i32 + 4), ("sans-serif", 13))).map_err(err)?;
+                let second = &second_lines[panel];
+                root.draw(&Text::new(second.as_str(), (x0 as i32 + 4, y0 as i32 + 19), ("sans-serif", 11)))
+                    .map_err(err)?;
                 for index in 0..RENDER_SIZE * RENDER_SIZE {
                     if let Some(c) = pixel(panel, index) {
                         let x = (x0 + index % RENDER_SIZE) as i32;
@@ -519,6 +540,19 @@ mod tests {
             let step = (second - first).abs().max_element();
             assert!(across <= 1.5 * step + 1e-6, "row {row}: across the meridian {across}, one column {step}");
         }
+    }
+
+    #[test]
+    fn error_map_labels_state_the_mean_and_largest_error_over_the_sphere() {
+        let row = RenderRow {
+            title: "t",
+            reference: vec![Some(1.0), Some(2.0), None],
+            sh9: vec![Some(1.5), Some(2.0), None],
+            mis: vec![Some(0.0), Some(2.0), None],
+            peak: 2.0,
+        };
+        assert_eq!(row.error_of(&row.sh9), (0.125, 0.25));
+        assert_eq!(row.error_of(&row.mis), (0.25, 0.5));
     }
 
     #[test]

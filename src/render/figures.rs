@@ -63,15 +63,12 @@ pub fn jobs() -> Vec<FigureJob> {
         }),
         FigureJob::rendered("render caustic pair", || {
             let caustic = "render_caustic.png";
+            let on = render_scene(caustic, "caustic", None, (320, 240))?;
+            let off = render_scene(caustic, "caustic", Some(Pass::Caustics), (320, 240))?;
+            let difference = plot::difference_line("left", &off, &on);
             let panels = [
-                Panel {
-                    image: render_scene(caustic, "caustic", None, (320, 240))?,
-                    label: format!("the plan: caustic pass on\nWhitted + caustic map, {SPP} spp"),
-                },
-                Panel {
-                    image: render_scene(caustic, "caustic", Some(Pass::Caustics), (320, 240))?,
-                    label: format!("caustic pass forced off\nWhitted, {SPP} spp"),
-                },
+                Panel { image: on, label: format!("the plan: caustic pass on\nWhitted + caustic map, {SPP} spp") },
+                Panel { image: off, label: format!("caustic pass forced off\nWhitted, {SPP} spp\n{difference}") },
             ];
             Ok(vec![plot::panel_grid(caustic, &panels, 2)?])
         }),
