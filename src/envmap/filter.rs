@@ -21,7 +21,8 @@ use glam::{DVec2, DVec3};
 
 impl Probe {
     /// The radiance toward unit world direction `omega`, bilinearly interpolated between the
-    /// four texel centres around it (see the [module docs](self)); zero in a blind cone.
+    /// four texel centres around it (a lat-long map wraps in longitude and clamps at the poles; a
+    /// disk format blends only the texels inside its disk); zero in a blind cone.
     ///
     /// Equal to [`Probe::radiance_toward`] at every texel centre, continuous across texel
     /// edges, and for a lat-long map across the `φ = 0 = 2π` meridian.
