@@ -10,11 +10,13 @@
 //!   of every texel, built from a function, a radiance buffer or a Radiance `.hdr` file.
 //! - [`distribution`]: [`MapDistribution`], importance sampling of a probe's directions in
 //!   proportion to [`luminance`] × solid angle, with its exact solid-angle pdf.
+//! - `filter`: [`Probe::radiance_bilinear`], the bilinear lookup that pictures of a map use.
 //! - [`builtin`]: the two CC0 maps compiled into the binary ([`BuiltinMap`]), so that nothing
 //!   is read from the source tree at run time.
 
 pub mod builtin;
 pub mod distribution;
+mod filter;
 pub mod format;
 pub mod probe;
 

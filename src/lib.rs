@@ -51,11 +51,13 @@ pub fn all_answers() -> Vec<Answers> {
 /// Every figure of the course notes: [`drawn_figures`] and [`rendered_figures`], each file name
 /// once (two figures of one name would overwrite each other in `docs/figures/`).
 ///
+/// The [`figure_jobs`] run in parallel ([`plot::run_jobs`]: the same list and bytes on every run
+/// and thread count; with `HW3_FIGURE_TIMINGS` set, each job's seconds on stderr).
+///
 /// # Errors
 /// [`plot::PlotError`] if a figure cannot be drawn, or if two figures share a file name.
 pub fn all_figures() -> Result<Vec<plot::Figure>, plot::PlotError> {
-    let mut figures = drawn_figures()?;
-    figures.extend(rendered_figures()?);
+    let figures = plot::run_jobs(&figure_jobs())?;
     let mut names: Vec<&str> = figures.iter().map(|f| f.file_name.as_str()).collect();
     names.sort_unstable();
     if let Some(pair) = names.windows(2).find(|pair| pair[0] == pair[1]) {
@@ -73,10 +75,7 @@ pub fn all_figures() -> Result<Vec<plot::Figure>, plot::PlotError> {
 /// # Errors
 /// [`plot::PlotError`] if a render cannot be drawn.
 pub fn rendered_figures() -> Result<Vec<plot::Figure>, plot::PlotError> {
-    let mut figures = q1_hard_scenes::renders()?;
-    figures.extend(render::figures::figures()?);
-    figures.extend(q5_effect_tables::renders()?);
-    Ok(figures)
+    plot::run_jobs(&figure_jobs().into_iter().filter(|job| job.rendered).collect::<Vec<_>>())
 }
 
 /// The drawn figures of the course notes, in homework order: charts, diagrams, tables and the
@@ -85,14 +84,35 @@ pub fn rendered_figures() -> Result<Vec<plot::Figure>, plot::PlotError> {
 /// # Errors
 /// [`plot::PlotError`] if a figure cannot be drawn.
 pub fn drawn_figures() -> Result<Vec<plot::Figure>, plot::PlotError> {
-    let mut figures: Vec<plot::Figure> = Vec::new();
-    figures.extend(q1_hard_scenes::figures()?);
-    figures.extend(q2_ray_sphere::figures()?);
-    figures.extend(q3_kd_traversal::figures()?);
-    figures.extend(q4_light_probe::figures()?);
-    figures.extend(q5_effect_tables::figures()?);
-    figures.extend(solution::figures()?);
-    Ok(figures)
+    plot::run_jobs(&figure_jobs().into_iter().filter(|job| !job.rendered).collect::<Vec<_>>())
+}
+
+/// Every figure job, drawn figures first in homework order, then the renders.
+///
+/// # Examples
+/// ```
+/// let jobs = hw3::figure_jobs();
+/// assert!(jobs.iter().any(|job| job.rendered) && jobs.iter().any(|job| !job.rendered));
+/// ```
+#[must_use]
+pub fn figure_jobs() -> Vec<plot::FigureJob> {
+    use plot::FigureJob;
+    let mut jobs = q1_hard_scenes::figure_jobs();
+    jobs.extend([
+        FigureJob::drawn("q2 figures", q2_ray_sphere::figures),
+        FigureJob::drawn("q3 figures", q3_kd_traversal::figures),
+    ]);
+    jobs.extend(q4_light_probe::figure_jobs());
+    jobs.extend([
+        FigureJob::drawn("q5 figures", q5_effect_tables::figures),
+        FigureJob::drawn("answer key", solution::figures),
+    ]);
+    jobs.extend(q1_hard_scenes::render_jobs());
+    jobs.extend(render::figures::jobs());
+    jobs.push(FigureJob::rendered("q5 renders", q5_effect_tables::renders));
+    // The grid is the longest render job: on its own it runs beside the others.
+    jobs.push(FigureJob::rendered("q5 effect grid", || Ok(vec![q5_effect_tables::effect_grid::figure()?])));
+    jobs
 }
 
 #[cfg(test)]

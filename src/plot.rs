@@ -8,9 +8,11 @@
 //! plotters under the family name `"sans-serif"` (the name plotters' default labels ask for).
 
 mod chart;
+mod job;
 mod table;
 
 pub use chart::{Axis, Chart, Dots, Legend, LegendMark, Note, Series, Stroke, TickFormat};
+pub use job::{FigureJob, run_jobs};
 pub use table::markdown_table;
 
 use plotters::prelude::*;
@@ -215,6 +217,33 @@ pub fn panel_grid(file_name: &str, panels: &[Panel], columns: usize) -> Result<F
     }
     let grid = image::RgbImage::from_raw(grid_width, grid_height, rgb).expect("buffer has width*height*3 bytes");
     png_bytes(file_name, &grid)
+}
+
+/// The root-mean-square difference between two images of one size, over every channel of every
+/// pixel, in display levels (0 … 255, the bytes a reader sees): what a comparison panel's label
+/// states as the measured difference from its neighbour.
+///
+/// # Panics
+/// If the images differ in size (compared panels share one).
+///
+/// # Examples
+/// ```
+/// let a = image::RgbImage::from_pixel(4, 2, image::Rgb([10, 10, 10]));
+/// let mut b = a.clone();
+/// b.put_pixel(0, 0, image::Rgb([10, 10, 250])); // one channel of one pixel in 24 differs by 240
+/// assert!((hw3::plot::rms_difference(&a, &b) - (240.0_f64.powi(2) / 24.0).sqrt()).abs() < 1e-12);
+/// ```
+#[must_use]
+pub fn rms_difference(a: &image::RgbImage, b: &image::RgbImage) -> f64 {
+    assert_eq!(a.dimensions(), b.dimensions(), "compared images share one size");
+    let squares: f64 = a.as_raw().iter().zip(b.as_raw()).map(|(x, y)| (f64::from(*x) - f64::from(*y)).powi(2)).sum();
+    (squares / a.as_raw().len().max(1) as f64).sqrt()
+}
+
+/// The label line that states [`rms_difference`] of a panel from the one it is compared with.
+#[must_use]
+pub fn difference_line(against: &str, a: &image::RgbImage, b: &image::RgbImage) -> String {
+    format!("RMS difference from {against}: {:.1} / 255", rms_difference(a, b))
 }
 
 /// Draws a vertical colour bar on `root`: `colour(v)` for `v` from 0 (bottom) to 1 (top) in a

@@ -9,7 +9,7 @@ pub mod study;
 #[cfg(test)]
 mod tests;
 
-pub use figures::figures;
+pub use figures::{figure_jobs, figures};
 pub use irradiance::{Irradiance, Method, Sh9};
 pub use normals::fibonacci_normals;
 

@@ -10,7 +10,7 @@ use super::mirrors::{
 };
 use super::motion::{MOTION_SPEED, MotionChange, MotionNoise, motion_change, motion_noise, motion_tables};
 use crate::geometry::InputError;
-use crate::plot::{self, Axis, Figure, PALETTE, PlotError};
+use crate::plot::{self, Axis, Figure, FigureJob, PALETTE, PlotError};
 use crate::render::analysis::analyze;
 use crate::render::catalogue;
 use crate::render::scene::Scene;
@@ -33,17 +33,23 @@ fn render_image(scene: &Scene, (width, height): (u32, u32), spp: u32) -> image::
     render(scene, &settings, &|_| {}).expect("the figure settings are within limits").to_rgb8()
 }
 
-/// A pair of renders side by side at `size` each ([`HALF`] in the notes), labelled, as one PNG.
+/// A pair of renders side by side at `size` each ([`HALF`] in the notes), labelled, as one PNG;
+/// the right panel's label states its measured difference from the left
+/// ([`plot::rms_difference`]), how much the effect changes the picture.
 fn pair_figure(
     file_name: &str,
     size: (u32, u32),
     [left, right]: [(&Scene, u32, &str); 2],
 ) -> Result<Figure, PlotError> {
-    let panel = |(scene, spp, what): (&Scene, u32, &str)| plot::Panel {
-        image: render_image(scene, size, spp),
-        label: format!("{what}\nWhitted, {spp} spp"),
-    };
-    plot::panel_grid(file_name, &[panel(left), panel(right)], 2)
+    let label = |spp: u32, what: &str| format!("{what}\nWhitted, {spp} spp");
+    let left_image = render_image(left.0, size, left.1);
+    let right_image = render_image(right.0, size, right.1);
+    let difference = plot::difference_line("left", &right_image, &left_image);
+    let panels = [
+        plot::Panel { image: left_image, label: label(left.1, left.2) },
+        plot::Panel { image: right_image, label: format!("{}\n{difference}", label(right.1, right.2)) },
+    ];
+    plot::panel_grid(file_name, &panels, 2)
 }
 
 fn input_error(figure: &str, e: InputError) -> PlotError {
@@ -155,7 +161,7 @@ fn motion_figures(change: &MotionChange, noise: &MotionNoise) -> Result<Vec<Figu
 }
 
 /// Q1's drawn figures: one chart per metric (SVG) and the measured tables (Markdown, included by
-/// the chapter); the renders are [`renders`].
+/// the chapter); the renders are [`renders`]. The [`figure_jobs`] run in parallel.
 ///
 /// # Errors
 /// [`PlotError`] if a chart cannot be drawn.
@@ -168,23 +174,44 @@ fn motion_figures(change: &MotionChange, noise: &MotionNoise) -> Result<Vec<Figu
 /// assert!(figures.iter().any(|f| f.file_name == "q1_clutter_table.md"));
 /// ```
 pub fn figures() -> Result<Vec<Figure>, PlotError> {
-    let clutter: Vec<ClutterRow> = CLUTTER_COUNTS
-        .iter()
-        .map(|&n| clutter_row(n))
-        .collect::<Result<_, _>>()
-        .map_err(|e| input_error("q1_clutter_table.md", e))?;
-    let fog = fog_rows().map_err(|e| input_error("q1_fog_table.md", e))?;
-    let mirrors = mirror_sensitivity().map_err(|e| input_error("q1_mirror_table.md", e))?;
-    let change = motion_change().map_err(|e| input_error("q1_motion_table.md", e))?;
-    let noise = motion_noise().map_err(|e| input_error("q1_motion_table.md", e))?;
-    let mut figures = clutter_figures(&clutter)?;
-    figures.extend(fog_figures(&fog)?);
-    let divergence =
-        mirror_divergence(DIVERGENCE_TRIALS).map_err(|e| input_error("q1_mirror_divergence_table.md", e))?;
-    figures.extend(mirror_figures(&mirrors, &divergence)?);
-    figures.extend(motion_figures(&change, &noise)?);
-    figures.extend(committed_accuracy_figures()?);
-    Ok(figures)
+    plot::run_jobs(&figure_jobs())
+}
+
+/// Q1's drawn figures as independent jobs, one per scene's measurements (and the committed
+/// accuracy data), in the chapter's order.
+///
+/// # Examples
+/// ```
+/// let jobs = hw3::q1_hard_scenes::figure_jobs();
+/// assert!(jobs.iter().all(|job| !job.rendered) && jobs.len() == 5);
+/// ```
+#[must_use]
+pub fn figure_jobs() -> Vec<FigureJob> {
+    vec![
+        FigureJob::drawn("q1 clutter measurements", || {
+            let rows: Vec<ClutterRow> = CLUTTER_COUNTS
+                .iter()
+                .map(|&n| clutter_row(n))
+                .collect::<Result<_, _>>()
+                .map_err(|e| input_error("q1_clutter_table.md", e))?;
+            clutter_figures(&rows)
+        }),
+        FigureJob::drawn("q1 fog measurements", || {
+            fog_figures(&fog_rows().map_err(|e| input_error("q1_fog_table.md", e))?)
+        }),
+        FigureJob::drawn("q1 mirror measurements", || {
+            let mirrors = mirror_sensitivity().map_err(|e| input_error("q1_mirror_table.md", e))?;
+            let divergence =
+                mirror_divergence(DIVERGENCE_TRIALS).map_err(|e| input_error("q1_mirror_divergence_table.md", e))?;
+            mirror_figures(&mirrors, &divergence)
+        }),
+        FigureJob::drawn("q1 motion measurements", || {
+            let change = motion_change().map_err(|e| input_error("q1_motion_table.md", e))?;
+            let noise = motion_noise().map_err(|e| input_error("q1_motion_table.md", e))?;
+            motion_figures(&change, &noise)
+        }),
+        FigureJob::drawn("q1 accuracy data", committed_accuracy_figures),
+    ]
 }
 
 /// Samples per pixel of each Q1 render, chosen from the measured error against samples per pixel
@@ -208,7 +235,8 @@ fn spp_of(scene: &str) -> u32 {
 /// Q1's renders (PNG): the cluttered slab alone at 640×480, and each other scene beside its easy
 /// twin (fog beside no medium, mirror spheres beside diffuse ones, the moving ball beside the ball
 /// at rest) at 320×240 per panel, labelled with the scene, the method and the samples per pixel.
-/// Whitted tracing with seed 1, so the bytes are the same on every run and thread count.
+/// Whitted tracing with seed 1, so the bytes are the same on every run and thread count. The
+/// [`render_jobs`] run in parallel.
 ///
 /// # Errors
 /// [`PlotError`] if a scene cannot be built or a label cannot be drawn.
@@ -220,36 +248,44 @@ fn spp_of(scene: &str) -> u32 {
 /// assert!(renders.iter().any(|f| f.file_name == "q1_clutter.png"));
 /// ```
 pub fn renders() -> Result<Vec<Figure>, PlotError> {
-    let forest = catalogue::clutter_forest(1500, 1).map_err(|e| input_error("q1_clutter.png", e))?;
-    let clutter = plot::panel_grid(
-        "q1_clutter.png",
-        &[plot::Panel {
-            image: render_image(&forest, FULL, spp_of("clutter")),
-            label: format!("1500 spheres, τ = 0.70\nWhitted, {} spp", spp_of("clutter")),
-        }],
-        1,
-    )?;
-    let fog = |sigma| catalogue::fog_street(sigma).map_err(|e| input_error("q1_fog.png", e));
-    let (clear, foggy) = (fog(0.0)?, fog(0.08)?);
-    let mirrors = |m| catalogue::mirror_spheres(m).map_err(|e| input_error("q1_mirrors.png", e));
-    let (mirror, diffuse) = (mirrors(true)?, mirrors(false)?);
-    let ball = |speed| catalogue::moving_ball(speed).map_err(|e| input_error("q1_motion.png", e));
-    let (moving, still) = (ball(MOTION_SPEED)?, ball(0.0)?);
-    let (f, m, b) = (spp_of("fog"), spp_of("mirrors"), spp_of("motion"));
-    Ok(vec![
-        clutter,
-        pair_figure("q1_fog.png", HALF, [(&clear, f, "no medium"), (&foggy, f, "fog, σ_s = 0.08")])?,
-        pair_figure(
-            "q1_mirrors.png",
-            HALF,
-            [(&mirror, m, "mirror spheres"), (&diffuse, m, "the same spheres, diffuse")],
-        )?,
-        pair_figure(
-            "q1_motion.png",
-            HALF,
-            [(&moving, b, "ball moving during the shutter"), (&still, b, "ball at rest")],
-        )?,
-    ])
+    plot::run_jobs(&render_jobs())
+}
+
+/// Q1's renders as independent jobs, one per figure, in the chapter's order.
+///
+/// # Examples
+/// ```
+/// let jobs = hw3::q1_hard_scenes::render_jobs();
+/// assert!(jobs.iter().all(|job| job.rendered) && jobs.len() == 4);
+/// ```
+#[must_use]
+pub fn render_jobs() -> Vec<FigureJob> {
+    vec![
+        FigureJob::rendered("q1 clutter render", || {
+            let forest = catalogue::clutter_forest(1500, 1).map_err(|e| input_error("q1_clutter.png", e))?;
+            let spp = spp_of("clutter");
+            let image = render_image(&forest, FULL, spp);
+            let label = format!("1500 spheres, τ = 0.70\nWhitted, {spp} spp");
+            Ok(vec![plot::panel_grid("q1_clutter.png", &[plot::Panel { image, label }], 1)?])
+        }),
+        FigureJob::rendered("q1 fog renders", || {
+            let fog = |sigma| catalogue::fog_street(sigma).map_err(|e| input_error("q1_fog.png", e));
+            let (clear, foggy, f) = (fog(0.0)?, fog(0.08)?, spp_of("fog"));
+            Ok(vec![pair_figure("q1_fog.png", HALF, [(&clear, f, "no medium"), (&foggy, f, "fog, σ_s = 0.08")])?])
+        }),
+        FigureJob::rendered("q1 mirror renders", || {
+            let mirrors = |m| catalogue::mirror_spheres(m).map_err(|e| input_error("q1_mirrors.png", e));
+            let (mirror, diffuse, m) = (mirrors(true)?, mirrors(false)?, spp_of("mirrors"));
+            let pair = [(&mirror, m, "mirror spheres"), (&diffuse, m, "the same spheres, diffuse")];
+            Ok(vec![pair_figure("q1_mirrors.png", HALF, pair)?])
+        }),
+        FigureJob::rendered("q1 motion renders", || {
+            let ball = |speed| catalogue::moving_ball(speed).map_err(|e| input_error("q1_motion.png", e));
+            let (moving, still, b) = (ball(MOTION_SPEED)?, ball(0.0)?, spp_of("motion"));
+            let pair = [(&moving, b, "ball moving during the shutter"), (&still, b, "ball at rest")];
+            Ok(vec![pair_figure("q1_motion.png", HALF, pair)?])
+        }),
+    ]
 }
 
 #[cfg(test)]

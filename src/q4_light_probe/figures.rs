@@ -5,7 +5,7 @@ use super::blind_spot;
 use super::irradiance::Irradiance;
 use super::maps::{AnalyticMap, sun_direction};
 use crate::envmap::{BuiltinMap, Probe, ProbeFormat, horizontal_camera, luminance};
-use crate::plot::{Figure, PALETTE, PlotError, err, png_bytes, svg_figure};
+use crate::plot::{Figure, FigureJob, PALETTE, PlotError, err, png_bytes, svg_figure};
 use glam::DMat3;
 use glam::DVec3;
 use plotters::prelude::*;
@@ -13,7 +13,7 @@ use plotters::prelude::*;
 /// The benchmark's committed results (written by `cargo bench --bench q4_irradiance`).
 const ACCURACY_CSV: &str = crate::data::Q4_ACCURACY_TIME;
 
-/// Every Q4 figure, deterministic bytes.
+/// Every Q4 figure, deterministic bytes; the [`figure_jobs`] run in parallel.
 ///
 /// # Errors
 /// [`PlotError`] if a figure cannot be drawn.
@@ -24,87 +24,136 @@ const ACCURACY_CSV: &str = crate::data::Q4_ACCURACY_TIME;
 /// assert!(figures.iter().any(|f| f.file_name == "q4_blind_spot.svg"));
 /// ```
 pub fn figures() -> Result<Vec<Figure>, PlotError> {
-    Ok(vec![
-        blind_spot_figure()?,
-        solid_angle_figure()?,
-        pareto_figure("soft")?,
-        pareto_figure("sun")?,
-        pareto_figure("courtyard")?,
-        pareto_figure("sunrise")?,
-        sphere_render_figure()?,
-        unwrap_figure()?,
-    ])
+    crate::plot::run_jobs(&figure_jobs())
+}
+
+/// Q4's figures as independent jobs, one per figure, in the chapter's order.
+///
+/// # Examples
+/// ```
+/// let jobs = hw3::q4_light_probe::figure_jobs();
+/// assert!(jobs.iter().all(|job| !job.rendered) && jobs.len() == 8);
+/// ```
+#[must_use]
+pub fn figure_jobs() -> Vec<FigureJob> {
+    fn one(figure: Result<Figure, PlotError>) -> Result<Vec<Figure>, PlotError> {
+        figure.map(|f| vec![f])
+    }
+    vec![
+        FigureJob::drawn("q4 blind spot", || one(blind_spot_figure())),
+        FigureJob::drawn("q4 texel solid angle", || one(solid_angle_figure())),
+        FigureJob::drawn("q4 pareto soft", || one(pareto_figure("soft"))),
+        FigureJob::drawn("q4 pareto sun", || one(pareto_figure("sun"))),
+        FigureJob::drawn("q4 pareto courtyard", || one(pareto_figure("courtyard"))),
+        FigureJob::drawn("q4 pareto sunrise", || one(pareto_figure("sunrise"))),
+        FigureJob::drawn("q4 sphere render", || one(sphere_render_figure())),
+        FigureJob::drawn("q4 probe unwrap", || one(unwrap_figure())),
+    ]
 }
 
 /// `D/R` of the probe photographed in [`unwrap_figure`]: close enough that the blind cone
 /// (half-angle `arcsin(R/D)` = 19.5°) is large enough to see.
 const UNWRAP_DISTANCE: f64 = 3.0;
 
+/// Side of the square probe image photographed in [`unwrap_figure`], in texels.
+const UNWRAP_PROBE_SIZE: usize = 256;
+/// The unwrap figure's panels: the ball at `BALL_PIXELS`², the lat-long at `LONG_PIXELS`.
+const BALL_PIXELS: usize = 320;
+const LONG_PIXELS: (usize, usize) = (640, 320);
+
+/// The unwrap figure's pixels, row-major, `None` where nothing is seen (outside the ball's disk,
+/// or in the blind cone of the lat-long panel).
+struct Unwrap {
+    ball: Vec<Option<DVec3>>,
+    long: Vec<Option<DVec3>>,
+}
+
+/// Photographs `source` (a lat-long map) as a perspective-ball probe at `D/R` =
+/// [`UNWRAP_DISTANCE`] seen from the `+x` horizon, and unwraps that probe to lat-long.
+///
+/// The probe is what a camera records: each texel the solid-angle-weighted mean of the map over
+/// its footprint ([`Probe::from_fn`]), the map read bilinearly. It is not splatted
+/// ([`Probe::resample_lat_long`], which conserves a sun's energy for the estimators): splatting
+/// a 256 × 128 map's 16 points per texel into a 256² ball lands 4 to 8 points in a texel, so a
+/// uniform map comes out with 17 % texel-to-texel noise, a grid over the ball and, at its rim,
+/// where the texels on the image's axes catch 1.33 and 0.55 of their share, two lines through
+/// the blind cone of the unwrap. Both panels read the probe bilinearly.
+fn unwrap_pixels(source: &Probe) -> Result<Unwrap, String> {
+    use rayon::prelude::*;
+    let format = ProbeFormat::perspective_ball(UNWRAP_DISTANCE).map_err(|e| e.to_string())?;
+    let probe = Probe::from_fn(format, UNWRAP_PROBE_SIZE, UNWRAP_PROBE_SIZE, horizontal_camera(), |w| {
+        source.radiance_bilinear(w)
+    })
+    .map_err(|e| e.to_string())?;
+    let ball = (0..BALL_PIXELS * BALL_PIXELS)
+        .into_par_iter()
+        .map(|index| {
+            let pixel = |i: usize| (i as f64 + 0.5) / BALL_PIXELS as f64 * 2.0 - 1.0;
+            let p = glam::DVec2::new(pixel(index % BALL_PIXELS), -pixel(index / BALL_PIXELS));
+            format.image_to_direction(p).map(|_| probe.radiance_bilinear_at(p))
+        })
+        .collect();
+    let (width, height) = LONG_PIXELS;
+    let long = (0..width * height)
+        .into_par_iter()
+        .map(|index| {
+            let uv = glam::DVec2::new(
+                ((index % width) as f64 + 0.5) / width as f64,
+                ((index / width) as f64 + 0.5) / height as f64,
+            );
+            let omega = ProbeFormat::LatLong.image_to_direction(uv)?;
+            probe.world_to_image(omega).map(|p| probe.radiance_bilinear_at(p))
+        })
+        .collect();
+    Ok(Unwrap { ball, long })
+}
+
 /// The courtyard map as a perspective mirror-ball probe (`D/R` = [`UNWRAP_DISTANCE`], camera on
-/// the `+x` horizon), beside that probe unwrapped to latitude-longitude: every direction looked
-/// up in the probe's own texels, the blind cone behind the ball (directions no ball texel sees)
-/// marked in vermillion with its outline. One exposure for both (Reinhard `L/(1 + L)`, gamma 2.2).
+/// the `+x` horizon), beside that probe unwrapped to latitude-longitude ([`unwrap_pixels`]), the
+/// blind cone behind the ball (directions no ball texel sees) marked in vermillion with its
+/// outline. One exposure for both (Reinhard `L/(1 + L)`, gamma 2.2).
 fn unwrap_figure() -> Result<Figure, PlotError> {
     let name = "q4_probe_unwrap.png";
     let failed = |message: String| PlotError::Draw { figure: name.into(), message };
-    let format = ProbeFormat::perspective_ball(UNWRAP_DISTANCE).map_err(|e| failed(e.to_string()))?;
-    let camera = horizontal_camera();
     let courtyard = BuiltinMap::Courtyard.probe().map_err(|e| failed(e.to_string()))?;
-    let probe = Probe::resample_lat_long(&courtyard, format, 256, camera).map_err(|e| failed(e.to_string()))?;
+    let pixels = unwrap_pixels(&courtyard).map_err(failed)?;
     let exposure = |radiance: DVec3| {
         let byte = |c: f64| (255.0 * (c / (1.0 + c)).max(0.0).powf(1.0 / 2.2)).round() as u8;
         RGBColor(byte(radiance.x), byte(radiance.y), byte(radiance.z))
     };
-    let (ball_size, band) = (320_i32, 26_i32);
-    let (long_width, long_height) = (640_i32, 320_i32);
+    let band = 26_i32;
+    let (ball_size, (long_width, long_height)) = (BALL_PIXELS as i32, (LONG_PIXELS.0 as i32, LONG_PIXELS.1 as i32));
     let blind = PALETTE[1];
     let half_angle = blind_spot::half_angle(UNWRAP_DISTANCE).map_err(|e| failed(e.to_string()))?;
     crate::plot::png_figure(name, ((ball_size + 12 + long_width) as u32, (long_height + band) as u32), |root| {
         let ball_label = format!("perspective mirror ball, D/R = {UNWRAP_DISTANCE}");
         root.draw(&Text::new(ball_label, (4, 5), ("sans-serif", 14))).map_err(err)?;
-        for y in 0..ball_size {
-            for x in 0..ball_size {
-                let p = glam::DVec2::new(
-                    (f64::from(x) + 0.5) / f64::from(ball_size) * 2.0 - 1.0,
-                    1.0 - (f64::from(y) + 0.5) / f64::from(ball_size) * 2.0,
-                );
-                if let Some(direction) = format.image_to_direction(p) {
-                    root.draw_pixel((x, y + band), &exposure(probe.radiance_toward(camera * direction)))
-                        .map_err(err)?;
-                }
+        for (index, radiance) in pixels.ball.iter().enumerate() {
+            if let Some(radiance) = radiance {
+                let (x, y) = ((index % BALL_PIXELS) as i32, (index / BALL_PIXELS) as i32);
+                root.draw_pixel((x, y + band), &exposure(*radiance)).map_err(err)?;
             }
         }
         let x0 = ball_size + 12;
         let long_label = format!("unwrapped to lat-long; vermillion: the blind cone, {:.1}°", half_angle.to_degrees());
         root.draw(&Text::new(long_label, (x0 + 4, 5), ("sans-serif", 14))).map_err(err)?;
-        let seen = |u: f64, v: f64| -> Option<DVec3> {
-            let omega = ProbeFormat::LatLong.image_to_direction(glam::DVec2::new(u, v))?;
-            format.direction_to_image(camera.transpose() * omega).map(|_| omega)
+        let seen = |x: i32, y: i32| {
+            let (x, y) = (x.rem_euclid(long_width), y.clamp(0, long_height - 1));
+            pixels.long[(y * long_width + x) as usize]
         };
         for y in 0..long_height {
             for x in 0..long_width {
-                let (u, v) =
-                    ((f64::from(x) + 0.5) / f64::from(long_width), (f64::from(y) + 0.5) / f64::from(long_height));
-                let colour = match seen(u, v) {
-                    Some(omega) => exposure(probe.radiance_toward(omega)),
+                // The cone's outline: the pixels that see the probe while a neighbour does not.
+                let colour = match seen(x, y) {
+                    Some(_)
+                        if [(1, 0), (-1, 0), (0, 1), (0, -1)].iter().any(|(dx, dy)| seen(x + dx, y + dy).is_none()) =>
+                    {
+                        BLACK
+                    }
+                    Some(radiance) => exposure(radiance),
                     None => blind,
                 };
                 root.draw_pixel((x0 + x, y + band), &colour).map_err(err)?;
-            }
-        }
-        // The cone's outline: the pixels that see the probe while a neighbour does not.
-        for y in 0..long_height {
-            for x in 0..long_width {
-                let at = |dx: i32, dy: i32| {
-                    let (u, v) = (
-                        (f64::from(x + dx) + 0.5) / f64::from(long_width),
-                        (f64::from(y + dy).clamp(0.0, f64::from(long_height - 1)) + 0.5) / f64::from(long_height),
-                    );
-                    seen(u.rem_euclid(1.0), v).is_some()
-                };
-                if at(0, 0) && !(at(1, 0) && at(-1, 0) && at(0, 1) && at(0, -1)) {
-                    root.draw_pixel((x0 + x, y + band), &BLACK).map_err(err)?;
-                }
             }
         }
         Ok(())
@@ -228,6 +277,21 @@ struct RenderRow {
     peak: f64,
 }
 
+impl RenderRow {
+    /// The mean and the largest `|estimate − reference| / peak` over the sphere's pixels: the
+    /// numbers printed over the row's error maps.
+    fn error_of(&self, estimate: &[Option<f64>]) -> (f64, f64) {
+        let errors: Vec<f64> = self
+            .reference
+            .iter()
+            .zip(estimate)
+            .filter_map(|(r, e)| Some((e.as_ref()? - r.as_ref()?).abs() / self.peak))
+            .collect();
+        let mean = errors.iter().sum::<f64>() / errors.len().max(1) as f64;
+        (mean, errors.iter().copied().fold(0.0, f64::max))
+    }
+}
+
 /// Renders a white diffuse sphere (orthographic view, image up = world `+z`, the sun's azimuth to
 /// the right) lit through `probe`. Pixels are independent, each with its own generator stream,
 /// so the parallel loop gives the same bytes on any thread count.
@@ -283,7 +347,7 @@ fn sphere_render_figure() -> Result<Figure, PlotError> {
         render_row("sunrise (CC0)", &sunrise_ball, &|n| luminance(sunrise_reference.weighted(n)), brightest),
     ];
     let gap = 8_usize;
-    let label_band = 22_usize;
+    let label_band = 36_usize;
     let panels = 5;
     let bar_band = 80_usize;
     let width = panels * (RENDER_SIZE + gap) - gap + bar_band;
@@ -312,6 +376,9 @@ fn sphere_render_figure() -> Result<Figure, PlotError> {
                 })
             };
             let labels = [row.title, "SH9", "MIS, 16 samples", "SH9 error", "MIS error"];
+            let (sh9_error, mis_error) = (row.error_of(&row.sh9), row.error_of(&row.mis));
+            let measured = |(mean, max): (f64, f64)| format!("mean {:.1} %, max {:.1} %", 100.0 * mean, 100.0 * max);
+            let second_lines = [String::new(), String::new(), String::new(), measured(sh9_error), measured(mis_error)];
             let y0 = row_index * (RENDER_SIZE + label_band);
             let ramp = |v: f64| heat(v * 0.1 * row.peak);
             let bar_at = ((panels * (RENDER_SIZE + gap)) as i32 + 4, (y0 + label_band) as i32 + 8);
@@ -321,6 +388,9 @@ fn sphere_render_figure() -> Result<Figure, PlotError> {
             for (panel, label) in labels.iter().enumerate() {
                 let x0 = panel * (RENDER_SIZE + gap);
                 root.draw(&Text::new(*label, (x0 as i32 + 4, y0 as i32 + 4), ("sans-serif", 13))).map_err(err)?;
+                let second = &second_lines[panel];
+                root.draw(&Text::new(second.as_str(), (x0 as i32 + 4, y0 as i32 + 19), ("sans-serif", 11)))
+                    .map_err(err)?;
                 for index in 0..RENDER_SIZE * RENDER_SIZE {
                     if let Some(c) = pixel(panel, index) {
                         let x = (x0 + index % RENDER_SIZE) as i32;
@@ -422,6 +492,67 @@ mod tests {
         let a = figures().unwrap();
         let b = figures().unwrap();
         assert_eq!(a, b);
+    }
+
+    /// The seam's cause and its cure: a uniform map photographed and unwrapped for the figure
+    /// is uniform in both panels (every seen pixel equals the map), while the splatting
+    /// resampler leaves the texel noise that drew a grid over the ball and lines through the
+    /// blind cone.
+    #[test]
+    fn a_uniform_map_unwraps_to_a_uniform_picture_with_no_seam() {
+        let flat = Probe::from_fn(ProbeFormat::LatLong, 256, 128, DMat3::IDENTITY, |_| DVec3::ONE).unwrap();
+        let pixels = unwrap_pixels(&flat).unwrap();
+        for (panel, values) in [("ball", &pixels.ball), ("lat-long", &pixels.long)] {
+            let seen: Vec<DVec3> = values.iter().flatten().copied().collect();
+            assert!(seen.len() > values.len() / 2, "{panel}");
+            let worst = seen.iter().map(|v| (*v - DVec3::ONE).abs().max_element()).fold(0.0, f64::max);
+            assert!(worst < 1e-9, "{panel}: worst deviation {worst}");
+        }
+        // The lat-long panel's first and last columns meet at φ = 0 = 2π (the ball's centre).
+        let (width, height) = LONG_PIXELS;
+        let row = height / 3;
+        assert!(pixels.long[row * width].is_some() && pixels.long[row * width + width - 1].is_some());
+        let format = ProbeFormat::perspective_ball(UNWRAP_DISTANCE).unwrap();
+        let splatted = Probe::resample_lat_long(&flat, format, UNWRAP_PROBE_SIZE, horizontal_camera()).unwrap();
+        let worst = splatted
+            .texels()
+            .iter()
+            .filter(|t| t.solid_angle > 0.0)
+            .map(|t| (t.radiance.x - 1.0).abs())
+            .fold(0.0, f64::max);
+        assert!(worst > 0.3, "the splatted probe's worst texel is off by {worst}");
+    }
+
+    /// The lat-long panel of a map that varies with longitude is continuous across the φ = 0
+    /// meridian: its first and last columns differ by no more than neighbouring columns do.
+    #[test]
+    fn the_unwrap_is_continuous_across_the_meridian() {
+        let source = Probe::from_fn(ProbeFormat::LatLong, 256, 128, DMat3::IDENTITY, |w| {
+            DVec3::new(1.0 + w.y, 1.0 + w.x, 1.0 + w.z)
+        })
+        .unwrap();
+        let pixels = unwrap_pixels(&source).unwrap();
+        let (width, height) = LONG_PIXELS;
+        for row in (0..height).step_by(16) {
+            let at = |x: usize| pixels.long[row * width + x];
+            let (Some(first), Some(last), Some(second)) = (at(0), at(width - 1), at(1)) else { continue };
+            let across = (first - last).abs().max_element();
+            let step = (second - first).abs().max_element();
+            assert!(across <= 1.5 * step + 1e-6, "row {row}: across the meridian {across}, one column {step}");
+        }
+    }
+
+    #[test]
+    fn error_map_labels_state_the_mean_and_largest_error_over_the_sphere() {
+        let row = RenderRow {
+            title: "t",
+            reference: vec![Some(1.0), Some(2.0), None],
+            sh9: vec![Some(1.5), Some(2.0), None],
+            mis: vec![Some(0.0), Some(2.0), None],
+            peak: 2.0,
+        };
+        assert_eq!(row.error_of(&row.sh9), (0.125, 0.25));
+        assert_eq!(row.error_of(&row.mis), (0.25, 0.5));
     }
 
     #[test]

@@ -99,12 +99,13 @@ pub fn renders() -> Result<Vec<Figure>, PlotError> {
     let size = 320;
     let both = cornell_published::side_by_side(size).map_err(|e| draw_error(PUBLISHED_PNG, &e))?;
     let half = |x| image::imageops::crop_imm(&both, x, 0, size, size).to_image();
+    let (radiosity, path) = (half(0), half(size));
+    let difference = plot::difference_line("radiosity", &path, &radiosity);
     let panels = [
-        Panel { image: half(0), label: "radiosity\n12 × 12 patches per quad, interpolated".into() },
-        Panel { image: half(size), label: format!("path tracing\n{PATH_SPP} spp") },
+        Panel { image: radiosity, label: "radiosity\n12 × 12 patches per quad, interpolated".into() },
+        Panel { image: path, label: format!("path tracing\n{PATH_SPP} spp\n{difference}") },
     ];
     figures.push(plot::panel_grid(PUBLISHED_PNG, &panels, 2)?);
-    figures.push(super::effect_grid::figure()?);
     Ok(figures)
 }
 

@@ -6,7 +6,9 @@
 //! rotation: the zenith of the map is the renderer's up, and the map's `+x` stays `+x`).
 //!
 //! *Who sees it.* Eye rays and rays leaving mirrors or glass that escape the scene return the
-//! environment's radiance (it replaces the scene's constant background). Diffuse and glossy hits
+//! environment's radiance (it replaces the scene's constant background), read bilinearly
+//! ([`Environment::radiance_seen`]): a 256-texel map behind a 60° lens is magnified about 15
+//! times, and a nearest-texel read would show every texel as a block. Diffuse and glossy hits
 //! gather it by next-event estimation: [`ENVIRONMENT_SAMPLES`] directions drawn from the
 //! environment's own distribution, each with a shadow ray to infinity. That is the only strategy
 //! for `L_env · f · cos` at a diffuse/glossy vertex (a bounce ray that escapes after a diffuse or
@@ -174,12 +176,40 @@ impl Environment {
         }
     }
 
-    /// The radiance arriving from unit direction `direction` (renderer frame).
+    /// The radiance arriving from unit direction `direction` (renderer frame): the light's own
+    /// piecewise-constant radiance, texel by texel, which [`Self::sample`] returns and the
+    /// estimators integrate.
     #[must_use]
     pub fn radiance(&self, direction: DVec3) -> DVec3 {
         match &self.kind {
             Kind::Constant(radiance) => *radiance,
             Kind::Probe { probe, .. } => probe.radiance_toward(to_probe_frame(direction)),
+        }
+    }
+
+    /// The radiance a camera sees toward unit direction `direction` (renderer frame): for a probe
+    /// read bilinearly between texel centres ([`Probe::radiance_bilinear`]), so that a magnified
+    /// map shows no texel blocks; equal to [`Self::radiance`] at texel centres and for a constant
+    /// environment. For eye rays and rays leaving mirrors and glass only: light sampling keeps
+    /// the piecewise-constant [`Self::radiance`] its pdf was built for.
+    ///
+    /// # Examples
+    /// ```
+    /// use glam::{DMat3, DVec3};
+    /// use hw3::envmap::{Probe, ProbeFormat};
+    /// use hw3::render::environment::Environment;
+    /// // Two texels around the horizon, 0 (φ < 180°) and 1: on their border, φ = 180°, the light
+    /// // is the second texel's, the seen radiance the blend of both.
+    /// let probe = Probe::from_radiance(ProbeFormat::LatLong, 2, 1, DMat3::IDENTITY, vec![DVec3::ZERO, DVec3::ONE]).unwrap();
+    /// let env = Environment::from_probe(probe);
+    /// assert_eq!(env.radiance(DVec3::NEG_X), DVec3::ONE);
+    /// assert!((env.radiance_seen(DVec3::NEG_X).x - 0.5).abs() < 1e-12);
+    /// ```
+    #[must_use]
+    pub fn radiance_seen(&self, direction: DVec3) -> DVec3 {
+        match &self.kind {
+            Kind::Constant(radiance) => *radiance,
+            Kind::Probe { probe, .. } => probe.radiance_bilinear(to_probe_frame(direction)),
         }
     }
 

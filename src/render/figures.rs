@@ -3,7 +3,7 @@
 
 use super::{Settings, catalogue, render};
 use super::{analysis::analyze, passes::Pass};
-use crate::plot::{self, Figure, Panel, PlotError};
+use crate::plot::{self, Figure, FigureJob, Panel, PlotError};
 
 /// Samples per pixel of the renderer chapter's images (Whitted tracing).
 pub const SPP: u32 = 16;
@@ -30,33 +30,47 @@ fn render_scene(
 /// and `render_caustic.png` (the `caustic` scene with its plan beside the same render with the
 /// caustic pass forced off, 320×240 per panel, labelled), all rendered Whitted-style with
 /// [`SPP`] samples per pixel and seed 1, so the bytes are the same on every run and thread count.
+/// The [`jobs`] run in parallel.
 ///
 /// # Errors
 /// [`PlotError::Draw`] if a scene cannot be built (the vendored map is missing).
 pub fn figures() -> Result<Vec<Figure>, PlotError> {
-    let mut figures = Vec::new();
-    for (file_name, name, label) in [
-        ("render_probe_lit.png", "probe-lit", "lit by the courtyard map only"),
-        ("render_fog_panel.png", "fog-panel", "panel light in fog, σ_s = 0.15"),
-    ] {
-        let image = render_scene(file_name, name, None, (640, 480))?;
-        figures.push(plot::panel_grid(
-            file_name,
-            &[Panel { image, label: format!("{label}\nWhitted, {SPP} spp") }],
-            1,
-        )?);
-    }
-    let caustic = "render_caustic.png";
-    let panels = [
-        Panel {
-            image: render_scene(caustic, "caustic", None, (320, 240))?,
-            label: format!("the plan: caustic pass on\nWhitted + caustic map, {SPP} spp"),
-        },
-        Panel {
-            image: render_scene(caustic, "caustic", Some(Pass::Caustics), (320, 240))?,
-            label: format!("caustic pass forced off\nWhitted, {SPP} spp"),
-        },
-    ];
-    figures.push(plot::panel_grid(caustic, &panels, 2)?);
-    Ok(figures)
+    plot::run_jobs(&jobs())
+}
+
+/// A single labelled 640×480 render of the built-in scene `name`.
+fn single(file_name: &str, name: &str, label: &str) -> Result<Vec<Figure>, PlotError> {
+    let image = render_scene(file_name, name, None, (640, 480))?;
+    let label = format!("{label}\nWhitted, {SPP} spp");
+    Ok(vec![plot::panel_grid(file_name, &[Panel { image, label }], 1)?])
+}
+
+/// The renderer chapter's figures as independent jobs, one per figure (see [`figures`]).
+///
+/// # Examples
+/// ```
+/// let jobs = hw3::render::figures::jobs();
+/// assert!(jobs.iter().all(|job| job.rendered) && jobs.len() == 3);
+/// ```
+#[must_use]
+pub fn jobs() -> Vec<FigureJob> {
+    vec![
+        FigureJob::rendered("render probe-lit", || {
+            single("render_probe_lit.png", "probe-lit", "lit by the courtyard map only")
+        }),
+        FigureJob::rendered("render fog-panel", || {
+            single("render_fog_panel.png", "fog-panel", "panel light in fog, σ_s = 0.15")
+        }),
+        FigureJob::rendered("render caustic pair", || {
+            let caustic = "render_caustic.png";
+            let on = render_scene(caustic, "caustic", None, (320, 240))?;
+            let off = render_scene(caustic, "caustic", Some(Pass::Caustics), (320, 240))?;
+            let difference = plot::difference_line("left", &off, &on);
+            let panels = [
+                Panel { image: on, label: format!("the plan: caustic pass on\nWhitted + caustic map, {SPP} spp") },
+                Panel { image: off, label: format!("caustic pass forced off\nWhitted, {SPP} spp\n{difference}") },
+            ];
+            Ok(vec![plot::panel_grid(caustic, &panels, 2)?])
+        }),
+    ]
 }

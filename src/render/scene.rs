@@ -368,7 +368,8 @@ impl Scene {
     }
 
     /// The radiance seen along an escaping ray of unit direction `direction`: the environment
-    /// if the scene has one, else the constant background.
+    /// if the scene has one ([`Environment::radiance_seen`], read bilinearly), else the constant
+    /// background.
     ///
     /// # Examples
     /// ```
@@ -381,7 +382,7 @@ impl Scene {
     /// ```
     #[must_use]
     pub fn escaped_radiance(&self, direction: DVec3) -> DVec3 {
-        self.environment().map_or_else(|| self.background(), |environment| environment.radiance(direction))
+        self.environment().map_or_else(|| self.background(), |environment| environment.radiance_seen(direction))
     }
 
     /// The medium, if any.

@@ -71,11 +71,45 @@ fn escaping_eye_and_mirror_rays_see_the_environment() {
     for integrator in [Integrator::Whitted { max_depth: 4 }, Integrator::PathTracer { max_depth: 4 }] {
         let miss = Ray { origin: DVec3::new(0.0, 0.0, 4.0), dir: DVec3::new(0.6, 0.8, 0.0) };
         let seen = tracer.radiance(integrator, &miss, 0.0, &mut Sampler::new(0, 0, 0));
-        assert_eq!(seen, environment.radiance(miss.dir));
+        assert_eq!(seen, environment.radiance_seen(miss.dir));
         // Straight down onto the top of the ball: the mirror sends the ray straight up.
         let down = Ray { origin: DVec3::new(0.0, 3.0, 0.0), dir: -DVec3::Y };
         let reflected = tracer.radiance(integrator, &down, 0.0, &mut Sampler::new(0, 0, 0));
-        assert_eq!(reflected, reflectance * environment.radiance(DVec3::Y));
+        assert_eq!(reflected, reflectance * environment.radiance_seen(DVec3::Y));
+    }
+}
+
+/// What the camera sees of a probe is the light's radiance at every texel centre and, between
+/// centres, within the range of the texels around it (a blend, not a new value).
+#[test]
+fn the_seen_radiance_is_a_blend_of_the_lights_texels() {
+    let environment = Environment::from_probe(BuiltinMap::Courtyard.probe().unwrap());
+    let probe = environment.probe().unwrap();
+    let (width, height) = (probe.width(), probe.height());
+    for (index, texel) in probe.texels().iter().enumerate().step_by(97) {
+        let (column, row) = ((index % width) as f64 + 0.5, (index / width) as f64 + 0.5);
+        let (phi, theta) = (std::f64::consts::TAU * column / width as f64, PI * row / height as f64);
+        let centre = from_probe_frame(DVec3::new(theta.sin() * phi.cos(), theta.sin() * phi.sin(), theta.cos()));
+        assert!((environment.radiance_seen(centre) - texel.radiance).length() < 1e-9 * (1.0 + texel.radiance.length()));
+        assert_eq!(environment.radiance(centre), texel.radiance);
+    }
+    let mut sampler = Sampler::new(5, 0, 0);
+    for _ in 0..500 {
+        let d = crate::render::sampling::uniform_sphere(sampler.uniform(), sampler.uniform());
+        let seen = environment.radiance_seen(d);
+        let q = to_probe_frame(d);
+        let around: Vec<DVec3> = (0..9)
+            .map(|k| (f64::from(k % 3) - 1.0, f64::from(k / 3) - 1.0))
+            .map(|(a, b)| {
+                let phi = q.y.atan2(q.x) + a * std::f64::consts::TAU / width as f64;
+                let theta = (q.z.acos() + b * PI / height as f64).clamp(1e-9, PI - 1e-9);
+                from_probe_frame(DVec3::new(theta.sin() * phi.cos(), theta.sin() * phi.sin(), theta.cos()))
+            })
+            .map(|e| environment.radiance(e))
+            .collect();
+        let low = around.iter().fold(DVec3::INFINITY, |m, v| m.min(*v));
+        let high = around.iter().fold(DVec3::NEG_INFINITY, |m, v| m.max(*v));
+        assert!(seen.cmpge(low - 1e-9).all() && seen.cmple(high + 1e-9).all(), "{d}: {seen} outside {low}..{high}");
     }
 }
 
