@@ -29,7 +29,10 @@ pub(crate) const CACHED_VARIANTS: usize = 5 * 32;
 
 /// The cache: `(question index, seed)` and the variant, most recently used first (a linear scan
 /// of 160 entries costs nanoseconds next to building one variant).
-static CACHE: Mutex<VecDeque<((usize, u64), Arc<Variant>)>> = Mutex::new(VecDeque::new());
+static CACHE: Mutex<VecDeque<CacheEntry>> = Mutex::new(VecDeque::new());
+
+/// One cached variant: `(question index, seed)` and the variant.
+type CacheEntry = ((usize, u64), Arc<Variant>);
 
 thread_local! {
     /// Set while [`uncached`] runs on this thread: [`variant`] then builds every variant afresh.
