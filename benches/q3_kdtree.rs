@@ -507,8 +507,10 @@ fn main() {
     }
     if measuring && !tuning {
         let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../docs/data");
-        std::fs::write(format!("{dir}/q3_kdtree_perf.csv"), &csv).expect("docs/data is writable");
-        std::fs::write(format!("{dir}/q3_kdtree_perf.md"), markdown(&csv)).expect("docs/data is writable");
+        hw3::fsio::write_atomic(std::path::Path::new(&format!("{dir}/q3_kdtree_perf.csv")), csv.as_bytes())
+            .expect("docs/data is writable");
+        hw3::fsio::write_atomic(std::path::Path::new(&format!("{dir}/q3_kdtree_perf.md")), markdown(&csv).as_bytes())
+            .expect("docs/data is writable");
         eprintln!("wrote {dir}/q3_kdtree_perf.csv and .md");
     }
 }

@@ -237,8 +237,10 @@ fn sweep() {
          file's own solid-angle-weighted texel sum); no photograph of a real ball.\n\n{summary}\n{table}"
     );
     let data = concat!(env!("CARGO_MANIFEST_DIR"), "/../docs/data");
-    std::fs::write(format!("{data}/q4_accuracy_time.csv"), csv).expect("docs/data is writable");
-    std::fs::write(format!("{data}/q4_accuracy_time.md"), markdown).expect("docs/data is writable");
+    hw3::fsio::write_atomic(std::path::Path::new(&format!("{data}/q4_accuracy_time.csv")), csv.as_bytes())
+        .expect("docs/data is writable");
+    hw3::fsio::write_atomic(std::path::Path::new(&format!("{data}/q4_accuracy_time.md")), markdown.as_bytes())
+        .expect("docs/data is writable");
 }
 
 fn human_time(ns: f64) -> String {

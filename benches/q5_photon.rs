@@ -97,8 +97,10 @@ fn write_accuracy_table() {
     }
     let data = concat!(env!("CARGO_MANIFEST_DIR"), "/../docs/data");
     std::fs::create_dir_all(data).expect("docs/data is writable");
-    std::fs::write(format!("{data}/q5_photon_accuracy.csv"), csv).expect("write the CSV");
-    std::fs::write(format!("{data}/q5_photon_accuracy.md"), table).expect("write the table");
+    hw3::fsio::write_atomic(std::path::Path::new(&format!("{data}/q5_photon_accuracy.csv")), csv.as_bytes())
+        .expect("write the CSV");
+    hw3::fsio::write_atomic(std::path::Path::new(&format!("{data}/q5_photon_accuracy.md")), table.as_bytes())
+        .expect("write the table");
 }
 
 const CORNELL_PHOTONS: [usize; 5] = [10_000, 30_000, 100_000, 300_000, 1_000_000];
@@ -158,6 +160,8 @@ fn write_cornell_table() {
         table.push('\n');
     }
     let data = concat!(env!("CARGO_MANIFEST_DIR"), "/../docs/data");
-    std::fs::write(format!("{data}/q5_photon_cornell.csv"), csv).expect("write the CSV");
-    std::fs::write(format!("{data}/q5_photon_cornell.md"), table).expect("write the table");
+    hw3::fsio::write_atomic(std::path::Path::new(&format!("{data}/q5_photon_cornell.csv")), csv.as_bytes())
+        .expect("write the CSV");
+    hw3::fsio::write_atomic(std::path::Path::new(&format!("{data}/q5_photon_cornell.md")), table.as_bytes())
+        .expect("write the table");
 }

@@ -61,8 +61,10 @@ fn write_accuracy_table() {
     }
     let data = concat!(env!("CARGO_MANIFEST_DIR"), "/../docs/data");
     std::fs::create_dir_all(data).expect("docs/data is writable");
-    std::fs::write(format!("{data}/q5_radiosity_accuracy.csv"), csv).expect("write the CSV");
-    std::fs::write(format!("{data}/q5_radiosity_accuracy.md"), table).expect("write the table");
+    hw3::fsio::write_atomic(std::path::Path::new(&format!("{data}/q5_radiosity_accuracy.csv")), csv.as_bytes())
+        .expect("write the CSV");
+    hw3::fsio::write_atomic(std::path::Path::new(&format!("{data}/q5_radiosity_accuracy.md")), table.as_bytes())
+        .expect("write the table");
 }
 
 /// The error levels the solver table reports.
@@ -104,6 +106,8 @@ fn write_solver_table() {
         table.push('\n');
     }
     let data = concat!(env!("CARGO_MANIFEST_DIR"), "/../docs/data");
-    std::fs::write(format!("{data}/q5_radiosity_solvers.csv"), csv).expect("write the CSV");
-    std::fs::write(format!("{data}/q5_radiosity_solvers.md"), table).expect("write the table");
+    hw3::fsio::write_atomic(std::path::Path::new(&format!("{data}/q5_radiosity_solvers.csv")), csv.as_bytes())
+        .expect("write the CSV");
+    hw3::fsio::write_atomic(std::path::Path::new(&format!("{data}/q5_radiosity_solvers.md")), table.as_bytes())
+        .expect("write the table");
 }

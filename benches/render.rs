@@ -158,7 +158,8 @@ fn write_speed_tables() {
     }
     let data = concat!(env!("CARGO_MANIFEST_DIR"), "/../docs/data");
     std::fs::create_dir_all(data).expect("docs/data is writable");
-    std::fs::write(format!("{data}/render_speed.md"), table).expect("write the table");
+    hw3::fsio::write_atomic(std::path::Path::new(&format!("{data}/render_speed.md")), table.as_bytes())
+        .expect("write the table");
 }
 
 /// Image size, samples per pixel and seed of the converged path-traced references.
@@ -207,6 +208,8 @@ fn write_accuracy_tables() {
     }
     let data = concat!(env!("CARGO_MANIFEST_DIR"), "/../docs/data");
     std::fs::create_dir_all(data).expect("docs/data is writable");
-    std::fs::write(format!("{data}/q1_accuracy.csv"), csv).expect("write the CSV");
-    std::fs::write(format!("{data}/q1_accuracy.md"), table).expect("write the table");
+    hw3::fsio::write_atomic(std::path::Path::new(&format!("{data}/q1_accuracy.csv")), csv.as_bytes())
+        .expect("write the CSV");
+    hw3::fsio::write_atomic(std::path::Path::new(&format!("{data}/q1_accuracy.md")), table.as_bytes())
+        .expect("write the table");
 }

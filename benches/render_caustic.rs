@@ -99,6 +99,8 @@ fn write_accuracy_table() {
     }
     let data = concat!(env!("CARGO_MANIFEST_DIR"), "/../docs/data");
     std::fs::create_dir_all(data).expect("docs/data is writable");
-    std::fs::write(format!("{data}/render_caustic_k.csv"), csv).expect("write the CSV");
-    std::fs::write(format!("{data}/render_caustic_k.md"), table).expect("write the table");
+    hw3::fsio::write_atomic(std::path::Path::new(&format!("{data}/render_caustic_k.csv")), csv.as_bytes())
+        .expect("write the CSV");
+    hw3::fsio::write_atomic(std::path::Path::new(&format!("{data}/render_caustic_k.md")), table.as_bytes())
+        .expect("write the table");
 }

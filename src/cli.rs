@@ -17,7 +17,7 @@ pub const PROBE_SIZE: Limit = Limit { min: 16, max: 1024, max_large: 4096 };
 pub const IRRADIANCE_SAMPLES: Limit = Limit { min: 1, max: 1 << 20, max_large: 1 << 30 };
 
 /// Texels of a lat-long `.hdr` map given to `hw3 irradiance --env` (width × height).
-pub const MAP_TEXELS: Limit = Limit { min: 16 * 8, max: 2048 * 1024, max_large: 1 << 24 };
+pub const MAP_TEXELS: Limit = Limit { min: 16 * 8, max: 2048 * 1024, max_large: crate::envmap::Probe::MAX_READ_TEXELS };
 
 /// Smallest width and height of a lat-long map: below 16 texels across, the texel-sum estimators
 /// of a constant map are off by more than 1 % (3.5 % at 8, 100 % at 1).

@@ -29,6 +29,11 @@ pub const Q5_PHOTON_ACCURACY: &str = include_str!("../docs/data/q5_photon_accura
 /// count (written by `cargo bench --bench q5_photon`).
 pub const Q5_PHOTON_CORNELL: &str = include_str!("../docs/data/q5_photon_cornell.csv");
 
+/// `docs/data/q5_cornell_reference.csv`: the converged path-traced radiance and its standard error
+/// at the published Cornell box's 20 wall probes (written once by an ignored test, see
+/// `q5_effect_tables::cornell_published::converged_reference`).
+pub const Q5_CORNELL_REFERENCE: &str = include_str!("../docs/data/q5_cornell_reference.csv");
+
 /// A committed CSV file, split: its `#` comment lines, its header and its records.
 ///
 /// The committed files are plain comma-separated fields, with no quoting (no field holds a comma).
@@ -80,6 +85,7 @@ mod tests {
             (Q4_ACCURACY_TIME, "map"),
             (Q5_PHOTON_ACCURACY, "photons"),
             (Q5_PHOTON_CORNELL, "photons"),
+            (Q5_CORNELL_REFERENCE, "probe"),
         ] {
             let csv = csv(text);
             assert_eq!(csv.header[0], first);

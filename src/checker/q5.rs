@@ -3,7 +3,8 @@
 
 use super::key::{Expected, MalRule, Part, Variant};
 use super::policy::Rule;
-use crate::q5_effect_tables::{EFFECTS, LightKind, Verdict, grammar_table};
+use crate::q5_effect_tables::{Cell, EFFECTS, LightKind, Verdict, grammar_table};
+use std::sync::OnceLock;
 
 /// The chapter's section on deciding a cell.
 const NOTES: &str = "hw3/q5_effect_tables/index.html#deciding-a-cell-from-light-paths";
@@ -62,7 +63,10 @@ fn word(verdict: Verdict) -> &'static str {
 }
 
 pub(super) fn variant(seed: u64) -> Variant {
-    let cells = grammar_table().expect("the built-in grammar tables parse (tested in q5_effect_tables)");
+    // Decided once per process: the grammar's search is most of a variant's cost, and no seed changes it.
+    static CELLS: OnceLock<Vec<Cell>> = OnceLock::new();
+    let cells =
+        CELLS.get_or_init(|| grammar_table().expect("the built-in grammar tables parse (tested in q5_effect_tables)"));
     let mut parts = Vec::new();
     for (table, method) in [("q5a", "radiosity"), ("q5b", "two_pass")] {
         let mut cell_parts = Vec::new();

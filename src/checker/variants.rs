@@ -1,8 +1,18 @@
 //! The questions the checker knows, and their variants by seed.
+//!
+//! Building a variant is the costly part of a check (every key is computed from the seed, five
+//! questions at once), and a grader checks many files of one seed, so [`variant`] keeps the most
+//! recently used variants: at most [`CACHED_VARIANTS`] of them (the five questions of the last
+//! 32 seeds; a variant is a few kilobytes of statement and key, so the cache stays below about a
+//! megabyte), least recently used dropped first. A variant is a pure function of its question and
+//! seed, so a cached one is equal to a fresh one, and a report does not depend on the cache.
 
 use super::error::CheckError;
 use super::key::Variant;
 use super::{q1, q2, q3, q4, q5};
+use std::cell::Cell;
+use std::collections::VecDeque;
+use std::sync::{Arc, Mutex};
 
 /// The questions the checker grades, in order.
 ///
@@ -14,7 +24,23 @@ use super::{q1, q2, q3, q4, q5};
 /// ```
 pub const QUESTIONS: [&str; 5] = ["q1", "q2", "q3", "q4", "q5"];
 
-/// The variant of `question` for `seed`.
+/// Variants [`variant`] keeps: the five questions of 32 seeds.
+pub(crate) const CACHED_VARIANTS: usize = 5 * 32;
+
+/// The cache: `(question index, seed)` and the variant, most recently used first (a linear scan
+/// of 160 entries costs nanoseconds next to building one variant).
+static CACHE: Mutex<VecDeque<CacheEntry>> = Mutex::new(VecDeque::new());
+
+/// One cached variant: `(question index, seed)` and the variant.
+type CacheEntry = ((usize, u64), Arc<Variant>);
+
+thread_local! {
+    /// Set while [`uncached`] runs on this thread: [`variant`] then builds every variant afresh.
+    static BYPASS: Cell<bool> = const { Cell::new(false) };
+}
+
+/// The variant of `question` for `seed`, from the cache of recent variants when it holds it
+/// (the module's doc says how it is bounded); equal to a freshly built one either way.
 ///
 /// # Errors
 /// [`CheckError::UnknownQuestion`] for a question id not in [`QUESTIONS`].
@@ -23,15 +49,55 @@ pub const QUESTIONS: [&str; 5] = ["q1", "q2", "q3", "q4", "q5"];
 /// ```
 /// let variant = hw3::checker::variant("q2", 0).unwrap();
 /// assert!(variant.parts.iter().any(|p| p.key == "q2a.t"));
+/// assert_eq!(hw3::checker::variant("q2", 0).unwrap(), variant); // the second one is cached
 /// ```
 pub fn variant(question: &str, seed: u64) -> Result<Variant, CheckError> {
-    match question {
-        "q1" => Ok(q1::variant(seed)),
-        "q2" => Ok(q2::variant(seed)),
-        "q3" => Ok(q3::variant(seed)),
-        "q4" => Ok(q4::variant(seed)),
-        "q5" => Ok(q5::variant(seed)),
-        other => Err(CheckError::UnknownQuestion(other.to_string())),
+    let index = QUESTIONS
+        .iter()
+        .position(|&q| q == question)
+        .ok_or_else(|| CheckError::UnknownQuestion(question.to_string()))?;
+    if BYPASS.get() {
+        return Ok(build(index, seed));
+    }
+    let key = (index, seed);
+    // A poisoned lock only means another thread panicked mid-update of a list of finished
+    // entries: every entry in it is still whole, so the cache stays usable.
+    let cached = {
+        let mut cache = CACHE.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+        cache.iter().position(|(k, _)| *k == key).and_then(|at| cache.remove(at)).inspect(|entry| {
+            cache.push_front(entry.clone());
+        })
+    };
+    if let Some((_, variant)) = cached {
+        return Ok(Variant::clone(&variant));
+    }
+    // Built outside the lock, so that threads checking different seeds do not wait for each other.
+    let variant = Arc::new(build(index, seed));
+    let mut cache = CACHE.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+    if !cache.iter().any(|(k, _)| *k == key) {
+        cache.push_front((key, Arc::clone(&variant)));
+        cache.truncate(CACHED_VARIANTS);
+    }
+    Ok(Variant::clone(&variant))
+}
+
+/// Runs `f` with the cache of [`variant`] bypassed on this thread (every variant built afresh).
+#[cfg(test)]
+pub(crate) fn uncached<T>(f: impl FnOnce() -> T) -> T {
+    let before = BYPASS.replace(true);
+    let result = f();
+    BYPASS.set(before);
+    result
+}
+
+/// Builds the variant of question `QUESTIONS[index]` for `seed`.
+fn build(index: usize, seed: u64) -> Variant {
+    match index {
+        0 => q1::variant(seed),
+        1 => q2::variant(seed),
+        2 => q3::variant(seed),
+        3 => q4::variant(seed),
+        _ => q5::variant(seed),
     }
 }
 
@@ -57,5 +123,30 @@ mod tests {
             let name = format!("checker_{question}_variants");
             crate::test_support::insta_settings().bind(|| insta::assert_snapshot!(name, text));
         }
+    }
+
+    /// The cache changes no report: files of several seeds (blank templates, the full keys, the
+    /// homework's own answers) graded through the cache, twice, and with it bypassed, give equal
+    /// reports; and more seeds than the cache holds leave it at its bound.
+    #[test]
+    fn cached_and_uncached_reports_are_equal() {
+        let homework = include_str!("../../tests/answers/seed_hw3.toml");
+        for seed in [0, 1, 7, 1 << 40, i64::MAX as u64] {
+            let files = [crate::checker::template(seed).unwrap(), crate::checker::answers_key(seed).unwrap()];
+            for text in files.iter().map(String::as_str).chain([homework]) {
+                let fresh = uncached(|| crate::checker::check(text, Some(seed)));
+                let first = crate::checker::check(text, Some(seed));
+                let second = crate::checker::check(text, Some(seed));
+                assert_eq!(first, fresh, "seed {seed}");
+                assert_eq!(second, fresh, "seed {seed}");
+            }
+        }
+        for seed in 0..40 {
+            for question in QUESTIONS {
+                assert_eq!(variant(question, seed).unwrap(), uncached(|| variant(question, seed).unwrap()));
+            }
+        }
+        assert!(CACHE.lock().unwrap().len() <= CACHED_VARIANTS);
+        assert!(matches!(variant("q6", 0), Err(CheckError::UnknownQuestion(_))));
     }
 }

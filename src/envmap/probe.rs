@@ -50,6 +50,19 @@ pub enum ProbeError {
     /// A textual description of a map (the CLI's `--env`) is not understood.
     #[error("--env: {0}")]
     Spec(String),
+    /// An image file declares more texels in its header than the reader accepts
+    /// ([`Probe::MAX_READ_TEXELS`] for [`Probe::read_lat_long`]); nothing was decoded.
+    #[error("{path} declares {width}×{height} texels, over the limit of {max_texels}")]
+    TooLarge {
+        /// The file.
+        path: String,
+        /// Width its header declares.
+        width: u32,
+        /// Height its header declares.
+        height: u32,
+        /// The limit it exceeds.
+        max_texels: u64,
+    },
     /// An image file could not be read or decoded.
     #[error("cannot read {path}: {message}")]
     Read {
@@ -125,6 +138,13 @@ pub fn horizontal_camera() -> DMat3 {
 }
 
 impl Probe {
+    /// Texels [`Probe::read_lat_long`] and [`Probe::decode_lat_long`] accept: 2²⁴ (8192 × 2048, the
+    /// largest map `hw3 irradiance --allow-large` reads), checked against the file's header before
+    /// any pixel is decoded. Decoding holds about 112 bytes a texel at its peak (4 of RGBE, 12 of
+    /// `f32` RGB, 24 of `f64` radiance, 72 of [`Texel`]), so the bound caps one read at about 1.9 GB;
+    /// [`Probe::read_lat_long_limited`] takes a smaller bound.
+    pub const MAX_READ_TEXELS: u64 = 1 << 24;
+
     /// A probe whose texels sample `radiance(ω)` (world direction → RGB radiance), each texel the
     /// solid-angle-weighted mean of a 4×4 grid of subsamples inside the domain.
     ///
@@ -368,11 +388,14 @@ impl Probe {
         Ok(())
     }
 
-    /// Reads a latitude-longitude Radiance `.hdr` file (top row = `+z`, the zenith).
+    /// Reads a latitude-longitude Radiance `.hdr` file (top row = `+z`, the zenith) of at most
+    /// [`Probe::MAX_READ_TEXELS`] texels. The file is read as Radiance whatever its name or content (a
+    /// PNG renamed `.hdr` is refused, not decoded as a PNG).
     ///
     /// # Errors
-    /// [`ProbeError::Read`] if the file is missing, truncated or not a decodable image;
-    /// [`ProbeError::BadTexel`] for negative or non-finite texels.
+    /// [`ProbeError::TooLarge`] if the header declares more than [`Probe::MAX_READ_TEXELS`] texels
+    /// (checked before decoding); [`ProbeError::Read`] if the file is missing, truncated or not a
+    /// Radiance image; [`ProbeError::BadTexel`] for negative or non-finite texels.
     ///
     /// # Examples
     /// ```
@@ -380,23 +403,40 @@ impl Probe {
     /// assert!(Probe::read_lat_long("no/such/file.hdr").is_err());
     /// ```
     pub fn read_lat_long(path: impl AsRef<Path>) -> Result<Self, ProbeError> {
+        Self::read_lat_long_limited(path, Self::MAX_READ_TEXELS)
+    }
+
+    /// [`Probe::read_lat_long`] with a bound of `max_texels` texels instead of
+    /// [`Probe::MAX_READ_TEXELS`] (for a caller that wants less memory at stake; a larger bound is
+    /// allowed, at about 112 bytes a texel).
+    ///
+    /// # Errors
+    /// As [`Probe::read_lat_long`], with [`ProbeError::TooLarge`] above `max_texels`.
+    ///
+    /// # Examples
+    /// ```
+    /// use hw3::envmap::{Probe, ProbeError};
+    /// let map = concat!(env!("CARGO_MANIFEST_DIR"), "/docs/data/q4/courtyard_256x128.hdr");
+    /// assert_eq!(Probe::read_lat_long_limited(map, 256 * 128).unwrap().width(), 256);
+    /// let refused = Probe::read_lat_long_limited(map, 1000);
+    /// assert!(matches!(refused, Err(ProbeError::TooLarge { width: 256, height: 128, max_texels: 1000, .. })));
+    /// ```
+    pub fn read_lat_long_limited(path: impl AsRef<Path>, max_texels: u64) -> Result<Self, ProbeError> {
         let path = path.as_ref();
-        let read_error = |message: String| ProbeError::Read { path: path.display().to_string(), message };
-        let image = image::ImageReader::open(path)
-            .map_err(|e| read_error(e.to_string()))?
-            .with_guessed_format()
-            .map_err(|e| read_error(e.to_string()))?
-            .decode()
-            .map_err(|e| read_error(e.to_string()))?;
-        Self::from_lat_long_image(image)
+        let name = path.display().to_string();
+        let file =
+            std::fs::File::open(path).map_err(|e| ProbeError::Read { path: name.clone(), message: e.to_string() })?;
+        let reader = image::ImageReader::with_format(std::io::BufReader::new(file), image::ImageFormat::Hdr);
+        Self::decode_bounded(reader, &name, max_texels)
     }
 
     /// Decodes a latitude-longitude Radiance `.hdr` image held in memory (top row = `+z`), such
-    /// as a [`super::BuiltinMap`]'s bytes; `name` stands for the file in error messages.
+    /// as a [`super::BuiltinMap`]'s bytes, of at most [`Probe::MAX_READ_TEXELS`] texels; `name` stands
+    /// for the file in error messages.
     ///
     /// # Errors
-    /// [`ProbeError::Read`] if `bytes` are not a decodable `.hdr` image;
-    /// [`ProbeError::BadTexel`] for negative or non-finite texels.
+    /// [`ProbeError::TooLarge`] above [`Probe::MAX_READ_TEXELS`]; [`ProbeError::Read`] if `bytes` are
+    /// not a decodable `.hdr` image; [`ProbeError::BadTexel`] for negative or non-finite texels.
     ///
     /// # Examples
     /// ```
@@ -407,9 +447,23 @@ impl Probe {
     /// assert!(matches!(broken, Err(ProbeError::Read { .. })));
     /// ```
     pub fn decode_lat_long(bytes: &[u8], name: &str) -> Result<Self, ProbeError> {
-        let image = image::load_from_memory_with_format(bytes, image::ImageFormat::Hdr)
-            .map_err(|e| ProbeError::Read { path: name.to_string(), message: e.to_string() })?;
-        Self::from_lat_long_image(image)
+        let reader = image::ImageReader::with_format(std::io::Cursor::new(bytes), image::ImageFormat::Hdr);
+        Self::decode_bounded(reader, name, Self::MAX_READ_TEXELS)
+    }
+
+    /// Reads the header, refuses more than `max_texels`, then decodes.
+    fn decode_bounded<R: std::io::BufRead + std::io::Seek>(
+        reader: image::ImageReader<R>,
+        name: &str,
+        max_texels: u64,
+    ) -> Result<Self, ProbeError> {
+        let read_error = |e: image::ImageError| ProbeError::Read { path: name.to_string(), message: e.to_string() };
+        let decoder = reader.into_decoder().map_err(read_error)?;
+        let (width, height) = image::ImageDecoder::dimensions(&decoder);
+        if u64::from(width) * u64::from(height) > max_texels {
+            return Err(ProbeError::TooLarge { path: name.to_string(), width, height, max_texels });
+        }
+        Self::from_lat_long_image(image::DynamicImage::from_decoder(decoder).map_err(read_error)?)
     }
 
     fn from_lat_long_image(image: image::DynamicImage) -> Result<Self, ProbeError> {
@@ -628,6 +682,35 @@ mod tests {
         assert_eq!((probe.width(), probe.height()), (8, 4));
         // RGBE keeps 8 mantissa bits: 1.75 and 2.0 are exact.
         assert_eq!(probe.texels()[7].radiance, DVec3::new(1.75, 1.0, 2.0));
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    /// The size bound is read from the header: a 16-byte file declaring 2¹⁵ × 2¹⁵ texels (a
+    /// 12 GB decode) is refused as too large before any allocation, at the default bound and at
+    /// a caller's; a map within the bound still reads; a PNG renamed `.hdr` is not decoded.
+    #[test]
+    fn a_header_over_the_texel_bound_is_refused_before_decoding() {
+        let dir = std::env::temp_dir().join(format!("hw3-envmap-bound-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let bomb = dir.join("bomb.hdr");
+        std::fs::write(&bomb, b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 32768 +X 32768\n\x02\x02").unwrap();
+        let error = Probe::read_lat_long(&bomb).unwrap_err();
+        assert!(
+            matches!(
+                error,
+                ProbeError::TooLarge { width: 32768, height: 32768, max_texels: Probe::MAX_READ_TEXELS, .. }
+            ),
+            "{error}"
+        );
+        assert!(error.to_string().contains("32768×32768"), "{error}");
+        let small = dir.join("small.hdr");
+        let pixels = vec![image::Rgb([1.0f32, 1.0, 1.0]); 32 * 16];
+        image::codecs::hdr::HdrEncoder::new(std::fs::File::create(&small).unwrap()).encode(&pixels, 32, 16).unwrap();
+        assert!(matches!(Probe::read_lat_long_limited(&small, 511), Err(ProbeError::TooLarge { .. })));
+        assert_eq!(Probe::read_lat_long_limited(&small, 512).unwrap().texels().len(), 512);
+        let png = dir.join("picture.hdr");
+        image::RgbImage::new(4, 4).save_with_format(&png, image::ImageFormat::Png).unwrap();
+        assert!(matches!(Probe::read_lat_long(&png), Err(ProbeError::Read { .. })));
         std::fs::remove_dir_all(&dir).unwrap();
     }
 }

@@ -26,6 +26,9 @@ pub enum ExperimentError {
     /// A figure could not be rendered or encoded.
     #[error("rendering a figure failed: {0}")]
     Render(String),
+    /// Committed data (a CSV under `docs/data/`) is malformed.
+    #[error("committed data: {0}")]
+    Data(String),
     /// A table row or column id that [`EFFECTS`](crate::q5_effect_tables::EFFECTS) or
     /// [`METHODS`](crate::q5_effect_tables::METHODS) does not list.
     #[error("no effect or method with id {0:?}")]

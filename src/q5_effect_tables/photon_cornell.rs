@@ -76,7 +76,8 @@ impl Reference {
 }
 
 /// Path-traces `spp` samples along every probe (every bounce on, 12 at most; probe `i` draws from
-/// stream `(7, i)`, so the result does not depend on the thread count).
+/// stream `(7, i)`, so the result does not depend on the thread count). The same as
+/// [`reference_seeded`] with seed 7.
 ///
 /// # Examples
 /// ```
@@ -87,21 +88,54 @@ impl Reference {
 /// ```
 #[must_use]
 pub fn reference(scene: &Scene, probes: &[Ray<f64>], spp: u32) -> Reference {
+    reference_seeded(scene, probes, u64::from(spp), 7)
+}
+
+/// Samples of one random stream in [`reference_seeded`]: a long reference is cut into chunks of
+/// this many samples, each its own stream, so that both cores share the work of a single probe.
+pub const REFERENCE_CHUNK: u64 = 1 << 17;
+
+/// Path-traces `spp` samples along every probe with random seed `seed` (every bounce on, 12 at
+/// most). Sample chunk `c` ([`REFERENCE_CHUNK`] samples) of probe `i` draws from stream
+/// `(seed, i, c)` and the chunks are summed in order, so the result depends on neither the thread
+/// count nor the scheduling; two seeds give independent references.
+///
+/// The standard error is the sample standard deviation over `√spp`; the sums are `f64`, whose
+/// rounding (about `spp · 2⁻⁵³` relative) stays far below it for any count that finishes.
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::photon_cornell::{reference, reference_seeded, scene_and_probes};
+/// let (scene, probes) = scene_and_probes().unwrap();
+/// assert_eq!(reference_seeded(&scene, &probes[..1], 32, 7), reference(&scene, &probes[..1], 32));
+/// assert_ne!(reference_seeded(&scene, &probes[..1], 32, 8), reference(&scene, &probes[..1], 32));
+/// ```
+#[must_use]
+pub fn reference_seeded(scene: &Scene, probes: &[Ray<f64>], spp: u64, seed: u64) -> Reference {
     let integrator = Integrator::PathTracer { max_depth: 12 };
     let passes = analyze(scene).plan.with(Pass::IndirectBounces, true);
     let tracer = Tracer::new(scene, passes);
-    let (radiance, standard_error) = probes
-        .par_iter()
-        .enumerate()
-        .map(|(i, ray)| {
-            let mut sampler = Sampler::new(7, i as u64, 0);
+    let chunks = spp.div_ceil(REFERENCE_CHUNK).max(1);
+    let sums: Vec<(f64, f64)> = (0..probes.len() as u64 * chunks)
+        .into_par_iter()
+        .map(|job| {
+            let (i, chunk) = (job / chunks, job % chunks);
+            let count = REFERENCE_CHUNK.min(spp - (chunk * REFERENCE_CHUNK).min(spp));
+            let mut sampler = Sampler::new(seed, i, chunk);
             let (mut sum, mut squares) = (0.0, 0.0);
-            for _ in 0..spp {
-                let l = tracer.radiance(integrator, ray, 0.0, &mut sampler).element_sum() / 3.0;
+            for _ in 0..count {
+                let l = tracer.radiance(integrator, &probes[i as usize], 0.0, &mut sampler).element_sum() / 3.0;
                 sum += l;
                 squares += l * l;
             }
-            let n = f64::from(spp);
+            (sum, squares)
+        })
+        .collect();
+    let (radiance, standard_error) = sums
+        .chunks(chunks as usize)
+        .map(|probe| {
+            let (sum, squares) = probe.iter().fold((0.0, 0.0), |(s, q), &(a, b)| (s + a, q + b));
+            let n = spp as f64;
             let mean = sum / n;
             let variance = ((squares - n * mean * mean) / (n - 1.0).max(1.0)).max(0.0);
             (mean, (variance / n).sqrt())

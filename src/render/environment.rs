@@ -130,9 +130,11 @@ impl Environment {
         Ok(Self::from_probe(Probe::from_radiance(ProbeFormat::LatLong, width, height, DMat3::IDENTITY, radiance)?))
     }
 
-    /// Reads a latitude-longitude Radiance `.hdr` map (see [`Probe::read_lat_long`]).
+    /// Reads a latitude-longitude Radiance `.hdr` map of at most
+    /// [`Probe::MAX_READ_TEXELS`] texels (see [`Probe::read_lat_long`]).
     ///
     /// # Errors
+    /// [`ProbeError::TooLarge`] if the header declares more texels (checked before decoding),
     /// [`ProbeError::Read`] for a missing or undecodable file, [`ProbeError::BadTexel`] for a bad texel.
     ///
     /// # Examples
