@@ -7,7 +7,7 @@ use hw3::geometry::sphere::first_hit_stable;
 use hw3::geometry::{Ray, Sphere};
 use hw3::q2_ray_sphere::catalogue::camera_batch;
 use hw3::q2_ray_sphere::reflection::{SpawnPolicy, reflect_at_hit};
-use hw3::q2_ray_sphere::seed_solver::first_hit_naive;
+use hw3::q2_ray_sphere::student_solver::first_hit_naive;
 use hw3::real::Real;
 
 const BATCH: usize = 4096;

@@ -12,7 +12,7 @@ use divan::{Bencher, black_box};
 use glam::DVec3;
 use hw3::envmap::{Probe, ProbeFormat, horizontal_camera};
 use hw3::q4_light_probe::fibonacci_normals;
-use hw3::q4_light_probe::irradiance::{Irradiance, Method, Sh9};
+use hw3::q4_light_probe::irradiance::{Estimator, Irradiance, Sh9};
 use hw3::q4_light_probe::maps::AnalyticMap;
 use hw3::q4_light_probe::study::{self, Config};
 use hw3::stats::median;
@@ -54,7 +54,7 @@ fn sh9_evaluation(bencher: Bencher) {
     bencher.bench_local(|| sh9.irradiance(black_box(normal())));
 }
 
-fn monte_carlo(bencher: Bencher, method: Method, samples: usize) {
+fn monte_carlo(bencher: Bencher, method: Estimator, samples: usize) {
     let probe = sun_probe(256);
     let prepared = Irradiance::new(&probe);
     let mut rng = hw3::rng::seeded(1, 0);
@@ -63,22 +63,22 @@ fn monte_carlo(bencher: Bencher, method: Method, samples: usize) {
 
 #[divan::bench(args = [16, 256, 4096])]
 fn uniform_mc(bencher: Bencher, samples: usize) {
-    monte_carlo(bencher, Method::Uniform, samples);
+    monte_carlo(bencher, Estimator::Uniform, samples);
 }
 
 #[divan::bench(args = [16, 256, 4096])]
 fn cosine_mc(bencher: Bencher, samples: usize) {
-    monte_carlo(bencher, Method::Cosine, samples);
+    monte_carlo(bencher, Estimator::Cosine, samples);
 }
 
 #[divan::bench(args = [16, 256, 4096])]
 fn map_mc(bencher: Bencher, samples: usize) {
-    monte_carlo(bencher, Method::Map, samples);
+    monte_carlo(bencher, Estimator::Map, samples);
 }
 
 #[divan::bench(args = [16, 256, 4096])]
 fn mis_mc(bencher: Bencher, samples: usize) {
-    monte_carlo(bencher, Method::Mis, samples);
+    monte_carlo(bencher, Estimator::Mis, samples);
 }
 
 /// Samples per configuration: the reported time is their median, as divan reports.
@@ -121,13 +121,13 @@ fn time_per_normal(prepared: &Irradiance<'_>, config: Config, normals: &[DVec3])
     let mut rng = hw3::rng::seeded(99, 0);
     let samples = config.samples.max(1);
     match config.method {
-        Method::Unweighted => time_per_call(normals, |n| prepared.unweighted(n)),
-        Method::Weighted => time_per_call(normals, |n| prepared.weighted(n)),
-        Method::Uniform => time_per_call(normals, |n| prepared.uniform(n, samples, &mut rng)),
-        Method::Cosine => time_per_call(normals, |n| prepared.cosine(n, samples, &mut rng)),
-        Method::Map => time_per_call(normals, |n| prepared.map(n, samples, &mut rng)),
-        Method::Mis => time_per_call(normals, |n| prepared.mis(n, samples, &mut rng)),
-        Method::Sh9 => time_per_call(normals, |n| prepared.sh9().irradiance(n)),
+        Estimator::Unweighted => time_per_call(normals, |n| prepared.unweighted(n)),
+        Estimator::Weighted => time_per_call(normals, |n| prepared.weighted(n)),
+        Estimator::Uniform => time_per_call(normals, |n| prepared.uniform(n, samples, &mut rng)),
+        Estimator::Cosine => time_per_call(normals, |n| prepared.cosine(n, samples, &mut rng)),
+        Estimator::Map => time_per_call(normals, |n| prepared.map(n, samples, &mut rng)),
+        Estimator::Mis => time_per_call(normals, |n| prepared.mis(n, samples, &mut rng)),
+        Estimator::Sh9 => time_per_call(normals, |n| prepared.sh9().irradiance(n)),
     }
 }
 

@@ -222,7 +222,7 @@ fn spp_arg(text: &str) -> Result<u32, String> {
 
 /// `irradiance --method`, checked by the parser so that the message names `--method`.
 fn method_arg(text: &str) -> Result<String, String> {
-    text.parse::<hw3::q4_light_probe::irradiance::Method>().map(|_| text.to_owned())
+    text.parse::<hw3::q4_light_probe::irradiance::Estimator>().map(|_| text.to_owned())
 }
 
 /// An error the user caused: reported on one line, exit status 2, nothing written.
@@ -373,7 +373,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             emit_line(&out)
         }
         Some(Command::Sphere { origin, dir, center, radius, precision, method, json }) => {
-            use hw3::q2_ray_sphere::catalogue::{Method, Precision};
+            use hw3::q2_ray_sphere::catalogue::{Precision, Solver};
             let (ray, sphere) =
                 hw3::q2_ray_sphere::parse_sphere_args(&origin, &dir, &center, radius).map_err(UsageError)?;
             let precision = match precision {
@@ -381,8 +381,8 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 PrecisionArg::F64 => Precision::F64,
             };
             let method = match method {
-                MethodArg::Naive => Method::Naive,
-                MethodArg::Stable => Method::Stable,
+                MethodArg::Naive => Solver::Naive,
+                MethodArg::Stable => Solver::Stable,
             };
             let answer =
                 hw3::q2_ray_sphere::solve(&ray, &sphere, method, precision).map_err(|e| UsageError(e.to_string()))?;

@@ -4,18 +4,18 @@ pub mod catalogue;
 pub mod closest_approach;
 mod figures;
 pub mod reflection;
-pub mod seed_solver;
+pub mod student_solver;
 
 use crate::answers::Answers;
 use crate::geometry::sphere::{closest_approach_t, first_hit_stable, surface_hit};
 use crate::geometry::{InputError, Ray, Sphere};
 use crate::real::Real;
-use catalogue::{Method, Precision};
+use catalogue::{Precision, Solver};
 use glam::DVec3;
 use reflection::{Scenario, SpawnPolicy, reflect_at_hit, self_hit_rate};
-use seed_solver::seed_trace;
 use serde::Serialize;
 use std::fmt::Write as _;
+use student_solver::student_trace;
 
 pub use figures::figures;
 
@@ -38,10 +38,10 @@ pub fn worked_example() -> (Ray<f64>, Sphere<f64>) {
 ///
 /// # Examples
 /// ```
-/// use hw3::q2_ray_sphere::catalogue::{Method, Precision};
+/// use hw3::q2_ray_sphere::catalogue::{Solver, Precision};
 /// use hw3::q2_ray_sphere::{solve, worked_example};
 /// let (ray, sphere) = worked_example();
-/// let answer = solve(&ray, &sphere, Method::Stable, Precision::F64).unwrap();
+/// let answer = solve(&ray, &sphere, Solver::Stable, Precision::F64).unwrap();
 /// assert!(answer.hit);
 /// assert_eq!(answer.closest_approach_t, 5.0);
 /// ```
@@ -69,16 +69,16 @@ pub struct SphereAnswer {
 ///
 /// # Examples
 /// ```
-/// use hw3::q2_ray_sphere::{solve, worked_example, catalogue::{Method, Precision}};
+/// use hw3::q2_ray_sphere::{solve, worked_example, catalogue::{Solver, Precision}};
 /// let (ray, sphere) = worked_example();
-/// let answer = solve(&ray, &sphere, Method::Stable, Precision::F64).unwrap();
+/// let answer = solve(&ray, &sphere, Solver::Stable, Precision::F64).unwrap();
 /// assert!((answer.t.unwrap() - (5.0 - 3f64.sqrt())).abs() < 1e-15);
 /// assert_eq!(answer.closest_approach_t, 5.0);
 /// ```
 pub fn solve(
     ray: &Ray<f64>,
     sphere: &Sphere<f64>,
-    method: Method,
+    method: Solver,
     precision: Precision,
 ) -> Result<SphereAnswer, InputError> {
     match precision {
@@ -87,14 +87,14 @@ pub fn solve(
     }
 }
 
-fn solve_in<T: Real>(ray: &Ray<f64>, sphere: &Sphere<f64>, method: Method) -> Result<SphereAnswer, InputError> {
+fn solve_in<T: Real>(ray: &Ray<f64>, sphere: &Sphere<f64>, method: Solver) -> Result<SphereAnswer, InputError> {
     let ray = Ray::<T>::new(T::vec_from_f64(ray.origin), T::vec_from_f64(ray.dir))?;
     let sphere = Sphere::<T>::new(T::vec_from_f64(sphere.center), T::from_f64(sphere.radius))?;
     crate::geometry::sphere::check_solvable(&ray, &sphere)?;
     let array = |v: T::Vec3| T::vec_to_f64(v).to_array();
     let (t, policy) = match method {
-        Method::Naive => (seed_trace(&ray, &sphere).chosen, SpawnPolicy::AtComputedPoint),
-        Method::Stable => (first_hit_stable(&ray, &sphere), SpawnPolicy::ReprojectAndOffset),
+        Solver::Naive => (student_trace(&ray, &sphere).chosen, SpawnPolicy::AtComputedPoint),
+        Solver::Stable => (first_hit_stable(&ray, &sphere), SpawnPolicy::ReprojectAndOffset),
     };
     let closest_approach_t = closest_approach_t(&ray, sphere.center).to_f64();
     let bounce = t.map(|t| reflect_at_hit(&ray, &sphere, t, policy));
@@ -130,7 +130,7 @@ pub fn worked_trace(ray: &Ray<f64>, sphere: &Sphere<f64>) -> String {
         v(sphere.center),
         g(sphere.radius)
     );
-    let _ = writeln!(out, "-- homework algorithm (f64) --\n{}", seed_trace(ray, sphere));
+    let _ = writeln!(out, "-- homework algorithm (f64) --\n{}", student_trace(ray, sphere));
     let stable = first_hit_stable(ray, sphere);
     let _ = writeln!(out, "-- stable solver --\nfirst hit t = {}", stable.map_or("none".into(), g));
     let _ = writeln!(out, "closest approach t = {}", g(closest_approach_t(ray, sphere.center)));
@@ -268,7 +268,7 @@ mod tests {
     #[test]
     fn worked_example_by_hand() {
         let (ray, sphere) = worked_example();
-        let answer = solve(&ray, &sphere, Method::Naive, Precision::F64).unwrap();
+        let answer = solve(&ray, &sphere, Solver::Naive, Precision::F64).unwrap();
         let t = 5.0 - 3f64.sqrt();
         approx::assert_relative_eq!(answer.t.unwrap(), t, max_relative = 1e-15);
         let n = DVec3::new(-3f64.sqrt() / 2.0, 0.5, 0.0);
@@ -295,7 +295,7 @@ mod tests {
         let ray = Ray { origin: DVec3::ZERO, dir: DVec3::Z };
         let point = Sphere { center: DVec3::new(0.0, 0.0, 5.0), radius: 0.0 };
         assert!(matches!(
-            solve(&ray, &point, Method::Stable, Precision::F64),
+            solve(&ray, &point, Solver::Stable, Precision::F64),
             Err(InputError::OutOfRange { name: "radius", .. })
         ));
     }

@@ -3,7 +3,7 @@
 mod cli;
 mod diagram;
 mod perf;
-pub mod seed;
+pub mod student;
 
 pub use cli::{TraceInputError, kd_trace_command, parse_vec2};
 
@@ -581,13 +581,13 @@ pub fn answers() -> crate::answers::Answers {
          (b)/(c) rule: t = (split - e_a)/d_a; near child by the sign of d_a (by the origin's side \
          when d_a = 0, no division); far only if t <= tmin, near only if t >= tmax.\n",
     );
-    for case in seed::cases() {
+    for case in student::cases() {
         let trace = traverse(&tree, &case.ray);
         let _ = writeln!(text, "({}) {}:", case.label, RayText(&case.ray));
         for step in &trace.steps {
             let _ = writeln!(text, "  {step}");
         }
-        for row in seed::compare(&trace, &case.handwritten) {
+        for row in student::compare(&trace, &case.handwritten) {
             if !row.agrees() {
                 let _ = writeln!(text, "  seed differs: {row}");
             }
@@ -647,7 +647,7 @@ mod tests {
     #[test]
     fn case_d_and_e_traces_are_pinned() {
         let _guard = crate::test_support::insta_settings().bind_to_scope();
-        for case in seed::cases() {
+        for case in student::cases() {
             let trace = traverse(&Node2::homework(), &case.ray);
             insta::assert_snapshot!(format!("q3_trace_{}", case.label), trace.to_string());
         }
@@ -658,7 +658,7 @@ mod tests {
     #[test]
     fn every_leaf_interval_holds_the_ray_for_cases_d_and_e() {
         let tree = Node2::homework();
-        for case in seed::cases() {
+        for case in student::cases() {
             let leaves = traverse(&tree, &case.ray).leaves();
             assert_eq!(leaves.first().map(|l| l.interval.t_min), Some(0.0));
             assert_eq!(leaves.last().map(|l| l.interval.t_max), Some(INF));

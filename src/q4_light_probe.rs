@@ -10,7 +10,7 @@ pub mod study;
 mod tests;
 
 pub use figures::{figure_jobs, figures};
-pub use irradiance::{Irradiance, Method, Sh9};
+pub use irradiance::{Estimator, Irradiance, Sh9};
 pub use normals::fibonacci_normals;
 
 use crate::answers::Answers;
@@ -109,7 +109,7 @@ pub fn probe_from_spec(spec: &str, size: usize) -> Result<Probe, ProbeError> {
 /// assert!(out.starts_with("{\"irradiance\":[6.28"));
 /// ```
 pub fn irradiance_command(request: &IrradianceRequest) -> Result<String, ProbeError> {
-    let method: Method = request.method.parse().map_err(ProbeError::Spec)?;
+    let method: Estimator = request.method.parse().map_err(ProbeError::Spec)?;
     let probe = probe_from_spec(&request.env, request.size)?;
     let prepared = Irradiance::new(&probe);
     let mut rng = crate::rng::seeded(request.seed, 0);
@@ -148,7 +148,7 @@ fn unweighted_bias(format: ProbeFormat) -> study::ErrorSummary {
     let map = AnalyticMap::constant(1.0);
     let probe = map.rasterise(format, BIAS_SIZE, horizontal_camera()).expect("valid analytic map");
     let normals = fibonacci_normals(BIAS_NORMALS);
-    study::analytic_error(&map, &Irradiance::new(&probe), Method::Unweighted, 1, &[0], &normals)
+    study::analytic_error(&map, &Irradiance::new(&probe), Estimator::Unweighted, 1, &[0], &normals)
 }
 
 /// The angle, in degrees, that the outermost pixel ring of an orthographic mirror ball `pixels`

@@ -14,8 +14,8 @@ pub mod radiosity;
 pub mod scenes;
 
 pub use grammar::{
-    Cell, EFFECTS, Effect, LightKind, METHODS, Method, SEED_ANSWERS, SeedAnswer, Verdict, decide, grammar_table,
-    grammar_table_markdown, seed_answer,
+    ALGORITHMS, Algorithm, Cell, EFFECTS, Effect, LightKind, STUDENT_ANSWERS, StudentAnswer, Verdict, decide,
+    grammar_table, grammar_table_markdown, student_answer,
 };
 
 use crate::answers::Answers;
@@ -32,21 +32,21 @@ use grammar::agreement;
 /// # Examples
 /// ```no_run
 /// // Not run here: it needs the measured table; `tests::grammar_tables_snapshot` pins the output.
-/// let markdown = hw3::q5_effect_tables::seed_comparison_markdown().unwrap();
+/// let markdown = hw3::q5_effect_tables::student_comparison_markdown().unwrap();
 /// assert!(markdown.contains("| 5(a)(a) |"));
 /// ```
-pub fn seed_comparison_markdown() -> Result<String, String> {
+pub fn student_comparison_markdown() -> Result<String, String> {
     let measured = experiments::measured_table().map_err(|e| e.to_string())?;
     let mut rows = Vec::new();
-    for cell in grammar_table().map_err(|e| e.to_string())?.iter().filter(|c| c.seed != SeedAnswer::NotAsked) {
-        let Some(method) = METHODS.iter().find(|m| m.id == cell.method) else { continue };
+    for cell in grammar_table().map_err(|e| e.to_string())?.iter().filter(|c| c.seed != StudentAnswer::NotAsked) {
+        let Some(method) = ALGORITHMS.iter().find(|m| m.id == cell.method) else { continue };
         let Some(effect) = EFFECTS.iter().find(|e| e.id == cell.effect) else { continue };
         let experiment = measured
             .iter()
             .find(|m| m.effect == cell.effect && m.method == cell.method)
             .map_or_else(|| "–".to_string(), |m| format!("{} ({:.2})", m.verdict.text(), m.fraction));
         rows.push([
-            format!("5({})({})", method.seed_part.unwrap_or('?'), effect.id.replace('_', " ")),
+            format!("5({})({})", method.student_part.unwrap_or('?'), effect.id.replace('_', " ")),
             format!("`{}`", effect.paths),
             cell.seed.text().to_string(),
             cell.verdict.text().to_string(),
@@ -81,7 +81,7 @@ pub fn effects_table_command(json: bool) -> Result<String, String> {
         serde_json::to_string_pretty(&value).map_err(|e| e.to_string())
     } else {
         let mut out = grammar_table_markdown().map_err(|e| e.to_string())?;
-        out.push_str(&seed_comparison_markdown()?);
+        out.push_str(&student_comparison_markdown()?);
         out.push('\n');
         out.push_str(&experiments::measured_table_markdown(&measured));
         Ok(out)
@@ -129,7 +129,7 @@ pub fn answers() -> Answers {
 /// ```
 pub fn figures() -> Result<Vec<Figure>, PlotError> {
     let mut figures = figures::figures()?;
-    let comparison = seed_comparison_markdown()
+    let comparison = student_comparison_markdown()
         .map_err(|message| PlotError::Draw { figure: "q5_seed_comparison.md".into(), message })?;
     figures.push(Figure { file_name: "q5_seed_comparison.md".into(), bytes: comparison.into_bytes() });
     figures.push(photon_accuracy::figure()?);
@@ -147,13 +147,13 @@ mod tests {
         for effect in &EFFECTS {
             assert!(Lang::parse(effect.paths).is_ok(), "{}", effect.paths);
         }
-        for method in &METHODS {
+        for method in &ALGORITHMS {
             for text in method.paths.iter().chain(&method.efficient) {
                 assert!(Lang::parse(text).is_ok(), "{text}");
             }
         }
         // The efficient language is inside the full one, for every method and light.
-        for method in &METHODS {
+        for method in &ALGORITHMS {
             for k in 0..2 {
                 let langs = [Lang::parse(method.efficient[k]).unwrap(), Lang::parse(method.paths[k]).unwrap()];
                 assert_eq!(shortest_word(&langs, |a| a[0] && !a[1]).unwrap(), None, "{}", method.id);
@@ -172,14 +172,14 @@ mod tests {
         assert!(disagreements.is_empty(), "{disagreements:?}");
         // Ten transcribed answers map onto 12 cells (d is split), every one of them answered:
         // the homework's last line is Q5(b)(e), "Yes - as in (b)".
-        assert_eq!(cells.iter().filter(|c| c.seed != SeedAnswer::NotAsked).count(), 12);
-        assert!(SEED_ANSWERS.contains(&('b', 'e', SeedAnswer::Yes)));
+        assert_eq!(cells.iter().filter(|c| c.seed != StudentAnswer::NotAsked).count(), 12);
+        assert!(STUDENT_ANSWERS.contains(&('b', 'e', StudentAnswer::Yes)));
     }
 
     #[test]
     fn light_type_changes_the_path_tracer_caustic_cell() {
         let caustic = EFFECTS.iter().find(|e| e.id == "d_caustic").unwrap();
-        let pt = METHODS.iter().find(|m| m.id == "path_tracing").unwrap();
+        let pt = ALGORITHMS.iter().find(|m| m.id == "path_tracing").unwrap();
         let area = decide(caustic, pt, LightKind::Area).unwrap();
         let point = decide(caustic, pt, LightKind::Point).unwrap();
         assert_eq!((area.verdict, area.witness.as_deref()), (Verdict::Impractical, Some("LSDE")));
@@ -190,7 +190,7 @@ mod tests {
     fn effects_table_json_has_every_cell_with_its_seed_answer() {
         let value: serde_json::Value = serde_json::from_str(&effects_table_command(true).unwrap()).unwrap();
         let grammar = value["grammar"].as_array().unwrap();
-        assert_eq!(grammar.len(), 2 * EFFECTS.len() * METHODS.len());
+        assert_eq!(grammar.len(), 2 * EFFECTS.len() * ALGORITHMS.len());
         let first = &grammar[0];
         assert_eq!((first["effect"].as_str(), first["method"].as_str()), (Some("a"), Some("radiosity")));
         assert_eq!((first["verdict"].as_str(), first["seed"].as_str()), (Some("no"), Some("no")));
@@ -203,7 +203,7 @@ mod tests {
     fn grammar_tables_snapshot() {
         crate::test_support::insta_settings().bind(|| {
             insta::assert_snapshot!("q5_grammar_tables", grammar_table_markdown().unwrap());
-            insta::assert_snapshot!("q5_seed_comparison", seed_comparison_markdown().unwrap());
+            insta::assert_snapshot!("q5_seed_comparison", student_comparison_markdown().unwrap());
         });
     }
 
@@ -265,6 +265,6 @@ mod tests {
         assert!(line.contains(&expected), "{expected}");
         assert_eq!(cell("two_pass", "d_caustic").verdict, Verdict::Impractical, "printed as possible but impractical");
         // "all five as the seed says": one seed answer per letter of Q5(a).
-        assert_eq!(SEED_ANSWERS.iter().filter(|(part, _, _)| *part == 'a').count(), 5);
+        assert_eq!(STUDENT_ANSWERS.iter().filter(|(part, _, _)| *part == 'a').count(), 5);
     }
 }

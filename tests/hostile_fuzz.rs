@@ -290,7 +290,7 @@ fn sphere_case() -> impl Strategy<Value = (DVec3, DVec3, DVec3, f64)> {
 
 #[test]
 fn fuzz_sphere_solver() {
-    use hw3::q2_ray_sphere::catalogue::{Method, Precision};
+    use hw3::q2_ray_sphere::catalogue::{Precision, Solver};
     let variant = prop::sample::select(hw3::q2_ray_sphere::catalogue::VARIANTS.to_vec());
     fuzz("sphere solver", cases(3000), (sphere_case(), variant), |((e, d, o, r), (method, precision))| {
         let (Ok(ray), Ok(sphere)) = (Ray::new(e, d), Sphere::new(o, r)) else { return Ok(()) };
@@ -306,13 +306,13 @@ fn fuzz_sphere_solver() {
         prop_assert!(numbers.iter().flatten().all(|x| x.is_finite()), "{answer:?}");
         let normal = DVec3::from(answer.normal.unwrap());
         let unit_tolerance = if precision == Precision::F32 { 1e-5 } else { 1e-12 };
-        if method == Method::Stable {
+        if method == Solver::Stable {
             prop_assert!((normal.length() - 1.0).abs() < unit_tolerance, "|n| = {}", normal.length());
             let point = DVec3::from(answer.point.unwrap());
             prop_assert!(((point - o).length() - r).abs() <= r / 64.0, "point off the sphere: {answer:?}");
         }
         // Against the reference, for f64 and the stable method, where the chord is not grazing.
-        if method == Method::Stable
+        if method == Solver::Stable
             && precision == Precision::F64
             && let Some(roots) = reference_roots(e, d, o, r)
         {

@@ -3,7 +3,7 @@
 use super::formula::{Kind, Point, Value};
 use super::key::{Derivation, Expected, ExpectedLeaf, ExpectedPlane, Follows, Part, Variant, formula_part};
 use super::policy::Rule;
-use crate::q3_kd_traversal::seed::cases;
+use crate::q3_kd_traversal::student::cases;
 use crate::q3_kd_traversal::{Node2, Ray2, Step, traverse};
 use crate::rng;
 use glam::DVec3;

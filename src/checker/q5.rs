@@ -147,7 +147,7 @@ pub(super) fn variant(seed: u64) -> Variant {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::q5_effect_tables::METHODS;
+    use crate::q5_effect_tables::ALGORITHMS;
     use crate::render::analysis::grammar::{Lang, shortest_word};
 
     /// [`MEASURED_NO`] is exactly the cells of the committed measured table (the chapter's
@@ -176,7 +176,7 @@ mod tests {
     fn reason_keys_are_the_grammars_difference() {
         let v = variant(0);
         for (table, method) in [("q5a", "radiosity"), ("q5b", "two_pass")] {
-            let method = METHODS.iter().find(|m| m.id == method).unwrap();
+            let method = ALGORITHMS.iter().find(|m| m.id == method).unwrap();
             for effect in &EFFECTS {
                 let key = format!("{table}.{}_missed", effect.id);
                 let part = v.parts.iter().find(|p| p.key == key).unwrap();

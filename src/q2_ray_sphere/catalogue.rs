@@ -10,7 +10,7 @@
 use crate::geometry::sphere::first_hit_stable;
 use crate::geometry::{InputError, Ray, Sphere};
 use crate::plot::markdown_table;
-use crate::q2_ray_sphere::seed_solver::first_hit_naive;
+use crate::q2_ray_sphere::student_solver::first_hit_naive;
 use crate::real::Real;
 use glam::{DVec3, Vec3};
 use twofloat::TwoFloat;
@@ -19,11 +19,11 @@ use twofloat::TwoFloat;
 ///
 /// # Examples
 /// ```
-/// use hw3::q2_ray_sphere::catalogue::{Method, Precision, variant_label};
-/// assert_eq!(variant_label(Method::Stable, Precision::F64), "stable f64");
+/// use hw3::q2_ray_sphere::catalogue::{Solver, Precision, variant_label};
+/// assert_eq!(variant_label(Solver::Stable, Precision::F64), "stable f64");
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum Method {
+pub enum Solver {
     /// The homework's `A`, `B`, `C` and textbook roots ([`first_hit_naive`]).
     Naive,
     /// The closest-approach discriminant with Press's roots ([`first_hit_stable`]).
@@ -34,8 +34,8 @@ pub enum Method {
 ///
 /// # Examples
 /// ```
-/// use hw3::q2_ray_sphere::catalogue::{Method, Precision, variant_label};
-/// assert_eq!(variant_label(Method::Naive, Precision::F32), "naive f32");
+/// use hw3::q2_ray_sphere::catalogue::{Solver, Precision, variant_label};
+/// assert_eq!(variant_label(Solver::Naive, Precision::F32), "naive f32");
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Precision {
@@ -53,27 +53,27 @@ pub enum Precision {
 /// let columns: Vec<&str> = VARIANTS.iter().map(|&(m, p)| variant_label(m, p)).collect();
 /// assert_eq!(columns, ["naive f32", "stable f32", "naive f64", "stable f64"]);
 /// ```
-pub const VARIANTS: [(Method, Precision); 4] = [
-    (Method::Naive, Precision::F32),
-    (Method::Stable, Precision::F32),
-    (Method::Naive, Precision::F64),
-    (Method::Stable, Precision::F64),
+pub const VARIANTS: [(Solver, Precision); 4] = [
+    (Solver::Naive, Precision::F32),
+    (Solver::Stable, Precision::F32),
+    (Solver::Naive, Precision::F64),
+    (Solver::Stable, Precision::F64),
 ];
 
 /// Label of a variant for tables and plots (`"naive f32"`).
 ///
 /// # Examples
 /// ```
-/// use hw3::q2_ray_sphere::catalogue::{Method, Precision, variant_label};
-/// assert_eq!(variant_label(Method::Stable, Precision::F32), "stable f32");
+/// use hw3::q2_ray_sphere::catalogue::{Solver, Precision, variant_label};
+/// assert_eq!(variant_label(Solver::Stable, Precision::F32), "stable f32");
 /// ```
 #[must_use]
-pub fn variant_label(method: Method, precision: Precision) -> &'static str {
+pub fn variant_label(method: Solver, precision: Precision) -> &'static str {
     match (method, precision) {
-        (Method::Naive, Precision::F32) => "naive f32",
-        (Method::Stable, Precision::F32) => "stable f32",
-        (Method::Naive, Precision::F64) => "naive f64",
-        (Method::Stable, Precision::F64) => "stable f64",
+        (Solver::Naive, Precision::F32) => "naive f32",
+        (Solver::Stable, Precision::F32) => "stable f32",
+        (Solver::Naive, Precision::F64) => "naive f64",
+        (Solver::Stable, Precision::F64) => "stable f64",
     }
 }
 
@@ -86,23 +86,23 @@ pub fn variant_label(method: Method, precision: Precision) -> &'static str {
 /// ```
 /// use glam::DVec3;
 /// use hw3::geometry::{Ray, Sphere};
-/// use hw3::q2_ray_sphere::catalogue::{first_hit, Method, Precision};
+/// use hw3::q2_ray_sphere::catalogue::{first_hit, Solver, Precision};
 /// let ray = Ray::<f64>::new(DVec3::ZERO, DVec3::Z).unwrap();
 /// let sphere = Sphere::<f64>::new(DVec3::new(0.0, 0.0, 5.0), 1.0).unwrap();
-/// assert_eq!(first_hit(Method::Naive, Precision::F32, &ray, &sphere).unwrap(), Some(4.0));
+/// assert_eq!(first_hit(Solver::Naive, Precision::F32, &ray, &sphere).unwrap(), Some(4.0));
 /// ```
 pub fn first_hit(
-    method: Method,
+    method: Solver,
     precision: Precision,
     ray: &Ray<f64>,
     sphere: &Sphere<f64>,
 ) -> Result<Option<f64>, InputError> {
-    fn run<T: Real>(method: Method, ray: &Ray<f64>, sphere: &Sphere<f64>) -> Result<Option<f64>, InputError> {
+    fn run<T: Real>(method: Solver, ray: &Ray<f64>, sphere: &Sphere<f64>) -> Result<Option<f64>, InputError> {
         let ray = Ray::<T>::new(T::vec_from_f64(ray.origin), T::vec_from_f64(ray.dir))?;
         let sphere = Sphere::<T>::new(T::vec_from_f64(sphere.center), T::from_f64(sphere.radius))?;
         let t = match method {
-            Method::Naive => first_hit_naive(&ray, &sphere),
-            Method::Stable => first_hit_stable(&ray, &sphere),
+            Solver::Naive => first_hit_naive(&ray, &sphere),
+            Solver::Stable => first_hit_stable(&ray, &sphere),
         };
         Ok(t.map(Real::to_f64))
     }
@@ -616,13 +616,13 @@ mod tests {
         }
         // |d| = 1e-20 is fine in f64 but |d|² underflows in f32: refused there, not silently wrong.
         let tiny = Ray { origin: DVec3::ZERO, dir: DVec3::new(0.0, 0.0, 1e-20) };
-        assert!(first_hit(Method::Stable, Precision::F32, &tiny, &sphere).is_err());
-        assert!((first_hit(Method::Stable, Precision::F64, &tiny, &sphere).unwrap().unwrap() - 4e20).abs() < 1e6);
+        assert!(first_hit(Solver::Stable, Precision::F32, &tiny, &sphere).is_err());
+        assert!((first_hit(Solver::Stable, Precision::F64, &tiny, &sphere).unwrap().unwrap() - 4e20).abs() < 1e6);
         for radius in [-1.0, 0.0, f64::NAN, f64::INFINITY] {
             let bad = Sphere { center: DVec3::ZERO, radius };
             let ray = Ray { origin: DVec3::ZERO, dir: DVec3::Z };
             assert!(matches!(
-                first_hit(Method::Naive, Precision::F64, &ray, &bad),
+                first_hit(Solver::Naive, Precision::F64, &ray, &bad),
                 Err(InputError::OutOfRange { name: "radius", .. } | InputError::NonFinite { name: "radius", .. })
             ));
         }

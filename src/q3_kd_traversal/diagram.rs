@@ -1,7 +1,7 @@
 //! Diagrams of the homework's tree: cells and split lines, the ray, and each visited leaf's piece
 //! of the ray, coloured and labelled with its parameter interval.
 
-use super::{Axis2, Interval, Node2, Ray2, RayText, seed, traverse, write_path};
+use super::{Axis2, Interval, Node2, Ray2, RayText, student, traverse, write_path};
 use crate::kdtree::Side;
 use crate::plot::{Figure, PALETTE, PlotError, err, svg_figure};
 use plotters::coord::Shift;
@@ -16,7 +16,7 @@ pub(super) const GENERAL_RAY: Ray2 = Ray2 { origin: [0.0, 0.0], dir: [1.0, 0.5] 
 
 pub(super) fn figures() -> Result<Vec<Figure>, PlotError> {
     let mut figures = Vec::new();
-    for case in seed::cases() {
+    for case in student::cases() {
         let title = format!("case ({}): {}", case.label, RayText(&case.ray));
         figures.push(diagram(&format!("q3_case_{}.svg", case.label), &title, &case.ray)?);
         figures.push(steps(&format!("q3_steps_{}.svg", case.label), &case.ray)?);
@@ -265,6 +265,6 @@ mod tests {
     #[test]
     fn window_exit_is_where_the_ray_leaves_the_drawing() {
         // Case (d): from (5, 0) along (−1, 1), the top edge y = 7 is reached at t = 7.
-        assert_eq!(window_exit(&seed::cases()[0].ray), 7.0);
+        assert_eq!(window_exit(&student::cases()[0].ray), 7.0);
     }
 }

@@ -26,7 +26,7 @@ struct Row {
 
 /// A plotted method: legend label, the CSV columns of its camera and random Mrays/s, and its colour
 /// index in [`PALETTE`].
-struct Method {
+struct Structure {
     label: &'static str,
     camera_column: usize,
     random_column: usize,
@@ -35,12 +35,12 @@ struct Method {
 
 /// The methods of the plot. The peers (`bvh` crate with the bench's own front-to-back loop,
 /// `obvhs` BVH2 and CWBVH) are measured in the same run as the kd-tree, on an `f32` scene.
-const METHODS: [Method; 5] = [
-    Method { label: "kd-tree (this crate, f64)", camera_column: 5, random_column: 10, colour: 0 },
-    Method { label: "brute force", camera_column: 15, random_column: 16, colour: 7 },
-    Method { label: "bvh 0.13 + own loop", camera_column: 20, random_column: 21, colour: 4 },
-    Method { label: "obvhs BVH2", camera_column: 24, random_column: 25, colour: 2 },
-    Method { label: "obvhs CWBVH", camera_column: 28, random_column: 29, colour: 1 },
+const STRUCTURES: [Structure; 5] = [
+    Structure { label: "kd-tree (this crate, f64)", camera_column: 5, random_column: 10, colour: 0 },
+    Structure { label: "brute force", camera_column: 15, random_column: 16, colour: 7 },
+    Structure { label: "bvh 0.13 + own loop", camera_column: 20, random_column: 21, colour: 4 },
+    Structure { label: "obvhs BVH2", camera_column: 24, random_column: 25, colour: 2 },
+    Structure { label: "obvhs CWBVH", camera_column: 28, random_column: 29, colour: 1 },
 ];
 
 impl Row {
@@ -84,7 +84,7 @@ fn panel<DB: DrawingBackend>(
     };
     // Every method at fixed k (the main workload); the kd-tree also at fixed volume
     // fraction, thinner and in sky blue, to show the density scaling.
-    let methods = METHODS.iter().map(|m| (m, "fixed_k")).chain(std::iter::once((&METHODS[0], "fixed_volume")));
+    let methods = STRUCTURES.iter().map(|m| (m, "fixed_k")).chain(std::iter::once((&STRUCTURES[0], "fixed_volume")));
     let series = methods
         .map(|(method, density)| {
             let column = match rays {
@@ -140,7 +140,7 @@ mod tests {
     #[test]
     fn committed_csv_has_every_peer_for_every_row() {
         for row in rows(CSV) {
-            for method in METHODS.iter().filter(|m| m.label != "brute force") {
+            for method in STRUCTURES.iter().filter(|m| m.label != "brute force") {
                 assert!(row.us_per_ray(method.camera_column).is_some(), "{} N={} {}", row.density, row.n, method.label);
                 assert!(row.us_per_ray(method.random_column).is_some(), "{} N={} {}", row.density, row.n, method.label);
             }

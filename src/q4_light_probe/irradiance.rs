@@ -15,15 +15,15 @@ use std::str::FromStr;
 ///
 /// # Examples
 /// ```
-/// use hw3::q4_light_probe::Method;
-/// let m: Method = "mis".parse().unwrap();
-/// assert_eq!(m, Method::Mis);
-/// assert!(m.is_monte_carlo() && !Method::Sh9.is_monte_carlo());
-/// assert_eq!(Method::ALL.map(Method::name).join("|"), "unweighted|weighted|uniform|cosine|map|mis|sh9");
-/// assert!("guess".parse::<Method>().is_err());
+/// use hw3::q4_light_probe::Estimator;
+/// let m: Estimator = "mis".parse().unwrap();
+/// assert_eq!(m, Estimator::Mis);
+/// assert!(m.is_monte_carlo() && !Estimator::Sh9.is_monte_carlo());
+/// assert_eq!(Estimator::ALL.map(Estimator::name).join("|"), "unweighted|weighted|uniform|cosine|map|mis|sh9");
+/// assert!("guess".parse::<Estimator>().is_err());
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum Method {
+pub enum Estimator {
     /// The seed's literal sum: every texel inside the ball weighted equally (`Ω_covered / N`).
     Unweighted,
     /// Each texel weighted by its solid angle `Δω`.
@@ -40,36 +40,43 @@ pub enum Method {
     Sh9,
 }
 
-impl Method {
+impl Estimator {
     /// Every method, in the CLI's order.
     ///
     /// # Examples
     /// ```
-    /// use hw3::q4_light_probe::Method;
-    /// assert_eq!(Method::ALL.len(), 7);
-    /// assert_eq!(Method::ALL[0], Method::Unweighted);
+    /// use hw3::q4_light_probe::Estimator;
+    /// assert_eq!(Estimator::ALL.len(), 7);
+    /// assert_eq!(Estimator::ALL[0], Estimator::Unweighted);
     /// ```
-    pub const ALL: [Method; 7] =
-        [Method::Unweighted, Method::Weighted, Method::Uniform, Method::Cosine, Method::Map, Method::Mis, Method::Sh9];
+    pub const ALL: [Estimator; 7] = [
+        Estimator::Unweighted,
+        Estimator::Weighted,
+        Estimator::Uniform,
+        Estimator::Cosine,
+        Estimator::Map,
+        Estimator::Mis,
+        Estimator::Sh9,
+    ];
 
     /// The CLI name.
     ///
     /// # Examples
     /// ```
-    /// use hw3::q4_light_probe::Method;
-    /// assert_eq!(Method::Mis.name(), "mis");
-    /// assert!(Method::ALL.iter().all(|m| m.name().parse::<Method>() == Ok(*m)));
+    /// use hw3::q4_light_probe::Estimator;
+    /// assert_eq!(Estimator::Mis.name(), "mis");
+    /// assert!(Estimator::ALL.iter().all(|m| m.name().parse::<Estimator>() == Ok(*m)));
     /// ```
     #[must_use]
     pub fn name(self) -> &'static str {
         match self {
-            Method::Unweighted => "unweighted",
-            Method::Weighted => "weighted",
-            Method::Uniform => "uniform",
-            Method::Cosine => "cosine",
-            Method::Map => "map",
-            Method::Mis => "mis",
-            Method::Sh9 => "sh9",
+            Estimator::Unweighted => "unweighted",
+            Estimator::Weighted => "weighted",
+            Estimator::Uniform => "uniform",
+            Estimator::Cosine => "cosine",
+            Estimator::Map => "map",
+            Estimator::Mis => "mis",
+            Estimator::Sh9 => "sh9",
         }
     }
 
@@ -77,22 +84,22 @@ impl Method {
     ///
     /// # Examples
     /// ```
-    /// use hw3::q4_light_probe::Method;
-    /// let random: Vec<_> = Method::ALL.into_iter().filter(|m| m.is_monte_carlo()).map(Method::name).collect();
+    /// use hw3::q4_light_probe::Estimator;
+    /// let random: Vec<_> = Estimator::ALL.into_iter().filter(|m| m.is_monte_carlo()).map(Estimator::name).collect();
     /// assert_eq!(random, ["uniform", "cosine", "map", "mis"]);
     /// ```
     #[must_use]
     pub fn is_monte_carlo(self) -> bool {
-        matches!(self, Method::Uniform | Method::Cosine | Method::Map | Method::Mis)
+        matches!(self, Estimator::Uniform | Estimator::Cosine | Estimator::Map | Estimator::Mis)
     }
 }
 
-impl FromStr for Method {
+impl FromStr for Estimator {
     type Err = String;
 
     fn from_str(s: &str) -> Result<Self, Self::Err> {
-        Method::ALL.into_iter().find(|m| m.name() == s).ok_or_else(|| {
-            let names: Vec<_> = Method::ALL.iter().map(|m| m.name()).collect();
+        Estimator::ALL.into_iter().find(|m| m.name() == s).ok_or_else(|| {
+            let names: Vec<_> = Estimator::ALL.iter().map(|m| m.name()).collect();
             format!("unknown method `{s}`; expected one of {}", names.join("|"))
         })
     }
@@ -337,14 +344,14 @@ impl Sh9 {
 /// ```
 /// use glam::DVec3;
 /// use hw3::envmap::{horizontal_camera, ProbeFormat};
-/// use hw3::q4_light_probe::{maps::AnalyticMap, Irradiance, Method};
+/// use hw3::q4_light_probe::{maps::AnalyticMap, Irradiance, Estimator};
 /// let map = AnalyticMap::sky();
 /// let probe = map.rasterise(ProbeFormat::MirrorBall, 32, horizontal_camera()).unwrap();
 /// let prepared = Irradiance::new(&probe); // built once ...
 /// let mut rng = hw3::rng::seeded(0, 0);
 /// for n in [DVec3::Z, DVec3::X, -DVec3::Z] {
 ///     // ... evaluated at any number of normals
-///     let e = prepared.estimate(n, Method::Weighted, 1, &mut rng).unwrap().x;
+///     let e = prepared.estimate(n, Estimator::Weighted, 1, &mut rng).unwrap().x;
 ///     assert!((e - map.irradiance(n)).abs() < 0.02);
 /// }
 /// ```
@@ -363,11 +370,11 @@ impl<'a> Irradiance<'a> {
     /// ```
     /// use glam::{DMat3, DVec3};
     /// use hw3::envmap::{Probe, ProbeFormat};
-    /// use hw3::q4_light_probe::irradiance::{Irradiance, Method};
+    /// use hw3::q4_light_probe::irradiance::{Irradiance, Estimator};
     /// let probe = Probe::from_fn(ProbeFormat::MirrorBall, 16, 16, DMat3::IDENTITY, |_| DVec3::ONE).unwrap();
     /// let prepared = Irradiance::new(&probe);
     /// let mut rng = hw3::rng::seeded(1, 0);
-    /// let e = prepared.estimate(DVec3::Z, Method::Cosine, 16, &mut rng).unwrap();
+    /// let e = prepared.estimate(DVec3::Z, Estimator::Cosine, 16, &mut rng).unwrap();
     /// assert!((e.x - std::f64::consts::PI).abs() < 1e-12); // zero variance on a constant map
     /// ```
     #[must_use]
@@ -406,19 +413,19 @@ impl<'a> Irradiance<'a> {
     /// ```
     /// use glam::DVec3;
     /// use hw3::envmap::{horizontal_camera, Probe, ProbeFormat};
-    /// use hw3::q4_light_probe::{maps::AnalyticMap, Irradiance, Method};
+    /// use hw3::q4_light_probe::{maps::AnalyticMap, Irradiance, Estimator};
     /// let probe = AnalyticMap::sky().rasterise(ProbeFormat::MirrorBall, 16, horizontal_camera()).unwrap();
     /// let prepared = Irradiance::new(&probe);
     /// let mut rng = hw3::rng::seeded(0, 0);
-    /// assert!(prepared.estimate(DVec3::ZERO, Method::Sh9, 1, &mut rng).is_err());
-    /// assert!(prepared.estimate(DVec3::Z, Method::Map, 0, &mut rng).is_err());
-    /// let e = prepared.estimate(DVec3::new(0.0, 0.0, 5.0), Method::Sh9, 1, &mut rng).unwrap(); // any length
+    /// assert!(prepared.estimate(DVec3::ZERO, Estimator::Sh9, 1, &mut rng).is_err());
+    /// assert!(prepared.estimate(DVec3::Z, Estimator::Map, 0, &mut rng).is_err());
+    /// let e = prepared.estimate(DVec3::new(0.0, 0.0, 5.0), Estimator::Sh9, 1, &mut rng).unwrap(); // any length
     /// assert!((e.x / std::f64::consts::PI - 1.0).abs() < 0.01);
     /// ```
     pub fn estimate(
         &self,
         normal: DVec3,
-        method: Method,
+        method: Estimator,
         samples: usize,
         rng: &mut Generator,
     ) -> Result<DVec3, ProbeError> {
@@ -427,13 +434,13 @@ impl<'a> Irradiance<'a> {
             return Err(InputError::OutOfRange { name: "samples", value: "0".into(), expected: "≥ 1" }.into());
         }
         Ok(match method {
-            Method::Unweighted => self.unweighted(n),
-            Method::Weighted => self.weighted(n),
-            Method::Uniform => self.uniform(n, samples, rng),
-            Method::Cosine => self.cosine(n, samples, rng),
-            Method::Map => self.map(n, samples, rng),
-            Method::Mis => self.mis(n, samples, rng),
-            Method::Sh9 => self.sh9.irradiance(n),
+            Estimator::Unweighted => self.unweighted(n),
+            Estimator::Weighted => self.weighted(n),
+            Estimator::Uniform => self.uniform(n, samples, rng),
+            Estimator::Cosine => self.cosine(n, samples, rng),
+            Estimator::Map => self.map(n, samples, rng),
+            Estimator::Mis => self.mis(n, samples, rng),
+            Estimator::Sh9 => self.sh9.irradiance(n),
         })
     }
 
@@ -655,14 +662,14 @@ mod tests {
         let probe = AnalyticMap::constant(1.0).rasterise(ProbeFormat::MirrorBall, 1, horizontal_camera()).unwrap();
         let prepared = Irradiance::new(&probe);
         let mut rng = crate::rng::seeded(3, 0);
-        for method in Method::ALL {
+        for method in Estimator::ALL {
             for n in fibonacci_normals(8) {
                 let e = prepared.estimate(n, method, 8, &mut rng).unwrap();
                 assert!(e.is_finite() && e.min_element() >= 0.0, "{method:?}: {e}");
             }
         }
         // The lookup-based estimators see a constant map whatever the resolution.
-        let e = prepared.estimate(DVec3::X, Method::Cosine, 8, &mut rng).unwrap();
+        let e = prepared.estimate(DVec3::X, Estimator::Cosine, 8, &mut rng).unwrap();
         assert!((e.x - PI).abs() < 1e-12);
     }
 
@@ -672,9 +679,9 @@ mod tests {
         let prepared = Irradiance::new(&probe);
         let mut rng = crate::rng::seeded(3, 0);
         for bad in [DVec3::ZERO, DVec3::new(f64::NAN, 0.0, 1.0), DVec3::splat(f64::INFINITY)] {
-            assert!(prepared.estimate(bad, Method::Weighted, 1, &mut rng).is_err());
+            assert!(prepared.estimate(bad, Estimator::Weighted, 1, &mut rng).is_err());
         }
-        assert!(prepared.estimate(DVec3::Z, Method::Cosine, 0, &mut rng).is_err());
+        assert!(prepared.estimate(DVec3::Z, Estimator::Cosine, 0, &mut rng).is_err());
     }
 
     #[test]
@@ -682,7 +689,7 @@ mod tests {
         let probe = AnalyticMap::constant(0.0).rasterise(ProbeFormat::AngularMap, 8, horizontal_camera()).unwrap();
         let prepared = Irradiance::new(&probe);
         let mut rng = crate::rng::seeded(3, 0);
-        for method in Method::ALL {
+        for method in Estimator::ALL {
             assert_eq!(prepared.estimate(DVec3::Z, method, 16, &mut rng).unwrap(), DVec3::ZERO);
         }
     }

@@ -1,7 +1,7 @@
 //! Shared tools of the accuracy study: peak-normalised errors, the study's maps, and the table
 //! of methods and parameters the benchmark sweeps.
 
-use super::irradiance::{Irradiance, Method};
+use super::irradiance::{Estimator, Irradiance};
 use super::maps::AnalyticMap;
 use crate::envmap::{BuiltinMap, Probe, ProbeError, ProbeFormat, horizontal_camera, luminance};
 use glam::DVec3;
@@ -12,10 +12,10 @@ use glam::DVec3;
 /// # Examples
 /// ```
 /// use hw3::envmap::{horizontal_camera, ProbeFormat};
-/// use hw3::q4_light_probe::{fibonacci_normals, maps::AnalyticMap, study, Irradiance, Method};
+/// use hw3::q4_light_probe::{fibonacci_normals, maps::AnalyticMap, study, Irradiance, Estimator};
 /// let map = AnalyticMap::sky();
 /// let probe = map.rasterise(ProbeFormat::AngularMap, 32, horizontal_camera()).unwrap();
-/// let e = study::analytic_error(&map, &Irradiance::new(&probe), Method::Weighted, 1, &[0], &fibonacci_normals(16));
+/// let e = study::analytic_error(&map, &Irradiance::new(&probe), Estimator::Weighted, 1, &[0], &fibonacci_normals(16));
 /// assert!(e.max_percent >= e.mean_percent && e.mean_percent > 0.0);
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -40,18 +40,18 @@ pub struct ErrorSummary {
 /// # Examples
 /// ```
 /// use hw3::envmap::{horizontal_camera, Probe, ProbeFormat};
-/// use hw3::q4_light_probe::{maps::AnalyticMap, study, irradiance::{Irradiance, Method}};
+/// use hw3::q4_light_probe::{maps::AnalyticMap, study, irradiance::{Irradiance, Estimator}};
 /// let map = AnalyticMap::constant(1.0);
 /// let probe = map.rasterise(ProbeFormat::MirrorBall, 16, horizontal_camera()).unwrap();
 /// let normals = hw3::q4_light_probe::fibonacci_normals(8);
 /// let exact: Vec<f64> = normals.iter().map(|n| map.irradiance(*n)).collect();
-/// let e = study::method_error(&Irradiance::new(&probe), Method::Cosine, 8, &[1, 2], &normals, &exact);
+/// let e = study::method_error(&Irradiance::new(&probe), Estimator::Cosine, 8, &[1, 2], &normals, &exact);
 /// assert!(e.max_percent < 1e-10);
 /// ```
 #[must_use]
 pub fn method_error(
     prepared: &Irradiance<'_>,
-    method: Method,
+    method: Estimator,
     samples: usize,
     seeds: &[u64],
     normals: &[DVec3],
@@ -90,17 +90,17 @@ pub fn method_error(
 /// # Examples
 /// ```
 /// use hw3::envmap::{horizontal_camera, Probe, ProbeFormat};
-/// use hw3::q4_light_probe::{maps::AnalyticMap, study, Irradiance, Method};
+/// use hw3::q4_light_probe::{maps::AnalyticMap, study, Irradiance, Estimator};
 /// let map = AnalyticMap::sky();
 /// let probe = map.rasterise(ProbeFormat::MirrorBall, 32, horizontal_camera()).unwrap();
-/// let e = study::analytic_error(&map, &Irradiance::new(&probe), Method::Sh9, 1, &[0], &hw3::q4_light_probe::fibonacci_normals(16));
+/// let e = study::analytic_error(&map, &Irradiance::new(&probe), Estimator::Sh9, 1, &[0], &hw3::q4_light_probe::fibonacci_normals(16));
 /// assert!(e.mean_percent < 0.5 && e.max_percent >= e.mean_percent);
 /// ```
 #[must_use]
 pub fn analytic_error(
     map: &AnalyticMap,
     prepared: &Irradiance<'_>,
-    method: Method,
+    method: Estimator,
     samples: usize,
     seeds: &[u64],
     normals: &[DVec3],
@@ -181,14 +181,14 @@ impl StudyMap {
 ///
 /// # Examples
 /// ```
-/// use hw3::q4_light_probe::{study::Config, Method};
-/// let config = Config { method: Method::Weighted, size: 64, samples: 0 };
+/// use hw3::q4_light_probe::{study::Config, Estimator};
+/// let config = Config { method: Estimator::Weighted, size: 64, samples: 0 };
 /// assert_eq!(config.label(), "weighted 64²");
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Config {
     /// The method.
-    pub method: Method,
+    pub method: Estimator,
     /// Probe size (texels across).
     pub size: usize,
     /// Samples per normal (Monte Carlo only; 0 otherwise).
@@ -200,8 +200,8 @@ impl Config {
     ///
     /// # Examples
     /// ```
-    /// use hw3::q4_light_probe::{study::Config, Method};
-    /// assert_eq!(Config { method: Method::Cosine, size: 256, samples: 256 }.label(), "cosine N=256");
+    /// use hw3::q4_light_probe::{study::Config, Estimator};
+    /// assert_eq!(Config { method: Estimator::Cosine, size: 256, samples: 256 }.label(), "cosine N=256");
     /// ```
     #[must_use]
     pub fn label(&self) -> String {
@@ -246,12 +246,12 @@ pub fn study_maps() -> Result<Vec<(&'static str, StudyMap)>, ProbeError> {
 pub fn configurations() -> Vec<Config> {
     let mut configs = Vec::new();
     for size in [16, 32, 64, 128, 256] {
-        for method in [Method::Unweighted, Method::Weighted, Method::Sh9] {
+        for method in [Estimator::Unweighted, Estimator::Weighted, Estimator::Sh9] {
             configs.push(Config { method, size, samples: 0 });
         }
     }
     for samples in [16, 64, 256, 1024, 4096] {
-        for method in [Method::Uniform, Method::Cosine, Method::Map, Method::Mis] {
+        for method in [Estimator::Uniform, Estimator::Cosine, Estimator::Map, Estimator::Mis] {
             configs.push(Config { method, size: 256, samples });
         }
     }

@@ -3,7 +3,7 @@
 //! and the slope of the error against N; none relies on one seed.
 
 use super::blind_spot;
-use super::irradiance::{Irradiance, Method};
+use super::irradiance::{Estimator, Irradiance};
 use super::maps::{self, AnalyticMap, Term};
 use super::normals::fibonacci_normals;
 use super::study;
@@ -44,7 +44,7 @@ fn ball(map: &AnalyticMap, size: usize) -> Probe {
     map.rasterise(ProbeFormat::MirrorBall, size, horizontal_camera()).unwrap()
 }
 
-fn deterministic_error(map: &AnalyticMap, probe: &Probe, method: Method) -> study::ErrorSummary {
+fn deterministic_error(map: &AnalyticMap, probe: &Probe, method: Estimator) -> study::ErrorSummary {
     study::analytic_error(map, &Irradiance::new(probe), method, 1, &[0], &fibonacci_normals(64))
 }
 
@@ -52,7 +52,7 @@ fn deterministic_error(map: &AnalyticMap, probe: &Probe, method: Method) -> stud
 fn weighted_texel_sum_matches_every_oracle() {
     // Second order in the texel size away from the horizon; measured max 0.05 % (quadratic) at 128².
     for (name, map) in oracle_maps() {
-        let e = deterministic_error(&map, &ball(&map, 128), Method::Weighted);
+        let e = deterministic_error(&map, &ball(&map, 128), Estimator::Weighted);
         assert!(e.max_percent < 0.1, "{name}: {e:?}");
     }
 }
@@ -62,7 +62,7 @@ fn unweighted_sum_is_right_on_the_orthographic_ball_only() {
     // The ideal ball is equal-area, so equal weights are nearly right; what is left is the partial
     // rim texels (measured 0.55 % max at 128²). Every other format is badly biased.
     for (name, map) in oracle_maps() {
-        let e = deterministic_error(&map, &ball(&map, 128), Method::Unweighted);
+        let e = deterministic_error(&map, &ball(&map, 128), Estimator::Unweighted);
         assert!(e.max_percent < 1.0, "{name}: {e:?}");
     }
     let constant = AnalyticMap::constant(1.0);
@@ -72,11 +72,11 @@ fn unweighted_sum_is_right_on_the_orthographic_ball_only() {
         (ProbeFormat::perspective_ball(10.0).unwrap(), 3.0),
     ] {
         let probe = constant.rasterise(format, 64, horizontal_camera()).unwrap();
-        let unweighted = deterministic_error(&constant, &probe, Method::Unweighted);
+        let unweighted = deterministic_error(&constant, &probe, Estimator::Unweighted);
         assert!(unweighted.mean_percent > min_mean, "{}: {unweighted:?}", format.name());
         if !matches!(format, ProbeFormat::PerspectiveBall { .. }) {
             // With Δω the same texels are right (the perspective ball also misses its blind cone).
-            let weighted = deterministic_error(&constant, &probe, Method::Weighted);
+            let weighted = deterministic_error(&constant, &probe, Estimator::Weighted);
             assert!(weighted.max_percent < 0.3, "{}: {weighted:?}", format.name());
         }
     }
@@ -87,8 +87,8 @@ fn sh9_is_exact_on_low_order_maps_up_to_the_projection() {
     // On these maps SH9 has no truncation error: what remains is the texel quadrature of the
     // projection, which shrinks with the probe size (≥ 2× from 64² to 128²) and is ≤ 0.06 % at 128².
     for (name, map) in oracle_maps().into_iter().filter(|(n, _)| SH9_EXACT.contains(n)) {
-        let coarse = deterministic_error(&map, &ball(&map, 64), Method::Sh9);
-        let fine = deterministic_error(&map, &ball(&map, 128), Method::Sh9);
+        let coarse = deterministic_error(&map, &ball(&map, 64), Estimator::Sh9);
+        let fine = deterministic_error(&map, &ball(&map, 128), Estimator::Sh9);
         assert!(fine.max_percent < 0.06, "{name}: {fine:?}");
         assert!(coarse.mean_percent > 2.0 * fine.mean_percent, "{name}: {coarse:?} → {fine:?}");
     }
@@ -100,15 +100,15 @@ fn sh9_truncation_error_plateaus_on_higher_order_maps() {
     // cannot hold: the error does not fall with resolution. Measured at 128²: lobe 0.16 / 0.57 %,
     // overcast 0.09 / 0.37 %, cap 1.95 / 5.3 % (mean / max).
     for (name, map) in oracle_maps().into_iter().filter(|(n, _)| !SH9_EXACT.contains(n)) {
-        let coarse = deterministic_error(&map, &ball(&map, 64), Method::Sh9);
-        let fine = deterministic_error(&map, &ball(&map, 128), Method::Sh9);
+        let coarse = deterministic_error(&map, &ball(&map, 64), Estimator::Sh9);
+        let fine = deterministic_error(&map, &ball(&map, 128), Estimator::Sh9);
         assert!(fine.mean_percent > 0.05, "{name}: {fine:?}");
         assert!((coarse.mean_percent / fine.mean_percent - 1.0).abs() < 0.1, "{name}: {coarse:?} → {fine:?}");
     }
 }
 
 /// `(mean, standard deviation)` of the first channel over `seeds` runs.
-fn seed_statistics(prepared: &Irradiance<'_>, n: DVec3, method: Method, samples: usize, seeds: u64) -> (f64, f64) {
+fn seed_statistics(prepared: &Irradiance<'_>, n: DVec3, method: Estimator, samples: usize, seeds: u64) -> (f64, f64) {
     let values: Vec<f64> = (0..seeds)
         .map(|seed| {
             let mut rng = crate::rng::seeded(1000 + seed, 0);
@@ -129,7 +129,7 @@ fn monte_carlo_is_unbiased_on_every_oracle() {
         let probe = ball(&map, 64);
         let prepared = Irradiance::new(&probe);
         let peak = fibonacci_normals(64).iter().map(|n| map.irradiance(*n)).fold(0.0, f64::max);
-        for method in Method::ALL.into_iter().filter(|m| m.is_monte_carlo()) {
+        for method in Estimator::ALL.into_iter().filter(|m| m.is_monte_carlo()) {
             for n in normals {
                 let (mean, sd) = seed_statistics(&prepared, n, method, 32, seeds);
                 let exact = map.irradiance(n);
@@ -149,7 +149,7 @@ fn cosine_sampling_has_zero_variance_on_a_constant_map() {
     let probe = ball(&map, 16);
     let prepared = Irradiance::new(&probe);
     for n in fibonacci_normals(16) {
-        let (mean, sd) = seed_statistics(&prepared, n, Method::Cosine, 4, 20);
+        let (mean, sd) = seed_statistics(&prepared, n, Estimator::Cosine, 4, 20);
         assert!((mean - 2.5 * PI).abs() < 1e-12 && sd < 1e-12, "{n}: {mean} ± {sd}");
     }
 }
@@ -172,7 +172,7 @@ fn monte_carlo_error_falls_as_one_over_root_n() {
     let prepared = Irradiance::new(&probe);
     let n = DVec3::new(0.2, 0.9, 0.1).normalize();
     let exact = map.irradiance(n);
-    for method in Method::ALL.into_iter().filter(|m| m.is_monte_carlo()) {
+    for method in Estimator::ALL.into_iter().filter(|m| m.is_monte_carlo()) {
         let points: Vec<(f64, f64)> = [16, 64, 256, 1024]
             .into_iter()
             .map(|samples| {
@@ -201,10 +201,10 @@ fn only_map_sampling_finds_a_real_sun() {
         100.0 * ((mean - peak).powi(2) + sd * sd).sqrt() / peak
     };
     // Measured: map 1.8 %, MIS 3.5 % (it spends half its samples on the cosine strategy).
-    for (method, bound) in [(Method::Map, 2.5), (Method::Mis, 5.0)] {
+    for (method, bound) in [(Estimator::Map, 2.5), (Estimator::Mis, 5.0)] {
         assert!(rms_percent(method) < bound, "{method:?}: {}", rms_percent(method));
     }
-    for method in [Method::Uniform, Method::Cosine] {
+    for method in [Estimator::Uniform, Estimator::Cosine] {
         assert!(rms_percent(method) > 30.0, "{method:?}: {}", rms_percent(method));
     }
 }
@@ -270,7 +270,7 @@ fn a_normal_into_the_blind_cone_loses_the_cap_the_ball_cannot_see() {
         let weighted = prepared.weighted(n).x;
         assert!((weighted - (PI - blind)).abs() < 2e-3 * PI, "α = {alpha_deg}: {weighted} vs {}", PI - blind);
         // Monte Carlo lookups into the blind cone return 0: the same loss, statistically.
-        let (mean, sd) = seed_statistics(&prepared, n, Method::Cosine, 64, 100);
+        let (mean, sd) = seed_statistics(&prepared, n, Estimator::Cosine, 64, 100);
         assert!((mean - (PI - blind)).abs() < 4.0 * sd / 10.0 + 2e-3 * PI, "α = {alpha_deg}: {mean}");
     }
     assert!((prepared.weighted(away).x / PI - (1.0 - 1.0 / 9.0)).abs() < 2e-3);
@@ -285,7 +285,7 @@ fn grazing_normals_have_small_peak_normalised_error() {
     let prepared = Irradiance::new(&probe);
     let peak = map.irradiance(tilted_axis());
     for n in [-tilted_axis(), (-tilted_axis() + DVec3::X * 0.05).normalize()] {
-        for method in [Method::Weighted, Method::Unweighted, Method::Sh9] {
+        for method in [Estimator::Weighted, Estimator::Unweighted, Estimator::Sh9] {
             let mut rng = crate::rng::seeded(1, 0);
             let got = prepared.estimate(n, method, 1, &mut rng).unwrap().x;
             assert!((got - map.irradiance(n)).abs() < 5e-3 * peak, "{method:?} at {n}: {got}");
@@ -333,7 +333,7 @@ fn real_maps_resampled_into_a_ball_keep_their_irradiance() {
     // each texel).
     let normals = fibonacci_normals(64);
     for (name, ball, reference) in real_maps() {
-        let e = study::method_error(&Irradiance::new(&ball), Method::Weighted, 1, &[0], &normals, &reference);
+        let e = study::method_error(&Irradiance::new(&ball), Estimator::Weighted, 1, &[0], &normals, &reference);
         // Measured mean / max: courtyard 0.03 / 0.12 %, sunrise 0.22 / 0.87 % of peak.
         assert!(e.mean_percent < 0.5 && e.max_percent < 2.0, "{name}: {e:?}");
     }
@@ -351,7 +351,7 @@ fn sh9_meets_the_target_on_the_soft_real_map_and_not_on_the_sunrise() {
         .into_iter()
         .map(|(name, ball, reference)| {
             let prepared = Irradiance::new(&ball);
-            let e = study::method_error(&prepared, Method::Sh9, 1, &[0], &normals, &reference);
+            let e = study::method_error(&prepared, Estimator::Sh9, 1, &[0], &normals, &reference);
             (name, e)
         })
         .collect();

@@ -228,7 +228,7 @@ mod tests {
             fraction: 57.5 / 57.6,
             verdict: super::super::Verdict::Yes,
             grammar: super::super::Verdict::Yes,
-            seed: super::super::SeedAnswer::NotAsked,
+            seed: super::super::StudentAnswer::NotAsked,
         };
         let text = label(&ROWS[4], Measured::PhotonMapping, "2·10⁵ photons, k = 100", &cell);
         assert_eq!(text, "(d) caustic\nphoton mapping: 2·10⁵ photons, k = 100\ncaptures 0.998 of the effect: Yes");

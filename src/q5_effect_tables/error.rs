@@ -30,7 +30,7 @@ pub enum ExperimentError {
     #[error("committed data: {0}")]
     Data(String),
     /// A table row or column id that [`EFFECTS`](crate::q5_effect_tables::EFFECTS) or
-    /// [`METHODS`](crate::q5_effect_tables::METHODS) does not list.
+    /// [`ALGORITHMS`](crate::q5_effect_tables::ALGORITHMS) does not list.
     #[error("no effect or method with id {0:?}")]
     UnknownId(&'static str),
 }

@@ -3,7 +3,7 @@
 
 use super::effect_scenes::{self, GLOSSY_FLOOR, WHITE_FLOOR, lit_floor, mirror_room};
 use super::error::ExperimentError;
-use super::grammar::{EFFECTS, LightKind, METHODS, SeedAnswer, Verdict, decide, seed_answer};
+use super::grammar::{ALGORITHMS, EFFECTS, LightKind, StudentAnswer, Verdict, decide, student_answer};
 use super::radiosity::{Mesh, Solver, System};
 use super::scenes::{bleeding_region, cornell_box, glow_region, grey};
 use crate::geometry::Ray;
@@ -112,7 +112,7 @@ pub const NEIGHBOURS: usize = 100;
 const TABLE_RADIOSITY: Measured = Measured::Radiosity { subdivisions: TABLE_MESH.0, samples: TABLE_MESH.1 };
 
 impl Measured {
-    /// The method's column id in [`METHODS`].
+    /// The method's column id in [`ALGORITHMS`].
     ///
     /// # Examples
     /// ```
@@ -226,7 +226,7 @@ pub(super) fn photon_eye<'a>(
 ///
 /// # Examples
 /// ```
-/// use hw3::q5_effect_tables::{SeedAnswer, Verdict, experiments::{MeasuredCell, verdict}};
+/// use hw3::q5_effect_tables::{StudentAnswer, Verdict, experiments::{MeasuredCell, verdict}};
 /// let (value, reference) = (0.29, 0.30);
 /// let cell = MeasuredCell {
 ///     effect: "d_mirror",
@@ -236,7 +236,7 @@ pub(super) fn photon_eye<'a>(
 ///     fraction: value / reference,
 ///     verdict: verdict(value / reference),
 ///     grammar: Verdict::Yes,
-///     seed: SeedAnswer::NotAsked,
+///     seed: StudentAnswer::NotAsked,
 /// };
 /// assert_eq!(cell.verdict, cell.grammar);
 /// ```
@@ -244,7 +244,7 @@ pub(super) fn photon_eye<'a>(
 pub struct MeasuredCell {
     /// Effect id (a row of [`EFFECTS`]).
     pub effect: &'static str,
-    /// Method id (a column of [`METHODS`]).
+    /// Algorithm id (a column of [`ALGORITHMS`]).
     pub method: &'static str,
     /// The measured size of the effect for this method.
     pub value: f64,
@@ -257,7 +257,7 @@ pub struct MeasuredCell {
     /// The grammar's verdict for the same cell (area light).
     pub grammar: Verdict,
     /// The seed's answer for the cell (`NotAsked` for the columns the seed does not have).
-    pub seed: SeedAnswer,
+    pub seed: StudentAnswer,
 }
 
 /// (a) Highlight: the radiance of the glossy floor of [`lit_floor`] at the mirror direction of
@@ -404,9 +404,9 @@ pub const EXPERIMENTS: [(&str, Experiment); 6] = [
 ///
 /// # Examples
 /// ```
-/// use hw3::q5_effect_tables::{METHODS, experiments::TABLE_METHODS};
+/// use hw3::q5_effect_tables::{ALGORITHMS, experiments::TABLE_METHODS};
 /// // Every measured method is a column of the grammar's table.
-/// assert!(TABLE_METHODS.iter().all(|m| METHODS.iter().any(|column| column.id == m.id())));
+/// assert!(TABLE_METHODS.iter().all(|m| ALGORITHMS.iter().any(|column| column.id == m.id())));
 /// ```
 pub const TABLE_METHODS: [Measured; 4] =
     [TABLE_RADIOSITY, Measured::TwoPass, Measured::Whitted, Measured::PhotonMapping];
@@ -459,10 +459,11 @@ fn measure_table() -> Result<Vec<MeasuredCell>, ExperimentError> {
         for method in TABLE_METHODS {
             let value = measure(method)?;
             let fraction = value / reference;
-            let column = METHODS.iter().find(|m| m.id == method.id()).ok_or(ExperimentError::UnknownId(method.id()))?;
+            let column =
+                ALGORITHMS.iter().find(|m| m.id == method.id()).ok_or(ExperimentError::UnknownId(method.id()))?;
             let grammar = decide(row, column, LightKind::Area).map(|c| c.verdict).unwrap_or(Verdict::No);
             let verdict = verdict(fraction);
-            let seed = seed_answer(column, row);
+            let seed = student_answer(column, row);
             cells.push(MeasuredCell {
                 effect,
                 method: method.id(),
@@ -483,7 +484,7 @@ fn measure_table() -> Result<Vec<MeasuredCell>, ExperimentError> {
 /// # Examples
 /// ```
 /// use hw3::q5_effect_tables::experiments::{MeasuredCell, measured_table_markdown};
-/// use hw3::q5_effect_tables::{SeedAnswer, Verdict};
+/// use hw3::q5_effect_tables::{StudentAnswer, Verdict};
 /// let cell = MeasuredCell {
 ///     effect: "d_caustic",
 ///     method: "two_pass",
@@ -492,7 +493,7 @@ fn measure_table() -> Result<Vec<MeasuredCell>, ExperimentError> {
 ///     fraction: 0.017 / 57.6,
 ///     verdict: Verdict::No,
 ///     grammar: Verdict::Impractical,
-///     seed: SeedAnswer::No,
+///     seed: StudentAnswer::No,
 /// };
 /// let table = measured_table_markdown(&[cell]);
 /// assert!(table.ends_with("| (d caustic) | two_pass | 0.0170 | 57.6000 | 0.000 | No | Impractical | No |\n"));

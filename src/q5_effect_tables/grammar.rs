@@ -88,9 +88,9 @@ pub const EFFECTS: [Effect; 6] = [
 ///
 /// # Examples
 /// ```
-/// use hw3::q5_effect_tables::{EFFECTS, LightKind, METHODS, Verdict, decide};
+/// use hw3::q5_effect_tables::{EFFECTS, LightKind, ALGORITHMS, Verdict, decide};
 /// // The path tracer's caustic: impractical with an area light, impossible with a point light.
-/// let verdict = |light| decide(&EFFECTS[4], &METHODS[3], light).unwrap().verdict;
+/// let verdict = |light| decide(&EFFECTS[4], &ALGORITHMS[3], light).unwrap().verdict;
 /// assert_eq!((verdict(LightKind::Area), verdict(LightKind::Point)), (Verdict::Impractical, Verdict::No));
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -128,18 +128,19 @@ impl LightKind {
 ///
 /// # Examples
 /// ```
-/// use hw3::q5_effect_tables::METHODS;
-/// let radiosity = &METHODS[0];
-/// assert_eq!((radiosity.id, radiosity.seed_part, radiosity.paths[0]), ("radiosity", Some('a'), "LD*E"));
+/// use hw3::q5_effect_tables::ALGORITHMS;
+/// let radiosity = &ALGORITHMS[0];
+/// assert_eq!((radiosity.id, radiosity.student_part, radiosity.paths[0]), ("radiosity", Some('a'), "LD*E"));
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
-pub struct Method {
+pub struct Algorithm {
     /// Column id.
     pub id: &'static str,
     /// Display name.
     pub name: &'static str,
     /// The seed's column letter (`Some('a')` = Q5(a) radiosity, `Some('b')` = Q5(b) two-pass).
-    pub seed_part: Option<char>,
+    #[serde(rename = "seed_part")]
+    pub student_part: Option<char>,
     /// Paths the method can produce with an area light / a point light.
     pub paths: [&'static str; 2],
     /// Paths it samples efficiently with an area light / a point light.
@@ -150,47 +151,47 @@ pub struct Method {
 ///
 /// # Examples
 /// ```
-/// use hw3::q5_effect_tables::METHODS;
+/// use hw3::q5_effect_tables::ALGORITHMS;
 /// // The seed's two columns come first.
-/// assert_eq!(METHODS.map(|m| m.seed_part)[..3], [Some('a'), Some('b'), None]);
+/// assert_eq!(ALGORITHMS.map(|m| m.student_part)[..3], [Some('a'), Some('b'), None]);
 /// ```
-pub const METHODS: [Method; 5] = [
-    Method {
+pub const ALGORITHMS: [Algorithm; 5] = [
+    Algorithm {
         id: "radiosity",
         name: "radiosity",
-        seed_part: Some('a'),
+        student_part: Some('a'),
         paths: ["LD*E", "LD*E"],
         efficient: ["LD*E", "LD*E"],
     },
-    Method {
+    Algorithm {
         // Eye rays stop at the first hit (direct light by shadow rays, L(D|G)E); photons bounce
         // diffusely and through mirrors and are read at the eye ray's diffuse hit.
         id: "two_pass",
         name: "two-pass (eye rays + photon tracing)",
-        seed_part: Some('b'),
+        student_part: Some('b'),
         paths: ["L(D|G)E|L(D|S)*DE", "L(D|G)E|L(D|S)*DE"],
         efficient: ["L(D|G)E|LD+DE", "L(D|G)E|LD+DE"],
     },
-    Method {
+    Algorithm {
         id: "whitted",
         name: "Whitted ray tracing",
-        seed_part: None,
+        student_part: None,
         paths: ["L(D|G)?S*E", "L(D|G)?S*E"],
         efficient: ["L(D|G)?S*E", "L(D|G)?S*E"],
     },
-    Method {
+    Algorithm {
         // With an area light a caustic path is found only when a bounce after S happens to hit
         // the light; with a point light never.
         id: "path_tracing",
         name: "path tracing",
-        seed_part: None,
+        student_part: None,
         paths: ["L(D|G|S)*E", "L(D|G)(D|G|S)*E"],
         efficient: ["LS*E|L(D|G)(D|G|S)*E", "L(D|G)(D|G|S)*E"],
     },
-    Method {
+    Algorithm {
         id: "photon_mapping",
         name: "photon mapping (global + caustic map)",
-        seed_part: None,
+        student_part: None,
         paths: ["L(D|G|S)*E", "L(D|G|S)*E"],
         efficient: ["L(D|G|S)*E", "L(D|G|S)*E"],
     },
@@ -200,9 +201,9 @@ pub const METHODS: [Method; 5] = [
 ///
 /// # Examples
 /// ```
-/// use hw3::q5_effect_tables::{EFFECTS, LightKind, METHODS, Verdict, decide};
+/// use hw3::q5_effect_tables::{EFFECTS, LightKind, ALGORITHMS, Verdict, decide};
 /// // Radiosity misses the highlight.
-/// assert_eq!(decide(&EFFECTS[0], &METHODS[0], LightKind::Area).unwrap().verdict, Verdict::No);
+/// assert_eq!(decide(&EFFECTS[0], &ALGORITHMS[0], LightKind::Area).unwrap().verdict, Verdict::No);
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
@@ -237,13 +238,13 @@ impl Verdict {
 ///
 /// # Examples
 /// ```
-/// use hw3::q5_effect_tables::{EFFECTS, METHODS, SeedAnswer, seed_answer};
+/// use hw3::q5_effect_tables::{EFFECTS, ALGORITHMS, StudentAnswer, student_answer};
 /// // Q5(b)(d): the seed says the two-pass method misses the mirror image.
-/// assert_eq!(seed_answer(&METHODS[1], &EFFECTS[3]), SeedAnswer::No);
+/// assert_eq!(student_answer(&ALGORITHMS[1], &EFFECTS[3]), StudentAnswer::No);
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
-pub enum SeedAnswer {
+pub enum StudentAnswer {
     /// The seed wrote Yes.
     Yes,
     /// The seed wrote No.
@@ -252,20 +253,20 @@ pub enum SeedAnswer {
     NotAsked,
 }
 
-impl SeedAnswer {
+impl StudentAnswer {
     /// The word the tables print (`–` for a column the seed does not have).
     ///
     /// # Examples
     /// ```
-    /// use hw3::q5_effect_tables::SeedAnswer;
-    /// assert_eq!((SeedAnswer::Yes.text(), SeedAnswer::NotAsked.text()), ("Yes", "–"));
+    /// use hw3::q5_effect_tables::StudentAnswer;
+    /// assert_eq!((StudentAnswer::Yes.text(), StudentAnswer::NotAsked.text()), ("Yes", "–"));
     /// ```
     #[must_use]
     pub fn text(self) -> &'static str {
         match self {
-            SeedAnswer::Yes => "Yes",
-            SeedAnswer::No => "No",
-            SeedAnswer::NotAsked => "–",
+            StudentAnswer::Yes => "Yes",
+            StudentAnswer::No => "No",
+            StudentAnswer::NotAsked => "–",
         }
     }
 }
@@ -275,40 +276,40 @@ impl SeedAnswer {
 ///
 /// # Examples
 /// ```
-/// use hw3::q5_effect_tables::{SEED_ANSWERS, SeedAnswer};
-/// assert_eq!(SEED_ANSWERS.len(), 10);
-/// assert!(SEED_ANSWERS.contains(&('b', 'e', SeedAnswer::Yes)));
+/// use hw3::q5_effect_tables::{STUDENT_ANSWERS, StudentAnswer};
+/// assert_eq!(STUDENT_ANSWERS.len(), 10);
+/// assert!(STUDENT_ANSWERS.contains(&('b', 'e', StudentAnswer::Yes)));
 /// ```
-pub const SEED_ANSWERS: [(char, char, SeedAnswer); 10] = [
-    ('a', 'a', SeedAnswer::No),
-    ('a', 'b', SeedAnswer::Yes),
-    ('a', 'c', SeedAnswer::Yes),
-    ('a', 'd', SeedAnswer::No),
-    ('a', 'e', SeedAnswer::Yes),
-    ('b', 'a', SeedAnswer::Yes),
-    ('b', 'b', SeedAnswer::Yes),
-    ('b', 'c', SeedAnswer::Yes),
-    ('b', 'd', SeedAnswer::No),
-    ('b', 'e', SeedAnswer::Yes),
+pub const STUDENT_ANSWERS: [(char, char, StudentAnswer); 10] = [
+    ('a', 'a', StudentAnswer::No),
+    ('a', 'b', StudentAnswer::Yes),
+    ('a', 'c', StudentAnswer::Yes),
+    ('a', 'd', StudentAnswer::No),
+    ('a', 'e', StudentAnswer::Yes),
+    ('b', 'a', StudentAnswer::Yes),
+    ('b', 'b', StudentAnswer::Yes),
+    ('b', 'c', StudentAnswer::Yes),
+    ('b', 'd', StudentAnswer::No),
+    ('b', 'e', StudentAnswer::Yes),
 ];
 
 /// The seed's answer for `effect` under `method`.
 ///
 /// # Examples
 /// ```
-/// use hw3::q5_effect_tables::{EFFECTS, METHODS, SeedAnswer, seed_answer};
+/// use hw3::q5_effect_tables::{EFFECTS, ALGORITHMS, StudentAnswer, student_answer};
 /// // Q5(a)(a): the seed says radiosity misses the highlight; Whitted is not a seed column.
-/// assert_eq!(seed_answer(&METHODS[0], &EFFECTS[0]), SeedAnswer::No);
-/// assert_eq!(seed_answer(&METHODS[2], &EFFECTS[0]), SeedAnswer::NotAsked);
+/// assert_eq!(student_answer(&ALGORITHMS[0], &EFFECTS[0]), StudentAnswer::No);
+/// assert_eq!(student_answer(&ALGORITHMS[2], &EFFECTS[0]), StudentAnswer::NotAsked);
 /// ```
 #[must_use]
-pub fn seed_answer(method: &Method, effect: &Effect) -> SeedAnswer {
+pub fn student_answer(method: &Algorithm, effect: &Effect) -> StudentAnswer {
     method
-        .seed_part
+        .student_part
         .and_then(|part| {
-            SEED_ANSWERS.iter().find(|(p, letter, _)| *p == part && *letter == effect.seed_letter).map(|c| c.2)
+            STUDENT_ANSWERS.iter().find(|(p, letter, _)| *p == part && *letter == effect.seed_letter).map(|c| c.2)
         })
-        .unwrap_or(SeedAnswer::NotAsked)
+        .unwrap_or(StudentAnswer::NotAsked)
 }
 
 /// One cell of the derived table.
@@ -325,7 +326,7 @@ pub fn seed_answer(method: &Method, effect: &Effect) -> SeedAnswer {
 pub struct Cell {
     /// Effect id (row).
     pub effect: &'static str,
-    /// Method id (column).
+    /// Algorithm id (column).
     pub method: &'static str,
     /// Light kind.
     pub light: LightKind,
@@ -335,7 +336,7 @@ pub struct Cell {
     /// shortest one outside its efficient language.
     pub witness: Option<String>,
     /// The seed's answer (area-light table only; `NotAsked` for the point-light table).
-    pub seed: SeedAnswer,
+    pub seed: StudentAnswer,
 }
 
 /// Decides one cell: effect ∩ light paths ⊆ efficient → Yes, ⊆ paths → Impractical, else No.
@@ -346,13 +347,13 @@ pub struct Cell {
 ///
 /// # Examples
 /// ```
-/// use hw3::q5_effect_tables::{EFFECTS, LightKind, METHODS, Verdict, decide};
+/// use hw3::q5_effect_tables::{EFFECTS, LightKind, ALGORITHMS, Verdict, decide};
 /// let caustic = EFFECTS.iter().find(|e| e.id == "d_caustic").unwrap();
-/// let path_tracing = METHODS.iter().find(|m| m.id == "path_tracing").unwrap();
+/// let path_tracing = ALGORITHMS.iter().find(|m| m.id == "path_tracing").unwrap();
 /// let cell = decide(caustic, path_tracing, LightKind::Point).unwrap();
 /// assert_eq!((cell.verdict, cell.witness.as_deref()), (Verdict::No, Some("LSDE")));
 /// ```
-pub fn decide(effect: &Effect, method: &Method, light: LightKind) -> Result<Cell, GrammarError> {
+pub fn decide(effect: &Effect, method: &Algorithm, light: LightKind) -> Result<Cell, GrammarError> {
     let column = usize::from(light == LightKind::Point);
     let languages = [
         Lang::parse(effect.paths)?,
@@ -367,11 +368,11 @@ pub fn decide(effect: &Effect, method: &Method, light: LightKind) -> Result<Cell
         (None, Some(path)) => (Verdict::Impractical, Some(path)),
         (None, None) => (Verdict::Yes, None),
     };
-    let seed = if light == LightKind::Area { seed_answer(method, effect) } else { SeedAnswer::NotAsked };
+    let seed = if light == LightKind::Area { student_answer(method, effect) } else { StudentAnswer::NotAsked };
     Ok(Cell { effect: effect.id, method: method.id, light, verdict, witness: witness.map(|w| word_text(&w)), seed })
 }
 
-/// Every cell: both light kinds × [`EFFECTS`] × [`METHODS`], in that order.
+/// Every cell: both light kinds × [`EFFECTS`] × [`ALGORITHMS`], in that order.
 ///
 /// # Errors
 /// As [`decide`].
@@ -387,7 +388,7 @@ pub fn grammar_table() -> Result<Vec<Cell>, GrammarError> {
     let mut cells = Vec::new();
     for light in LightKind::ALL {
         for effect in &EFFECTS {
-            for method in &METHODS {
+            for method in &ALGORITHMS {
                 cells.push(decide(effect, method, light)?);
             }
         }
@@ -399,16 +400,16 @@ pub fn grammar_table() -> Result<Vec<Cell>, GrammarError> {
 /// when the seed's reason says "not … well".
 pub(super) fn agreement(cell: &Cell) -> &'static str {
     match (cell.seed, cell.verdict) {
-        (SeedAnswer::Yes, Verdict::Yes) | (SeedAnswer::No, Verdict::No) => "agrees",
-        (SeedAnswer::No, Verdict::Impractical) => "agrees (possible but impractical)",
-        (SeedAnswer::NotAsked, _) => "",
+        (StudentAnswer::Yes, Verdict::Yes) | (StudentAnswer::No, Verdict::No) => "agrees",
+        (StudentAnswer::No, Verdict::Impractical) => "agrees (possible but impractical)",
+        (StudentAnswer::NotAsked, _) => "",
         _ => "DISAGREES",
     }
 }
 
 fn cell_text(cell: &Cell) -> String {
     let seed = match cell.seed {
-        SeedAnswer::NotAsked => String::new(),
+        StudentAnswer::NotAsked => String::new(),
         answer => format!(" (seed: {})", answer.text()),
     };
     match &cell.witness {
@@ -438,9 +439,9 @@ pub fn grammar_table_markdown() -> Result<String, GrammarError> {
             LightKind::Area => "Area light",
             LightKind::Point => "Point light",
         };
-        let header: Vec<&str> = ["effect", "paths"].into_iter().chain(METHODS.iter().map(|m| m.name)).collect();
+        let header: Vec<&str> = ["effect", "paths"].into_iter().chain(ALGORITHMS.iter().map(|m| m.name)).collect();
         let rows = EFFECTS.iter().map(|effect| {
-            let verdicts = METHODS.iter().map(|method| {
+            let verdicts = ALGORITHMS.iter().map(|method| {
                 cells
                     .iter()
                     .find(|c| c.light == light && c.effect == effect.id && c.method == method.id)

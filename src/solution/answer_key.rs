@@ -9,7 +9,7 @@ use std::fmt::Write as _;
 
 /// The homework's own answers, transcribed as an answers file for seed 0 (the file the checker's
 /// tests grade).
-const SEED_ANSWERS: &str = include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/tests/answers/seed_hw3.toml"));
+const STUDENT_ANSWERS: &str = include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/tests/answers/seed_hw3.toml"));
 
 /// The chapter section that derives each part, by key prefix (first match wins): the heading's
 /// text, as written in the chapter.
@@ -103,7 +103,7 @@ fn grade(result: &PartResult) -> String {
 /// assert!(key.contains("| `q2a.t` |") && key.contains("partial"));
 /// ```
 pub fn answer_key_table() -> Result<String, SolutionError> {
-    let report = checker::check(SEED_ANSWERS, Some(0)).expect("the seed's transcribed answers grade");
+    let report = checker::check(STUDENT_ANSWERS, Some(0)).expect("the seed's transcribed answers grade");
     let mut out = String::new();
     for question in QUESTIONS {
         let heading = question.to_uppercase();
@@ -190,7 +190,7 @@ mod tests {
     #[test]
     fn the_key_carries_the_seeds_grade_for_every_part() {
         let table = answer_key_table().unwrap();
-        let report = checker::check(SEED_ANSWERS, Some(0)).unwrap();
+        let report = checker::check(STUDENT_ANSWERS, Some(0)).unwrap();
         for part in &report.parts {
             let row = table.lines().find(|l| l.starts_with(&format!("| `{}` |", part.key))).expect("a row per part");
             assert!(row.contains(&grade(part)), "{row}");

@@ -1,7 +1,7 @@
 //! Q2 worked: `A, B, C`, the discriminant, both roots, the case, the point, the normal, the
 //! reflection and the closest approach.
 //!
-//! The intermediate numbers are the homework's own algorithm ([`seed_trace`]), the finals the
+//! The intermediate numbers are the homework's own algorithm ([`student_trace`]), the finals the
 //! stable solver's, as in the checker's key; for the variants' small integer settings the two
 //! agree to the last printed digit.
 
@@ -9,12 +9,12 @@ use super::render::{num, operand, vector};
 use super::{Section, SolutionError, Step, Value, setting};
 use crate::checker::Variant;
 use crate::geometry::sphere::{closest_approach_t, first_hit_stable, reflect_with_cosine, roots_stable, surface_hit};
-use crate::q2_ray_sphere::seed_solver::{SeedBranch, seed_trace};
+use crate::q2_ray_sphere::student_solver::{StudentBranch, student_trace};
 
 pub(super) fn sections(variant: &Variant) -> Result<Vec<Section>, SolutionError> {
     let (ray, sphere) = setting::q2(variant)?;
     let (e, d, o, r) = (ray.origin, ray.dir, sphere.center, sphere.radius);
-    let trace = seed_trace(&ray, &sphere);
+    let trace = student_trace(&ray, &sphere);
     let f = e - o;
     let v = |x: glam::DVec3| vector(x.to_array());
 
@@ -31,11 +31,11 @@ pub(super) fn sections(variant: &Variant) -> Result<Vec<Section>, SolutionError>
         )),
     ];
     match trace.branch {
-        SeedBranch::NoRealRoots => a.push(Step::work("B² - 4AC < 0: no real roots, the ray misses")),
-        SeedBranch::Tangent => {
+        StudentBranch::NoRealRoots => a.push(Step::work("B² - 4AC < 0: no real roots, the ray misses")),
+        StudentBranch::Tangent => {
             a.push(Step::work(format!("B² - 4AC = 0: one double root t = -B/2A = {}", num(trace.t1))))
         }
-        SeedBranch::TwoRootsT1Smaller | SeedBranch::TwoRootsT2Smaller => {
+        StudentBranch::TwoRootsT1Smaller | StudentBranch::TwoRootsT2Smaller => {
             a.push(Step::work(format!("√(B² - 4AC) = {}", num(trace.discriminant.sqrt()))));
             a.push(Step::work(format!("t1 = (-B + √(B² - 4AC))/2A = {}", num(trace.t1))));
             a.push(Step::work(format!("t2 = (-B - √(B² - 4AC))/2A = {}", num(trace.t2))));

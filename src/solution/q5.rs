@@ -7,14 +7,14 @@
 
 use super::{Section, SolutionError, Step, Value};
 use crate::checker::Variant;
-use crate::q5_effect_tables::{EFFECTS, Effect, LightKind, METHODS, Method, Verdict, decide};
+use crate::q5_effect_tables::{ALGORITHMS, Algorithm, EFFECTS, Effect, LightKind, Verdict, decide};
 
 /// The method and effect of a part key: in `q5a.d_mirror`, table `q5a` is the homework's part (a)
 /// (its method), row `d_mirror` the effect.
-pub(super) fn cell_of(key: &str) -> Option<(&'static Method, &'static Effect)> {
+pub(super) fn cell_of(key: &str) -> Option<(&'static Algorithm, &'static Effect)> {
     let (table, row) = key.split_once('.')?;
     let letter = table.strip_prefix("q5")?.chars().next()?;
-    let method = METHODS.iter().find(|m| m.seed_part == Some(letter))?;
+    let method = ALGORITHMS.iter().find(|m| m.student_part == Some(letter))?;
     let effect = EFFECTS.iter().find(|e| e.id == row)?;
     Some((method, effect))
 }

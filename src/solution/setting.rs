@@ -131,7 +131,7 @@ mod tests {
         let (ray, sphere) = q2(&variant("q2", 0).unwrap()).unwrap();
         assert_eq!((ray, sphere), crate::q2_ray_sphere::worked_example());
         let q3_variant = variant("q3", 0).unwrap();
-        let cases = crate::q3_kd_traversal::seed::cases();
+        let cases = crate::q3_kd_traversal::student::cases();
         assert_eq!([q3(&q3_variant, 'd').unwrap(), q3(&q3_variant, 'e').unwrap()], [cases[0].ray, cases[1].ray]);
         let setting = q4(&variant("q4", 0).unwrap()).unwrap();
         assert_eq!(setting, Q4Setting { a: 1.0, b: 1.0, tilt_deg: 60.0, distance_over_radius: 3.0 });

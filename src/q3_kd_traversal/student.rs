@@ -14,11 +14,11 @@ const INF: f64 = f64::INFINITY;
 ///
 /// # Examples
 /// ```
-/// let cases = hw3::q3_kd_traversal::seed::cases();
+/// let cases = hw3::q3_kd_traversal::student::cases();
 /// assert_eq!(cases.iter().map(|c| c.label).collect::<Vec<_>>(), ["d", "e"]);
 /// ```
 #[derive(Debug, Clone, PartialEq)]
-pub struct SeedCase {
+pub struct StudentCase {
     /// The homework's sub-question (`"d"`, `"e"`).
     pub label: &'static str,
     /// The case's ray `e + d t`.
@@ -45,15 +45,15 @@ fn descend(path: &[Branch], t_min: f64, t_max: f64) -> Step {
 ///
 /// # Examples
 /// ```
-/// let cases = hw3::q3_kd_traversal::seed::cases();
+/// let cases = hw3::q3_kd_traversal::student::cases();
 /// assert_eq!(cases[0].ray.origin, [5.0, 0.0]);
 /// assert_eq!(cases[0].handwritten.len(), 7);
 /// ```
 #[must_use]
-pub fn cases() -> Vec<SeedCase> {
+pub fn cases() -> Vec<StudentCase> {
     let x_lo = branch(Axis2::X, Side::Lower, 3.0);
     let x_hi = branch(Axis2::X, Side::Upper, 3.0);
-    let d = SeedCase {
+    let d = StudentCase {
         label: "d",
         ray: Ray2 { origin: [5.0, 0.0], dir: [-1.0, 1.0] },
         handwritten: vec![
@@ -66,7 +66,7 @@ pub fn cases() -> Vec<SeedCase> {
             descend(&[x_lo, branch(Axis2::Y, Side::Upper, 1.0)], 3.0, INF),
         ],
     };
-    let e = SeedCase {
+    let e = StudentCase {
         label: "e",
         ray: Ray2 { origin: [2.0, 0.0], dir: [-1.0, -1.0] },
         handwritten: vec![
@@ -85,8 +85,8 @@ pub fn cases() -> Vec<SeedCase> {
 /// # Examples
 /// ```
 /// use hw3::q3_kd_traversal::{Node2, seed, traverse};
-/// let case = &seed::cases()[0]; // (d)
-/// let rows = seed::compare(&traverse(&Node2::homework(), &case.ray), &case.handwritten);
+/// let case = &student::cases()[0]; // (d)
+/// let rows = student::compare(&traverse(&Node2::homework(), &case.ray), &case.handwritten);
 /// assert_eq!(rows[0].index, 1);
 /// assert!(rows[0].agrees()); // both start with the root plane at t = 2
 /// ```
@@ -106,8 +106,8 @@ impl StepComparison {
     /// # Examples
     /// ```
     /// use hw3::q3_kd_traversal::{Node2, seed, traverse};
-    /// let case = &seed::cases()[0]; // (d)
-    /// let rows = seed::compare(&traverse(&Node2::homework(), &case.ray), &case.handwritten);
+    /// let case = &student::cases()[0]; // (d)
+    /// let rows = student::compare(&traverse(&Node2::homework(), &case.ray), &case.handwritten);
     /// assert!(!rows[4].agrees()); // step 5: [2, inf] vs the seed's [3, inf]
     /// ```
     #[must_use]
@@ -131,8 +131,8 @@ impl fmt::Display for StepComparison {
 /// # Examples
 /// ```
 /// use hw3::q3_kd_traversal::{Node2, seed, traverse};
-/// let case = &seed::cases()[1]; // (e)
-/// let rows = seed::compare(&traverse(&Node2::homework(), &case.ray), &case.handwritten);
+/// let case = &student::cases()[1]; // (e)
+/// let rows = student::compare(&traverse(&Node2::homework(), &case.ray), &case.handwritten);
 /// assert!(rows.iter().all(|row| row.agrees()));
 /// ```
 #[must_use]
@@ -155,7 +155,7 @@ pub fn compare(ours: &super::Trace, handwritten: &[Step]) -> Vec<StepComparison>
 ///
 /// # Examples
 /// ```
-/// use hw3::q3_kd_traversal::{Ray2, seed::literal_leaves};
+/// use hw3::q3_kd_traversal::{Ray2, student::literal_leaves};
 /// let leaves = literal_leaves(&Ray2::new([2.0, 0.0], [-1.0, -1.0]).unwrap());
 /// assert_eq!(leaves.len(), 1);
 /// ```
