@@ -214,6 +214,10 @@ fn usage_errors_are_one_line_and_negative_numbers_are_values() {
 fn messages_name_the_right_option_and_quote_little_input() {
     let line = refused(&hw3(&["irradiance", "--env", "sky", "--normal", "0,0,1", "--method", "foo"]));
     assert!(line.contains("--method") && !line.contains("--env"), "{line}");
+    let line = refused(&hw3(&["kd-trace", "--origin", "5", "--dir", "-1,1"]));
+    assert!(line.contains("--origin:"), "{line}");
+    let line = refused(&hw3(&["kd-trace", "--origin", "5,0", "--dir", "1;1"]));
+    assert!(line.contains("--dir:"), "{line}");
     let help = String::from_utf8(hw3(&["sphere", "--help"]).stdout).unwrap();
     assert!(help.contains("> 0") && !help.contains(">= 0"), "{help}");
     let long = "1".repeat(100_000);

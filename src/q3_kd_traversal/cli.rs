@@ -15,7 +15,7 @@ use serde_json::{Value, json};
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum TraceInputError {
     /// An argument is not two comma-separated numbers.
-    #[error("{name}: expected two comma-separated numbers like 5,-1.5, got `{text}`")]
+    #[error("--{name}: expected two comma-separated numbers like 5,-1.5, got `{text}`")]
     Parse {
         /// The option's name.
         name: &'static str,

@@ -84,7 +84,7 @@ pub fn cases() -> Vec<StudentCase> {
 ///
 /// # Examples
 /// ```
-/// use hw3::q3_kd_traversal::{Node2, seed, traverse};
+/// use hw3::q3_kd_traversal::{Node2, student, traverse};
 /// let case = &student::cases()[0]; // (d)
 /// let rows = student::compare(&traverse(&Node2::homework(), &case.ray), &case.handwritten);
 /// assert_eq!(rows[0].index, 1);
@@ -105,7 +105,7 @@ impl StepComparison {
     ///
     /// # Examples
     /// ```
-    /// use hw3::q3_kd_traversal::{Node2, seed, traverse};
+    /// use hw3::q3_kd_traversal::{Node2, student, traverse};
     /// let case = &student::cases()[0]; // (d)
     /// let rows = student::compare(&traverse(&Node2::homework(), &case.ray), &case.handwritten);
     /// assert!(!rows[4].agrees()); // step 5: [2, inf] vs the seed's [3, inf]
@@ -130,7 +130,7 @@ impl fmt::Display for StepComparison {
 ///
 /// # Examples
 /// ```
-/// use hw3::q3_kd_traversal::{Node2, seed, traverse};
+/// use hw3::q3_kd_traversal::{Node2, student, traverse};
 /// let case = &student::cases()[1]; // (e)
 /// let rows = student::compare(&traverse(&Node2::homework(), &case.ray), &case.handwritten);
 /// assert!(rows.iter().all(|row| row.agrees()));
