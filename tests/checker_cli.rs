@@ -458,6 +458,13 @@ fn class_demo_files_are_the_generators() {
     for s in &submissions {
         assert_eq!(std::fs::read(dir.join(&s.name)).unwrap(), s.bytes, "{}: rewrite with HW3_WRITE_CLASS=1", s.name);
     }
+    // The chapter describes the class by its counts: they are the generator's.
+    let chapter =
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/checker.md")).unwrap().replace('\n', " ");
+    let (right, mistakes) = (class_demo::right(), class_demo::mistake_files().len());
+    let described =
+        format!("{right} right (variants 0 to {}), {mistakes} with up to three recognised mistakes", right - 1);
+    assert!(chapter.contains(&described), "docs/checker.md should say: {described}");
 }
 
 #[test]
