@@ -11,7 +11,7 @@ mod grammar;
 pub mod photon_accuracy;
 pub mod photon_cornell;
 pub mod radiosity;
-pub mod scenes;
+mod regions;
 
 pub use grammar::{
     ALGORITHMS, Algorithm, Cell, EFFECTS, Effect, LightKind, STUDENT_ANSWERS, StudentAnswer, Verdict, decide,

@@ -5,7 +5,7 @@
 //! in millimetres, converted to metres here. The reflectances are measured spectra; the crate is
 //! RGB, so it uses the RGB stand-ins of the Tungsten renderer's scene
 //! (book.vertexwahn.de/docs/tools/cornell_box: white (0.725, 0.71, 0.68), red (0.63, 0.065, 0.05),
-//! green (0.14, 0.45, 0.091), the crate's [`WHITE`], [`RED`], [`GREEN`]) and the light radiance
+//! green (0.14, 0.45, 0.091), the crate's [`CORNELL_WHITE`], [`CORNELL_RED`], [`CORNELL_GREEN`]) and the light radiance
 //! of Mitsuba 3's `cornell_box()` (18.387, 13.987, 6.754).
 //!
 //! The renderer's quads are parallelograms (corner + two edges). Of the published polygons the
@@ -20,9 +20,9 @@
 use super::error::ExperimentError;
 use super::photon_cornell::Reference;
 use super::radiosity::{Mesh, Solver, System};
-use super::scenes::{GREEN, RED, WHITE};
 use crate::geometry::{InputError, Ray};
 use crate::render::analysis::analyze;
+use crate::render::catalogue::{CORNELL_GREEN, CORNELL_RED, CORNELL_WHITE};
 use crate::render::integrator::Integrator;
 use crate::render::{Settings, render};
 use crate::render::{
@@ -78,7 +78,7 @@ fn block(top: [(f64, f64); 4], height: f64, material: Material) -> Vec<Object> {
 /// assert_eq!(scene.objects().len(), 16); // 5 walls, the light, 2 blocks × 5 faces
 /// ```
 pub fn scene() -> Result<Scene, InputError> {
-    let white = Material::Diffuse { albedo: WHITE };
+    let white = Material::Diffuse { albedo: CORNELL_WHITE };
     let mut objects = vec![
         // Floor (552.8,0,0) (0,0,0) (0,0,559.2) (549.6,0,559.2): corner (0,0,0), normal +y.
         parallelogram(mm(0.0, 0.0, 0.0), mm(0.0, 0.0, 559.2), mm(552.8, 0.0, 0.0), white),
@@ -87,13 +87,18 @@ pub fn scene() -> Result<Scene, InputError> {
         // Back wall z = 559.2: (549.6,0) (0,0) (0,548.8) (556,548.8), normal −z.
         parallelogram(mm(0.0, 0.0, 559.2), mm(0.0, 548.8, 559.2), mm(549.6, 0.0, 559.2), white),
         // Green wall x = 0, normal +x.
-        parallelogram(mm(0.0, 0.0, 0.0), mm(0.0, 548.8, 0.0), mm(0.0, 0.0, 559.2), Material::Diffuse { albedo: GREEN }),
+        parallelogram(
+            mm(0.0, 0.0, 0.0),
+            mm(0.0, 548.8, 0.0),
+            mm(0.0, 0.0, 559.2),
+            Material::Diffuse { albedo: CORNELL_GREEN },
+        ),
         // Red wall (552.8,0,0) (549.6,0,559.2) (556,548.8,559.2) (556,548.8,0), normal −x.
         parallelogram(
             mm(552.8, 0.0, 0.0),
             mm(549.6, 0.0, 559.2),
             mm(556.0, 548.8, 0.0),
-            Material::Diffuse { albedo: RED },
+            Material::Diffuse { albedo: CORNELL_RED },
         ),
         // Light y = 548.8 − 0.1, x 213–343, z 227–332, facing down.
         parallelogram(

@@ -1,5 +1,5 @@
 //! The photon map's error in a scene with gradients: the global (`all`) map's radiance estimate
-//! at fixed floor points of the Cornell-like box ([`cornell_box`]) against the path tracer, for
+//! at fixed floor points of the Cornell box with the block ([`cornell_box`]) against the path tracer, for
 //! several photon counts and k. `cargo bench --bench q5_photon` measures it and writes
 //! `docs/data/q5_photon_cornell.md` and `.csv`; [`figure`] plots the committed CSV, so the
 //! figures stay deterministic (timings come only from the benchmark).
@@ -10,9 +10,9 @@
 //! radiance over a radius `r ∝ √(k/N)`, so it grows with k and shrinks as photons are added).
 
 use super::photon_accuracy::LogLogChart;
-use super::scenes::cornell_box;
 use crate::geometry::{InputError, Ray};
 use crate::plot::{Figure, PlotError};
+use crate::render::catalogue::{CornellContents, cornell_box};
 use crate::render::photon::{PhotonError, PhotonMap};
 use crate::render::scene::Scene;
 use crate::render::{analysis::analyze, passes::Pass};
@@ -40,7 +40,7 @@ pub const CSV_NAME: &str = "q5_photon_cornell.csv";
 /// assert_eq!(probes.len(), 32);
 /// ```
 pub fn scene_and_probes() -> Result<(Scene, Vec<Ray<f64>>), InputError> {
-    let scene = cornell_box(true)?;
+    let scene = cornell_box(true, CornellContents::Block)?;
     let coordinates = (0..6).map(|i| -0.9 + 0.36 * f64::from(i));
     let probes = coordinates
         .clone()
