@@ -59,7 +59,7 @@ pub fn student_comparison_markdown() -> Result<String, String> {
     Ok(markdown_table(&header, rows))
 }
 
-/// The output of `hw3 effects-table`: the grammar tables, the seed comparison and the measured
+/// The output of `hw3 effect-tables`: the grammar tables, the seed comparison and the measured
 /// table as text, or everything as one JSON value.
 ///
 /// # Errors
@@ -67,13 +67,13 @@ pub fn student_comparison_markdown() -> Result<String, String> {
 ///
 /// # Examples
 /// ```no_run
-/// // Not run here: it needs the measured table; `tests::effects_table_json_has_every_cell_with_its_seed_answer`
+/// // Not run here: it needs the measured table; `tests::effect_tables_json_has_every_cell_with_its_seed_answer`
 /// // runs both forms.
 /// let json: serde_json::Value =
-///     serde_json::from_str(&hw3::q5_effect_tables::effects_table_command(true).unwrap()).unwrap();
+///     serde_json::from_str(&hw3::q5_effect_tables::effect_tables_command(true).unwrap()).unwrap();
 /// assert_eq!(json["measured"].as_array().unwrap().len(), 24);
 /// ```
-pub fn effects_table_command(json: bool) -> Result<String, String> {
+pub fn effect_tables_command(json: bool) -> Result<String, String> {
     let cells = grammar_table().map_err(|e| e.to_string())?;
     let measured = experiments::measured_table().map_err(|e| e.to_string())?;
     if json {
@@ -187,15 +187,15 @@ mod tests {
     }
 
     #[test]
-    fn effects_table_json_has_every_cell_with_its_seed_answer() {
-        let value: serde_json::Value = serde_json::from_str(&effects_table_command(true).unwrap()).unwrap();
+    fn effect_tables_json_has_every_cell_with_its_seed_answer() {
+        let value: serde_json::Value = serde_json::from_str(&effect_tables_command(true).unwrap()).unwrap();
         let grammar = value["grammar"].as_array().unwrap();
         assert_eq!(grammar.len(), 2 * EFFECTS.len() * ALGORITHMS.len());
         let first = &grammar[0];
         assert_eq!((first["effect"].as_str(), first["method"].as_str()), (Some("a"), Some("radiosity")));
         assert_eq!((first["verdict"].as_str(), first["seed"].as_str()), (Some("no"), Some("no")));
         assert_eq!(value["measured"].as_array().unwrap().len(), 24);
-        let text = effects_table_command(false).unwrap();
+        let text = effect_tables_command(false).unwrap();
         assert!(text.contains("No `LGE` (seed: No)") && text.contains("measured verdict"));
     }
 

@@ -436,7 +436,7 @@ pub fn verdict(fraction: f64) -> Verdict {
 /// Whitted ray tracing and photon mapping ([`TABLE_METHODS`]) against the path tracer.
 ///
 /// Computed once per process (about 10 s in a debug test build) and then cloned: the test, the
-/// figures and `hw3 effects-table` share it.
+/// figures and `hw3 effect-tables` share it.
 ///
 /// # Errors
 /// [`ExperimentError`] if an experiment fails (never for the built-in scenes).

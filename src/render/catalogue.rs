@@ -1,5 +1,5 @@
 //! The catalogue of built-in scenes: Q1's four hard scenes (and their easy twins), plus a small box for the path
-//! tracer, and the Cornell box ([`cornell_box`]) the renderer and Q5 share. `hw3 scenes` lists them; `hw3 render NAME` and `hw3 effects NAME` take their names.
+//! tracer, and the Cornell box ([`cornell_box`]) the renderer and Q5 share. `hw3 scenes` lists them; `hw3 render NAME` and `hw3 paths NAME` take their names.
 
 use super::environment::Environment;
 use super::error::RenderError;
