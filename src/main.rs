@@ -77,7 +77,8 @@ enum Command {
         out: Option<PathBuf>,
     },
     /// Q5: the effect tables (light-path grammar, seed's answers, measured cells).
-    EffectsTable {
+    #[command(alias = "effects-table")]
+    EffectTables {
         /// Print one JSON object instead of markdown tables.
         #[arg(long)]
         json: bool,
@@ -126,7 +127,8 @@ enum Command {
     /// List the built-in scenes of the renderer.
     Scenes,
     /// Print which light-path classes a built-in scene carries and the passes the renderer plans.
-    Effects {
+    #[command(alias = "effects")]
+    Paths {
         /// A built-in scene (see `hw3 scenes`).
         scene: String,
         /// Print JSON instead of text.
@@ -389,15 +391,16 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             if json { emit_line(&serde_json::to_string(&answer)?) } else { emit_line(&format!("{answer:#?}")) }
         }
         Some(Command::Scenes) => emit(&hw3::render::command::scenes_text()),
-        Some(Command::Effects { scene, json }) => {
+        Some(Command::Paths { scene, json }) => {
             emit(&hw3::render::command::effects_text(&scene, json).map_err(|e| UsageError(e.to_string()))?)
         }
         Some(Command::Render { scene, spp, size, out, effects, allow_large }) => {
             render_to_file(&scene, spp, &size, &out, &effects, allow_large)
         }
         Some(Command::Irradiance(args)) => irradiance(args),
-        Some(Command::EffectsTable { json }) => {
-            emit_line(&hw3::q5_effect_tables::effects_table_command(json).map_err(anyhow::Error::msg)?)
+        Some(Command::EffectTables { json }) => {
+            let measured = hw3::q5_effect_tables::experiments::measured_table()?;
+            emit_line(&hw3::q5_effect_tables::effect_tables_command(json, &measured).map_err(anyhow::Error::msg)?)
         }
     }
 }

@@ -11,7 +11,7 @@ mod grammar;
 pub mod photon_accuracy;
 pub mod photon_cornell;
 pub mod radiosity;
-pub mod scenes;
+mod regions;
 
 pub use grammar::{
     ALGORITHMS, Algorithm, Cell, EFFECTS, Effect, LightKind, STUDENT_ANSWERS, StudentAnswer, Verdict, decide,
@@ -24,19 +24,31 @@ use grammar::agreement;
 
 /// The cell-by-cell comparison with the seed (area light, the seed's two columns): the seed's
 /// answer, the grammar's verdict with the shortest missed path, and the measured verdict with
-/// the fraction of the path-traced effect captured ([`experiments::measured_table`]).
+/// the fraction of the path-traced effect captured, read from `measured` (the cells of
+/// [`experiments::measured_table`]; "–" for a cell it lacks).
 ///
 /// # Errors
-/// A message when the grammar ([`decide`]) or an experiment fails (never for the built-in tables).
+/// A message when the grammar ([`decide`]) fails (never for the built-in tables).
 ///
 /// # Examples
-/// ```no_run
-/// // Not run here: it needs the measured table; `tests::grammar_tables_snapshot` pins the output.
-/// let markdown = hw3::q5_effect_tables::student_comparison_markdown().unwrap();
-/// assert!(markdown.contains("| 5(a)(a) |"));
 /// ```
-pub fn student_comparison_markdown() -> Result<String, String> {
-    let measured = experiments::measured_table().map_err(|e| e.to_string())?;
+/// use hw3::q5_effect_tables::{StudentAnswer, Verdict, experiments::MeasuredCell, student_comparison_markdown};
+/// let cell = MeasuredCell {
+///     effect: "a",
+///     method: "radiosity",
+///     value: 0.0,
+///     reference: 1.4,
+///     fraction: 0.0,
+///     verdict: Verdict::No,
+///     grammar: Verdict::No,
+///     seed: StudentAnswer::No,
+/// };
+/// let markdown = student_comparison_markdown(&[cell]).unwrap();
+/// // 5(a)(a) carries the measured cell; the other eleven seed cells have none here.
+/// assert!(markdown.lines().any(|l| l.starts_with("| 5(a)(a) |") && l.ends_with("| No (0.00) |")));
+/// assert_eq!(markdown.lines().filter(|l| l.starts_with("| 5(") && l.ends_with("| – |")).count(), 11);
+/// ```
+pub fn student_comparison_markdown(measured: &[experiments::MeasuredCell]) -> Result<String, String> {
     let mut rows = Vec::new();
     for cell in grammar_table().map_err(|e| e.to_string())?.iter().filter(|c| c.seed != StudentAnswer::NotAsked) {
         let Some(method) = ALGORITHMS.iter().find(|m| m.id == cell.method) else { continue };
@@ -59,31 +71,42 @@ pub fn student_comparison_markdown() -> Result<String, String> {
     Ok(markdown_table(&header, rows))
 }
 
-/// The output of `hw3 effects-table`: the grammar tables, the seed comparison and the measured
+/// The output of `hw3 effect-tables` for the measured cells `measured` (the CLI passes
+/// [`experiments::measured_table`]): the grammar tables, the seed comparison and the measured
 /// table as text, or everything as one JSON value.
 ///
 /// # Errors
-/// A message when a table cannot be built (a grammar overflow or a scene error).
+/// A message when a table cannot be built (a grammar overflow).
 ///
 /// # Examples
-/// ```no_run
-/// // Not run here: it needs the measured table; `tests::effects_table_json_has_every_cell_with_its_seed_answer`
-/// // runs both forms.
-/// let json: serde_json::Value =
-///     serde_json::from_str(&hw3::q5_effect_tables::effects_table_command(true).unwrap()).unwrap();
-/// assert_eq!(json["measured"].as_array().unwrap().len(), 24);
 /// ```
-pub fn effects_table_command(json: bool) -> Result<String, String> {
+/// use hw3::q5_effect_tables::{ALGORITHMS, EFFECTS, StudentAnswer, Verdict, effect_tables_command};
+/// use hw3::q5_effect_tables::experiments::MeasuredCell;
+/// let cell = MeasuredCell {
+///     effect: "e",
+///     method: "whitted",
+///     value: 0.0,
+///     reference: 0.3,
+///     fraction: 0.0,
+///     verdict: Verdict::No,
+///     grammar: Verdict::No,
+///     seed: StudentAnswer::NotAsked,
+/// };
+/// let json: serde_json::Value = serde_json::from_str(&effect_tables_command(true, &[cell]).unwrap()).unwrap();
+/// assert_eq!(json["measured"][0]["method"], "whitted");
+/// assert_eq!(json["grammar"].as_array().unwrap().len(), 2 * EFFECTS.len() * ALGORITHMS.len()); // two lights
+/// assert!(effect_tables_command(false, &[]).unwrap().contains("measured verdict"));
+/// ```
+pub fn effect_tables_command(json: bool, measured: &[experiments::MeasuredCell]) -> Result<String, String> {
     let cells = grammar_table().map_err(|e| e.to_string())?;
-    let measured = experiments::measured_table().map_err(|e| e.to_string())?;
     if json {
         let value = serde_json::json!({ "grammar": cells, "measured": measured });
         serde_json::to_string_pretty(&value).map_err(|e| e.to_string())
     } else {
         let mut out = grammar_table_markdown().map_err(|e| e.to_string())?;
-        out.push_str(&student_comparison_markdown()?);
+        out.push_str(&student_comparison_markdown(measured)?);
         out.push('\n');
-        out.push_str(&experiments::measured_table_markdown(&measured));
+        out.push_str(&experiments::measured_table_markdown(measured));
         Ok(out)
     }
 }
@@ -129,8 +152,9 @@ pub fn answers() -> Answers {
 /// ```
 pub fn figures() -> Result<Vec<Figure>, PlotError> {
     let mut figures = figures::figures()?;
-    let comparison = student_comparison_markdown()
-        .map_err(|message| PlotError::Draw { figure: "q5_seed_comparison.md".into(), message })?;
+    let draw_error = |message| PlotError::Draw { figure: "q5_seed_comparison.md".into(), message };
+    let measured = experiments::measured_table().map_err(|e| draw_error(e.to_string()))?;
+    let comparison = student_comparison_markdown(&measured).map_err(draw_error)?;
     figures.push(Figure { file_name: "q5_seed_comparison.md".into(), bytes: comparison.into_bytes() });
     figures.push(photon_accuracy::figure()?);
     figures.push(photon_cornell::figure()?);
@@ -187,15 +211,16 @@ mod tests {
     }
 
     #[test]
-    fn effects_table_json_has_every_cell_with_its_seed_answer() {
-        let value: serde_json::Value = serde_json::from_str(&effects_table_command(true).unwrap()).unwrap();
+    fn effect_tables_json_has_every_cell_with_its_seed_answer() {
+        let measured = experiments::measured_table().unwrap();
+        let value: serde_json::Value = serde_json::from_str(&effect_tables_command(true, &measured).unwrap()).unwrap();
         let grammar = value["grammar"].as_array().unwrap();
         assert_eq!(grammar.len(), 2 * EFFECTS.len() * ALGORITHMS.len());
         let first = &grammar[0];
         assert_eq!((first["effect"].as_str(), first["method"].as_str()), (Some("a"), Some("radiosity")));
         assert_eq!((first["verdict"].as_str(), first["seed"].as_str()), (Some("no"), Some("no")));
         assert_eq!(value["measured"].as_array().unwrap().len(), 24);
-        let text = effects_table_command(false).unwrap();
+        let text = effect_tables_command(false, &measured).unwrap();
         assert!(text.contains("No `LGE` (seed: No)") && text.contains("measured verdict"));
     }
 
@@ -203,7 +228,8 @@ mod tests {
     fn grammar_tables_snapshot() {
         crate::test_support::insta_settings().bind(|| {
             insta::assert_snapshot!("q5_grammar_tables", grammar_table_markdown().unwrap());
-            insta::assert_snapshot!("q5_seed_comparison", student_comparison_markdown().unwrap());
+            let measured = experiments::measured_table().unwrap();
+            insta::assert_snapshot!("q5_seed_comparison", student_comparison_markdown(&measured).unwrap());
         });
     }
 

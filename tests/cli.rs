@@ -179,6 +179,25 @@ fn readme_lists_exactly_the_commands_and_descriptions_of_hw3_help() {
     }
 }
 
+/// `paths` and `effect-tables` were `effects` and `effects-table`: the old names still run the
+/// same commands (same help, same output) but `--help` no longer lists them.
+#[test]
+fn renamed_commands_keep_their_old_names_as_hidden_aliases() {
+    let help = String::from_utf8(hw3(&["--help"]).stdout).unwrap();
+    for (name, old) in [("paths", "effects"), ("effect-tables", "effects-table")] {
+        let listed = command_listing(&help);
+        assert!(listed.iter().any(|(n, _)| n == name), "{name} missing from --help");
+        assert!(!listed.iter().any(|(n, _)| n == old), "{old} listed in --help");
+        let (new_help, old_help) = (hw3(&[name, "--help"]), hw3(&[old, "--help"]));
+        assert!(new_help.status.success() && old_help.status.success(), "{name} / {old} --help");
+        let text = |out: &Output| String::from_utf8_lossy(&out.stdout).replace(old, name);
+        assert_eq!(text(&old_help), text(&new_help), "{old} is {name}");
+    }
+    let (new, old) = (hw3(&["paths", "fog", "--json"]), hw3(&["effects", "fog", "--json"]));
+    assert_eq!(json(&new), json(&old));
+    assert_usage_error(&hw3(&["effects", "nope"]));
+}
+
 #[test]
 fn a_closed_pipe_ends_quietly_without_a_panic() {
     use std::io::Read;

@@ -24,11 +24,11 @@ fn scenes_lists_every_built_in_scene() {
 }
 
 #[test]
-fn effects_prints_text_and_valid_json() {
-    let out = hw3(&["effects", "motion"]);
+fn paths_prints_text_and_valid_json() {
+    let out = hw3(&["paths", "motion"]);
     assert!(out.status.success());
     assert!(String::from_utf8_lossy(&out.stdout).contains("time_sampling      run"));
-    let out = hw3(&["effects", "motion", "--json"]);
+    let out = hw3(&["paths", "motion", "--json"]);
     let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(json["plan"]["time_sampling"], true);
     assert_eq!(json["plan"]["specular_recursion"], false);
@@ -54,7 +54,7 @@ fn bad_input_exits_2_with_one_line_and_writes_nothing() {
         vec!["render", "still", "--size", "ten", "--out", target],
         vec!["render", "still", "--spp", "0", "--out", target],
         vec!["render", "still", "--effects", "some", "--out", target],
-        vec!["effects", "nope"],
+        vec!["paths", "nope"],
     ] {
         let out = hw3(&args);
         assert_eq!(out.status.code(), Some(2), "{args:?}");

@@ -319,14 +319,14 @@ fn q4_worked_probe_sums_are_right() {
 #[test]
 fn q5_cosine_falloff_is_the_point_source_law_and_matches_the_measurement() {
     use hw3::q5_effect_tables::effect_scenes::{FLOOR_LIGHT_HEIGHT, FLOOR_LIGHT_SIZE, OPEN_LIGHT_RADIANCE};
-    use hw3::q5_effect_tables::scenes::WHITE;
+    use hw3::render::catalogue::CORNELL_WHITE;
     let q5 = chapter("q5_effect_tables.md");
     let aside = 1.5;
     assert!(q5.contains("1.5 units aside"));
     let h2 = FLOOR_LIGHT_HEIGHT * FLOOR_LIGHT_HEIGHT;
     let ratio = (h2 / (h2 + aside * aside)).powi(2);
     assert!(q5.contains(&format!("$(16/18.25)^2 = {ratio:.2}$ of the near one")), "ratio {ratio:.4}");
-    let albedo = (WHITE.x + WHITE.y + WHITE.z) / 3.0;
+    let albedo = CORNELL_WHITE.element_sum() / 3.0;
     let near = albedo / std::f64::consts::PI * OPEN_LIGHT_RADIANCE * FLOOR_LIGHT_SIZE * FLOOR_LIGHT_SIZE / h2;
     let predicted = near * (1.0 - ratio);
     assert!(q5.contains(&format!("predicts a difference of {predicted:.4}")), "predicted {predicted:.4}");

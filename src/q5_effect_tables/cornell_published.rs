@@ -5,7 +5,7 @@
 //! in millimetres, converted to metres here. The reflectances are measured spectra; the crate is
 //! RGB, so it uses the RGB stand-ins of the Tungsten renderer's scene
 //! (book.vertexwahn.de/docs/tools/cornell_box: white (0.725, 0.71, 0.68), red (0.63, 0.065, 0.05),
-//! green (0.14, 0.45, 0.091), the crate's [`WHITE`], [`RED`], [`GREEN`]) and the light radiance
+//! green (0.14, 0.45, 0.091), the crate's [`CORNELL_WHITE`], [`CORNELL_RED`], [`CORNELL_GREEN`]) and the light radiance
 //! of Mitsuba 3's `cornell_box()` (18.387, 13.987, 6.754).
 //!
 //! The renderer's quads are parallelograms (corner + two edges). Of the published polygons the
@@ -20,9 +20,9 @@
 use super::error::ExperimentError;
 use super::photon_cornell::Reference;
 use super::radiosity::{Mesh, Solver, System};
-use super::scenes::{GREEN, RED, WHITE};
 use crate::geometry::{InputError, Ray};
 use crate::render::analysis::analyze;
+use crate::render::catalogue::{CORNELL_GREEN, CORNELL_RED, CORNELL_WHITE};
 use crate::render::integrator::Integrator;
 use crate::render::{Settings, render};
 use crate::render::{
@@ -32,6 +32,14 @@ use crate::render::{
 use glam::DVec3;
 
 /// Radiance of the light (Mitsuba 3's RGB stand-in for the published spectrum).
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::cornell_published::{LIGHT_RADIANCE, scene};
+/// // The one emitter of the scene, warm (red > green > blue).
+/// assert_eq!(scene().unwrap().area_lights().next().unwrap().radiance, LIGHT_RADIANCE);
+/// assert!(LIGHT_RADIANCE.x > LIGHT_RADIANCE.y && LIGHT_RADIANCE.y > LIGHT_RADIANCE.z);
+/// ```
 pub const LIGHT_RADIANCE: DVec3 = DVec3::new(18.387, 13.987, 6.754);
 
 /// A point given in the data page's millimetres, in metres.
@@ -78,7 +86,7 @@ fn block(top: [(f64, f64); 4], height: f64, material: Material) -> Vec<Object> {
 /// assert_eq!(scene.objects().len(), 16); // 5 walls, the light, 2 blocks × 5 faces
 /// ```
 pub fn scene() -> Result<Scene, InputError> {
-    let white = Material::Diffuse { albedo: WHITE };
+    let white = Material::Diffuse { albedo: CORNELL_WHITE };
     let mut objects = vec![
         // Floor (552.8,0,0) (0,0,0) (0,0,559.2) (549.6,0,559.2): corner (0,0,0), normal +y.
         parallelogram(mm(0.0, 0.0, 0.0), mm(0.0, 0.0, 559.2), mm(552.8, 0.0, 0.0), white),
@@ -87,13 +95,18 @@ pub fn scene() -> Result<Scene, InputError> {
         // Back wall z = 559.2: (549.6,0) (0,0) (0,548.8) (556,548.8), normal −z.
         parallelogram(mm(0.0, 0.0, 559.2), mm(0.0, 548.8, 559.2), mm(549.6, 0.0, 559.2), white),
         // Green wall x = 0, normal +x.
-        parallelogram(mm(0.0, 0.0, 0.0), mm(0.0, 548.8, 0.0), mm(0.0, 0.0, 559.2), Material::Diffuse { albedo: GREEN }),
+        parallelogram(
+            mm(0.0, 0.0, 0.0),
+            mm(0.0, 548.8, 0.0),
+            mm(0.0, 0.0, 559.2),
+            Material::Diffuse { albedo: CORNELL_GREEN },
+        ),
         // Red wall (552.8,0,0) (549.6,0,559.2) (556,548.8,559.2) (556,548.8,0), normal −x.
         parallelogram(
             mm(552.8, 0.0, 0.0),
             mm(549.6, 0.0, 559.2),
             mm(556.0, 548.8, 0.0),
-            Material::Diffuse { albedo: RED },
+            Material::Diffuse { albedo: CORNELL_RED },
         ),
         // Light y = 548.8 − 0.1, x 213–343, z 227–332, facing down.
         parallelogram(
@@ -144,6 +157,13 @@ pub fn wall_probes() -> Vec<Ray<f64>> {
 }
 
 /// The wall of each of the [`wall_probes`], in order.
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::cornell_published::{PROBE_WALLS, wall_probes};
+/// assert_eq!(PROBE_WALLS.len(), wall_probes().len());
+/// assert_eq!(PROBE_WALLS.iter().filter(|&&w| w == "red").count(), 4); // four per wall
+/// ```
 pub const PROBE_WALLS: [&str; 20] = [
     "floor", "floor", "floor", "floor", "ceiling", "ceiling", "ceiling", "ceiling", "back", "back", "back", "back",
     "green", "red", "green", "red", "green", "red", "green", "red",
@@ -174,27 +194,30 @@ pub fn radiosity_at_probes(n: usize, samples: usize) -> Result<Vec<f64>, Experim
 }
 
 /// The radiosity solution rendered from the published camera next to the path tracer's image of
-/// the same scene (`size × size` each; radiosity at 12 × 12 patches per quad and one form-factor sample,
-/// the path tracer at 32 samples per pixel, seed 1).
+/// the same scene (`size × size` each; radiosity at `patches × patches` per quad and one
+/// form-factor sample, 80 Gauss–Seidel sweeps; the path tracer at `spp` samples per pixel, seed 1).
+/// The figure takes [`SIDE_BY_SIDE_PATCHES`] and [`PATH_SPP`](super::PATH_SPP).
 ///
 /// # Errors
-/// [`ExperimentError`] if the scene, the system or the render fails (never for these numbers).
+/// [`ExperimentError`] for a zero count, or if the render fails.
 ///
 /// # Examples
-/// ```no_run
-/// // Not run here: 12 × 12 patches per quad and a 32-spp render; `tests/docs.rs` compares the figure
-/// // built from it with the committed one.
-/// let both = hw3::q5_effect_tables::cornell_published::side_by_side(200).unwrap();
-/// assert_eq!(both.dimensions(), (400, 200));
 /// ```
-pub fn side_by_side(size: u32) -> Result<image::RgbImage, ExperimentError> {
+/// // A thumbnail: 2 × 2 patches per quad and one sample per pixel.
+/// let both = hw3::q5_effect_tables::cornell_published::side_by_side(12, 2, 1).unwrap();
+/// assert_eq!(both.dimensions(), (24, 12));
+/// // The ceiling light shows in both halves: the top middle pixel of each is bright.
+/// assert!([6, 18].iter().all(|&x| both.get_pixel(x, 0).0[0] > 0 || both.get_pixel(x, 1).0[0] > 0));
+/// assert!(hw3::q5_effect_tables::cornell_published::side_by_side(12, 0, 1).is_err());
+/// ```
+pub fn side_by_side(size: u32, patches: usize, spp: u32) -> Result<image::RgbImage, ExperimentError> {
     let scene = scene()?;
-    let system = System::new(&scene, Mesh::new(&scene, 12)?, 1)?;
+    let system = System::new(&scene, Mesh::new(&scene, patches)?, 1)?;
     let solution = system.solve(Solver::GaussSeidel, 80).pop().unwrap_or_default();
     let radiosity = system.render(&scene, &solution, size, size).to_rgb8();
     let settings = Settings {
         integrator: Integrator::PathTracer { max_depth: 12 },
-        ..Settings::whitted(size, size, 32, analyze(&scene).plan)
+        ..Settings::whitted(size, size, spp, analyze(&scene).plan)
     };
     let traced = render(&scene, &settings, &|_| {}).map_err(|e| ExperimentError::Render(e.to_string()))?.to_rgb8();
     let mut both = image::RgbImage::new(2 * size, size);
@@ -203,14 +226,44 @@ pub fn side_by_side(size: u32) -> Result<image::RgbImage, ExperimentError> {
     Ok(both)
 }
 
+/// Radiosity's patches per quad edge in the published box's figure ([`side_by_side`]).
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::cornell_published::{LEVELS, SIDE_BY_SIDE_PATCHES};
+/// // The figure shows the validation table's finest mesh.
+/// assert_eq!(SIDE_BY_SIDE_PATCHES, LEVELS[LEVELS.len() - 1]);
+/// ```
+pub const SIDE_BY_SIDE_PATCHES: usize = 12;
+
 /// Path-traced samples per probe of the committed converged reference ([`converged_reference`]).
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::cornell_published::REFERENCE_SPP;
+/// // The committed file says how many samples it holds.
+/// assert!(hw3::data::Q5_CORNELL_REFERENCE.contains(&format!("{REFERENCE_SPP} samples per probe")));
+/// ```
 pub const REFERENCE_SPP: u64 = 1 << 23;
 
 /// Random seed of the committed reference (independent of the seed-7 streams of
 /// [`super::photon_cornell::reference`], which the tests use for a cheap check of it).
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::cornell_published::REFERENCE_SEED;
+/// assert!(hw3::data::Q5_CORNELL_REFERENCE.contains(&format!("seed {REFERENCE_SEED},")));
+/// ```
 pub const REFERENCE_SEED: u64 = 11;
 
 /// File name of the committed reference (under `docs/data/`).
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::cornell_published::REFERENCE_CSV;
+/// // Errors reading the compiled-in file name it.
+/// assert_eq!(REFERENCE_CSV, "q5_cornell_reference.csv");
+/// ```
 pub const REFERENCE_CSV: &str = "q5_cornell_reference.csv";
 
 /// The converged path-traced reference at the [`wall_probes`], as committed in
@@ -252,6 +305,14 @@ pub fn converged_reference() -> Result<Reference, String> {
 }
 
 /// Patches per quad edge of the validation table.
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::cornell_published::LEVELS;
+/// // Coarse to fine, the finest 46 mm patches on the 552.8 mm floor.
+/// assert!(LEVELS.windows(2).all(|w| w[0] < w[1]));
+/// assert_eq!((552.8 / LEVELS[3] as f64).round(), 46.0);
+/// ```
 pub const LEVELS: [usize; 4] = [4, 6, 8, 12];
 
 /// Relative errors `radiosity/path-traced − 1` at the [`wall_probes`] for `n × n` patches per quad

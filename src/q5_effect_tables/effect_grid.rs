@@ -9,9 +9,9 @@ use super::experiments::{
     measured_table, photon_eye,
 };
 use super::radiosity::{Mesh, Solver, System};
-use super::scenes::cornell_box;
 use crate::plot::{self, Figure, Panel, PlotError};
 use crate::render::analysis::analyze;
+use crate::render::catalogue::{CornellContents, cornell_box};
 use crate::render::integrator::Integrator;
 use crate::render::passes::{Pass, Passes};
 use crate::render::photon::trace_photons;
@@ -62,7 +62,7 @@ const ROWS: [Row; 6] = [
 fn row_scene(effect: &str) -> Result<Scene, ExperimentError> {
     Ok(match effect {
         "a" => lit_floor(GLOSSY_FLOOR, false)?.with_camera(highlight_camera())?,
-        "b" | "e" => cornell_box(true)?,
+        "b" | "e" => cornell_box(true, CornellContents::Block)?,
         "c" => lit_floor(WHITE_FLOOR, false)?,
         "d_mirror" => mirror_room()?,
         "d_caustic" => lit_floor(WHITE_FLOOR, true)?,
@@ -201,7 +201,7 @@ mod tests {
     /// mapping's eye pass renders the two-pass image bit for bit (a small photon pass here).
     #[test]
     fn photon_mapping_is_the_two_pass_image_where_nothing_is_specular() {
-        let scene = cornell_box(true).unwrap();
+        let scene = cornell_box(true, CornellContents::Block).unwrap();
         assert!(!has_specular(&scene));
         let maps = trace_photons(&scene, 4_000, PHOTON_SEED).unwrap();
         assert!(maps.caustic.is_empty() && !maps.indirect.is_empty());

@@ -11,8 +11,8 @@
 //!   reaches directly (the light is one-sided and the mirror is behind it), so the mirror shows
 //!   `LDS+E` and no `LS…` path.
 
-use super::scenes::{RED, WHITE};
 use crate::geometry::{InputError, Ray, Sphere};
+use crate::render::catalogue::{CORNELL_RED, CORNELL_WHITE};
 use crate::render::{
     camera::Camera,
     scene::{Material, Object, Scene},
@@ -23,8 +23,9 @@ use glam::DVec3;
 ///
 /// # Examples
 /// ```
-/// use hw3::q5_effect_tables::{effect_scenes::OPEN_LIGHT_RADIANCE, scenes::LIGHT_RADIANCE};
-/// assert!(OPEN_LIGHT_RADIANCE > LIGHT_RADIANCE);
+/// use hw3::q5_effect_tables::effect_scenes::OPEN_LIGHT_RADIANCE;
+/// use hw3::render::catalogue::CORNELL_LIGHT_RADIANCE;
+/// assert!(OPEN_LIGHT_RADIANCE > CORNELL_LIGHT_RADIANCE);
 /// ```
 pub const OPEN_LIGHT_RADIANCE: f64 = 50.0;
 /// Side of the square light over the floor.
@@ -163,11 +164,12 @@ pub fn lit_floor(floor: Material, glass_ball: bool) -> Result<Scene, InputError>
 ///
 /// # Examples
 /// ```
-/// use hw3::q5_effect_tables::{effect_scenes::WHITE_FLOOR, scenes::WHITE};
+/// use hw3::q5_effect_tables::effect_scenes::WHITE_FLOOR;
+/// use hw3::render::catalogue::CORNELL_WHITE;
 /// use hw3::render::scene::Material;
-/// assert_eq!(WHITE_FLOOR, Material::Diffuse { albedo: WHITE });
+/// assert_eq!(WHITE_FLOOR, Material::Diffuse { albedo: CORNELL_WHITE });
 /// ```
-pub const WHITE_FLOOR: Material = Material::Diffuse { albedo: WHITE };
+pub const WHITE_FLOOR: Material = Material::Diffuse { albedo: CORNELL_WHITE };
 
 /// A red diffuse panel (`x = −1`, facing `+x`, `y ∈ [0, 2]`, `z ∈ [−1, 1]`), a 0.6 × 0.4 light
 /// at `x = 0` above the eye line facing `−x` (towards the panel), and a mirror (`x = 1`, facing
@@ -184,7 +186,12 @@ pub const WHITE_FLOOR: Material = Material::Diffuse { albedo: WHITE };
 /// ```
 pub fn mirror_room() -> Result<Scene, InputError> {
     let objects = vec![
-        Object::quad(DVec3::new(-1.0, 0.0, -1.0), DVec3::Y * 2.0, DVec3::Z * 2.0, Material::Diffuse { albedo: RED }),
+        Object::quad(
+            DVec3::new(-1.0, 0.0, -1.0),
+            DVec3::Y * 2.0,
+            DVec3::Z * 2.0,
+            Material::Diffuse { albedo: CORNELL_RED },
+        ),
         Object::quad(
             DVec3::new(0.0, 1.6, -0.3),
             DVec3::Z * 0.6,

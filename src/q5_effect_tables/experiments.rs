@@ -5,9 +5,10 @@ use super::effect_scenes::{self, GLOSSY_FLOOR, WHITE_FLOOR, lit_floor, mirror_ro
 use super::error::ExperimentError;
 use super::grammar::{ALGORITHMS, EFFECTS, LightKind, StudentAnswer, Verdict, decide, student_answer};
 use super::radiosity::{Mesh, Solver, System};
-use super::scenes::{bleeding_region, cornell_box, glow_region, grey};
+use super::regions::{bleeding_region, glow_region, grey};
 use crate::geometry::Ray;
 use crate::plot::markdown_table;
+use crate::render::catalogue::{CornellContents, cornell_box};
 use crate::render::photon::{Gather, PhotonError, PhotonMaps, trace_photons};
 use crate::render::scene::{Material, Scene};
 use crate::render::{
@@ -27,9 +28,10 @@ use std::sync::OnceLock;
 ///
 /// # Examples
 /// ```
-/// use hw3::q5_effect_tables::{experiments::TABLE_MESH, radiosity::Mesh, scenes::cornell_box};
+/// use hw3::q5_effect_tables::{experiments::TABLE_MESH, radiosity::Mesh};
+/// use hw3::render::catalogue::{CornellContents, cornell_box};
 /// // The box's 11 quads at 6 × 6 patches each.
-/// let scene = cornell_box(true).unwrap();
+/// let scene = cornell_box(true, CornellContents::Block).unwrap();
 /// assert_eq!(Mesh::new(&scene, TABLE_MESH.0).unwrap().patches.len(), 11 * 36);
 /// ```
 pub const TABLE_MESH: (usize, usize) = (6, 2);
@@ -353,7 +355,7 @@ pub fn caustic(method: Measured) -> Result<f64, ExperimentError> {
 /// ```
 pub fn bleeding(method: Measured) -> Result<f64, ExperimentError> {
     let ratio = |red: bool| -> Result<f64, ExperimentError> {
-        let l = mean_radiance(&cornell_box(red)?, method, &bleeding_region())?;
+        let l = mean_radiance(&cornell_box(red, CornellContents::Block)?, method, &bleeding_region())?;
         Ok(l.x / l.y)
     };
     Ok(ratio(true)? / ratio(false)? - 1.0)
@@ -371,7 +373,7 @@ pub fn bleeding(method: Measured) -> Result<f64, ExperimentError> {
 /// assert_eq!(glow(Measured::Whitted).unwrap(), 0.0);
 /// ```
 pub fn glow(method: Measured) -> Result<f64, ExperimentError> {
-    Ok(grey(mean_radiance(&cornell_box(true)?, method, &glow_region())?))
+    Ok(grey(mean_radiance(&cornell_box(true, CornellContents::Block)?, method, &glow_region())?))
 }
 
 /// A measurement: the size of one effect for one method.
@@ -434,7 +436,7 @@ pub fn verdict(fraction: f64) -> Verdict {
 /// Whitted ray tracing and photon mapping ([`TABLE_METHODS`]) against the path tracer.
 ///
 /// Computed once per process (about 10 s in a debug test build) and then cloned: the test, the
-/// figures and `hw3 effects-table` share it.
+/// figures and `hw3 effect-tables` share it.
 ///
 /// # Errors
 /// [`ExperimentError`] if an experiment fails (never for the built-in scenes).
@@ -519,7 +521,9 @@ pub fn measured_table_markdown(cells: &[MeasuredCell]) -> String {
     )
 }
 
-/// The radiosity system of the Cornell box at `n × n` patches per quad (figures and benchmarks).
+/// The radiosity system of the Cornell box with the block and the red wall ([`cornell_box`]),
+/// its quads cut into `n × n` patches, `samples²` form-factor samples per patch (figures and
+/// benchmarks).
 ///
 /// # Errors
 /// As [`System::new`].
@@ -532,7 +536,7 @@ pub fn measured_table_markdown(cells: &[MeasuredCell]) -> String {
 /// assert_eq!(system.mesh.patches.len(), 44);
 /// ```
 pub fn cornell_system(n: usize, samples: usize) -> Result<(Scene, System), ExperimentError> {
-    let scene = cornell_box(true)?;
+    let scene = cornell_box(true, CornellContents::Block)?;
     let system = System::new(&scene, Mesh::new(&scene, n)?, samples)?;
     Ok((scene, system))
 }

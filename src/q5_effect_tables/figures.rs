@@ -1,7 +1,7 @@
 //! Q5's radiosity and experiment figures: the radiosity Cornell box, the solvers' convergence,
 //! the experiment scenes, the published Cornell box, and the measured and grammar tables.
 
-use super::cornell_published;
+use super::cornell_published::{self, SIDE_BY_SIDE_PATCHES};
 use super::effect_scenes::{self, GLOSSY_FLOOR, WHITE_FLOOR, lit_floor, mirror_room};
 use super::error::ExperimentError;
 use super::experiments::{cornell_system, measured_table, measured_table_markdown, reference_passes};
@@ -97,12 +97,16 @@ pub fn renders() -> Result<Vec<Figure>, PlotError> {
     let mut figures = vec![plot::panel_grid(radiosity_png, &[Panel { image, label }], 1)?];
     figures.push(effect_scenes_figure()?);
     let size = 320;
-    let both = cornell_published::side_by_side(size).map_err(|e| draw_error(PUBLISHED_PNG, &e))?;
+    let both = cornell_published::side_by_side(size, SIDE_BY_SIDE_PATCHES, PATH_SPP)
+        .map_err(|e| draw_error(PUBLISHED_PNG, &e))?;
     let half = |x| image::imageops::crop_imm(&both, x, 0, size, size).to_image();
     let (radiosity, path) = (half(0), half(size));
     let difference = plot::difference_line("radiosity", &path, &radiosity);
     let panels = [
-        Panel { image: radiosity, label: "radiosity\n12 × 12 patches per quad, interpolated".into() },
+        Panel {
+            image: radiosity,
+            label: format!("radiosity\n{SIDE_BY_SIDE_PATCHES} × {SIDE_BY_SIDE_PATCHES} patches per quad, interpolated"),
+        },
         Panel { image: path, label: format!("path tracing\n{PATH_SPP} spp\n{difference}") },
     ];
     figures.push(plot::panel_grid(PUBLISHED_PNG, &panels, 2)?);

@@ -1,5 +1,5 @@
 //! The photon map's error in a scene with gradients: the global (`all`) map's radiance estimate
-//! at fixed floor points of the Cornell-like box ([`cornell_box`]) against the path tracer, for
+//! at fixed floor points of the Cornell box with the block ([`cornell_box`]) against the path tracer, for
 //! several photon counts and k. `cargo bench --bench q5_photon` measures it and writes
 //! `docs/data/q5_photon_cornell.md` and `.csv`; [`figure`] plots the committed CSV, so the
 //! figures stay deterministic (timings come only from the benchmark).
@@ -10,9 +10,9 @@
 //! radiance over a radius `r ∝ √(k/N)`, so it grows with k and shrinks as photons are added).
 
 use super::photon_accuracy::LogLogChart;
-use super::scenes::cornell_box;
 use crate::geometry::{InputError, Ray};
 use crate::plot::{Figure, PlotError};
+use crate::render::catalogue::{CornellContents, cornell_box};
 use crate::render::photon::{PhotonError, PhotonMap};
 use crate::render::scene::Scene;
 use crate::render::{analysis::analyze, passes::Pass};
@@ -25,6 +25,13 @@ use plotters::prelude::SeriesLabelPosition;
 use rayon::prelude::*;
 
 /// File name of the committed measurement (under `docs/data/`).
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::photon_cornell::{CSV_NAME, parse};
+/// // The committed file, compiled in, parses: one row per photon count and k.
+/// assert!(CSV_NAME.ends_with(".csv") && parse(hw3::data::Q5_PHOTON_CORNELL).unwrap().len() > 4);
+/// ```
 pub const CSV_NAME: &str = "q5_photon_cornell.csv";
 
 /// The box ([`cornell_box`] with the red wall) and the probe rays: straight down onto a 6 × 6 grid
@@ -40,7 +47,7 @@ pub const CSV_NAME: &str = "q5_photon_cornell.csv";
 /// assert_eq!(probes.len(), 32);
 /// ```
 pub fn scene_and_probes() -> Result<(Scene, Vec<Ray<f64>>), InputError> {
-    let scene = cornell_box(true)?;
+    let scene = cornell_box(true, CornellContents::Block)?;
     let coordinates = (0..6).map(|i| -0.9 + 0.36 * f64::from(i));
     let probes = coordinates
         .clone()
@@ -52,6 +59,14 @@ pub fn scene_and_probes() -> Result<(Scene, Vec<Ray<f64>>), InputError> {
 }
 
 /// The path-traced reference at each probe: channel-mean radiance and its standard error.
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::photon_cornell::{reference, scene_and_probes};
+/// let (scene, probes) = scene_and_probes().unwrap();
+/// let truth = reference(&scene, &probes[..3], 16);
+/// assert_eq!((truth.radiance.len(), truth.standard_error.len()), (3, 3));
+/// ```
 #[derive(Debug, Clone, PartialEq)]
 pub struct Reference {
     /// Mean radiance per probe.
@@ -93,6 +108,13 @@ pub fn reference(scene: &Scene, probes: &[Ray<f64>], spp: u32) -> Reference {
 
 /// Samples of one random stream in [`reference_seeded`]: a long reference is cut into chunks of
 /// this many samples, each its own stream, so that both cores share the work of a single probe.
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::{cornell_published::REFERENCE_SPP, photon_cornell::REFERENCE_CHUNK};
+/// // The committed published-box reference is 64 chunks per probe.
+/// assert_eq!(REFERENCE_SPP / REFERENCE_CHUNK, 64);
+/// ```
 pub const REFERENCE_CHUNK: u64 = 1 << 17;
 
 /// Path-traces `spp` samples along every probe with random seed `seed` (every bounce on, 12 at
@@ -172,6 +194,14 @@ pub fn estimates(scene: &Scene, map: &PhotonMap, probes: &[Ray<f64>], k: usize) 
 }
 
 /// Relative error of estimates against a reference, over probes and independent traces.
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::photon_cornell::error_split;
+/// // Two traces exactly 10 % high: all bias, no noise.
+/// let split = error_split(&[vec![1.1, 2.2], vec![1.1, 2.2]], &[1.0, 2.0]);
+/// assert!(split.noise == 0.0 && (split.bias - 0.1).abs() < 1e-12 && (split.rms - split.bias).abs() < 1e-12);
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ErrorSplit {
     /// Root mean square of `estimate/reference − 1` over every probe and trace.
@@ -241,6 +271,14 @@ pub fn log_log_slope(points: &[(f64, f64)]) -> f64 {
 }
 
 /// One row of the committed CSV.
+///
+/// # Examples
+/// ```
+/// let rows = hw3::q5_effect_tables::photon_cornell::parse(hw3::data::Q5_PHOTON_CORNELL).unwrap();
+/// // More neighbours: less noise, at every photon count of the committed measurement.
+/// let first = rows.iter().filter(|r| r.photons == rows[0].photons).collect::<Vec<_>>();
+/// assert!(first.windows(2).all(|w| w[0].k < w[1].k && w[0].error.noise > w[1].error.noise));
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Row {
     /// Photons emitted per trace.

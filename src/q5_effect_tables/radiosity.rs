@@ -21,8 +21,9 @@ use std::f64::consts::PI;
 ///
 /// # Examples
 /// ```
-/// use hw3::q5_effect_tables::{radiosity::{Mesh, RadiosityError}, scenes::cornell_box};
-/// let scene = cornell_box(true).unwrap();
+/// use hw3::q5_effect_tables::radiosity::{Mesh, RadiosityError};
+/// use hw3::render::catalogue::{CornellContents, cornell_box};
+/// let scene = cornell_box(true, CornellContents::Block).unwrap();
 /// assert_eq!(Mesh::new(&scene, 0).unwrap_err(), RadiosityError::ZeroCount { name: "subdivisions" });
 /// ```
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
@@ -42,9 +43,10 @@ pub enum RadiosityError {
 ///
 /// # Examples
 /// ```
-/// use hw3::q5_effect_tables::{radiosity::Mesh, scenes::cornell_box};
+/// use hw3::q5_effect_tables::{radiosity::Mesh};
+/// use hw3::render::catalogue::{CornellContents, cornell_box};
 /// // The 2 × 2 floor in 2 × 2 patches: each 1 × 1, facing up.
-/// let mesh = Mesh::new(&cornell_box(true).unwrap(), 2).unwrap();
+/// let mesh = Mesh::new(&cornell_box(true, CornellContents::Block).unwrap(), 2).unwrap();
 /// let patch = mesh.patches[0];
 /// assert_eq!((patch.object, patch.area, patch.normal), (0, 1.0, glam::DVec3::Y));
 /// ```
@@ -73,8 +75,9 @@ impl Patch {
     ///
     /// # Examples
     /// ```
-    /// use hw3::q5_effect_tables::{radiosity::Mesh, scenes::cornell_box};
-    /// let scene = cornell_box(true).unwrap();
+    /// use hw3::q5_effect_tables::{radiosity::Mesh};
+    /// use hw3::render::catalogue::{CornellContents, cornell_box};
+    /// let scene = cornell_box(true, CornellContents::Block).unwrap();
     /// let patch = Mesh::new(&scene, 2).unwrap().patches[0];
     /// assert_eq!(patch.point(0.0, 0.0), patch.corner);
     /// assert!((patch.point(1.0, 1.0) - (patch.corner + patch.edge_u + patch.edge_v)).length() < 1e-12);
@@ -97,8 +100,9 @@ impl Patch {
 ///
 /// # Examples
 /// ```
-/// use hw3::q5_effect_tables::{radiosity::Mesh, scenes::cornell_box};
-/// let mesh = Mesh::new(&cornell_box(true).unwrap(), 3).unwrap();
+/// use hw3::q5_effect_tables::{radiosity::Mesh};
+/// use hw3::render::catalogue::{CornellContents, cornell_box};
+/// let mesh = Mesh::new(&cornell_box(true, CornellContents::Block).unwrap(), 3).unwrap();
 /// assert_eq!((mesh.patches.len(), mesh.first_patch[1]), (11 * 9, Some(9)));
 /// ```
 #[derive(Debug, Clone, PartialEq)]
@@ -121,7 +125,7 @@ impl Mesh {
     /// # Examples
     /// ```
     /// use hw3::q5_effect_tables::radiosity::Mesh;
-    /// let scene = hw3::q5_effect_tables::scenes::cornell_box(true).unwrap();
+    /// let scene = hw3::render::catalogue::cornell_box(true, hw3::render::catalogue::CornellContents::Block).unwrap();
     /// let mesh = Mesh::new(&scene, 2).unwrap();
     /// assert_eq!(mesh.patches.len() % 4, 0);
     /// assert!(Mesh::new(&scene, 0).is_err());
@@ -221,9 +225,10 @@ pub fn point_to_polygon(point: DVec3, normal: DVec3, vertices: &[DVec3]) -> f64 
 ///
 /// # Examples
 /// ```
-/// use hw3::q5_effect_tables::{radiosity::{Mesh, System}, scenes::cornell_box};
+/// use hw3::q5_effect_tables::radiosity::{Mesh, System};
+/// use hw3::render::catalogue::{CornellContents, cornell_box};
 /// // The box is open at the front: every row of form factors sums to at most 1.
-/// let scene = cornell_box(true).unwrap();
+/// let scene = cornell_box(true, CornellContents::Block).unwrap();
 /// let system = System::new(&scene, Mesh::new(&scene, 2).unwrap(), 1).unwrap();
 /// assert!(system.form_factors.iter().all(|row| row.iter().sum::<f64>() <= 1.0 + 1e-9));
 /// ```
@@ -248,8 +253,9 @@ impl System {
     ///
     /// # Examples
     /// ```
-    /// use hw3::q5_effect_tables::{radiosity::{Mesh, System}, scenes::cornell_box};
-    /// let scene = cornell_box(true).unwrap();
+    /// use hw3::q5_effect_tables::radiosity::{Mesh, System};
+    /// use hw3::render::catalogue::{CornellContents, cornell_box};
+    /// let scene = cornell_box(true, CornellContents::Block).unwrap();
     /// assert!(System::new(&scene, Mesh::new(&scene, 2).unwrap(), 1).is_ok());
     /// assert!(System::new(&scene, Mesh::new(&scene, 2).unwrap(), 0).is_err());
     /// ```
@@ -518,7 +524,7 @@ pub fn relative_errors(history: &[Vec<DVec3>], reference: &[DVec3]) -> Vec<f64> 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::q5_effect_tables::scenes::{closed_box, cornell_box};
+    use crate::render::catalogue::{CornellContents, cornell_box, furnace_box};
 
     #[test]
     fn point_to_polygon_matches_the_disc_and_the_closed_cube() {
@@ -546,7 +552,7 @@ mod tests {
     #[test]
     fn white_furnace_closed_box_matches_the_analytic_radiance() {
         // Every wall emits L_e = 1 and reflects ρ = 0.6: L = L_e/(1 − ρ) = 2.5 everywhere.
-        let scene = closed_box(DVec3::splat(0.6)).unwrap();
+        let scene = furnace_box(DVec3::splat(0.6)).unwrap();
         let mut mesh = Mesh::new(&scene, 3).unwrap();
         for patch in &mut mesh.patches {
             patch.emission = DVec3::splat(PI);
@@ -566,7 +572,7 @@ mod tests {
 
     #[test]
     fn solvers_reach_the_same_fixed_point_and_gauss_seidel_is_faster_than_jacobi() {
-        let scene = cornell_box(true).unwrap();
+        let scene = cornell_box(true, CornellContents::Block).unwrap();
         let system = System::new(&scene, Mesh::new(&scene, 2).unwrap(), 1).unwrap();
         let reference = system.solve(Solver::GaussSeidel, 100).pop().unwrap();
         let errors: Vec<Vec<f64>> =
@@ -579,7 +585,7 @@ mod tests {
 
     #[test]
     fn zero_counts_and_patchless_scenes_are_typed_errors() {
-        let scene = cornell_box(true).unwrap();
+        let scene = cornell_box(true, CornellContents::Block).unwrap();
         assert_eq!(Mesh::new(&scene, 0), Err(RadiosityError::ZeroCount { name: "subdivisions" }));
         let mesh = Mesh::new(&scene, 1).unwrap();
         assert_eq!(System::new(&scene, mesh, 0), Err(RadiosityError::ZeroCount { name: "samples" }));

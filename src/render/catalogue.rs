@@ -1,5 +1,5 @@
 //! The catalogue of built-in scenes: Q1's four hard scenes (and their easy twins), plus a small box for the path
-//! tracer. `hw3 scenes` lists them; `hw3 render NAME` and `hw3 effects NAME` take their names.
+//! tracer, and the Cornell box ([`cornell_box`]) the renderer and Q5 share. `hw3 scenes` lists them; `hw3 render NAME` and `hw3 paths NAME` take their names.
 
 use super::environment::Environment;
 use super::error::RenderError;
@@ -20,7 +20,7 @@ pub const CATALOGUE: [(&str, &str); 11] = [
     ("diffuse-spheres", "Q1c's scene with the spheres made diffuse"),
     ("motion", "Q1d: a ball moving 2 units during the shutter (motion blur)"),
     ("still", "Q1d's scene with the ball at rest"),
-    ("cornell", "a closed box, area light, mirror, glossy and glass spheres (indirect light, caustics)"),
+    ("cornell", "the Cornell box with a mirror, a glossy and a glass sphere (indirect light, caustics)"),
     ("probe-lit", "diffuse, glossy and mirror spheres on a floor, lit only by Q4's courtyard map"),
     ("fog-panel", "a ceiling panel light over a ball in fog (area-light single scattering)"),
     ("caustic", "a glass ball over a white floor under a small area light (a refraction caustic)"),
@@ -229,44 +229,173 @@ pub fn moving_ball_with_shutter(speed: f64, shutter: (f64, f64)) -> Result<Scene
     Scene::new(camera, objects, vec![light], None, DVec3::splat(0.2))
 }
 
-/// A closed box `[−1, 1]³` (red left wall, green right wall, white elsewhere) lit by a 0.5×0.5
-/// area light under the ceiling, with a mirror, a glossy and a glass sphere on the floor.
+/// Reflectance of the Cornell box's white walls: an RGB stand-in for the measured spectrum of
+/// the Cornell University Program of Computer Graphics' "Cornell Box Data", the one of the
+/// Tungsten renderer's scene (book.vertexwahn.de/docs/tools/cornell_box).
+///
+/// # Examples
+/// ```
+/// use hw3::render::catalogue::{CORNELL_GREEN, CORNELL_RED, CORNELL_WHITE};
+/// // White reflects every channel alike (within 5 %); red and green reflect mostly their own.
+/// assert!(CORNELL_WHITE.max_element() - CORNELL_WHITE.min_element() < 0.05);
+/// assert!(CORNELL_RED.x > 5.0 * CORNELL_RED.y && CORNELL_GREEN.y > 3.0 * CORNELL_GREEN.x);
+/// ```
+pub const CORNELL_WHITE: DVec3 = DVec3::new(0.725, 0.71, 0.68);
+/// Reflectance of the Cornell box's red wall (the source of [`CORNELL_WHITE`]).
+///
+/// # Examples
+/// ```
+/// let red = hw3::render::catalogue::CORNELL_RED;
+/// assert!(red.x > red.y && red.x > red.z);
+/// ```
+pub const CORNELL_RED: DVec3 = DVec3::new(0.63, 0.065, 0.05);
+/// Reflectance of the Cornell box's green wall (the source of [`CORNELL_WHITE`]).
+///
+/// # Examples
+/// ```
+/// let green = hw3::render::catalogue::CORNELL_GREEN;
+/// assert!(green.y > green.x && green.y > green.z);
+/// ```
+pub const CORNELL_GREEN: DVec3 = DVec3::new(0.14, 0.45, 0.091);
+/// Radiance of the [`cornell_box`]'s ceiling light (grey).
+///
+/// # Examples
+/// ```
+/// use hw3::render::catalogue::{CORNELL_LIGHT_RADIANCE, CornellContents, cornell_box};
+/// let light = cornell_box(true, CornellContents::Block).unwrap().area_lights().next().unwrap();
+/// assert_eq!(light.radiance, glam::DVec3::splat(CORNELL_LIGHT_RADIANCE));
+/// ```
+pub const CORNELL_LIGHT_RADIANCE: f64 = 12.0;
+
+/// The six inward-facing walls of the box `[−1, 1]³` (each quad's `edge_u × edge_v` points
+/// inside), in the order floor, ceiling, back, left, right, front.
+fn box_walls(albedos: [DVec3; 6]) -> Vec<Object> {
+    let (x, y, z) = (DVec3::X * 2.0, DVec3::Y * 2.0, DVec3::Z * 2.0);
+    let low = DVec3::splat(-1.0);
+    let geometry = [
+        (low, z, x),
+        (DVec3::new(-1.0, 1.0, -1.0), x, z),
+        (low, x, y),
+        (low, y, z),
+        (DVec3::new(1.0, -1.0, -1.0), z, y),
+        (DVec3::new(-1.0, -1.0, 1.0), y, x),
+    ];
+    geometry
+        .iter()
+        .zip(albedos)
+        .map(|(&(corner, u, v), albedo)| Object::quad(corner, u, v, Material::Diffuse { albedo }))
+        .collect()
+}
+
+/// A closed box `[−1, 1]³` with every wall of reflectance `albedo` and the camera inside: a white
+/// furnace of quads, where every wall's radiance is the same (the radiosity tests' analytic case).
+///
+/// # Errors
+/// [`InputError`] for an albedo outside `[0, 1]`.
+///
+/// # Examples
+/// ```
+/// use glam::DVec3;
+/// use hw3::render::catalogue::furnace_box;
+/// assert_eq!(furnace_box(DVec3::splat(0.5)).unwrap().objects().len(), 6);
+/// assert!(furnace_box(DVec3::splat(1.5)).is_err());
+/// ```
+pub fn furnace_box(albedo: DVec3) -> Result<Scene, InputError> {
+    let camera = Camera::looking_at(DVec3::new(0.0, 0.0, 0.9), DVec3::ZERO, 60.0);
+    Scene::new(camera, box_walls([albedo; 6]), vec![], None, DVec3::ZERO)
+}
+
+/// What stands on the floor of the [`cornell_box`].
+///
+/// # Examples
+/// ```
+/// use hw3::render::catalogue::{CornellContents, cornell_box};
+/// // Five walls and the light, then the block's five faces or the three spheres.
+/// assert_eq!(cornell_box(true, CornellContents::Block).unwrap().objects().len(), 11);
+/// assert_eq!(cornell_box(true, CornellContents::Spheres).unwrap().objects().len(), 9);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum CornellContents {
+    /// A white block `[0.1, 0.7] × [−1, −0.4] × [−0.3, 0.3]` (five faces, no bottom): a box of
+    /// diffuse surfaces only, Q5's radiosity and measurement scene.
+    Block,
+    /// A mirror sphere (reflectance 0.95), a glossy one and a glass one (index 1.5): the
+    /// `cornell` scene, with reflections and caustics.
+    Spheres,
+}
+
+/// The Cornell box `[−1, 1]³`, open at the front (`z = 1`) where the camera looks in from
+/// `(0, 0, 3.4)`: [`CORNELL_WHITE`] floor, ceiling and back, a [`CORNELL_GREEN`] right wall, a
+/// left wall that is [`CORNELL_RED`] (`red_left`) or white (the twin without the red wall's
+/// bleeding), a 0.5 × 0.5 light of radiance [`CORNELL_LIGHT_RADIANCE`] just under the ceiling
+/// facing down, and `contents` on the floor. Every wall faces inwards; the ceiling is lit only
+/// indirectly (the light faces away from it).
 ///
 /// # Errors
 /// Never for the built-in numbers.
-pub fn cornell_mirror() -> Result<Scene, InputError> {
-    let white = DVec3::splat(0.7);
-    let wall = |corner: DVec3, edge_u: DVec3, edge_v: DVec3, albedo: DVec3| Object {
-        shape: Shape::Quad { corner, edge_u, edge_v },
-        material: Material::Diffuse { albedo },
-    };
-    let two = 2.0;
-    let mut objects = vec![
-        wall(DVec3::splat(-1.0), DVec3::X * two, DVec3::Z * two, white),
-        wall(DVec3::new(-1.0, 1.0, -1.0), DVec3::X * two, DVec3::Z * two, white),
-        wall(DVec3::splat(-1.0), DVec3::X * two, DVec3::Y * two, white),
-        wall(DVec3::splat(-1.0), DVec3::Y * two, DVec3::Z * two, DVec3::new(0.63, 0.065, 0.05)),
-        wall(DVec3::new(1.0, -1.0, -1.0), DVec3::Y * two, DVec3::Z * two, DVec3::new(0.14, 0.45, 0.091)),
-        Object {
-            shape: Shape::Quad {
-                corner: DVec3::new(-0.25, 0.99, -0.25),
-                edge_u: DVec3::X * 0.5,
-                edge_v: DVec3::Z * 0.5,
-            },
-            material: Material::Emitter { radiance: DVec3::splat(12.0) },
-        },
-    ];
-    objects.push(Object {
-        shape: Shape::Sphere { sphere: Sphere::new(DVec3::new(-0.4, -0.6, -0.3), 0.4)?, velocity: DVec3::ZERO },
-        material: Material::Mirror { reflectance: DVec3::splat(0.95) },
-    });
-    objects.push(Object {
-        shape: Shape::Sphere { sphere: Sphere::new(DVec3::new(0.45, -0.65, 0.2), 0.35)?, velocity: DVec3::ZERO },
-        material: Material::Glossy { diffuse: DVec3::splat(0.5), specular: DVec3::splat(0.3), exponent: 40.0 },
-    });
-    objects.push(Object::sphere(Sphere::new(DVec3::new(0.1, -0.75, 0.6), 0.25)?, Material::Glass { index: 1.5 }));
+///
+/// # Examples
+/// ```
+/// use hw3::render::{catalogue::{CORNELL_RED, CornellContents, cornell_box}, scene::Material};
+/// let scene = cornell_box(true, CornellContents::Block).unwrap();
+/// assert_eq!(scene.objects()[3].material, Material::Diffuse { albedo: CORNELL_RED });
+/// assert_eq!(scene.area_lights().count(), 1);
+/// ```
+pub fn cornell_box(red_left: bool, contents: CornellContents) -> Result<Scene, InputError> {
+    let left = if red_left { CORNELL_RED } else { CORNELL_WHITE };
+    let mut objects = box_walls([CORNELL_WHITE, CORNELL_WHITE, CORNELL_WHITE, left, CORNELL_GREEN, CORNELL_WHITE]);
+    objects.pop(); // open front: the camera looks in
+    objects.push(Object::quad(
+        DVec3::new(-0.25, 0.99, -0.25),
+        DVec3::X * 0.5,
+        DVec3::Z * 0.5,
+        Material::Emitter { radiance: DVec3::splat(CORNELL_LIGHT_RADIANCE) },
+    ));
+    match contents {
+        CornellContents::Block => {
+            let (x0, x1, y0, y1, z0, z1) = (0.1, 0.7, -1.0, -0.4, -0.3, 0.3);
+            let (w, h) = (DVec3::X * (x1 - x0), DVec3::Y * (y1 - y0));
+            let d = DVec3::Z * (z1 - z0);
+            let white = Material::Diffuse { albedo: CORNELL_WHITE };
+            for (corner, u, v) in [
+                (DVec3::new(x0, y1, z0), d, w),
+                (DVec3::new(x0, y0, z1), w, h),
+                (DVec3::new(x0, y0, z0), h, w),
+                (DVec3::new(x0, y0, z0), d, h),
+                (DVec3::new(x1, y0, z0), h, d),
+            ] {
+                objects.push(Object::quad(corner, u, v, white));
+            }
+        }
+        CornellContents::Spheres => objects.extend([
+            Object::sphere(
+                Sphere::new(DVec3::new(-0.4, -0.6, -0.3), 0.4)?,
+                Material::Mirror { reflectance: DVec3::splat(0.95) },
+            ),
+            Object::sphere(
+                Sphere::new(DVec3::new(0.45, -0.65, 0.2), 0.35)?,
+                Material::Glossy { diffuse: DVec3::splat(0.5), specular: DVec3::splat(0.3), exponent: 40.0 },
+            ),
+            Object::sphere(Sphere::new(DVec3::new(0.1, -0.75, 0.6), 0.25)?, Material::Glass { index: 1.5 }),
+        ]),
+    }
     let camera = Camera::looking_at(DVec3::new(0.0, 0.0, 3.4), DVec3::ZERO, 40.0);
     Scene::new(camera, objects, vec![], None, DVec3::ZERO)
+}
+
+/// The `cornell` scene: the [`cornell_box`] with its red left wall and the three spheres
+/// ([`CornellContents::Spheres`]).
+///
+/// # Errors
+/// Never for the built-in numbers.
+///
+/// # Examples
+/// ```
+/// let scene = hw3::render::catalogue::cornell_mirror().unwrap();
+/// assert_eq!(scene.area_lights().count(), 1);
+/// ```
+pub fn cornell_mirror() -> Result<Scene, InputError> {
+    cornell_box(true, CornellContents::Spheres)
 }
 
 /// A 1×1 panel light facing down 3 units above a grey floor, a ball under it, and a

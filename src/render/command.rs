@@ -1,4 +1,4 @@
-//! The logic of `hw3 scenes`, `hw3 effects` and `hw3 render`, kept out of `main.rs` so that it can
+//! The logic of `hw3 scenes`, `hw3 paths` and `hw3 render`, kept out of `main.rs` so that it can
 //! be tested without spawning the binary.
 
 use super::{RenderError, Settings, catalogue, render};
@@ -22,7 +22,7 @@ pub fn scenes_text() -> String {
     catalogue::CATALOGUE.iter().map(|(name, description)| format!("{name:16} {description}\n")).collect()
 }
 
-/// `hw3 effects SCENE [--json]`: the path classes that carry energy and the pass plan.
+/// `hw3 paths SCENE [--json]`: the path classes that carry energy and the pass plan.
 ///
 /// # Errors
 /// [`RenderError::UnknownScene`].
@@ -209,7 +209,7 @@ mod tests {
         assert!(matches!(effects_text("nope", true), Err(RenderError::UnknownScene { .. })));
     }
 
-    /// The analysis of every built-in scene, as `hw3 effects` prints it.
+    /// The analysis of every built-in scene, as `hw3 paths` prints it.
     #[test]
     fn effects_of_every_built_in_scene() {
         let text: String =
