@@ -2,6 +2,7 @@
 
 use super::{Format, Solution, Value};
 use crate::checker::{ExpectedLeaf, ExpectedPlane};
+use crate::plot::markdown_table;
 use std::fmt::Write as _;
 
 /// A number as a student writes it: six decimals with trailing zeros dropped (`5`, `3.267949`),
@@ -98,10 +99,8 @@ pub(super) fn solution(s: &Solution, format: Format) -> String {
                 out.push('\n');
             }
             if s.answers().next().is_some() {
-                let _ = writeln!(out, "| part | answer |\n|---|---|");
-            }
-            for answer in s.answers() {
-                let _ = writeln!(out, "| `{}` | {} |", answer.key, value(&answer.value));
+                let rows = s.answers().map(|answer| [format!("`{}`", answer.key), value(&answer.value)]);
+                out.push_str(&markdown_table(&["part", "answer"], rows));
             }
         }
     }
