@@ -114,6 +114,7 @@ fn toml_value(value: &Value) -> toml::Value {
         Ok(y) if y.is_finite() => toml::Value::Float(y),
         _ => toml::Value::String(num(x)),
     };
+    let words = |words: &[String]| toml::Value::Array(words.iter().cloned().map(toml::Value::String).collect());
     match value {
         Value::Number(x) => final_number(*x).parse().map_or_else(|_| printed(*x), toml::Value::Float),
         Value::Vector(v) => toml::Value::Array(v.iter().map(|&x| printed(x)).collect()),
@@ -125,10 +126,7 @@ fn toml_value(value: &Value) -> toml::Value {
                 .iter()
                 .map(|p| {
                     let mut row = toml::Table::new();
-                    row.insert(
-                        "node".into(),
-                        toml::Value::Array(p.node.iter().cloned().map(toml::Value::String).collect()),
-                    );
+                    row.insert("node".into(), words(&p.node));
                     row.insert("t".into(), p.t.map_or_else(|| toml::Value::String("parallel".into()), printed));
                     row.insert("first".into(), toml::Value::String(p.first.clone()));
                     toml::Value::Table(row)
@@ -140,10 +138,7 @@ fn toml_value(value: &Value) -> toml::Value {
                 .iter()
                 .map(|l| {
                     let mut row = toml::Table::new();
-                    row.insert(
-                        "path".into(),
-                        toml::Value::Array(l.path.iter().cloned().map(toml::Value::String).collect()),
-                    );
+                    row.insert("path".into(), words(&l.path));
                     row.insert("tmin".into(), printed(l.t_min));
                     row.insert("tmax".into(), printed(l.t_max));
                     toml::Value::Table(row)
