@@ -115,6 +115,9 @@ fn toml_value(value: &Value) -> toml::Value {
         _ => toml::Value::String(num(x)),
     };
     let words = |words: &[String]| toml::Value::Array(words.iter().cloned().map(toml::Value::String).collect());
+    let row = |cells: [(&str, toml::Value); 3]| {
+        toml::Value::Table(cells.into_iter().map(|(key, value)| (key.to_owned(), value)).collect())
+    };
     match value {
         Value::Number(x) => final_number(*x).parse().map_or_else(|_| printed(*x), toml::Value::Float),
         Value::Vector(v) => toml::Value::Array(v.iter().map(|&x| printed(x)).collect()),
@@ -125,24 +128,15 @@ fn toml_value(value: &Value) -> toml::Value {
             planes
                 .iter()
                 .map(|p| {
-                    let mut row = toml::Table::new();
-                    row.insert("node".into(), words(&p.node));
-                    row.insert("t".into(), p.t.map_or_else(|| toml::Value::String("parallel".into()), printed));
-                    row.insert("first".into(), toml::Value::String(p.first.clone()));
-                    toml::Value::Table(row)
+                    let t = p.t.map_or_else(|| toml::Value::String("parallel".into()), printed);
+                    row([("node", words(&p.node)), ("t", t), ("first", toml::Value::String(p.first.clone()))])
                 })
                 .collect(),
         ),
         Value::Leaves(leaves) => toml::Value::Array(
             leaves
                 .iter()
-                .map(|l| {
-                    let mut row = toml::Table::new();
-                    row.insert("path".into(), words(&l.path));
-                    row.insert("tmin".into(), printed(l.t_min));
-                    row.insert("tmax".into(), printed(l.t_max));
-                    toml::Value::Table(row)
-                })
+                .map(|l| row([("path", words(&l.path)), ("tmin", printed(l.t_min)), ("tmax", printed(l.t_max))]))
                 .collect(),
         ),
     }
