@@ -1,6 +1,8 @@
 //! The partial-credit policy: every recognised mistake is one [`Rule`], with one credit and one
 //! reason, applied the same way in every question where it occurs.
 
+use crate::plot::markdown_table;
+
 /// A recognised kind of mistake, with the share of a part's points it still earns.
 ///
 /// Every [`MalRule`](super::MalRule) names one, so a part never sets its own credit: the same
@@ -190,11 +192,9 @@ impl Rule {
 /// ```
 #[must_use]
 pub fn policy_table() -> String {
-    let mut out = String::from("| rule | credit | why |\n|---|---|---|\n");
-    for rule in Rule::ALL {
+    let rows = Rule::ALL.into_iter().map(|rule| {
         // A `|` inside a cell would end it.
-        let why = rule.why().replace('|', "\\|");
-        out.push_str(&format!("| `{}` | {} | {why} |\n", rule.id(), rule.credit()));
-    }
-    out
+        [format!("`{}`", rule.id()), rule.credit().to_string(), rule.why().replace('|', "\\|")]
+    });
+    markdown_table(&["rule", "credit", "why"], rows)
 }

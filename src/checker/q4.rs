@@ -197,40 +197,34 @@ struct ProbeImage {
     listed: [usize; 3],
 }
 
-/// The mistakes a grader can tell apart: a slip whose value falls within the key's tolerance (a
-/// rim texel's share when no rim texel lights the surface, say) is the key there, and of two slips
-/// that land on one value only the first is named.
-fn distinct(rules: Vec<MalRule>, key: f64, rtol: f64) -> Vec<MalRule> {
-    let mut seen = vec![key];
+/// The mistakes a grader can tell apart: a slip whose value falls within its tolerance of the
+/// key (a rim texel's share when no rim texel lights the surface, say; the ball's normal at the
+/// texel that looks back at the camera) is the key there, and of two slips that land on one value
+/// only the first is named.
+fn distinct(rules: Vec<MalRule>, key: &Expected) -> Vec<MalRule> {
+    let mut seen = vec![key.clone()];
     rules
         .into_iter()
-        .filter(|rule| match rule.value {
-            Expected::Number { value, .. } => {
-                let new = seen.iter().all(|&v| (value - v).abs() > rtol * v.abs());
-                seen.push(value);
-                new
-            }
-            _ => true,
+        .filter(|rule| {
+            let new = seen.iter().all(|earlier| apart(&rule.value, earlier));
+            seen.push(rule.value.clone());
+            new
         })
         .collect()
 }
 
-/// [`distinct`] for directions: a slip within the angular tolerance of the key (the ball's normal
-/// at the texel that looks back at the camera, say) or of an earlier slip is not named.
-fn distinct_directions(rules: Vec<MalRule>, key: DVec3) -> Vec<MalRule> {
-    let mut seen = vec![key];
-    rules
-        .into_iter()
-        .filter(|rule| match rule.value {
-            Expected::Direction { value, angle_tol } => {
-                let value = DVec3::from_array(value);
-                let new = seen.iter().all(|v| v.angle_between(value) > angle_tol);
-                seen.push(value);
-                new
-            }
-            _ => true,
-        })
-        .collect()
+/// Whether the slip `value` lies outside its own tolerance of `other`: numbers relative to
+/// `other` (`|v − w| > rtol·|w|`), directions by angle; values of other kinds are always apart.
+fn apart(value: &Expected, other: &Expected) -> bool {
+    match (value, other) {
+        (Expected::Number { value, rtol, .. }, Expected::Number { value: other, .. }) => {
+            (value - other).abs() > rtol * other.abs()
+        }
+        (Expected::Direction { value, angle_tol }, Expected::Direction { value: other, .. }) => {
+            DVec3::from_array(*other).angle_between(DVec3::from_array(*value)) > *angle_tol
+        }
+        _ => true,
+    }
 }
 
 fn direction(value: DVec3) -> Expected {
@@ -358,7 +352,7 @@ impl ProbeImage {
                 prompt: direction_prompt,
                 points: 1.0,
                 expected: direction(texel.direction),
-                mal_rules: distinct_directions(mal_rules, texel.direction),
+                mal_rules: distinct(mal_rules, &direction(texel.direction)),
                 explained_in: PROBE_NOTES,
                 method: DIRECTION_METHOD,
             });
@@ -387,12 +381,9 @@ impl ProbeImage {
                             rule: Rule::OtherQuantity,
                         },
                     ];
-                    rules.retain(|rule| match rule.value {
-                        Expected::Number { value, .. } => {
-                            (value - texel.solid_angle).abs() > PROBE_RTOL * texel.solid_angle.abs()
-                        }
-                        _ => true,
-                    });
+                    // Compared with the key only, not with each other as `distinct` would:
+                    // that is what this part has always named, and the variants' snapshots pin it.
+                    rules.retain(|rule| apart(&rule.value, &probe_number(texel.solid_angle)));
                     rules
                 },
                 explained_in: PROBE_NOTES,
@@ -441,8 +432,7 @@ impl ProbeImage {
                     rule: Rule::OtherQuantity,
                 },
             ],
-                weighted,
-                PROBE_RTOL,
+                &probe_number(weighted),
             ),
             explained_in: PROBE_NOTES,
             method: WEIGHTED_METHOD,
@@ -470,8 +460,7 @@ impl ProbeImage {
                         rule: Rule::OtherQuantity,
                     },
                 ],
-                unweighted,
-                PROBE_RTOL,
+                &probe_number(unweighted),
             ),
             explained_in: PROBE_NOTES,
             method: UNWEIGHTED_METHOD,
@@ -495,8 +484,7 @@ impl ProbeImage {
                     rule: Rule::OtherQuantity,
                 },
             ],
-                unweighted / weighted,
-                RATIO_RTOL,
+                &ratio(unweighted / weighted),
             ),
             explained_in: PROBE_NOTES,
                 method: RATIO_METHOD,

@@ -1,15 +1,17 @@
 //! One chart helper: a caption, two axes (each linear or logarithmic), series of lines, dashed
 //! lines and dots, text notes and a legend, drawn on any plotters backend (SVG or PNG figures, or one
-//! panel of a larger figure).
+//! panel of a larger figure). The same helper draws the crate's diagrams (a sphere and its rays, a
+//! kd-tree's cells): a cartesian area with equal scales, a bare or axes-only mesh, and [`Shape`]s
+//! (lines, dots, labels, arrow heads, shaded boxes) drawn in the order given.
 //!
 //! A [`Chart`] is plain data, so a figure reads as a description of what it shows; every style the
-//! crate's figures use (caption and label sizes, label areas, legend box, marker sizes) is a field,
-//! so converting a hand-built plotters chart to it keeps its bytes.
+//! crate's figures use (caption and label sizes, label areas, legend box, marker sizes, grid) is a
+//! field, so converting a hand-built plotters chart to it keeps its bytes.
 
 use super::{Figure, PlotError, err, png_figure, svg_figure};
 use plotters::chart::SeriesAnno;
 use plotters::coord::Shift;
-use plotters::coord::ranged1d::{AsRangedCoord, ValueFormatter};
+use plotters::coord::ranged1d::{AsRangedCoord, Ranged, ValueFormatter};
 use plotters::prelude::*;
 
 /// Formats one tick value of an axis.
@@ -155,7 +157,7 @@ impl Series {
     }
 }
 
-/// A text note at a data point (default colour: black).
+/// A text note at a data point.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Note {
     /// The text.
@@ -164,6 +166,103 @@ pub struct Note {
     pub at: (f64, f64),
     /// Font size in pixels.
     pub size: u32,
+    /// The text's colour.
+    pub colour: RGBColor,
+}
+
+impl Note {
+    /// A black note of `size` pixels with its top-left corner at `at`.
+    ///
+    /// # Examples
+    /// ```
+    /// let note = hw3::plot::Note::new("sh9 256²", (11.5, 0.3), 11);
+    /// assert_eq!(note.colour, plotters::style::BLACK);
+    /// ```
+    #[must_use]
+    pub fn new(text: impl Into<String>, at: (f64, f64), size: u32) -> Self {
+        Self { text: text.into(), at, size, colour: BLACK }
+    }
+}
+
+/// One thing a diagram draws, in data coordinates. A chart draws its [`Chart::shapes`] in order
+/// after its series and notes, because a diagram's lines, dots and labels interleave (a dot over
+/// a line, a label over the dot).
+#[derive(Debug, Clone, PartialEq)]
+pub enum Shape {
+    /// A series with no legend entry, or with one (its label is then listed in the legend).
+    Series(Series),
+    /// A text.
+    Note(Note),
+    /// A filled polygon (an arrow head).
+    Polygon {
+        /// The corners, in order.
+        points: Vec<(f64, f64)>,
+        /// The fill colour.
+        colour: RGBColor,
+    },
+    /// A filled axis-aligned box (a shaded cell).
+    Rectangle {
+        /// Two opposite corners.
+        corners: [(f64, f64); 2],
+        /// The fill colour.
+        colour: RGBColor,
+        /// The fill's opacity, 0 (invisible) to 1.
+        opacity: f64,
+    },
+}
+
+impl Shape {
+    /// A solid line of `width` pixels through `points`, with no legend entry.
+    ///
+    /// # Examples
+    /// ```
+    /// use hw3::plot::{PALETTE, Shape};
+    /// let Shape::Series(line) = Shape::line(vec![(0.0, 0.0), (1.0, 2.0)], PALETTE[0], 2) else { unreachable!() };
+    /// assert!(line.label.is_none() && line.dots.is_none());
+    /// ```
+    #[must_use]
+    pub fn line(points: Vec<(f64, f64)>, colour: RGBColor, width: u32) -> Self {
+        Self::Series(Series { label: None, ..Series::line("", points, colour, width) })
+    }
+
+    /// A filled dot of `radius` pixels at `at`, with no legend entry.
+    ///
+    /// # Examples
+    /// ```
+    /// use hw3::plot::{PALETTE, Shape};
+    /// let Shape::Series(dot) = Shape::dot((1.0, 2.0), 4, PALETTE[1]) else { unreachable!() };
+    /// assert_eq!(dot.points, [(1.0, 2.0)]);
+    /// ```
+    #[must_use]
+    pub fn dot(at: (f64, f64), radius: u32, colour: RGBColor) -> Self {
+        Self::Series(Series { label: None, ..Series::dots("", vec![at], colour, radius) })
+    }
+
+    /// A text of `size` pixels in `colour` with its top-left corner at `at`.
+    ///
+    /// # Examples
+    /// ```
+    /// use hw3::plot::{PALETTE, Shape};
+    /// let Shape::Note(note) = Shape::text("e", (0.0, 1.0), 13, PALETTE[0]) else { unreachable!() };
+    /// assert_eq!((note.text.as_str(), note.size), ("e", 13));
+    /// ```
+    #[must_use]
+    pub fn text(text: impl Into<String>, at: (f64, f64), size: u32, colour: RGBColor) -> Self {
+        Self::Note(Note { colour, ..Note::new(text, at, size) })
+    }
+}
+
+/// How much of the mesh (the axes, their tick labels and titles, the grid) a chart draws.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Mesh {
+    /// Axes, tick labels, axis titles and the grid lines (the light ones as
+    /// [`Chart::light_grid`] says).
+    Grid,
+    /// Axes, tick labels and axis titles, no grid lines: a diagram whose coordinates a reader
+    /// may want to read off.
+    Axes,
+    /// Nothing: a bare drawing area, for a diagram whose coordinates mean nothing to the reader.
+    Hidden,
 }
 
 /// The legend box.
@@ -194,21 +293,33 @@ pub struct Chart<'a> {
     pub y: Axis<'a>,
     /// Font size of tick labels and axis titles, in pixels.
     pub label_size: u32,
+    /// How much of the mesh is drawn.
+    pub mesh: Mesh,
     /// Draw the light (minor) grid lines.
     pub light_grid: bool,
+    /// The colour of the bold grid lines (plotters' default when `None`).
+    pub grid_colour: Option<RGBColor>,
+    /// One data unit as long on both axes, so that a circle is drawn round: the top of the y
+    /// range follows from the plotting area's pixels (what the margin and label areas leave of
+    /// the area drawn on), and `y.range.1` is not read. Linear axes and no caption only (title
+    /// the area first with plotters' `DrawingArea::titled`).
+    pub equal_scale: bool,
     /// Fill the drawing area white again before drawing (the figure is already white).
     pub fill: bool,
     /// The series, drawn in order.
     pub series: Vec<Series>,
     /// Text notes, drawn after the series.
     pub notes: Vec<Note>,
+    /// Shapes, drawn in order after the notes.
+    pub shapes: Vec<Shape>,
     /// The legend (none when `None`).
     pub legend: Option<Legend>,
 }
 
 impl<'a> Chart<'a> {
-    /// A chart with no series: caption 18 px, margin 12, label areas 40 × 60, labels 12 px, the
-    /// light grid on, and a legend at plotters' default corner (13 px, opacity 0.85).
+    /// A chart with no series: caption 18 px (none when `caption` is empty), margin 12, label
+    /// areas 40 × 60, labels 12 px, the whole mesh with plotters' grid colours, unequal scales,
+    /// and a legend at plotters' default corner (13 px, opacity 0.85).
     ///
     /// # Examples
     /// ```
@@ -232,10 +343,14 @@ impl<'a> Chart<'a> {
             x,
             y,
             label_size: 12,
+            mesh: Mesh::Grid,
             light_grid: true,
+            grid_colour: None,
+            equal_scale: false,
             fill: false,
             series: Vec::new(),
             notes: Vec::new(),
+            shapes: Vec::new(),
             legend: Some(Legend { position: None, font: 13, opacity: 0.85 }),
         }
     }
@@ -259,9 +374,19 @@ impl<'a> Chart<'a> {
     /// Draws the chart on `area` (a whole figure, or one panel of it).
     ///
     /// # Errors
-    /// plotters' message when drawing fails.
+    /// plotters' message when drawing fails; a message when [`Chart::equal_scale`] is asked of a
+    /// chart with a caption or a log axis.
     pub fn draw<DB: DrawingBackend>(&self, area: &DrawingArea<DB, Shift>) -> Result<(), String> {
-        let (x, y) = (self.x.range, self.y.range);
+        let (x, mut y) = (self.x.range, self.y.range);
+        if self.equal_scale {
+            if !self.caption.is_empty() || self.x.log || self.y.log {
+                return Err("equal scales need linear axes and no caption (title the area first)".into());
+            }
+            let (width, height) = area.dim_in_pixel();
+            let inside = |pixels: u32, label_area: u32| f64::from(pixels.saturating_sub(2 * self.margin + label_area));
+            let units_per_pixel = (x.1 - x.0) / inside(width, self.label_areas.1);
+            y.1 = y.0 + units_per_pixel * inside(height, self.label_areas.0);
+        }
         match (self.x.log, self.y.log) {
             (false, false) => self.draw_in(area, x.0..x.1, y.0..y.1),
             (false, true) => self.draw_in(area, x.0..x.1, (y.0..y.1).log_scale()),
@@ -281,68 +406,66 @@ impl<'a> Chart<'a> {
         if self.fill {
             area.fill(&WHITE).map_err(err)?;
         }
-        let mut chart = ChartBuilder::on(area)
-            .caption(self.caption, ("sans-serif", self.caption_size))
+        let mut builder = ChartBuilder::on(area);
+        if !self.caption.is_empty() {
+            builder.caption(self.caption, ("sans-serif", self.caption_size));
+        }
+        let mut chart = builder
             .margin(self.margin)
             .x_label_area_size(self.label_areas.0)
             .y_label_area_size(self.label_areas.1)
             .build_cartesian_2d(x, y)
             .map_err(err)?;
-        let mut mesh = chart.configure_mesh();
-        mesh.x_desc(self.x.desc).y_desc(self.y.desc).label_style(("sans-serif", self.label_size));
-        if !self.light_grid {
-            mesh.light_line_style(TRANSPARENT);
+        if self.mesh != Mesh::Hidden {
+            let mut mesh = chart.configure_mesh();
+            mesh.label_style(("sans-serif", self.label_size));
+            if !self.x.desc.is_empty() {
+                mesh.x_desc(self.x.desc);
+            }
+            if !self.y.desc.is_empty() {
+                mesh.y_desc(self.y.desc);
+            }
+            if self.mesh == Mesh::Axes {
+                mesh.disable_mesh();
+            }
+            if !self.light_grid {
+                mesh.light_line_style(TRANSPARENT);
+            }
+            if let Some(colour) = self.grid_colour {
+                mesh.bold_line_style(colour);
+            }
+            if let Some(n) = self.x.labels {
+                mesh.x_labels(n);
+            }
+            if let Some(n) = self.y.labels {
+                mesh.y_labels(n);
+            }
+            if let Some(format) = &self.x.format {
+                mesh.x_label_formatter(format);
+            }
+            if let Some(format) = &self.y.format {
+                mesh.y_label_formatter(format);
+            }
+            mesh.draw().map_err(err)?;
         }
-        if let Some(n) = self.x.labels {
-            mesh.x_labels(n);
-        }
-        if let Some(n) = self.y.labels {
-            mesh.y_labels(n);
-        }
-        if let Some(format) = &self.x.format {
-            mesh.x_label_formatter(format);
-        }
-        if let Some(format) = &self.y.format {
-            mesh.y_label_formatter(format);
-        }
-        mesh.draw().map_err(err)?;
         for series in &self.series {
-            let colour = series.colour;
-            let legend = series.legend;
-            let label_on_line =
-                series.line.is_some() && (matches!(legend, LegendMark::Line { .. }) || series.dots.is_none());
-            let label = |annotation: &mut SeriesAnno<'_, DB>| {
-                if let Some(label) = &series.label {
-                    annotation.label(label.as_str());
-                    legend_mark(annotation, legend, colour);
-                }
-            };
-            if let Some(stroke) = series.line {
-                let style = colour.stroke_width(stroke.width);
-                let points = series.points.iter().copied();
-                let annotation = match stroke.dash {
-                    None => chart.draw_series(LineSeries::new(points, style)).map_err(err)?,
-                    Some((dash, gap)) => {
-                        chart.draw_series(DashedLineSeries::new(points, dash, gap, style)).map_err(err)?
-                    }
-                };
-                if label_on_line {
-                    label(annotation);
-                }
-            }
-            if let Some(dots) = series.dots {
-                let style = dots.ring.map_or(colour.filled(), |width| colour.stroke_width(width));
-                let circles = series.points.iter().map(|&p| Circle::new(p, dots.radius, style));
-                let annotation = chart.draw_series(circles).map_err(err)?;
-                if !label_on_line {
-                    label(annotation);
-                }
-            }
+            draw_series(&mut chart, series)?;
         }
         for note in &self.notes {
-            chart
-                .draw_series(std::iter::once(Text::new(note.text.clone(), note.at, ("sans-serif", note.size))))
-                .map_err(err)?;
+            draw_note(&mut chart, note)?;
+        }
+        for shape in &self.shapes {
+            match shape {
+                Shape::Series(series) => draw_series(&mut chart, series)?,
+                Shape::Note(note) => draw_note(&mut chart, note)?,
+                Shape::Polygon { points, colour } => {
+                    chart.draw_series(std::iter::once(Polygon::new(points.clone(), colour.filled()))).map_err(err)?;
+                }
+                Shape::Rectangle { corners, colour, opacity } => {
+                    let style = colour.mix(*opacity).filled();
+                    chart.draw_series(std::iter::once(Rectangle::new(*corners, style))).map_err(err)?;
+                }
+            }
         }
         let Some(legend) = &self.legend else { return Ok(()) };
         let mut labels = chart.configure_series_labels();
@@ -358,6 +481,59 @@ impl<'a> Chart<'a> {
     }
 }
 
+/// The cartesian chart [`Chart::draw_in`] draws on.
+type Cartesian<'a, DB, X, Y> = ChartContext<'a, DB, Cartesian2d<X, Y>>;
+
+/// Draws `series` (its line first, then its dots) and gives it its legend entry.
+fn draw_series<DB, X, Y>(chart: &mut Cartesian<'_, DB, X, Y>, series: &Series) -> Result<(), String>
+where
+    DB: DrawingBackend,
+    X: Ranged<ValueType = f64>,
+    Y: Ranged<ValueType = f64>,
+{
+    let colour = series.colour;
+    let legend = series.legend;
+    let label_on_line = series.line.is_some() && (matches!(legend, LegendMark::Line { .. }) || series.dots.is_none());
+    let label = |annotation: &mut SeriesAnno<'_, DB>| {
+        if let Some(label) = &series.label {
+            annotation.label(label.as_str());
+            legend_mark(annotation, legend, colour);
+        }
+    };
+    if let Some(stroke) = series.line {
+        let style = colour.stroke_width(stroke.width);
+        let points = series.points.iter().copied();
+        let annotation = match stroke.dash {
+            None => chart.draw_series(LineSeries::new(points, style)).map_err(err)?,
+            Some((dash, gap)) => chart.draw_series(DashedLineSeries::new(points, dash, gap, style)).map_err(err)?,
+        };
+        if label_on_line {
+            label(annotation);
+        }
+    }
+    if let Some(dots) = series.dots {
+        let style = dots.ring.map_or(colour.filled(), |width| colour.stroke_width(width));
+        let circles = series.points.iter().map(|&p| Circle::new(p, dots.radius, style));
+        let annotation = chart.draw_series(circles).map_err(err)?;
+        if !label_on_line {
+            label(annotation);
+        }
+    }
+    Ok(())
+}
+
+/// Draws `note` in its colour.
+fn draw_note<DB, X, Y>(chart: &mut Cartesian<'_, DB, X, Y>, note: &Note) -> Result<(), String>
+where
+    DB: DrawingBackend,
+    X: Ranged<ValueType = f64>,
+    Y: Ranged<ValueType = f64>,
+{
+    let style = TextStyle::from(("sans-serif", note.size)).color(&note.colour);
+    chart.draw_series(std::iter::once(Text::new(note.text.clone(), note.at, style))).map_err(err)?;
+    Ok(())
+}
+
 /// Sets the legend sample of a series.
 fn legend_mark<DB: DrawingBackend>(annotation: &mut SeriesAnno<'_, DB>, mark: LegendMark, colour: RGBColor) {
     match mark {
@@ -370,10 +546,10 @@ fn legend_mark<DB: DrawingBackend>(annotation: &mut SeriesAnno<'_, DB>, mark: Le
     };
 }
 
-/// Each test below draws a chart by hand with plotters the way a question's figure code draws
-/// it (Q1's chart, Q4's Pareto charts, Q5's log-log chart; same calls, small data) and demands the
-/// same bytes from a [`Chart`], so that converting a chart to it is a change of code, not of
-/// figures.
+/// Each test below draws a chart by hand with plotters the way a question's figure code drew
+/// it (Q1's chart, Q4's Pareto charts, Q5's log-log chart, Q2's and Q3's diagrams; same calls,
+/// small data) and demands the same bytes from a [`Chart`], so that converting a chart to it is a
+/// change of code, not of figures.
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -489,7 +665,7 @@ mod tests {
                 line: Some(Stroke { width: 1, dash: None }),
                 ..Series::dots("sh9", LINE.to_vec(), PALETTE[2], 4)
             }],
-            notes: vec![Note { text: "sh9 256²".into(), at: (11.5, 0.3), size: 11 }],
+            notes: vec![Note::new("sh9 256²", (11.5, 0.3), 11)],
             legend: Some(Legend { position: Some(SeriesLabelPosition::LowerLeft), font: 12, opacity: 0.85 }),
             ..Chart::new("Q4", Axis::log(0.5, 200.0, "ns"), Axis::log(0.01, 2.0, "%"))
         }
@@ -551,6 +727,106 @@ mod tests {
         .svg("q5.svg", (640, 400))
         .unwrap();
         assert!(by_hand == helper, "the helper draws Q5's log-log chart byte for byte");
+    }
+
+    /// Q2's and Q3's diagrams: a titled area, equal scales, an axes-only or bare mesh, a grid
+    /// colour, and lines, dots, rings, coloured labels, an arrow head and a shaded box drawn in
+    /// the order given.
+    #[test]
+    fn reproduces_a_diagram() {
+        let (x_min, x_max, y_min) = (-6.0, 3.0, -2.5);
+        let by_hand = svg_figure("d.svg", (560, 360), |root| {
+            let area = root.titled("diagram", ("sans-serif", 16)).map_err(err)?;
+            let (width, height) = area.dim_in_pixel();
+            let units_per_pixel = (x_max - x_min) / f64::from(width - 2 * 6 - 26);
+            let y_max = y_min + units_per_pixel * f64::from(height - 2 * 6 - 20);
+            let mut chart = ChartBuilder::on(&area)
+                .margin(6)
+                .x_label_area_size(20)
+                .y_label_area_size(26)
+                .build_cartesian_2d(x_min..x_max, y_min..y_max)
+                .map_err(err)?;
+            chart
+                .configure_mesh()
+                .disable_mesh()
+                .x_labels(10)
+                .bold_line_style(RGBColor(230, 230, 230))
+                .label_style(("sans-serif", 11))
+                .draw()
+                .map_err(err)?;
+            let box_style = PALETTE[3].mix(0.15).filled();
+            chart.draw_series(std::iter::once(Rectangle::new([(0.0, 0.0), (1.0, 1.0)], box_style))).map_err(err)?;
+            chart.draw_series(LineSeries::new(LINE.to_vec(), PALETTE[0].stroke_width(2))).map_err(err)?;
+            let head = vec![(1.0, 0.0), (0.8, 0.1), (0.8, -0.1)];
+            chart.draw_series(std::iter::once(Polygon::new(head, PALETTE[0].filled()))).map_err(err)?;
+            chart.draw_series(std::iter::once(Circle::new((0.0, 0.0), 4, PALETTE[1].filled()))).map_err(err)?;
+            let label = TextStyle::from(("sans-serif", 13)).color(&PALETTE[1]);
+            chart.draw_series(std::iter::once(Text::new("o".to_string(), (0.1, -0.1), label))).map_err(err)?;
+            chart.draw_series(std::iter::once(Circle::new((1.0, 1.0), 8, PALETTE[2].stroke_width(2)))).map_err(err)?;
+            let bare = root.margin(200, 0, 300, 0);
+            let (width, height) = bare.dim_in_pixel();
+            let y_max = -1.0 + 2.0 * f64::from(height - 22) / f64::from(width);
+            let mut chart =
+                ChartBuilder::on(&bare).margin_bottom(22).build_cartesian_2d(-1.0..1.0, -1.0..y_max).map_err(err)?;
+            chart.draw_series(LineSeries::new(DOTS.to_vec(), BLACK.stroke_width(1))).map_err(err)?;
+            Ok(())
+        })
+        .unwrap();
+        let helper = svg_figure("d.svg", (560, 360), |root| {
+            let area = root.titled("diagram", ("sans-serif", 16)).map_err(err)?;
+            Chart {
+                margin: 6,
+                label_areas: (20, 26),
+                label_size: 11,
+                mesh: Mesh::Axes,
+                grid_colour: Some(RGBColor(230, 230, 230)),
+                equal_scale: true,
+                shapes: vec![
+                    Shape::Rectangle { corners: [(0.0, 0.0), (1.0, 1.0)], colour: PALETTE[3], opacity: 0.15 },
+                    Shape::line(LINE.to_vec(), PALETTE[0], 2),
+                    Shape::Polygon { points: vec![(1.0, 0.0), (0.8, 0.1), (0.8, -0.1)], colour: PALETTE[0] },
+                    Shape::dot((0.0, 0.0), 4, PALETTE[1]),
+                    Shape::text("o", (0.1, -0.1), 13, PALETTE[1]),
+                    Shape::Series(Series {
+                        label: None,
+                        dots: Some(Dots { radius: 8, ring: Some(2) }),
+                        ..Series::dots("", vec![(1.0, 1.0)], PALETTE[2], 8)
+                    }),
+                ],
+                legend: None,
+                ..Chart::new(
+                    "",
+                    Axis { labels: Some(10), ..Axis::linear(x_min, x_max, "") },
+                    Axis::linear(y_min, 0.0, ""),
+                )
+            }
+            .draw(&area)?;
+            // A bare area whose bottom band (here the x label area) is left to the caller.
+            Chart {
+                margin: 0,
+                label_areas: (22, 0),
+                mesh: Mesh::Hidden,
+                equal_scale: true,
+                shapes: vec![Shape::line(DOTS.to_vec(), BLACK, 1)],
+                legend: None,
+                ..Chart::new("", Axis::linear(-1.0, 1.0, ""), Axis::linear(-1.0, 0.0, ""))
+            }
+            .draw(&root.margin(200, 0, 300, 0))
+        })
+        .unwrap();
+        assert!(by_hand == helper, "the helper draws a diagram byte for byte");
+    }
+
+    #[test]
+    fn equal_scales_refuse_a_caption_and_log_axes() {
+        let chart = Chart {
+            equal_scale: true,
+            ..Chart::new("title", Axis::linear(0.0, 1.0, "x"), Axis::linear(0.0, 1.0, "y"))
+        };
+        assert!(chart.svg("e.svg", (200, 200)).is_err());
+        let chart = Chart { caption: "", x: Axis::log(1.0, 10.0, "x"), ..chart };
+        assert!(chart.svg("e.svg", (200, 200)).is_err());
+        assert!(Chart { x: Axis::linear(0.0, 1.0, "x"), ..chart }.svg("e.svg", (200, 200)).is_ok());
     }
 
     #[test]

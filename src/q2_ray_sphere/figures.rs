@@ -6,15 +6,13 @@ use super::reflection::{Scenario, SpawnPolicy, self_hit_rate};
 use super::{closest_approach, worked_example};
 use crate::geometry::sphere::{first_hit_stable, roots_stable};
 use crate::plot::{
-    self, Axis, Chart, Dots, Figure, Legend, LegendMark, PALETTE, PlotError, Series, err, markdown_table,
+    self, Axis, Chart, Dots, Figure, Legend, LegendMark, Mesh, PALETTE, PlotError, Series, Shape, Stroke, err,
+    markdown_table,
 };
 use crate::{data, stats};
 use glam::DVec3;
 use plotters::coord::Shift;
-use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
-
-type Diagram<'a, 'b> = ChartContext<'a, SVGBackend<'b>, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
 
 /// Every Q2 figure, as written to `docs/figures/`.
 ///
@@ -45,60 +43,60 @@ pub fn figures() -> Result<Vec<Figure>, PlotError> {
     Ok(figures)
 }
 
-fn cross_section<'a, 'b>(
-    root: &'a DrawingArea<SVGBackend<'b>, Shift>,
-    caption: &str,
-) -> Result<Diagram<'a, 'b>, String> {
+/// The worked example's cross-section at `z = 0` with equal scales (the circle is round), axes
+/// and tick labels but no grid: the sphere, its centre `o`, and what `shapes` add on top.
+fn cross_section(root: &DrawingArea<SVGBackend<'_>, Shift>, caption: &str, shapes: Vec<Shape>) -> Result<(), String> {
     let area = root.titled(caption, ("sans-serif", 16)).map_err(err)?;
-    let (width, height) = area.dim_in_pixel();
-    let (margin, x_labels, y_labels) = (6, 20, 26);
-    // Equal scales on both axes, so the circle is round: the y range follows from the pixels.
-    let (x_min, x_max, y_min) = (-6.0, 3.0, -2.5);
-    let units_per_pixel = (x_max - x_min) / f64::from(width - 2 * margin - y_labels);
-    let y_max = y_min + units_per_pixel * f64::from(height - 2 * margin - x_labels);
-    let mut chart = ChartBuilder::on(&area)
-        .margin(margin)
-        .x_label_area_size(x_labels)
-        .y_label_area_size(y_labels)
-        .build_cartesian_2d(x_min..x_max, y_min..y_max)
-        .map_err(err)?;
-    chart
-        .configure_mesh()
-        .disable_mesh()
-        .x_labels(10)
-        .y_labels(6)
-        .label_style(("sans-serif", 11))
-        .draw()
-        .map_err(err)?;
     let (_, sphere) = worked_example();
-    let circle = (0..=180).map(|i| {
-        let a = f64::from(i) / 180.0 * std::f64::consts::TAU;
-        (sphere.radius * a.cos(), sphere.radius * a.sin())
-    });
-    chart.draw_series(LineSeries::new(circle, PALETTE[7].stroke_width(2))).map_err(err)?;
-    dot(&mut chart, sphere.center, PALETTE[7])?;
-    label(&mut chart, (0.1, -0.15), "o", PALETTE[7])?;
-    Ok(chart)
+    let mut sphere_shapes = vec![
+        Shape::line(circle(sphere.radius), PALETTE[7], 2),
+        dot(sphere.center, PALETTE[7]),
+        label((0.1, -0.15), "o", PALETTE[7]),
+    ];
+    sphere_shapes.extend(shapes);
+    let ticks = |axis: Axis<'static>, labels| Axis { labels: Some(labels), ..axis };
+    Chart {
+        margin: 6,
+        label_areas: (20, 26),
+        label_size: 11,
+        mesh: Mesh::Axes,
+        equal_scale: true,
+        shapes: sphere_shapes,
+        legend: None,
+        ..Chart::new("", ticks(Axis::linear(-6.0, 3.0, ""), 10), ticks(Axis::linear(-2.5, -2.5, ""), 6))
+    }
+    .draw(&area)
 }
 
-fn arrow(chart: &mut Diagram<'_, '_>, from: DVec3, to: DVec3, color: RGBColor) -> Result<(), String> {
-    chart.draw_series(LineSeries::new([(from.x, from.y), (to.x, to.y)], color.stroke_width(2))).map_err(err)?;
+/// The circle of `radius` about the origin, as 181 points (the first repeated last).
+fn circle(radius: f64) -> Vec<(f64, f64)> {
+    (0..=180)
+        .map(|i| {
+            let a = f64::from(i) / 180.0 * std::f64::consts::TAU;
+            (radius * a.cos(), radius * a.sin())
+        })
+        .collect()
+}
+
+/// An arrow from `from` to `to` (their `x` and `y`): a 2 px shaft and a filled head 0.25 units long.
+fn arrow(from: DVec3, to: DVec3, color: RGBColor) -> [Shape; 2] {
     let back = (from - to).normalize() * 0.25;
     let side = DVec3::new(-back.y, back.x, 0.0) * 0.4;
     let head = [to, to + back + side, to + back - side].map(|p| (p.x, p.y));
-    chart.draw_series(std::iter::once(Polygon::new(head.to_vec(), color.filled()))).map_err(err)?;
-    Ok(())
+    [
+        Shape::line(vec![(from.x, from.y), (to.x, to.y)], color, 2),
+        Shape::Polygon { points: head.to_vec(), colour: color },
+    ]
 }
 
-fn label(chart: &mut Diagram<'_, '_>, at: (f64, f64), text: &str, color: RGBColor) -> Result<(), String> {
-    let style = TextStyle::from(("sans-serif", 13)).color(&color);
-    chart.draw_series(std::iter::once(Text::new(text.to_string(), at, style))).map_err(err)?;
-    Ok(())
+/// A 13 px label in `color` with its top-left corner at `at`.
+fn label(at: (f64, f64), text: &str, color: RGBColor) -> Shape {
+    Shape::text(text, at, 13, color)
 }
 
-fn dot(chart: &mut Diagram<'_, '_>, at: DVec3, color: RGBColor) -> Result<(), String> {
-    chart.draw_series(std::iter::once(Circle::new((at.x, at.y), 4, color.filled()))).map_err(err)?;
-    Ok(())
+/// A 4 px dot at `at`'s `x` and `y`.
+fn dot(at: DVec3, color: RGBColor) -> Shape {
+    Shape::dot((at.x, at.y), 4, color)
 }
 
 /// The cases of the homework's root analysis, one panel each: (name, eye, direction), all
@@ -128,44 +126,43 @@ fn draw_cases(root: &DrawingArea<SVGBackend<'_>, Shift>) -> Result<(), String> {
         };
         let verdict = hit.map_or("no hit".into(), |t| format!("first hit t = {t:.3}"));
         let area = area.margin(4, 4, 4, 4).titled(&format!("{name}: {verdict}"), ("sans-serif", 14)).map_err(err)?;
-        let (width, height) = area.dim_in_pixel();
-        let (x_min, x_max, y_min) = (-6.0, 6.0, -3.5);
-        let y_max = y_min + (x_max - x_min) * f64::from(height.saturating_sub(22)) / f64::from(width.max(1));
-        let mut chart =
-            ChartBuilder::on(&area).margin_bottom(22).build_cartesian_2d(x_min..x_max, y_min..y_max).map_err(err)?;
-        let circle = (0..=180).map(|i| {
-            let a = f64::from(i) / 180.0 * std::f64::consts::TAU;
-            (sphere.radius * a.cos(), sphere.radius * a.sin())
-        });
-        chart.draw_series(LineSeries::new(circle, PALETTE[7].stroke_width(2))).map_err(err)?;
-        let behind = ray.at(-12.0);
-        chart
-            .draw_series(DashedLineSeries::new(
-                [(behind.x, behind.y), (ray.origin.x, ray.origin.y)],
-                4,
-                4,
-                RGBColor(150, 150, 150).stroke_width(1),
-            ))
-            .map_err(err)?;
-        let ahead = ray.at(12.0);
-        chart
-            .draw_series(LineSeries::new(
-                [(ray.origin.x, ray.origin.y), (ahead.x, ahead.y)],
-                PALETTE[0].stroke_width(1),
-            ))
-            .map_err(err)?;
-        arrow(&mut chart, ray.origin, ray.at(1.2), PALETTE[0])?;
-        dot(&mut chart, ray.origin, PALETTE[0])?;
-        label(&mut chart, (ray.origin.x - 0.3, ray.origin.y + 0.9), "e", PALETTE[0])?;
+        let (behind, ahead) = (ray.at(-12.0), ray.at(12.0));
+        let mut shapes = vec![
+            Shape::line(circle(sphere.radius), PALETTE[7], 2),
+            Shape::Series(Series {
+                line: Some(Stroke { width: 1, dash: Some((4, 4)) }),
+                ..Series::line("", vec![(behind.x, behind.y), (ray.origin.x, ray.origin.y)], RGBColor(150, 150, 150), 1)
+            }),
+            Shape::line(vec![(ray.origin.x, ray.origin.y), (ahead.x, ahead.y)], PALETTE[0], 1),
+        ];
+        shapes.extend(arrow(ray.origin, ray.at(1.2), PALETTE[0]));
+        shapes.push(dot(ray.origin, PALETTE[0]));
+        shapes.push(label((ray.origin.x - 0.3, ray.origin.y + 0.9), "e", PALETTE[0]));
         if let Some(r) = roots {
             for t in [r.near, r.far] {
-                dot(&mut chart, ray.at(t), if t < 0.0 { PALETTE[5] } else { PALETTE[1] })?;
+                shapes.push(dot(ray.at(t), if t < 0.0 { PALETTE[5] } else { PALETTE[1] }));
             }
         }
         if let Some(t) = hit {
             let p = ray.at(t);
-            chart.draw_series(std::iter::once(Circle::new((p.x, p.y), 8, PALETTE[1].stroke_width(2)))).map_err(err)?;
+            shapes.push(Shape::Series(Series {
+                label: None,
+                dots: Some(Dots { radius: 8, ring: Some(2) }),
+                ..Series::dots("", vec![(p.x, p.y)], PALETTE[1], 8)
+            }));
         }
+        // No mesh: the 22 px under the plotting area, its x label area, holds the roots' line.
+        Chart {
+            margin: 0,
+            label_areas: (22, 0),
+            mesh: Mesh::Hidden,
+            equal_scale: true,
+            shapes,
+            legend: None,
+            ..Chart::new("", Axis::linear(-6.0, 6.0, ""), Axis::linear(-3.5, -3.5, ""))
+        }
+        .draw(&area)?;
+        let height = area.dim_in_pixel().1;
         let style = TextStyle::from(("sans-serif", 12)).color(&PALETTE[7]);
         area.draw(&Text::new(numbers, (6, i32::try_from(height).unwrap_or(0) - 18), style)).map_err(err)?;
     }
@@ -173,57 +170,51 @@ fn draw_cases(root: &DrawingArea<SVGBackend<'_>, Shift>) -> Result<(), String> {
 }
 
 fn draw_reflection(root: &DrawingArea<SVGBackend<'_>, Shift>) -> Result<(), String> {
-    let mut chart = cross_section(root, "Q2a/b: e + d t meets the sphere at t2 and t1; reflection at the first hit")?;
     let (ray, sphere) = worked_example();
     let roots = roots_stable(&ray, &sphere).ok_or("worked example must hit")?;
     let t_hit = first_hit_stable(&ray, &sphere).ok_or("worked example must hit")?;
     let (near, far) = (ray.at(roots.near), ray.at(roots.far));
-    chart
-        .draw_series(LineSeries::new([(ray.origin.x, ray.origin.y), (2.8, ray.origin.y)], PALETTE[0].stroke_width(1)))
-        .map_err(err)?;
-    arrow(&mut chart, ray.origin, ray.at(1.0), PALETTE[0])?;
-    dot(&mut chart, ray.origin, PALETTE[0])?;
-    label(&mut chart, (ray.origin.x, ray.origin.y + 0.45), "e", PALETTE[0])?;
-    label(&mut chart, (ray.at(0.35).x, ray.origin.y - 0.2), "d", PALETTE[0])?;
-    dot(&mut chart, near, PALETTE[1])?;
-    dot(&mut chart, far, PALETTE[2])?;
-    label(&mut chart, (near.x + 0.1, near.y - 0.1), &format!("t2 = {:.3} (hit)", roots.near), PALETTE[1])?;
-    label(&mut chart, (far.x - 0.3, far.y + 0.35), &format!("t1 = {:.3}", roots.far), PALETTE[2])?;
+    let mut shapes = vec![Shape::line(vec![(ray.origin.x, ray.origin.y), (2.8, ray.origin.y)], PALETTE[0], 1)];
+    shapes.extend(arrow(ray.origin, ray.at(1.0), PALETTE[0]));
+    shapes.extend([
+        dot(ray.origin, PALETTE[0]),
+        label((ray.origin.x, ray.origin.y + 0.45), "e", PALETTE[0]),
+        label((ray.at(0.35).x, ray.origin.y - 0.2), "d", PALETTE[0]),
+        dot(near, PALETTE[1]),
+        dot(far, PALETTE[2]),
+        label((near.x + 0.1, near.y - 0.1), &format!("t2 = {:.3} (hit)", roots.near), PALETTE[1]),
+        label((far.x - 0.3, far.y + 0.35), &format!("t1 = {:.3}", roots.far), PALETTE[2]),
+    ]);
     let hit = ray.at(t_hit);
     let normal = (hit - sphere.center) / sphere.radius;
-    arrow(&mut chart, hit, hit + normal * 1.3, PALETTE[3])?;
-    label(&mut chart, ((hit + normal * 1.3).x - 0.4, (hit + normal * 1.3).y + 0.1), "n", PALETTE[3])?;
+    shapes.extend(arrow(hit, hit + normal * 1.3, PALETTE[3]));
+    shapes.push(label(((hit + normal * 1.3).x - 0.4, (hit + normal * 1.3).y + 0.1), "n", PALETTE[3]));
     let reflected = crate::geometry::sphere::reflect::<f64>(ray.dir, normal);
-    arrow(&mut chart, hit, hit + reflected * 1.8, PALETTE[4])?;
-    label(
-        &mut chart,
-        ((hit + reflected * 1.8).x + 0.15, (hit + reflected * 1.8).y + 0.15),
-        "r = d - 2(n.d)n",
-        PALETTE[4],
-    )?;
-    Ok(())
+    shapes.extend(arrow(hit, hit + reflected * 1.8, PALETTE[4]));
+    let tip = hit + reflected * 1.8;
+    shapes.push(label((tip.x + 0.15, tip.y + 0.15), "r = d - 2(n.d)n", PALETTE[4]));
+    cross_section(root, "Q2a/b: e + d t meets the sphere at t2 and t1; reflection at the first hit", shapes)
 }
 
 fn draw_closest_approach(root: &DrawingArea<SVGBackend<'_>, Shift>) -> Result<(), String> {
-    let mut chart = cross_section(root, "Q2c: t = -(e - o).d / |d|^2 is the foot of the perpendicular from o")?;
     let (ray, sphere) = worked_example();
     let t = closest_approach::closest_approach_algebraic(&ray, sphere.center);
     let foot = ray.at(t);
-    chart
-        .draw_series(LineSeries::new([(ray.origin.x, ray.origin.y), (2.8, ray.origin.y)], PALETTE[0].stroke_width(1)))
-        .map_err(err)?;
-    arrow(&mut chart, ray.origin, ray.at(1.0), PALETTE[0])?;
-    label(&mut chart, (ray.origin.x, ray.origin.y + 0.45), "e", PALETTE[0])?;
-    let dashed = DashedLineSeries::new([(0.0, 0.0), (foot.x, foot.y)], 6, 4, PALETTE[1].stroke_width(2));
-    chart.draw_series(dashed).map_err(err)?;
-    dot(&mut chart, foot, PALETTE[1])?;
-    label(&mut chart, (foot.x + 0.1, foot.y + 0.4), &format!("p(t) with t = {t}"), PALETTE[1])?;
+    let mut shapes = vec![Shape::line(vec![(ray.origin.x, ray.origin.y), (2.8, ray.origin.y)], PALETTE[0], 1)];
+    shapes.extend(arrow(ray.origin, ray.at(1.0), PALETTE[0]));
+    shapes.push(label((ray.origin.x, ray.origin.y + 0.45), "e", PALETTE[0]));
+    shapes.push(Shape::Series(Series {
+        line: Some(Stroke { width: 2, dash: Some((6, 4)) }),
+        ..Series::line("", vec![(0.0, 0.0), (foot.x, foot.y)], PALETTE[1], 2)
+    }));
+    shapes.push(dot(foot, PALETTE[1]));
+    shapes.push(label((foot.x + 0.1, foot.y + 0.4), &format!("p(t) with t = {t}"), PALETTE[1]));
     let half_chord = (sphere.radius.powi(2) - (foot - sphere.center).length_squared()).sqrt();
     let chord = [foot - ray.dir * half_chord, foot + ray.dir * half_chord];
-    chart.draw_series(LineSeries::new(chord.iter().map(|p| (p.x, p.y)), PALETTE[2].stroke_width(3))).map_err(err)?;
-    label(&mut chart, (-5.9, 0.75), "green: half-chord sqrt(r^2 - |l|^2)", PALETTE[2])?;
-    label(&mut chart, (0.1, 0.6), "l", PALETTE[1])?;
-    Ok(())
+    shapes.push(Shape::line(chord.iter().map(|p| (p.x, p.y)).collect(), PALETTE[2], 3));
+    shapes.push(label((-5.9, 0.75), "green: half-chord sqrt(r^2 - |l|^2)", PALETTE[2]));
+    shapes.push(label((0.1, 0.6), "l", PALETTE[1]));
+    cross_section(root, "Q2c: t = -(e - o).d / |d|^2 is the foot of the perpendicular from o", shapes)
 }
 
 /// One measured row of `docs/data/q2_cost.csv` (written by `cargo bench --bench q2_cost`).

@@ -3,7 +3,7 @@
 
 use super::{Axis2, Interval, Node2, Ray2, RayText, student, traverse, write_path};
 use crate::kdtree::Side;
-use crate::plot::{Figure, PALETTE, PlotError, err, svg_figure};
+use crate::plot::{Axis, Chart, Figure, PALETTE, PlotError, Shape, err, svg_figure};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::fmt;
@@ -136,83 +136,53 @@ fn draw(root: &DrawingArea<SVGBackend<'_>, Shift>, title: &str, ray: &Ray2, step
     let tree = Node2::homework();
     let [(x0, x1), (y0, y1)] = WINDOW;
     let (plot_area, legend_area) = root.split_vertically(560);
-    let mut chart = ChartBuilder::on(&plot_area)
-        .caption(title, ("sans-serif", 17))
-        .margin(12)
-        .x_label_area_size(36)
-        .y_label_area_size(40)
-        .build_cartesian_2d(x0..x1, y0..y1)
-        .map_err(err)?;
-    chart
-        .configure_mesh()
-        .max_light_lines(0)
-        .bold_line_style(RGBColor(230, 230, 230))
-        .x_desc("x")
-        .y_desc("y")
-        .label_style(("sans-serif", 12))
-        .x_label_formatter(&|v| format!("{v}"))
-        .y_label_formatter(&|v| format!("{v}"))
-        .draw()
-        .map_err(err)?;
-
-    let leaves = traverse(&tree, ray).leaves();
-    if let Some(leaf) = step.and_then(|k| leaves.get(k)) {
-        let cell = super::Cell { path: leaf.path.clone() };
-        let [(a0, a1), (b0, b1)] = [Axis2::X, Axis2::Y].map(|axis| {
+    let visible = |cell: &super::Cell| {
+        [Axis2::X, Axis2::Y].map(|axis| {
             let (lo, hi) = cell.bounds(axis);
             let (wlo, whi) = WINDOW[axis.index()];
             (lo.max(wlo), hi.min(whi))
-        });
+        })
+    };
+    let mut shapes = Vec::new();
+    let leaves = traverse(&tree, ray).leaves();
+    if let Some(leaf) = step.and_then(|k| leaves.get(k)) {
+        let [(a0, a1), (b0, b1)] = visible(&super::Cell { path: leaf.path.clone() });
         let colour = PALETTE[step.unwrap_or(0) % PALETTE.len()];
-        chart
-            .draw_series(std::iter::once(Rectangle::new([(a0, b0), (a1, b1)], colour.mix(0.15).filled())))
-            .map_err(err)?;
+        shapes.push(Shape::Rectangle { corners: [(a0, b0), (a1, b1)], colour, opacity: 0.15 });
     }
     let grey = RGBColor(110, 110, 110);
     let mut lines = Vec::new();
     split_lines(&tree, WINDOW, &mut lines);
-    for line in lines {
-        chart.draw_series(std::iter::once(PathElement::new(line, grey.stroke_width(2)))).map_err(err)?;
-    }
+    shapes.extend(lines.into_iter().map(|line| Shape::line(line.to_vec(), grey, 2)));
     let t_exit = window_exit(ray);
     let drawn_ray = [tuple(ray.at(0.0)), tuple(ray.at(t_exit))];
     for cell in tree.cells() {
-        let visible = [Axis2::X, Axis2::Y].map(|axis| {
-            let (lo, hi) = cell.bounds(axis);
-            let (wlo, whi) = WINDOW[axis.index()];
-            (lo.max(wlo), hi.min(whi))
-        });
         let text = PathText(&cell.path).to_string();
-        let anchor = label_anchor(&text, visible, drawn_ray);
-        chart
-            .draw_series(std::iter::once(Text::new(text, anchor, ("sans-serif", 13).into_font().color(&grey))))
-            .map_err(err)?;
+        let anchor = label_anchor(&text, visible(&cell), drawn_ray);
+        shapes.push(Shape::text(text, anchor, 13, grey));
     }
-
-    chart.draw_series(std::iter::once(PathElement::new(drawn_ray.to_vec(), BLACK.stroke_width(1)))).map_err(err)?;
+    shapes.push(Shape::line(drawn_ray.to_vec(), BLACK, 1));
     let shown = step.map_or(leaves.len(), |k| k + 1);
     for (i, leaf) in leaves.iter().take(shown).enumerate() {
         let colour = PALETTE[i % PALETTE.len()];
         let Interval { t_min, t_max } = leaf.interval;
         let (from, to) = (t_min.min(t_exit), t_max.min(t_exit));
-        chart
-            .draw_series(std::iter::once(PathElement::new(
-                vec![tuple(ray.at(from)), tuple(ray.at(to))],
-                colour.stroke_width(5),
-            )))
-            .map_err(err)?;
-        chart
-            .draw_series(std::iter::once(Text::new(
-                leaf.interval.to_string(),
-                beside(ray, (from + to) / 2.0),
-                ("sans-serif", 14).into_font().color(&colour),
-            )))
-            .map_err(err)?;
+        shapes.push(Shape::line(vec![tuple(ray.at(from)), tuple(ray.at(to))], colour, 5));
+        shapes.push(Shape::text(leaf.interval.to_string(), beside(ray, (from + to) / 2.0), 14, colour));
     }
-    chart.draw_series(std::iter::once(Circle::new(tuple(ray.origin), 4, BLACK.filled()))).map_err(err)?;
-    chart
-        .draw_series(std::iter::once(Text::new("e", (ray.origin[0] + 0.12, ray.origin[1] + 0.35), ("sans-serif", 15))))
-        .map_err(err)?;
+    shapes.push(Shape::dot(tuple(ray.origin), 4, BLACK));
+    shapes.push(Shape::text("e", (ray.origin[0] + 0.12, ray.origin[1] + 0.35), 15, BLACK));
+    let axis = |(low, high), desc| Axis { format: Some(|v| format!("{v}")), ..Axis::linear(low, high, desc) };
+    Chart {
+        caption_size: 17,
+        label_areas: (36, 40),
+        light_grid: false,
+        grid_colour: Some(RGBColor(230, 230, 230)),
+        shapes,
+        legend: None,
+        ..Chart::new(title, axis((x0, x1), "x"), axis((y0, y1), "y"))
+    }
+    .draw(&plot_area)?;
     // The legend sits below the chart, two entries per row, so it never hides a cell.
     for (i, leaf) in leaves.iter().take(shown).enumerate() {
         let colour = PALETTE[i % PALETTE.len()];

@@ -5,7 +5,9 @@ use super::blind_spot;
 use super::irradiance::Irradiance;
 use super::maps::{AnalyticMap, sun_direction};
 use crate::envmap::{BuiltinMap, Probe, ProbeFormat, horizontal_camera, luminance};
-use crate::plot::{Figure, FigureJob, PALETTE, PlotError, err, png_bytes, svg_figure};
+use crate::plot::{
+    Axis, Chart, Figure, FigureJob, Legend, LegendMark, Note, PALETTE, PlotError, Series, Stroke, err, png_bytes,
+};
 use glam::DMat3;
 use glam::DVec3;
 use plotters::prelude::*;
@@ -163,63 +165,46 @@ fn unwrap_figure() -> Result<Figure, PlotError> {
 /// A labelled function of D/R.
 type Curve = Box<dyn Fn(f64) -> f64>;
 
-fn blind_spot_figure() -> Result<Figure, PlotError> {
-    svg_figure("q4_blind_spot.svg", (640, 400), |root| {
-        let distances: Vec<f64> = (0..=200).map(|k| 1.2 * (50.0_f64 / 1.2).powf(k as f64 / 200.0)).collect();
-        let mut chart = ChartBuilder::on(root)
-            .caption("What a mirrored ball misses, vs camera distance D/R", ("sans-serif", 17))
-            .margin(10)
-            .x_label_area_size(40)
-            .y_label_area_size(55)
-            .build_cartesian_2d((1.2_f64..50.0).log_scale(), (0.01_f64..100.0).log_scale())
-            .map_err(err)?;
-        chart
-            .configure_mesh()
-            .x_desc("D/R (camera distance in ball radii)")
-            .y_desc("degrees  /  percent")
-            .label_style(("sans-serif", 12))
-            .draw()
-            .map_err(err)?;
-        let series: [(&str, Curve); 3] = [
-            (
-                "blind half-angle arcsin(R/D), degrees",
-                Box::new(|d| blind_spot::half_angle(d).map_or(f64::NAN, f64::to_degrees)),
-            ),
-            (
-                "blind solid angle, % of 4π",
-                Box::new(|d| blind_spot::solid_angle(d).map_or(f64::NAN, |s| 100.0 * s / (4.0 * std::f64::consts::PI))),
-            ),
-            (
-                "irradiance lost at n = away (uniform map), %",
-                Box::new(|d| 100.0 * blind_spot::lost_fraction(d, 0.0).unwrap_or(f64::NAN)),
-            ),
-        ];
-        for (index, (label, f)) in series.iter().enumerate() {
-            let colour = PALETTE[index];
-            chart
-                .draw_series(LineSeries::new(distances.iter().map(|&d| (d, f(d))), colour.stroke_width(2)))
-                .map_err(err)?
-                .label(*label)
-                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], colour.stroke_width(2)));
-        }
-        draw_legend(&mut chart, SeriesLabelPosition::LowerLeft)
-    })
-}
-
 /// The legend box every Q4 chart uses.
-fn draw_legend<'a, DB, CT>(chart: &mut ChartContext<'a, DB, CT>, position: SeriesLabelPosition) -> Result<(), String>
-where
-    DB: DrawingBackend + 'a,
-    CT: plotters::coord::CoordTranslate,
-{
-    chart
-        .configure_series_labels()
-        .position(position)
-        .label_font(("sans-serif", 12))
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK)
-        .draw()
-        .map_err(err)
+const LEGEND: Legend = Legend { position: Some(SeriesLabelPosition::LowerLeft), font: 12, opacity: 0.85 };
+
+fn blind_spot_figure() -> Result<Figure, PlotError> {
+    let distances: Vec<f64> = (0..=200).map(|k| 1.2 * (50.0_f64 / 1.2).powf(k as f64 / 200.0)).collect();
+    let curves: [(&str, Curve); 3] = [
+        (
+            "blind half-angle arcsin(R/D), degrees",
+            Box::new(|d| blind_spot::half_angle(d).map_or(f64::NAN, f64::to_degrees)),
+        ),
+        (
+            "blind solid angle, % of 4π",
+            Box::new(|d| blind_spot::solid_angle(d).map_or(f64::NAN, |s| 100.0 * s / (4.0 * std::f64::consts::PI))),
+        ),
+        (
+            "irradiance lost at n = away (uniform map), %",
+            Box::new(|d| 100.0 * blind_spot::lost_fraction(d, 0.0).unwrap_or(f64::NAN)),
+        ),
+    ];
+    let series = curves
+        .iter()
+        .enumerate()
+        .map(|(index, (label, f))| Series {
+            legend: LegendMark::Line { length: 18, width: 2 },
+            ..Series::line(*label, distances.iter().map(|&d| (d, f(d))).collect(), PALETTE[index], 2)
+        })
+        .collect();
+    Chart {
+        caption_size: 17,
+        margin: 10,
+        label_areas: (40, 55),
+        series,
+        legend: Some(LEGEND),
+        ..Chart::new(
+            "What a mirrored ball misses, vs camera distance D/R",
+            Axis::log(1.2, 50.0, "D/R (camera distance in ball radii)"),
+            Axis::log(0.01, 100.0, "degrees  /  percent"),
+        )
+    }
+    .svg("q4_blind_spot.svg", (640, 400))
 }
 
 /// A false-colour image of `Δω / (mean Δω)` per texel for each disk format and lat-long, on a
@@ -434,53 +419,43 @@ fn pareto_figure(map: &str) -> Result<Figure, PlotError> {
         .into_iter()
         .filter(|r| r.map == map && r.mean_percent > 0.0 && r.nanoseconds > 0.0)
         .collect();
-    let name = format!("q4_pareto_{map}.svg");
-    svg_figure(&name, (680, 440), |root| {
-        let (t_min, t_max) =
-            rows.iter().fold((f64::INFINITY, 0.0_f64), |(lo, hi), r| (lo.min(r.nanoseconds), hi.max(r.nanoseconds)));
-        let (e_min, e_max) =
-            rows.iter().fold((f64::INFINITY, 0.0_f64), |(lo, hi), r| (lo.min(r.mean_percent), hi.max(r.mean_percent)));
-        let mut chart = ChartBuilder::on(root)
-            .caption(format!("Error vs time per normal, {map} map (benchmark data)"), ("sans-serif", 17))
-            .margin(10)
-            .x_label_area_size(40)
-            .y_label_area_size(60)
-            .build_cartesian_2d(
-                (t_min.min(1.0) * 0.5..t_max.max(10.0) * 2.0).log_scale(),
-                (e_min.min(1e-3) * 0.5..e_max.max(1.0) * 2.0).log_scale(),
-            )
-            .map_err(err)?;
-        chart
-            .configure_mesh()
-            .x_desc("time per normal, ns (log)")
-            .y_desc("mean error, % of peak E (log)")
-            .label_style(("sans-serif", 12))
-            .draw()
-            .map_err(err)?;
-        let methods = ["unweighted", "weighted", "sh9", "uniform", "cosine", "map", "mis"];
-        for (index, method) in methods.iter().enumerate() {
-            let points: Vec<(f64, f64)> =
-                rows.iter().filter(|r| r.method == *method).map(|r| (r.nanoseconds, r.mean_percent)).collect();
-            let colour = PALETTE[index % PALETTE.len()];
-            chart.draw_series(LineSeries::new(points.clone(), colour.stroke_width(1))).map_err(err)?;
-            chart
-                .draw_series(points.iter().map(|&p| Circle::new(p, 4, colour.filled())))
-                .map_err(err)?
-                .label(*method)
-                .legend(move |(x, y)| Circle::new((x + 8, y), 4, colour.filled()));
-        }
-        // Name the SH9 and 256² weighted points, the chapter's comparison pair.
-        for r in rows.iter().filter(|r| r.label == "sh9 256²" || r.label == "weighted 256²") {
-            chart
-                .draw_series(std::iter::once(Text::new(
-                    r.label.clone(),
-                    (r.nanoseconds * 1.15, r.mean_percent),
-                    ("sans-serif", 11),
-                )))
-                .map_err(err)?;
-        }
-        draw_legend(&mut chart, SeriesLabelPosition::LowerLeft)
-    })
+    let (t_min, t_max) =
+        rows.iter().fold((f64::INFINITY, 0.0_f64), |(lo, hi), r| (lo.min(r.nanoseconds), hi.max(r.nanoseconds)));
+    let (e_min, e_max) =
+        rows.iter().fold((f64::INFINITY, 0.0_f64), |(lo, hi), r| (lo.min(r.mean_percent), hi.max(r.mean_percent)));
+    let methods = ["unweighted", "weighted", "sh9", "uniform", "cosine", "map", "mis"];
+    // Per method: a thin line through its points, then the dots, which carry the legend entry.
+    let series = methods
+        .iter()
+        .enumerate()
+        .map(|(index, method)| {
+            let points = rows.iter().filter(|r| r.method == *method).map(|r| (r.nanoseconds, r.mean_percent)).collect();
+            Series {
+                line: Some(Stroke { width: 1, dash: None }),
+                ..Series::dots(*method, points, PALETTE[index % PALETTE.len()], 4)
+            }
+        })
+        .collect();
+    // Name the SH9 and 256² weighted points, the chapter's comparison pair.
+    let notes = rows
+        .iter()
+        .filter(|r| r.label == "sh9 256²" || r.label == "weighted 256²")
+        .map(|r| Note::new(r.label.clone(), (r.nanoseconds * 1.15, r.mean_percent), 11))
+        .collect();
+    let caption = format!("Error vs time per normal, {map} map (benchmark data)");
+    Chart {
+        caption_size: 17,
+        margin: 10,
+        series,
+        notes,
+        legend: Some(LEGEND),
+        ..Chart::new(
+            &caption,
+            Axis::log(t_min.min(1.0) * 0.5, t_max.max(10.0) * 2.0, "time per normal, ns (log)"),
+            Axis::log(e_min.min(1e-3) * 0.5, e_max.max(1.0) * 2.0, "mean error, % of peak E (log)"),
+        )
+    }
+    .svg(&format!("q4_pareto_{map}.svg"), (680, 440))
 }
 
 #[cfg(test)]

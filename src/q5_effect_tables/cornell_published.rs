@@ -21,6 +21,7 @@ use super::error::ExperimentError;
 use super::photon_cornell::Reference;
 use super::radiosity::{Mesh, Solver, System};
 use crate::geometry::{InputError, Ray};
+use crate::plot::markdown_table;
 use crate::render::analysis::analyze;
 use crate::render::catalogue::{CORNELL_GREEN, CORNELL_RED, CORNELL_WHITE};
 use crate::render::integrator::Integrator;
@@ -348,10 +349,11 @@ pub fn validation_table() -> Result<String, ExperimentError> {
     let scene = scene()?;
     let reference = converged_reference().map_err(ExperimentError::Data)?;
     let mut out = format!(
-        "Published Cornell box, radiosity (one form-factor sample per patch, 80 Gauss–Seidel sweeps) against the path tracer ({REFERENCE_SPP} samples per probe, relative standard error at most {:.2} %) at 20 wall probes.\n\n| patches per edge | patches | patch width | largest error | mean error | RMS error |\n|---|---|---|---|---|---|\n",
+        "Published Cornell box, radiosity (one form-factor sample per patch, 80 Gauss–Seidel sweeps) against the path tracer ({REFERENCE_SPP} samples per probe, relative standard error at most {:.2} %) at 20 wall probes.\n\n",
         reference.max_relative_error() * 100.0
     );
     let mut finest = Vec::new();
+    let mut rows = Vec::new();
     for n in LEVELS {
         let errors = relative_errors(n, &reference.radiance)?;
         let patches = Mesh::new(&scene, n)?.patches.len();
@@ -359,27 +361,36 @@ pub fn validation_table() -> Result<String, ExperimentError> {
         let largest = errors.iter().fold(0.0f64, |m, e| m.max(e.abs()));
         let mean = errors.iter().map(|e| e.abs()).sum::<f64>() / count;
         let rms = (errors.iter().map(|e| e * e).sum::<f64>() / count).sqrt();
-        out.push_str(&format!(
-            "| {n} | {patches} | {:.0} mm | {:.1} % | {:.1} % | {:.1} % |\n",
-            552.8 / n as f64,
-            largest * 100.0,
-            mean * 100.0,
-            rms * 100.0
-        ));
+        let percent = |x: f64| format!("{:.1} %", x * 100.0);
+        rows.push([
+            n.to_string(),
+            patches.to_string(),
+            format!("{:.0} mm", 552.8 / n as f64),
+            percent(largest),
+            percent(mean),
+            percent(rms),
+        ]);
         finest = errors;
     }
+    let header = ["patches per edge", "patches", "patch width", "largest error", "mean error", "RMS error"];
+    out.push_str(&markdown_table(&header, rows));
     out.push_str(&format!(
-        "\nPer probe: the reference radiance (channel mean), its standard error, and radiosity's error at {0} × {0} patches per quad.\n\n| probe | wall | reference L | standard error | relative | radiosity error |\n|---|---|---|---|---|---|\n",
+        "\nPer probe: the reference radiance (channel mean), its standard error, and radiosity's error at {0} × {0} patches per quad.\n\n",
         LEVELS[LEVELS.len() - 1]
     ));
-    for (p, ((l, se), e)) in reference.radiance.iter().zip(&reference.standard_error).zip(&finest).enumerate() {
-        out.push_str(&format!(
-            "| {p} | {} | {l:.5} | {se:.1e} | {:.3} % | {:+.1} % |\n",
-            PROBE_WALLS[p],
-            se / l * 100.0,
-            e * 100.0
-        ));
-    }
+    let probes =
+        reference.radiance.iter().zip(&reference.standard_error).zip(&finest).enumerate().map(|(p, ((l, se), e))| {
+            [
+                p.to_string(),
+                PROBE_WALLS[p].to_string(),
+                format!("{l:.5}"),
+                format!("{se:.1e}"),
+                format!("{:.3} %", se / l * 100.0),
+                format!("{:+.1} %", e * 100.0),
+            ]
+        });
+    let header = ["probe", "wall", "reference L", "standard error", "relative", "radiosity error"];
+    out.push_str(&markdown_table(&header, probes));
     Ok(out)
 }
 

@@ -4,7 +4,7 @@
 use super::render::value;
 use super::{QUESTIONS, SolutionError, solution};
 use crate::checker::{self, PartResult};
-use crate::plot::{Figure, PlotError};
+use crate::plot::{Figure, PlotError, markdown_table};
 use std::fmt::Write as _;
 
 /// The homework's own answers, transcribed as an answers file for seed 0 (the file the checker's
@@ -111,31 +111,28 @@ pub fn answer_key_table() -> Result<String, SolutionError> {
         let solved = solution(question, 0)?;
         // One block per question, so that printing never parts a heading from its table.
         let _ = writeln!(out, "<div class=\"answer-key-question\">\n\n### {heading}\n");
-        let _ = writeln!(
-            out,
-            "| part | asked | answer | the seed's answer | its grade | explained in |\n|---|---|---|---|---|---|"
-        );
         let mut lost = Vec::new();
+        let mut rows = Vec::new();
         for part in &variant.parts {
             let answer = solved.answers().find(|a| a.key == part.key).map_or("—".into(), |a| value(&a.value));
             let result = report.parts.iter().find(|r| r.key == part.key).expect("the report grades every part");
             let given = result.given.as_deref().unwrap_or("—");
-            let _ = writeln!(
-                out,
-                "| `{}` | {} | {} | {} | {} | {} |",
-                part.key,
+            rows.push([
+                format!("`{}`", part.key),
                 cell(&asked(part.key, part.prompt)),
                 // A trace's leaves, one a line.
                 cell(&answer).replace("; ", "<br>"),
                 cell(given).replace("; ", "<br>"),
                 grade(result),
-                section_link(part.key, part.explained_in)
-            );
+                section_link(part.key, part.explained_in),
+            ]);
             if result.status != "correct" && result.status != "missing" {
                 // Escaped as a cell is: a path such as `[x<3]` would read as a link.
                 lost.push(format!("- `{}`: {}", part.key, cell(&result.feedback)));
             }
         }
+        let header = ["part", "asked", "answer", "the seed's answer", "its grade", "explained in"];
+        out.push_str(&markdown_table(&header, rows));
         out.push('\n');
         if !lost.is_empty() {
             let _ = writeln!(out, "Where the seed lost points:\n\n{}\n", lost.join("\n"));

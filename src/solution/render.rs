@@ -2,6 +2,7 @@
 
 use super::{Format, Solution, Value};
 use crate::checker::{ExpectedLeaf, ExpectedPlane};
+use crate::plot::markdown_table;
 use std::fmt::Write as _;
 
 /// A number as a student writes it: six decimals with trailing zeros dropped (`5`, `3.267949`),
@@ -98,10 +99,8 @@ pub(super) fn solution(s: &Solution, format: Format) -> String {
                 out.push('\n');
             }
             if s.answers().next().is_some() {
-                let _ = writeln!(out, "| part | answer |\n|---|---|");
-            }
-            for answer in s.answers() {
-                let _ = writeln!(out, "| `{}` | {} |", answer.key, value(&answer.value));
+                let rows = s.answers().map(|answer| [format!("`{}`", answer.key), value(&answer.value)]);
+                out.push_str(&markdown_table(&["part", "answer"], rows));
             }
         }
     }
@@ -115,6 +114,10 @@ fn toml_value(value: &Value) -> toml::Value {
         Ok(y) if y.is_finite() => toml::Value::Float(y),
         _ => toml::Value::String(num(x)),
     };
+    let words = |words: &[String]| toml::Value::Array(words.iter().cloned().map(toml::Value::String).collect());
+    let row = |cells: [(&str, toml::Value); 3]| {
+        toml::Value::Table(cells.into_iter().map(|(key, value)| (key.to_owned(), value)).collect())
+    };
     match value {
         Value::Number(x) => final_number(*x).parse().map_or_else(|_| printed(*x), toml::Value::Float),
         Value::Vector(v) => toml::Value::Array(v.iter().map(|&x| printed(x)).collect()),
@@ -125,30 +128,15 @@ fn toml_value(value: &Value) -> toml::Value {
             planes
                 .iter()
                 .map(|p| {
-                    let mut row = toml::Table::new();
-                    row.insert(
-                        "node".into(),
-                        toml::Value::Array(p.node.iter().cloned().map(toml::Value::String).collect()),
-                    );
-                    row.insert("t".into(), p.t.map_or_else(|| toml::Value::String("parallel".into()), printed));
-                    row.insert("first".into(), toml::Value::String(p.first.clone()));
-                    toml::Value::Table(row)
+                    let t = p.t.map_or_else(|| toml::Value::String("parallel".into()), printed);
+                    row([("node", words(&p.node)), ("t", t), ("first", toml::Value::String(p.first.clone()))])
                 })
                 .collect(),
         ),
         Value::Leaves(leaves) => toml::Value::Array(
             leaves
                 .iter()
-                .map(|l| {
-                    let mut row = toml::Table::new();
-                    row.insert(
-                        "path".into(),
-                        toml::Value::Array(l.path.iter().cloned().map(toml::Value::String).collect()),
-                    );
-                    row.insert("tmin".into(), printed(l.t_min));
-                    row.insert("tmax".into(), printed(l.t_max));
-                    toml::Value::Table(row)
-                })
+                .map(|l| row([("path", words(&l.path)), ("tmin", printed(l.t_min)), ("tmax", printed(l.t_max))]))
                 .collect(),
         ),
     }

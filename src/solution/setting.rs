@@ -7,9 +7,8 @@
 
 use super::SolutionError;
 use crate::checker::{Q1Numbers, Variant};
-use crate::geometry::{Ray, Sphere};
-use crate::q3_kd_traversal::Ray2;
-use glam::DVec3;
+use crate::geometry::{Ray, Sphere, parse_vec3};
+use crate::q3_kd_traversal::{Ray2, parse_vec2};
 
 /// Q4's setting: the sky `L(ω) = a + b ω_z`, the normal's tilt from up towards +x, and the
 /// ball's distance in radii.
@@ -30,10 +29,10 @@ fn after<'a>(text: &'a str, marker: &str) -> Option<&'a str> {
     text.find(marker).map(|i| &text[i + marker.len()..])
 }
 
-/// The numbers of the parenthesised tuple right after `marker` (`e = (` → `-5, 1, 0`).
-fn tuple(text: &str, marker: &str) -> Option<Vec<f64>> {
-    let inside = after(text, marker)?.split(')').next()?;
-    inside.split(',').map(|p| p.trim().parse().ok()).collect()
+/// The text inside the parentheses right after `marker` (`e = (` → `-5, 1, 0`), for the CLI's
+/// vector parsers to read: a statement writes a vector as a user types it.
+fn inside<'a>(text: &'a str, marker: &str) -> Option<&'a str> {
+    after(text, marker)?.split(')').next()
 }
 
 /// The number right after `marker`.
@@ -42,13 +41,6 @@ fn number(text: &str, marker: &str) -> Option<f64> {
     let end = rest.find(|c: char| !(c.is_ascii_digit() || matches!(c, '.' | '-' | '+' | 'e'))).unwrap_or(rest.len());
     // A sentence's full stop is not part of the number.
     rest[..end].trim_end_matches('.').parse().ok()
-}
-
-fn vec3(values: Option<Vec<f64>>) -> Option<DVec3> {
-    match values.as_deref() {
-        Some(&[x, y, z]) => Some(DVec3::new(x, y, z)),
-        _ => None,
-    }
 }
 
 /// Q1: the numbers of each difficulty.
@@ -74,9 +66,11 @@ pub(super) fn q1(variant: &Variant) -> Result<Q1Numbers, SolutionError> {
 /// Q2: the ray and the sphere.
 pub(super) fn q2(variant: &Variant) -> Result<(Ray<f64>, Sphere<f64>), SolutionError> {
     let s = &variant.statement;
-    let origin = vec3(tuple(s, "with e = (")).ok_or_else(|| error(variant, "the eye e"))?;
-    let dir = vec3(tuple(s, ", d = (")).ok_or_else(|| error(variant, "the direction d"))?;
-    let center = vec3(tuple(s, "centre o = (")).ok_or_else(|| error(variant, "the centre o"))?;
+    let vector =
+        |marker, what| inside(s, marker).and_then(|t| parse_vec3(what, t).ok()).ok_or_else(|| error(variant, what));
+    let origin = vector("with e = (", "the eye e")?;
+    let dir = vector(", d = (", "the direction d")?;
+    let center = vector("centre o = (", "the centre o")?;
     let radius = number(s, "radius r = ").ok_or_else(|| error(variant, "the radius r"))?;
     let ray = Ray::new(origin, dir).map_err(|_| error(variant, "a valid ray"))?;
     let sphere = Sphere::new(center, radius).map_err(|_| error(variant, "a valid sphere"))?;
@@ -90,12 +84,10 @@ pub(super) fn q3(variant: &Variant, label: char) -> Result<Ray2, SolutionError> 
         .lines()
         .find(|l| l.starts_with(&format!("({label}) ")))
         .ok_or_else(|| error(variant, "a ray's line"))?;
-    let pair = |marker| match tuple(line, marker).as_deref() {
-        Some(&[x, y]) => Some([x, y]),
-        _ => None,
-    };
-    let origin = pair("e = (").ok_or_else(|| error(variant, "a ray's origin"))?;
-    let dir = pair("d = (").ok_or_else(|| error(variant, "a ray's direction"))?;
+    let pair =
+        |marker, what| inside(line, marker).and_then(|t| parse_vec2(what, t).ok()).ok_or_else(|| error(variant, what));
+    let origin = pair("e = (", "a ray's origin")?;
+    let dir = pair("d = (", "a ray's direction")?;
     Ray2::new(origin, dir).map_err(|_| error(variant, "a valid 2-D ray"))
 }
 
