@@ -188,6 +188,31 @@ fn draw_label<DB: DrawingBackend>(
 /// assert_eq!(grid.dimensions(), (80, 60));
 /// ```
 pub fn panel_grid(file_name: &str, panels: &[Panel], columns: usize) -> Result<Figure, PlotError> {
+    grid_of_panels(file_name, panels, columns, false)
+}
+
+/// [`panel_grid`] with each label drawn on a black strip *below* its panel instead of onto it,
+/// for pictures whose every corner shows something the reader is asked to look at (the strip is
+/// as tall as the longest label).
+///
+/// # Errors
+/// As [`panel_grid`].
+///
+/// # Examples
+/// ```
+/// use hw3::plot::{Panel, panel_grid_labels_below};
+/// let grey = |v| Panel { image: image::RgbImage::from_pixel(40, 30, image::Rgb([v; 3])), label: format!("v = {v}\nsecond line") };
+/// let figure = panel_grid_labels_below("grid.png", &[grey(20), grey(200)], 2).unwrap();
+/// let grid = image::load_from_memory(&figure.bytes).unwrap().to_rgb8();
+/// assert_eq!(grid.dimensions(), (80, 30 + 2 * 18 + 8));
+/// assert_eq!(grid.get_pixel(20, 15).0, [20; 3], "the panel itself is untouched");
+/// ```
+pub fn panel_grid_labels_below(file_name: &str, panels: &[Panel], columns: usize) -> Result<Figure, PlotError> {
+    grid_of_panels(file_name, panels, columns, true)
+}
+
+/// The grid of [`panel_grid`], labels on the panels or on strips below them.
+fn grid_of_panels(file_name: &str, panels: &[Panel], columns: usize, below: bool) -> Result<Figure, PlotError> {
     init_fonts();
     let Some(first) = panels.first() else {
         return Err(PlotError::Draw { figure: file_name.into(), message: "no panels".into() });
@@ -197,10 +222,16 @@ pub fn panel_grid(file_name: &str, panels: &[Panel], columns: usize) -> Result<F
         let message = "panels must share one size and columns must be at least 1".into();
         return Err(PlotError::Draw { figure: file_name.into(), message });
     }
+    let strip = if below {
+        let lines = panels.iter().map(|p| p.label.lines().count()).max().unwrap_or(0) as u32;
+        lines * (LABEL_PX + 3) + 8
+    } else {
+        0
+    };
     let rows = panels.len().div_ceil(columns) as u32;
-    let (grid_width, grid_height) = (width * columns.min(panels.len()) as u32, height * rows);
+    let (grid_width, grid_height) = (width * columns.min(panels.len()) as u32, (height + strip) * rows);
     let mut grid = image::RgbImage::new(grid_width, grid_height);
-    let corner = |k: usize| ((k % columns) as u32 * width, (k / columns) as u32 * height);
+    let corner = |k: usize| ((k % columns) as u32 * width, (k / columns) as u32 * (height + strip));
     for (k, panel) in panels.iter().enumerate() {
         let (x, y) = corner(k);
         image::imageops::replace(&mut grid, &panel.image, i64::from(x), i64::from(y));
@@ -210,7 +241,8 @@ pub fn panel_grid(file_name: &str, panels: &[Panel], columns: usize) -> Result<F
         let root = BitMapBackend::with_buffer(&mut rgb, (grid_width, grid_height)).into_drawing_area();
         for (k, panel) in panels.iter().enumerate() {
             let (x, y) = corner(k);
-            draw_label(&root, &panel.label, (x as i32 + 4, y as i32 + 4))
+            let top = if below { y + height + 2 } else { y + 4 };
+            draw_label(&root, &panel.label, (x as i32 + 4, top as i32))
                 .map_err(|message| PlotError::Draw { figure: file_name.into(), message })?;
         }
         root.present().map_err(|e| draw_error(file_name, e))?;

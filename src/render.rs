@@ -11,6 +11,7 @@ mod error;
 pub mod figures;
 pub mod integrator;
 pub mod medium;
+pub mod noise;
 pub mod passes;
 pub mod photon;
 pub mod sampling;

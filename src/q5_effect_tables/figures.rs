@@ -74,7 +74,7 @@ pub const PATH_SPP: u32 = 32;
 /// Q5's renders (PNG, seeded: the same bytes on every run and thread count): the radiosity
 /// Cornell box at 640×640 (the box is square); the four open experiment scenes as a labelled 2 × 2 grid of
 /// 320×240 panels; the published Cornell box by radiosity beside the path tracer, 320×320 each,
-/// labelled.
+/// labelled below the panels (on them the labels would cover the ceiling light and the mirrored panel).
 ///
 /// # Errors
 /// [`PlotError`] if a scene cannot be built, rendered or labelled.
@@ -109,7 +109,8 @@ pub fn renders() -> Result<Vec<Figure>, PlotError> {
         },
         Panel { image: path, label: format!("path tracing\n{PATH_SPP} spp\n{difference}") },
     ];
-    figures.push(plot::panel_grid(PUBLISHED_PNG, &panels, 2)?);
+    // Below the panels: on them the labels covered the ceiling light.
+    figures.push(plot::panel_grid_labels_below(PUBLISHED_PNG, &panels, 2)?);
     Ok(figures)
 }
 
@@ -141,5 +142,6 @@ fn effect_scenes_figure() -> Result<Figure, PlotError> {
         let image = render(scene, &settings, &|_| {}).map_err(|e| render_error(&e))?.to_rgb8();
         panels.push(Panel { image, label: format!("{what}\npath tracing, {PATH_SPP} spp") });
     }
-    plot::panel_grid(EFFECT_SCENES_PNG, &panels, 2)
+    // Below the panels: on them a label covered the mirrored red panel's corner.
+    plot::panel_grid_labels_below(EFFECT_SCENES_PNG, &panels, 2)
 }

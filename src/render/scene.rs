@@ -10,7 +10,10 @@ use crate::geometry::sphere::{first_hit_stable, surface_hit};
 use crate::geometry::{InputError, Ray, Sphere, require_finite};
 use crate::kdtree::{BuildError, KdTree};
 use glam::DVec3;
+use quads::QuadSet;
 use std::sync::Arc;
+
+mod quads;
 
 /// The surface's reflection model. Each material is one letter of Heckbert's path notation.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -166,9 +169,9 @@ pub struct Scene {
     background: DVec3,
     /// Radiance from infinitely far away; replaces `background` for escaping rays when present.
     environment: Option<Arc<Environment>>,
-    /// The kd-tree over the spheres (moving ones swept over the shutter), shared by the clones
-    /// [`Scene::with_camera`] makes; `None` when the scene has no sphere or acceleration was
-    /// switched off.
+    /// The kd-tree over the spheres (moving ones swept over the shutter) and the prepared quads,
+    /// shared by the clones [`Scene::with_camera`] makes; `None` when acceleration was switched
+    /// off ([`Scene::without_kd_tree`]).
     acceleration: Option<Arc<Acceleration>>,
 }
 
@@ -179,32 +182,41 @@ impl PartialEq for Scene {
     }
 }
 
-/// The spheres of a scene in a kd-tree ([`crate::kdtree`]), moving ones bounded by their swept
-/// boxes over the shutter interval ([`KdTree::build_moving`]), and the objects that stay outside
-/// it: quads (the tree holds spheres only).
+/// The ray-query structures of a scene: its spheres in a kd-tree ([`crate::kdtree`]), moving
+/// ones bounded by their swept boxes over the shutter interval ([`KdTree::build_moving`]), and its
+/// quads (which the tree does not hold) prepared for plane-first rejection ([`quads`]).
 #[derive(Debug, Clone)]
 struct Acceleration {
+    /// The sphere tree, `None` when the scene has no sphere.
+    spheres: Option<SphereTree>,
+    quads: QuadSet,
+}
+
+/// A kd-tree over a scene's spheres.
+#[derive(Debug, Clone)]
+struct SphereTree {
     tree: KdTree,
     /// Object index of each sphere in the tree, increasing (tree index `k` is object `tree_objects[k]`).
     tree_objects: Vec<usize>,
-    /// Indices of the objects tested one by one, increasing.
-    others: Vec<usize>,
 }
 
 impl Acceleration {
+    /// The structures over `objects` for ray times in `shutter`.
+    fn build(objects: &[Object], shutter: (f64, f64)) -> Result<Self, InputError> {
+        Ok(Self { spheres: SphereTree::build(objects, shutter)?, quads: QuadSet::new(objects) })
+    }
+}
+
+impl SphereTree {
     /// The tree over the spheres of `objects` for ray times in `shutter`, or `None` when there
     /// is no sphere.
     fn build(objects: &[Object], shutter: (f64, f64)) -> Result<Option<Self>, InputError> {
-        let (mut tree_objects, mut spheres, mut velocities, mut others) =
-            (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+        let (mut tree_objects, mut spheres, mut velocities) = (Vec::new(), Vec::new(), Vec::new());
         for (index, object) in objects.iter().enumerate() {
-            match object.shape {
-                Shape::Sphere { sphere, velocity } => {
-                    tree_objects.push(index);
-                    spheres.push(sphere);
-                    velocities.push(velocity);
-                }
-                Shape::Quad { .. } => others.push(index),
+            if let Shape::Sphere { sphere, velocity } = object.shape {
+                tree_objects.push(index);
+                spheres.push(sphere);
+                velocities.push(velocity);
             }
         }
         if spheres.is_empty() {
@@ -218,7 +230,7 @@ impl Acceleration {
                 expected: "a set the kd-tree can index",
             },
         })?;
-        Ok(Some(Self { tree, tree_objects, others }))
+        Ok(Some(Self { tree, tree_objects }))
     }
 }
 
@@ -280,7 +292,7 @@ impl Scene {
             require_scalar_range("fog sigma_s", fog.sigma_s, 0.0, f64::MAX, "finite and ≥ 0")?;
         }
         require_non_negative("background", background)?;
-        let acceleration = Acceleration::build(&objects, camera.shutter)?.map(Arc::new);
+        let acceleration = Some(Arc::new(Acceleration::build(&objects, camera.shutter)?));
         Ok(Self { camera, objects, point_lights, fog, background, environment: None, acceleration })
     }
 
@@ -326,7 +338,7 @@ impl Scene {
     /// over the shutter interval), or 0 after [`Scene::without_kd_tree`]. Quads are never in it.
     #[must_use]
     pub fn kd_tree_spheres(&self) -> usize {
-        self.acceleration.as_ref().map_or(0, |a| a.tree_objects.len())
+        self.acceleration.as_ref().and_then(|a| a.spheres.as_ref()).map_or(0, |s| s.tree_objects.len())
     }
 
     /// The camera.
@@ -408,31 +420,25 @@ impl Scene {
 
     /// The closest hit with `t` in `(0, t_max)` at time `time` (ties go to the lowest object
     /// index). Spheres are found through the kd-tree (a time outside the shutter the tree was
-    /// built for makes it test every sphere), quads by testing each; the answer is the
-    /// brute-force one bit for bit (same solver, same sphere position, same tie rule).
+    /// built for makes it test every sphere), then quads by their planes, skipping those beyond
+    /// the closest hit so far; the answer is the brute-force one bit for bit (same solver, same
+    /// sphere position, same quad arithmetic, same tie rule).
     #[must_use]
     pub fn closest_hit(&self, ray: &Ray<f64>, time: f64, t_max: f64) -> Option<Hit> {
         let mut best: Option<(f64, usize)> = None;
-        let mut consider = |index: usize, t: f64| {
-            if best.is_none_or(|(u, j)| t < u || (t == u && index < j)) {
-                best = Some((t, index));
-            }
-        };
         match &self.acceleration {
             Some(accel) => {
-                if let Some((k, t)) = accel.tree.closest_hit_at(ray, 0.0, t_max, time) {
-                    consider(accel.tree_objects[k], t);
+                if let Some(spheres) = &accel.spheres
+                    && let Some((k, t)) = spheres.tree.closest_hit_at(ray, 0.0, t_max, time)
+                {
+                    quads::offer(&mut best, spheres.tree_objects[k], t);
                 }
-                for &index in &accel.others {
-                    if let Some(t) = intersect(&self.objects[index].shape, ray, time).filter(|&t| t < t_max) {
-                        consider(index, t);
-                    }
-                }
+                accel.quads.closest(ray, t_max, &mut best);
             }
             None => {
                 for (index, object) in self.objects.iter().enumerate() {
                     if let Some(t) = intersect(&object.shape, ray, time).filter(|&t| t < t_max) {
-                        consider(index, t);
+                        quads::offer(&mut best, index, t);
                     }
                 }
             }
@@ -441,14 +447,18 @@ impl Scene {
     }
 
     /// Whether anything blocks the open segment `(0, t_max)` of `ray` at `time` (shadow rays).
+    /// The quads are tried first and the first blocker found ends the query.
     #[must_use]
     pub fn occluded(&self, ray: &Ray<f64>, time: f64, t_max: f64) -> bool {
-        let blocks = |index: usize| intersect(&self.objects[index].shape, ray, time).is_some_and(|t| t < t_max);
         match &self.acceleration {
             Some(accel) => {
-                accel.tree.closest_hit_at(ray, 0.0, t_max, time).is_some() || accel.others.iter().copied().any(blocks)
+                accel.quads.any_before(ray, t_max)
+                    || accel
+                        .spheres
+                        .as_ref()
+                        .is_some_and(|spheres| spheres.tree.closest_hit_at(ray, 0.0, t_max, time).is_some())
             }
-            None => (0..self.objects.len()).any(blocks),
+            None => self.objects.iter().any(|object| intersect(&object.shape, ray, time).is_some_and(|t| t < t_max)),
         }
     }
 
@@ -461,19 +471,24 @@ impl Scene {
     /// the tree reports one sphere per `t`.
     #[must_use]
     pub fn objects_pierced(&self, ray: &Ray<f64>, time: f64, t_max: f64) -> usize {
-        let crosses = |index: usize| intersect(&self.objects[index].shape, ray, time).is_some_and(|t| t < t_max);
         let Some(accel) = &self.acceleration else {
-            return (0..self.objects.len()).filter(|&index| crosses(index)).count();
+            return self
+                .objects
+                .iter()
+                .filter(|object| intersect(&object.shape, ray, time).is_some_and(|t| t < t_max))
+                .count();
         };
         let mut pierced: Vec<usize> = Vec::new();
-        let mut t_min = 0.0;
-        while let Some((k, t)) = accel.tree.closest_hit_at(ray, t_min, t_max, time) {
-            if !pierced.contains(&k) {
-                pierced.push(k);
+        if let Some(spheres) = &accel.spheres {
+            let mut t_min = 0.0;
+            while let Some((k, t)) = spheres.tree.closest_hit_at(ray, t_min, t_max, time) {
+                if !pierced.contains(&k) {
+                    pierced.push(k);
+                }
+                t_min = t;
             }
-            t_min = t;
         }
-        pierced.len() + accel.others.iter().filter(|&&index| crosses(index)).count()
+        pierced.len() + accel.quads.count_before(ray, t_max)
     }
 
     fn hit_record(&self, ray: &Ray<f64>, time: f64, t: f64, object: usize) -> Hit {
