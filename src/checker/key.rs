@@ -112,6 +112,21 @@ pub enum Expected {
     },
 }
 
+impl Expected {
+    /// A number accepted within `rtol·|value| + 10⁻⁹`: every numeric part of the checker's keys
+    /// uses this absolute floor, so an answer of exactly zero is judged by it alone.
+    ///
+    /// # Examples
+    /// ```
+    /// use hw3::checker::Expected;
+    /// assert_eq!(Expected::number(2.0, 1e-3), Expected::Number { value: 2.0, rtol: 1e-3, atol: 1e-9 });
+    /// ```
+    #[must_use]
+    pub const fn number(value: f64, rtol: f64) -> Self {
+        Self::Number { value, rtol, atol: 1e-9 }
+    }
+}
+
 /// One leaf of a traversal: its path from the root (`["x>=3", "y<3"]`) and its t-interval.
 ///
 /// # Examples

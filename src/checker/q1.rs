@@ -33,10 +33,6 @@ pub(crate) const SCENES: [(&str, &str); 4] = [
     ("motion", "q1match.motion"),
 ];
 
-fn number(value: f64, rtol: f64) -> Expected {
-    Expected::Number { value, rtol, atol: 1e-9 }
-}
-
 /// A variant's numbers.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct Numbers {
@@ -203,9 +199,9 @@ pub(super) fn variant(seed: u64) -> Variant {
             prompt: "fraction of rays crossing the slab without a hit",
             points: 2.0,
             // 1 % so that the Boolean-model limit e^(−Np) also counts: it differs by about N p²/2.
-            expected: number(gap, 1e-2),
+            expected: Expected::number(gap, 1e-2),
             mal_rules: vec![MalRule {
-                value: number(k.first_order, 1e-2),
+                value: Expected::number(k.first_order, 1e-2),
                 message: "that is the first-order term 1 - N p; the misses multiply: (1 - p)^N",
                 rule: Rule::OtherQuantity,
             }],
@@ -216,9 +212,9 @@ pub(super) fn variant(seed: u64) -> Variant {
             key: "q1b.transmittance",
             prompt: "transmittance e^(-sigma_t l)",
             points: 1.0,
-            expected: number(transmittance, 1e-3),
+            expected: Expected::number(transmittance, 1e-3),
             mal_rules: vec![MalRule {
-                value: number(1.0 - k.optical_depth, 1e-3),
+                value: Expected::number(1.0 - k.optical_depth, 1e-3),
                 message: "that is the first-order term 1 - sigma_t l; the transmittance is e^(-sigma_t l)",
                 rule: Rule::OtherQuantity,
             }],
@@ -229,9 +225,9 @@ pub(super) fn variant(seed: u64) -> Variant {
             key: "q1b.visual_range",
             prompt: "visual range ln(50)/sigma_t",
             points: 1.0,
-            expected: number(visual_range, 1e-3),
+            expected: Expected::number(visual_range, 1e-3),
             mal_rules: vec![MalRule {
-                value: number(k.mean_free_path, 1e-3),
+                value: Expected::number(k.mean_free_path, 1e-3),
                 message: "that is the mean free path 1/sigma_t; the visual range is where e^(-sigma_t d) = 2 %: ln 50/sigma_t",
                 rule: Rule::OtherQuantity,
             }],
@@ -242,15 +238,15 @@ pub(super) fn variant(seed: u64) -> Variant {
             key: "q1c.reflection_turn_deg",
             prompt: "turn of the reflected ray, degrees",
             points: 1.0,
-            expected: number(turn, 1e-2),
+            expected: Expected::number(turn, 1e-2),
             mal_rules: vec![
                 MalRule {
-                    value: number(turn / 2.0, 1e-2),
+                    value: Expected::number(turn / 2.0, 1e-2),
                     message: "that is the turn of the normal, step/R; the reflected ray turns twice as much",
                     rule: Rule::OtherQuantity,
                 },
                 MalRule {
-                    value: number(turn.to_radians(), 1e-2),
+                    value: Expected::number(turn.to_radians(), 1e-2),
                     message: "that is the angle in radians; degrees are asked",
                     rule: Rule::Unit,
                 },
@@ -262,9 +258,9 @@ pub(super) fn variant(seed: u64) -> Variant {
             key: "q1d.pixels_per_frame",
             prompt: "image shift per frame, pixels",
             points: 1.0,
-            expected: number(shift, 1e-2),
+            expected: Expected::number(shift, 1e-2),
             mal_rules: vec![MalRule {
-                value: number(n.speed / n.fps * n.height / n.fov_deg.to_radians().tan() / n.depth, 1e-2),
+                value: Expected::number(n.speed / n.fps * n.height / n.fov_deg.to_radians().tan() / n.depth, 1e-2),
                 message: "the focal length in pixels is (H/2)/tan(fov/2): half the image over the tangent of half the angle",
                 rule: Rule::WrongTerm,
             }],

@@ -104,10 +104,6 @@ pub(super) fn scene(seed: u64) -> (Ray<f64>, Sphere<f64>, &'static str) {
     }
 }
 
-fn number(value: f64) -> Expected {
-    Expected::Number { value, rtol: 1e-3, atol: 1e-9 }
-}
-
 fn vector(value: DVec3) -> Expected {
     Expected::Vector { value: value.to_array(), rtol: 1e-3, atol: 1e-6 }
 }
@@ -360,13 +356,17 @@ pub(super) fn variant(seed: u64) -> Variant {
             key: "q2a.t",
             prompt: "first intersection parameter t",
             points: 2.0,
-            expected: or_none(number(t)),
+            expected: or_none(Expected::number(t, 1e-3)),
             mal_rules: vec![],
             explained_in: DERIVATION,
             method: T_METHOD,
         };
         if other != t {
-            t_part.mal_rules.push(MalRule { value: number(other), message: other_message, rule: Rule::WrongRoot });
+            t_part.mal_rules.push(MalRule {
+                value: Expected::number(other, 1e-3),
+                message: other_message,
+                rule: Rule::WrongRoot,
+            });
         }
         let mut point_part = Part {
             key: "q2a.point",
@@ -404,7 +404,7 @@ pub(super) fn variant(seed: u64) -> Variant {
         if (length - 1.0).abs() > 1e-3 {
             // Mal-rules that only differ from the key when |d| ≠ 1.
             t_part.mal_rules.push(MalRule {
-                value: number(t * length),
+                value: Expected::number(t * length, 1e-3),
                 message: "that is the distance to the hit; t is the distance divided by |d|",
                 rule: Rule::DistanceForParameter,
             });
@@ -456,7 +456,7 @@ pub(super) fn variant(seed: u64) -> Variant {
         };
         let zero = DVec3::X;
         parts.extend([
-            none("q2a.t", "first intersection parameter t", 2.0, number(0.0), DERIVATION, T_METHOD),
+            none("q2a.t", "first intersection parameter t", 2.0, Expected::number(0.0, 1e-3), DERIVATION, T_METHOD),
             none("q2a.point", "intersection point e + d t", 1.0, vector(zero), DERIVATION, POINT_METHOD),
             a,
             b,
@@ -485,14 +485,14 @@ pub(super) fn variant(seed: u64) -> Variant {
         key: "q2c.t_closest",
         prompt: "closest-approach parameter -(e - o) . d / |d|^2",
         points: 2.0,
-        expected: number(t_closest),
+        expected: Expected::number(t_closest, 1e-3),
         mal_rules: vec![],
         explained_in: CLOSEST_NOTES,
         method: "At the closest approach e + d t - o is perpendicular to d: t = -(e - o) . d / |d|^2.",
     };
     if (length - 1.0).abs() > 1e-3 {
         closest.mal_rules.push(MalRule {
-            value: number(t_closest * length),
+            value: Expected::number(t_closest * length, 1e-3),
             message: "that is the distance along the ray, (o - e) . d^; divide by |d| once more for t",
             rule: Rule::DistanceForParameter,
         });

@@ -21,10 +21,6 @@ const STREAM: u64 = 4;
 const IRRADIANCE_NOTES: &str = "hw3/q4_light_probe/index.html#oracles";
 const BLIND_NOTES: &str = "hw3/q4_light_probe/index.html#the-blind-spot";
 
-fn number(value: f64) -> Expected {
-    Expected::Number { value, rtol: 1e-3, atol: 1e-9 }
-}
-
 pub(super) fn variant(seed: u64) -> Variant {
     let mut g = rng::seeded(seed, STREAM);
     // Seed 0: a sky of radiance 1 + 1·ω_z, a normal tilted 60° from up, a ball seen from 3 radii.
@@ -65,15 +61,15 @@ pub(super) fn variant(seed: u64) -> Variant {
             key: "q4a.irradiance",
             prompt: "irradiance E(n)",
             points: 3.0,
-            expected: number(irradiance),
+            expected: Expected::number(irradiance, 1e-3),
             mal_rules: vec![
                 MalRule {
-                    value: number(no_cosine),
+                    value: Expected::number(no_cosine, 1e-3),
                     message: "the cosine factor max(0, n . w) is missing: that is the integral of L alone",
                     rule: Rule::OtherQuantity,
                 },
                 MalRule {
-                    value: number(irradiance / PI),
+                    value: Expected::number(irradiance / PI, 1e-3),
                     message: "that is E/π, the outgoing radiance of a white diffuse surface, not the irradiance",
                     rule: Rule::Factor,
                 },
@@ -85,15 +81,15 @@ pub(super) fn variant(seed: u64) -> Variant {
             key: "q4b.blind_half_angle_deg",
             prompt: "blind cone half-angle arcsin(R/D), in degrees",
             points: 2.0,
-            expected: number(gamma.to_degrees()),
+            expected: Expected::number(gamma.to_degrees(), 1e-3),
             mal_rules: vec![
                 MalRule {
-                    value: number(gamma),
+                    value: Expected::number(gamma, 1e-3),
                     message: "that is the angle in radians; degrees are asked",
                     rule: Rule::Unit,
                 },
                 MalRule {
-                    value: number(2.0 * gamma.to_degrees()),
+                    value: Expected::number(2.0 * gamma.to_degrees(), 1e-3),
                     message: "that is the full cone angle; the half-angle is arcsin(R/D)",
                     rule: Rule::FullForHalfAngle,
                 },
@@ -105,9 +101,12 @@ pub(super) fn variant(seed: u64) -> Variant {
             key: "q4b.lost_fraction",
             prompt: "fraction of a uniform map's irradiance lost, normal into the cone",
             points: 2.0,
-            expected: number(lost),
+            expected: Expected::number(lost, 1e-3),
             mal_rules: vec![MalRule {
-                value: number(blind_spot::solid_angle(distance_over_radius).expect("D > R") / (4.0 * PI)),
+                value: Expected::number(
+                    blind_spot::solid_angle(distance_over_radius).expect("D > R") / (4.0 * PI),
+                    1e-3,
+                ),
                 message: "that is the cone's share of the sphere of directions; irradiance weights by the cosine",
                 rule: Rule::OtherQuantity,
             }],

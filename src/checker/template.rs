@@ -29,11 +29,7 @@ pub fn template(seed: u64) -> Result<String, CheckError> {
         }
         let mut section = "";
         for part in &variant.parts {
-            let (table, name) = part.key.split_once('.').unwrap_or((part.key, ""));
-            if table != section {
-                let _ = writeln!(out, "\n[{table}]");
-                section = table;
-            }
+            let name = open_table(&mut out, &mut section, part.key);
             let shape = shape(&part.expected);
             let _ = writeln!(out, "# {} ({shape}, {} points)\n# {name} = ", part.prompt, part.points);
         }
@@ -71,15 +67,22 @@ pub fn answers_key_for(question: &str, seed: u64) -> Result<String, CheckError> 
     let mut out = String::new();
     let mut section = "";
     for part in variant(question, seed)?.parts {
-        let (table, name) = part.key.split_once('.').unwrap_or((part.key, ""));
-        if table != section {
-            let _ = writeln!(out, "\n[{table}]");
-            section = table;
-        }
+        let name = open_table(&mut out, &mut section, part.key);
         let value = key_value(&part.expected);
         let _ = writeln!(out, "{name} = {value}");
     }
     Ok(out)
+}
+
+/// Writes the `[table]` header of the dotted `key` (`q2a.t`) when it starts a new table, and returns
+/// the key's name within it (`t`): the parts of a variant come grouped by table.
+fn open_table<'k>(out: &mut String, section: &mut &'k str, key: &'k str) -> &'k str {
+    let (table, name) = key.split_once('.').unwrap_or((key, ""));
+    if table != *section {
+        let _ = writeln!(out, "\n[{table}]");
+        *section = table;
+    }
+    name
 }
 
 /// The format line of a part in the template.
