@@ -1,6 +1,6 @@
 //! The 3-D kd-tree over spheres: flat node array, closest-hit traversal with early exit.
 
-use super::build::{Builder, EXACT_MAX, SahCosts, Subtree, check_costs, max_depth, sphere_boxes};
+use super::build::{Builder, EXACT_MAX, Prim, SahCosts, Subtree, check_costs, max_depth, sphere_boxes};
 use super::coarse::{CoarseRay, CoarseSphere, Grid};
 use super::node::{Aabb, Node, NodeKind};
 use super::{BuildError, ReciprocalAxis, Side, split_pieces};
@@ -174,8 +174,8 @@ impl KdTree {
     fn from_boxes_with(spheres: &[Sphere<f64>], boxes: &[Aabb], costs: SahCosts, exact_max: usize) -> Self {
         let empty = Aabb { min: DVec3::INFINITY, max: DVec3::NEG_INFINITY };
         let bounds = boxes.iter().copied().fold(empty, Aabb::union);
-        let builder = Builder { boxes, costs, max_depth: max_depth(spheres.len()), exact_max };
-        let all: Vec<u32> = (0..spheres.len() as u32).collect();
+        let builder = Builder { costs, max_depth: max_depth(spheres.len()), exact_max };
+        let all: Vec<Prim> = (0u32..).zip(boxes).map(|(index, &bounds)| Prim { index, bounds }).collect();
         let mut built = Subtree::default();
         if spheres.is_empty() {
             built.nodes.push(Node::leaf(0, 0));
