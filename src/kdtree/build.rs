@@ -130,12 +130,20 @@ pub(super) fn max_depth(n: usize) -> usize {
 }
 
 /// The recursive builder's inputs.
-pub(super) struct Builder<'a> {
-    pub boxes: &'a [Aabb],
+pub(super) struct Builder {
     pub costs: SahCosts,
     pub max_depth: usize,
     /// Nodes of at most this many spheres try every box face ([`EXACT_MAX`] in the crate's trees).
     pub exact_max: usize,
+}
+
+/// A sphere as the builder reads it: its index in the input slice and its bounding box, carried
+/// along with the index so that a node reads its spheres' boxes in order (from the input slice by
+/// index, each read at every level was a cache miss on large scenes).
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Prim {
+    pub index: u32,
+    pub bounds: Aabb,
 }
 
 /// A built subtree: its nodes in pre-order (an interior node's lower child directly follows it) and
@@ -188,11 +196,11 @@ struct Candidate {
     cost: f64,
 }
 
-impl Builder<'_> {
+impl Builder {
     /// Builds the subtree of `cell` holding `prims`, appending it to `out` (pre-order: the lower
     /// child directly follows its parent). Large nodes build their children in parallel; the
     /// result is the same tree as a serial build.
-    pub fn build(&self, cell: Aabb, prims: Vec<u32>, depth: usize, out: &mut Subtree) {
+    pub fn build(&self, cell: Aabb, prims: Vec<Prim>, depth: usize, out: &mut Subtree) {
         let leaf_cost = self.costs.intersection * prims.len() as f64;
         let best = if prims.len() <= 1 || depth >= self.max_depth {
             None
@@ -207,20 +215,19 @@ impl Builder<'_> {
         let Some(Candidate { axis, split, .. }) = best else {
             let first = u32::try_from(out.indices.len()).expect("index count fits u32");
             let count = u32::try_from(prims.len()).expect("sphere count fits u32");
-            out.indices.extend_from_slice(&prims);
+            out.indices.extend(prims.iter().map(|p| p.index));
             out.nodes.push(Node::leaf(first, count));
             return;
         };
         let parallel = prims.len() >= PARALLEL_MIN;
-        // One pass, each box read once (the boxes are in input order, so a read is a cache miss).
+        // One pass, each box read once, in order.
         let (mut lower, mut upper) = (Vec::with_capacity(prims.len()), Vec::with_capacity(prims.len()));
-        for &i in &prims {
-            let b = &self.boxes[i as usize];
-            if b.min[axis] <= split {
-                lower.push(i);
+        for p in &prims {
+            if p.bounds.min[axis] <= split {
+                lower.push(*p);
             }
-            if b.max[axis] >= split {
-                upper.push(i);
+            if p.bounds.max[axis] >= split {
+                upper.push(*p);
             }
         }
         drop(prims);
@@ -272,7 +279,7 @@ impl Builder<'_> {
     /// `f32` just outside its box, so that a plane at a box's start leaves that box wholly above it
     /// (the cut-off side really is empty and earns the bonus) and one at its end wholly below.
     /// The two sides' counts come from one sweep over the sorted starts and ends.
-    fn best_exact_split(&self, cell: &Aabb, prims: &[u32]) -> Option<Candidate> {
+    fn best_exact_split(&self, cell: &Aabb, prims: &[Prim]) -> Option<Candidate> {
         let area = cell.surface_area();
         let n = prims.len() as f64;
         let mut best: Option<Candidate> = None;
@@ -285,8 +292,8 @@ impl Builder<'_> {
             if !(hi - lo > 0.0) {
                 continue;
             }
-            for (k, &i) in prims.iter().enumerate() {
-                let b = &self.boxes[i as usize];
+            for (k, p) in prims.iter().enumerate() {
+                let b = &p.bounds;
                 (starts[k], ends[k]) = (b.min[axis], b.max[axis]);
             }
             let (starts, ends, planes) = (&mut starts[..m], &mut ends[..m], &mut planes[..2 * m]);
@@ -335,7 +342,7 @@ impl Builder<'_> {
     /// The cheapest binned plane over the three axes, if any axis has extent. One pass over the
     /// spheres bins all three axes; a candidate's child areas are linear in its plane, so each
     /// costs a few flops.
-    fn best_split(&self, cell: &Aabb, prims: &[u32]) -> Option<Candidate> {
+    fn best_split(&self, cell: &Aabb, prims: &[Prim]) -> Option<Candidate> {
         let bins = self.costs.bins;
         let area = cell.surface_area();
         let (lo, hi) = (cell.min.to_array(), cell.max.to_array());
@@ -347,8 +354,8 @@ impl Builder<'_> {
         // leaves the conversion nothing to saturate.
         let last = (bins - 1) as f64;
         let bin_of = |a: usize, x: f64| ((x - lo[a]) * scale[a]).clamp(0.0, last) as usize;
-        for &i in prims {
-            let b = &self.boxes[i as usize];
+        for p in prims {
+            let b = &p.bounds;
             let (min, max) = (b.min.to_array(), b.max.to_array());
             for a in 0..3 {
                 counts[2 * a * bins + bin_of(a, min[a])] += 1;

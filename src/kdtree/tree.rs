@@ -1,7 +1,7 @@
 //! The 3-D kd-tree over spheres: flat node array, closest-hit traversal with early exit.
 
-use super::build::{Builder, EXACT_MAX, SahCosts, Subtree, check_costs, max_depth, sphere_boxes};
-use super::coarse::{CoarseRay, CoarseSphere};
+use super::build::{Builder, EXACT_MAX, Prim, SahCosts, Subtree, check_costs, max_depth, sphere_boxes};
+use super::coarse::{CoarseRay, CoarseSphere, Grid};
 use super::node::{Aabb, Node, NodeKind};
 use super::{BuildError, ReciprocalAxis, Side, split_pieces};
 use crate::geometry::sphere::roots_stable;
@@ -53,10 +53,15 @@ pub struct KdTree {
     /// number of spheres.
     pub(super) nodes: Vec<Node>,
     /// The leaves' sphere lists, concatenated in node order, as the coarse `f32` test reads them
-    /// (16 bytes a sphere): a copy of each sphere sits beside its leaf's others instead of behind
-    /// an index into the input slice (that indirection was a cache miss per sphere test on large
-    /// scenes), in the fewest bytes that still reject safely.
+    /// (8 bytes a sphere, on [`KdTree::grid`]): a copy of each sphere sits beside its leaf's others
+    /// instead of behind an index into the input slice (that indirection was a cache miss per
+    /// sphere test on large scenes), in the fewest bytes that still reject safely.
     coarse: Vec<CoarseSphere>,
+    /// The grid [`KdTree::coarse`] is counted on.
+    grid: Grid,
+    /// False when a sphere does not fit the grid: then [`KdTree::coarse`] is a placeholder and
+    /// the traversal tests every sphere exactly.
+    fits: bool,
     /// The same lists exact, with each sphere's input index: read only for the spheres the
     /// coarse test keeps.
     exact: Vec<LeafSphere>,
@@ -169,8 +174,8 @@ impl KdTree {
     fn from_boxes_with(spheres: &[Sphere<f64>], boxes: &[Aabb], costs: SahCosts, exact_max: usize) -> Self {
         let empty = Aabb { min: DVec3::INFINITY, max: DVec3::NEG_INFINITY };
         let bounds = boxes.iter().copied().fold(empty, Aabb::union);
-        let builder = Builder { boxes, costs, max_depth: max_depth(spheres.len()), exact_max };
-        let all: Vec<u32> = (0..spheres.len() as u32).collect();
+        let builder = Builder { costs, max_depth: max_depth(spheres.len()), exact_max };
+        let all: Vec<Prim> = (0u32..).zip(boxes).map(|(index, &bounds)| Prim { index, bounds }).collect();
         let mut built = Subtree::default();
         if spheres.is_empty() {
             built.nodes.push(Node::leaf(0, 0));
@@ -179,8 +184,11 @@ impl KdTree {
         }
         let exact: Vec<LeafSphere> =
             built.indices.iter().map(|&index| LeafSphere { sphere: spheres[index as usize], index }).collect();
-        let coarse = exact.iter().map(|leaf| CoarseSphere::new(&leaf.sphere)).collect();
-        Self { nodes: built.nodes, coarse, exact, bounds, motion: None }
+        let grid = Grid::new(&bounds);
+        let packed: Option<Vec<CoarseSphere>> = exact.iter().map(|leaf| grid.pack(&leaf.sphere)).collect();
+        let fits = packed.is_some();
+        let coarse = packed.unwrap_or_else(|| vec![CoarseSphere::KEEP; exact.len()]);
+        Self { nodes: built.nodes, coarse, grid, fits, exact, bounds, motion: None }
     }
 
     /// The spheres of the leaf `(first, count)` with their input indices, in list order.
@@ -351,8 +359,8 @@ impl KdTree {
         // varying split axes make unpredictable.
         let axes = [0, 1, 2].map(|a| ReciprocalAxis::new(ray.origin[a], ray.dir[a]));
         // The coarse copies are of the spheres at time 0: a moving tree tests every sphere exactly.
-        let coarse = CoarseRay::new(ray, self.bounds.min.to_array(), self.bounds.max.to_array());
-        let filtered = self.motion.is_none();
+        let coarse = CoarseRay::new(ray, &self.grid);
+        let filtered = self.motion.is_none() && self.fits;
         loop {
             counter.node();
             match self.nodes[node as usize].kind() {
