@@ -126,7 +126,7 @@ fn figure_screenshots(
     let dir = out_dir.join("figures");
     std::fs::create_dir_all(&dir).unwrap();
     let wrapper = dir.join("wrapper.html");
-    std::fs::write(&wrapper, include_str!("browser/figure.html")).unwrap();
+    std::fs::write(&wrapper, include_str!("browser/section.html")).unwrap();
     let stem = name.replace('/', "_").replace(".html", "");
     let mut listing = String::new();
     for (number, figure) in figures.iter().enumerate() {
