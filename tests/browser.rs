@@ -9,11 +9,13 @@
 //! It installs Debian's `chromium` package when it is missing and the test runs as root; otherwise
 //! it fails with the command to install it. For every page of the notes (the crate root and every
 //! module) it asserts that math rendered (MathML present, no TeX left in the prose), every image
-//! loaded, no figure placeholder is left, and no relative link points at a missing file or anchor;
-//! it saves a screenshot of the top of each chapter and notes page under `target/browser/`, and,
-//! with `HW3_BROWSER_SECTIONS=1`, one per section (each `h2`/`h3` heading, 1280×2400 from the
-//! heading down) under `target/browser/sections/`, so that every chapter can be read whole, as a
-//! student sees it.
+//! loaded with a non-zero size, every figure has a picture and a caption, no figure placeholder is
+//! left, and no relative link points at a missing file or anchor; it saves a screenshot of the top
+//! of each chapter and notes page under `target/browser/`, and, with `HW3_BROWSER_SECTIONS=1`, one
+//! per section (each `h2`/`h3` heading, 1280×2400 from the heading down) under
+//! `target/browser/sections/` and one per figure (the figure, its caption and the text around it,
+//! at the displayed size) under `target/browser/figures/`, so that every chapter can be read whole,
+//! as a student sees it (`HW3_BROWSER_FIGURES=1` takes the figure shots alone).
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -106,6 +108,55 @@ fn section_screenshots(browser: &Path, page: &Path, name: &str, out_dir: &Path) 
     }
 }
 
+/// Text shown above and below each figure in its screenshot: about a paragraph or two, enough to
+/// see whether the prose before the figure defines the terms it uses.
+const FIGURE_CONTEXT_ABOVE: u64 = 600;
+const FIGURE_CONTEXT_BELOW: u64 = 300;
+
+/// Screenshots of every figure of `page` with its caption and the text around it, at the width a
+/// reader sees (1280 px window), under `target/browser/figures/`; returns a line per figure for
+/// `figures.txt` there (natural and displayed size, so a scaled-down render shows up in the list).
+fn figure_screenshots(
+    browser: &Path,
+    page: &Path,
+    name: &str,
+    figures: &[serde_json::Value],
+    out_dir: &Path,
+) -> String {
+    let dir = out_dir.join("figures");
+    std::fs::create_dir_all(&dir).unwrap();
+    let wrapper = dir.join("wrapper.html");
+    std::fs::write(&wrapper, include_str!("browser/section.html")).unwrap();
+    let stem = name.replace('/', "_").replace(".html", "");
+    let mut listing = String::new();
+    for (number, figure) in figures.iter().enumerate() {
+        let height = figure["height"].as_u64().unwrap_or(0);
+        let window = (height + FIGURE_CONTEXT_ABOVE + FIGURE_CONTEXT_BELOW).min(6000);
+        let shot = dir.join(format!("{stem}__fig{number:02}.png"));
+        let _ = headless(browser)
+            .args(["--allow-file-access-from-files", "--virtual-time-budget=5000"])
+            .arg(format!("--window-size=1280,{window}"))
+            .arg(format!("--screenshot={}", shot.display()))
+            .arg(format!(
+                "file://{}?page={}&figure={number}&before={FIGURE_CONTEXT_ABOVE}",
+                wrapper.display(),
+                page.display()
+            ))
+            .output();
+        let caption: String = figure["caption"].as_str().unwrap_or("").chars().take(70).collect();
+        listing.push_str(&format!(
+            "{}\t{} {}x{} shown {}x{}\t{caption}\n",
+            shot.file_name().unwrap().to_string_lossy(),
+            figure["kind"].as_str().unwrap_or("none"),
+            figure["natural_width"],
+            figure["natural_height"],
+            figure["shown_width"],
+            figure["shown_height"],
+        ));
+    }
+    listing
+}
+
 /// Relative `href`s of a page that point at files, or `#anchors`, that do not exist.
 fn broken_links(page: &Path) -> Vec<String> {
     let html = std::fs::read_to_string(page).unwrap();
@@ -161,6 +212,7 @@ fn notes_render_in_a_real_browser() {
     std::fs::write(out_dir.join("results.json"), serde_json::to_string_pretty(&results).unwrap()).unwrap();
 
     let mut problems = Vec::new();
+    let mut figure_listing = String::new();
     for (page, result) in pages.iter().zip(&results) {
         let name = page.strip_prefix(doc_root()).unwrap().display().to_string();
         let html = std::fs::read_to_string(page).unwrap();
@@ -176,8 +228,13 @@ fn notes_render_in_a_real_browser() {
                 .output();
             // One Chromium start per section (about 180 in all) costs minutes: a review by eye
             // asks for them (`HW3_BROWSER_SECTIONS=1`); CI checks the pages and takes one shot each.
-            if std::env::var_os("HW3_BROWSER_SECTIONS").is_some() {
+            let sections = std::env::var_os("HW3_BROWSER_SECTIONS").is_some();
+            if sections {
                 section_screenshots(&browser, page, &name, &out_dir);
+            }
+            if sections || std::env::var_os("HW3_BROWSER_FIGURES").is_some() {
+                let figures = result["figures"].as_array().map_or(&[][..], Vec::as_slice);
+                figure_listing.push_str(&figure_screenshots(&browser, page, &name, figures, &out_dir));
             }
         }
         if result.get("error").is_some() {
@@ -196,12 +253,30 @@ fn notes_render_in_a_real_browser() {
         if result["broken_images"].as_array().is_some_and(|a| !a.is_empty()) {
             problems.push(format!("{name}: images that did not load: {}", result["broken_images"]));
         }
+        for (number, figure) in result["figures"].as_array().into_iter().flatten().enumerate() {
+            if figure["kind"].is_null() {
+                problems.push(format!("{name}: figure {number} has no image"));
+            } else if figure["natural_width"].as_f64() == Some(0.0) || figure["shown_width"].as_u64() == Some(0) {
+                problems.push(format!("{name}: figure {number} has zero size"));
+            }
+            let caption = figure["caption"].as_str().unwrap_or("");
+            if caption.is_empty() {
+                problems.push(format!("{name}: figure {number} has no caption"));
+            }
+            // A caption is plain text (the build escapes it): Markdown or TeX would show as typed.
+            if let Some(markup) = ["`", "**", "$", "\\"].iter().find(|m| caption.contains(*m)) {
+                problems.push(format!("{name}: figure {number}'s caption shows {markup} as typed: {caption:.60}"));
+            }
+        }
         if result["missing_assets"].as_u64() != Some(0) {
             problems.push(format!("{name}: figure placeholders left: rerun cargo run --release"));
         }
         for link in broken_links(page) {
             problems.push(format!("{name}: broken link {link}"));
         }
+    }
+    if !figure_listing.is_empty() {
+        std::fs::write(out_dir.join("figures/figures.txt"), figure_listing).unwrap();
     }
     assert!(problems.is_empty(), "{}", problems.join("\n"));
 }
