@@ -35,13 +35,13 @@ use grammar::agreement;
 /// use hw3::q5_effect_tables::{StudentAnswer, Verdict, experiments::MeasuredCell, student_comparison_markdown};
 /// let cell = MeasuredCell {
 ///     effect: "a",
-///     method: "radiosity",
+///     algorithm: "radiosity",
 ///     value: 0.0,
 ///     reference: 1.4,
 ///     fraction: 0.0,
 ///     verdict: Verdict::No,
 ///     grammar: Verdict::No,
-///     seed: StudentAnswer::No,
+///     student: StudentAnswer::No,
 /// };
 /// let markdown = student_comparison_markdown(&[cell]).unwrap();
 /// // 5(a)(a) carries the measured cell; the other eleven seed cells have none here.
@@ -50,17 +50,17 @@ use grammar::agreement;
 /// ```
 pub fn student_comparison_markdown(measured: &[experiments::MeasuredCell]) -> Result<String, String> {
     let mut rows = Vec::new();
-    for cell in grammar_table().map_err(|e| e.to_string())?.iter().filter(|c| c.seed != StudentAnswer::NotAsked) {
-        let Some(method) = ALGORITHMS.iter().find(|m| m.id == cell.method) else { continue };
+    for cell in grammar_table().map_err(|e| e.to_string())?.iter().filter(|c| c.student != StudentAnswer::NotAsked) {
+        let Some(method) = ALGORITHMS.iter().find(|m| m.id == cell.algorithm) else { continue };
         let Some(effect) = EFFECTS.iter().find(|e| e.id == cell.effect) else { continue };
         let experiment = measured
             .iter()
-            .find(|m| m.effect == cell.effect && m.method == cell.method)
+            .find(|m| m.effect == cell.effect && m.algorithm == cell.algorithm)
             .map_or_else(|| "–".to_string(), |m| format!("{} ({:.2})", m.verdict.text(), m.fraction));
         rows.push([
             format!("5({})({})", method.student_part.unwrap_or('?'), effect.id.replace('_', " ")),
             format!("`{}`", effect.paths),
-            cell.seed.text().to_string(),
+            cell.student.text().to_string(),
             cell.verdict.text().to_string(),
             cell.witness.as_deref().unwrap_or("–").to_string(),
             agreement(cell).to_string(),
@@ -84,13 +84,13 @@ pub fn student_comparison_markdown(measured: &[experiments::MeasuredCell]) -> Re
 /// use hw3::q5_effect_tables::experiments::MeasuredCell;
 /// let cell = MeasuredCell {
 ///     effect: "e",
-///     method: "whitted",
+///     algorithm: "whitted",
 ///     value: 0.0,
 ///     reference: 0.3,
 ///     fraction: 0.0,
 ///     verdict: Verdict::No,
 ///     grammar: Verdict::No,
-///     seed: StudentAnswer::NotAsked,
+///     student: StudentAnswer::NotAsked,
 /// };
 /// let json: serde_json::Value = serde_json::from_str(&effect_tables_command(true, &[cell]).unwrap()).unwrap();
 /// assert_eq!(json["measured"][0]["method"], "whitted");
@@ -191,12 +191,12 @@ mod tests {
         let disagreements: Vec<String> = cells
             .iter()
             .filter(|c| agreement(c) == "DISAGREES")
-            .map(|c| format!("{} {} {:?}", c.method, c.effect, c.verdict))
+            .map(|c| format!("{} {} {:?}", c.algorithm, c.effect, c.verdict))
             .collect();
         assert!(disagreements.is_empty(), "{disagreements:?}");
         // Ten transcribed answers map onto 12 cells (d is split), every one of them answered:
         // the homework's last line is Q5(b)(e), "Yes - as in (b)".
-        assert_eq!(cells.iter().filter(|c| c.seed != StudentAnswer::NotAsked).count(), 12);
+        assert_eq!(cells.iter().filter(|c| c.student != StudentAnswer::NotAsked).count(), 12);
         assert!(STUDENT_ANSWERS.contains(&('b', 'e', StudentAnswer::Yes)));
     }
 
@@ -239,12 +239,12 @@ mod tests {
     fn printed_caustic_fractions_are_the_measured_ones() {
         let cells = experiments::measured_table().unwrap();
         let fraction = |method: &str| {
-            cells.iter().find(|c| c.effect == "d_caustic" && c.method == method).map(|c| 100.0 * c.fraction).unwrap()
+            cells.iter().find(|c| c.effect == "d_caustic" && c.algorithm == method).map(|c| 100.0 * c.fraction).unwrap()
         };
         let printed = (format!("{:.2}", fraction("two_pass")), format!("{:.0}", fraction("photon_mapping")));
         assert_eq!((printed.0.as_str(), printed.1.as_str()), CAUSTIC_PERCENT);
-        for c in cells.iter().filter(|c| c.method == "radiosity") {
-            assert_eq!(c.verdict.text(), c.seed.text(), "{c:?}");
+        for c in cells.iter().filter(|c| c.algorithm == "radiosity") {
+            assert_eq!(c.verdict.text(), c.student.text(), "{c:?}");
         }
     }
 
@@ -254,7 +254,7 @@ mod tests {
     fn printed_verdicts_are_the_grammar_ones() {
         let cells = grammar_table().unwrap();
         let cell = |method: &str, effect: &str| {
-            cells.iter().find(|c| c.light == LightKind::Area && c.method == method && c.effect == effect).unwrap()
+            cells.iter().find(|c| c.light == LightKind::Area && c.algorithm == method && c.effect == effect).unwrap()
         };
         let text = answers().text;
         let radiosity = |effect| cell("radiosity", effect);

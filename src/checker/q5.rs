@@ -71,7 +71,7 @@ pub(super) fn variant(seed: u64) -> Variant {
     for (table, method) in [("q5a", "radiosity"), ("q5b", "two_pass")] {
         let mut cell_parts = Vec::new();
         let mut missed_parts = Vec::new();
-        for cell in cells.iter().filter(|c| c.method == method && c.light == LightKind::Area) {
+        for cell in cells.iter().filter(|c| c.algorithm == method && c.light == LightKind::Area) {
             let name = format!("{table}.{}", cell.effect);
             let key = *KEYS.iter().find(|k| **k == name).expect("every Q5 effect row has a key");
             let mal_rules = if cell.verdict == Verdict::Impractical {

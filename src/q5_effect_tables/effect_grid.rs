@@ -184,7 +184,7 @@ pub fn figure() -> Result<Figure, PlotError> {
         for (method, (image, cost)) in TABLE_METHODS.iter().zip(images) {
             let cell = cells
                 .iter()
-                .find(|c| c.effect == row.effect && c.method == method.id())
+                .find(|c| c.effect == row.effect && c.algorithm == method.id())
                 .ok_or_else(|| draw_error(&"the measured table has no such cell"))?;
             let exposed = Image { pixels: image.pixels.iter().map(|&p| p * row.exposure).collect(), ..image.clone() };
             panels.push(Panel { image: exposed.to_rgb8(), label: label(row, *method, cost, cell) });
@@ -222,13 +222,13 @@ mod tests {
         );
         let cell = MeasuredCell {
             effect: "d_caustic",
-            method: "photon_mapping",
+            algorithm: "photon_mapping",
             value: 57.5,
             reference: 57.6,
             fraction: 57.5 / 57.6,
             verdict: super::super::Verdict::Yes,
             grammar: super::super::Verdict::Yes,
-            seed: super::super::StudentAnswer::NotAsked,
+            student: super::super::StudentAnswer::NotAsked,
         };
         let text = label(&ROWS[4], Measured::PhotonMapping, "2·10⁵ photons, k = 100", &cell);
         assert_eq!(text, "(d) caustic\nphoton mapping: 2·10⁵ photons, k = 100\ncaptures 0.998 of the effect: Yes");

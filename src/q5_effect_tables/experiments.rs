@@ -232,13 +232,13 @@ pub(super) fn photon_eye<'a>(
 /// let (value, reference) = (0.29, 0.30);
 /// let cell = MeasuredCell {
 ///     effect: "d_mirror",
-///     method: "whitted",
+///     algorithm: "whitted",
 ///     value,
 ///     reference,
 ///     fraction: value / reference,
 ///     verdict: verdict(value / reference),
 ///     grammar: Verdict::Yes,
-///     seed: StudentAnswer::NotAsked,
+///     student: StudentAnswer::NotAsked,
 /// };
 /// assert_eq!(cell.verdict, cell.grammar);
 /// ```
@@ -247,7 +247,9 @@ pub struct MeasuredCell {
     /// Effect id (a row of [`EFFECTS`]).
     pub effect: &'static str,
     /// Algorithm id (a column of [`ALGORITHMS`]).
-    pub method: &'static str,
+    // The JSON keeps its published field names (`method`, `seed`), so scripts reading it keep working.
+    #[serde(rename = "method")]
+    pub algorithm: &'static str,
     /// The measured size of the effect for this method.
     pub value: f64,
     /// The same measurement on the path-traced reference.
@@ -258,8 +260,9 @@ pub struct MeasuredCell {
     pub verdict: Verdict,
     /// The grammar's verdict for the same cell (area light).
     pub grammar: Verdict,
-    /// The seed's answer for the cell (`NotAsked` for the columns the seed does not have).
-    pub seed: StudentAnswer,
+    /// The student's answer for the cell (`NotAsked` for the columns the homework does not have).
+    #[serde(rename = "seed")]
+    pub student: StudentAnswer,
 }
 
 /// (a) Highlight: the radiance of the glossy floor of [`lit_floor`] at the mirror direction of
@@ -465,16 +468,16 @@ fn measure_table() -> Result<Vec<MeasuredCell>, ExperimentError> {
                 ALGORITHMS.iter().find(|m| m.id == method.id()).ok_or(ExperimentError::UnknownId(method.id()))?;
             let grammar = decide(row, column, LightKind::Area).map(|c| c.verdict).unwrap_or(Verdict::No);
             let verdict = verdict(fraction);
-            let seed = student_answer(column, row);
+            let student = student_answer(column, row);
             cells.push(MeasuredCell {
                 effect,
-                method: method.id(),
+                algorithm: method.id(),
                 value,
                 reference,
                 fraction,
                 verdict,
                 grammar,
-                seed,
+                student,
             });
         }
     }
@@ -489,13 +492,13 @@ fn measure_table() -> Result<Vec<MeasuredCell>, ExperimentError> {
 /// use hw3::q5_effect_tables::{StudentAnswer, Verdict};
 /// let cell = MeasuredCell {
 ///     effect: "d_caustic",
-///     method: "two_pass",
+///     algorithm: "two_pass",
 ///     value: 0.017,
 ///     reference: 57.6,
 ///     fraction: 0.017 / 57.6,
 ///     verdict: Verdict::No,
 ///     grammar: Verdict::Impractical,
-///     seed: StudentAnswer::No,
+///     student: StudentAnswer::No,
 /// };
 /// let table = measured_table_markdown(&[cell]);
 /// assert!(table.ends_with("| (d caustic) | two_pass | 0.0170 | 57.6000 | 0.000 | No | Impractical | No |\n"));
@@ -509,13 +512,13 @@ pub fn measured_table_markdown(cells: &[MeasuredCell]) -> String {
         cells.iter().map(|c| {
             [
                 format!("({})", c.effect.replace('_', " ")),
-                c.method.to_string(),
+                c.algorithm.to_string(),
                 format!("{:.4}", c.value),
                 format!("{:.4}", c.reference),
                 format!("{:.3}", c.fraction),
                 c.verdict.text().to_string(),
                 c.grammar.text().to_string(),
-                c.seed.text().to_string(),
+                c.student.text().to_string(),
             ]
         }),
     )
@@ -558,7 +561,7 @@ mod tests {
         assert_eq!(cells.len(), EXPERIMENTS.len() * TABLE_METHODS.len());
         for c in &cells {
             assert!(c.reference > 0.0 && c.fraction.is_finite(), "{c:?}");
-            if (c.effect, c.method) == ("d_caustic", "two_pass") {
+            if (c.effect, c.algorithm) == ("d_caustic", "two_pass") {
                 // Only photons that bounced off the floor, into the ball and back reach the focus.
                 assert_eq!((c.verdict, c.grammar), (Verdict::No, Verdict::Impractical), "{c:?}");
                 assert!(c.fraction < 0.01, "{c:?}");

@@ -319,7 +319,7 @@ pub fn student_answer(method: &Algorithm, effect: &Effect) -> StudentAnswer {
 /// use hw3::q5_effect_tables::{LightKind, Verdict, grammar_table};
 /// let cells = grammar_table().unwrap();
 /// let first = &cells[0];
-/// assert_eq!((first.effect, first.method, first.light), ("a", "radiosity", LightKind::Area));
+/// assert_eq!((first.effect, first.algorithm, first.light), ("a", "radiosity", LightKind::Area));
 /// assert_eq!((first.verdict, first.witness.as_deref()), (Verdict::No, Some("LGE")));
 /// ```
 #[derive(Debug, Clone, PartialEq, Eq, Serialize)]
@@ -327,7 +327,9 @@ pub struct Cell {
     /// Effect id (row).
     pub effect: &'static str,
     /// Algorithm id (column).
-    pub method: &'static str,
+    // The JSON keeps its published field names (`method`, `seed`), so scripts reading it keep working.
+    #[serde(rename = "method")]
+    pub algorithm: &'static str,
     /// Light kind.
     pub light: LightKind,
     /// The grammar's verdict.
@@ -335,8 +337,9 @@ pub struct Cell {
     /// For No: the shortest effect path outside the method's language; for Impractical: the
     /// shortest one outside its efficient language.
     pub witness: Option<String>,
-    /// The seed's answer (area-light table only; `NotAsked` for the point-light table).
-    pub seed: StudentAnswer,
+    /// The student's answer (area-light table only; `NotAsked` for the point-light table).
+    #[serde(rename = "seed")]
+    pub student: StudentAnswer,
 }
 
 /// Decides one cell: effect ∩ light paths ⊆ efficient → Yes, ⊆ paths → Impractical, else No.
@@ -369,7 +372,14 @@ pub fn decide(effect: &Effect, method: &Algorithm, light: LightKind) -> Result<C
         (None, None) => (Verdict::Yes, None),
     };
     let seed = if light == LightKind::Area { student_answer(method, effect) } else { StudentAnswer::NotAsked };
-    Ok(Cell { effect: effect.id, method: method.id, light, verdict, witness: witness.map(|w| word_text(&w)), seed })
+    Ok(Cell {
+        effect: effect.id,
+        algorithm: method.id,
+        light,
+        verdict,
+        witness: witness.map(|w| word_text(&w)),
+        student: seed,
+    })
 }
 
 /// Every cell: both light kinds × [`EFFECTS`] × [`ALGORITHMS`], in that order.
@@ -381,7 +391,7 @@ pub fn decide(effect: &Effect, method: &Algorithm, light: LightKind) -> Result<C
 /// ```
 /// use hw3::q5_effect_tables::{grammar_table, LightKind, Verdict};
 /// let cells = grammar_table().unwrap();
-/// let cell = cells.iter().find(|c| c.effect == "a" && c.method == "radiosity" && c.light == LightKind::Area).unwrap();
+/// let cell = cells.iter().find(|c| c.effect == "a" && c.algorithm == "radiosity" && c.light == LightKind::Area).unwrap();
 /// assert_eq!((cell.verdict, cell.witness.as_deref()), (Verdict::No, Some("LGE")));
 /// ```
 pub fn grammar_table() -> Result<Vec<Cell>, GrammarError> {
@@ -399,7 +409,7 @@ pub fn grammar_table() -> Result<Vec<Cell>, GrammarError> {
 /// Whether the grammar's verdict agrees with the seed's: Impractical counts as the seed's No
 /// when the seed's reason says "not … well".
 pub(super) fn agreement(cell: &Cell) -> &'static str {
-    match (cell.seed, cell.verdict) {
+    match (cell.student, cell.verdict) {
         (StudentAnswer::Yes, Verdict::Yes) | (StudentAnswer::No, Verdict::No) => "agrees",
         (StudentAnswer::No, Verdict::Impractical) => "agrees (possible but impractical)",
         (StudentAnswer::NotAsked, _) => "",
@@ -408,7 +418,7 @@ pub(super) fn agreement(cell: &Cell) -> &'static str {
 }
 
 fn cell_text(cell: &Cell) -> String {
-    let seed = match cell.seed {
+    let seed = match cell.student {
         StudentAnswer::NotAsked => String::new(),
         answer => format!(" (seed: {})", answer.text()),
     };
@@ -444,7 +454,7 @@ pub fn grammar_table_markdown() -> Result<String, GrammarError> {
             let verdicts = ALGORITHMS.iter().map(|method| {
                 cells
                     .iter()
-                    .find(|c| c.light == light && c.effect == effect.id && c.method == method.id)
+                    .find(|c| c.light == light && c.effect == effect.id && c.algorithm == method.id)
                     .map(cell_text)
                     .unwrap_or_default()
             });
