@@ -17,6 +17,39 @@ use plotters::prelude::*;
 /// Formats one tick value of an axis.
 pub type TickFormat = fn(&f64) -> String;
 
+/// A compact tick label for a log axis: a power of ten from 0.01 to 1000 prints as a plain number
+/// (`0.01`, `1`, `1000`), a smaller or larger one as `1e-5` or `1e6` (plotters' default prints
+/// `9.999999999999998e-5` and `1000000.0`); any other value prints with at most four significant
+/// digits and no trailing zeros (`250`, `0.05`).
+///
+/// Numeric behaviour: a value within a relative 1e-9 of a power of ten counts as that power;
+/// zero, negative and non-finite values print as Rust's `{}` does.
+///
+/// # Examples
+/// ```
+/// use hw3::plot::compact_tick;
+/// assert_eq!(compact_tick(&9.999999999999998e-5), "1e-5");
+/// assert_eq!(compact_tick(&1_000_000.0), "1e6");
+/// assert_eq!(compact_tick(&0.999_999_999_999_999_8), "1");
+/// assert_eq!(compact_tick(&0.001), "1e-3");
+/// assert_eq!(compact_tick(&250.0), "250");
+/// assert_eq!(compact_tick(&0.05), "0.05");
+/// ```
+#[must_use]
+pub fn compact_tick(value: &f64) -> String {
+    let value = *value;
+    if !(value.is_finite() && value > 0.0) {
+        return format!("{value}");
+    }
+    let exponent = value.log10().round();
+    if (value / 10f64.powf(exponent) - 1.0).abs() < 1e-9 && !(-2.0..=3.0).contains(&exponent) {
+        return format!("1e{exponent}");
+    }
+    let digits = (3.0 - exponent.min(value.log10().floor())).max(0.0);
+    let scale = 10f64.powf(digits);
+    format!("{}", (value * scale).round() / scale)
+}
+
 /// One axis: its range, its scale, its title and its ticks.
 #[derive(Debug, Clone, Copy)]
 pub struct Axis<'a> {
