@@ -63,6 +63,10 @@ pub struct Axis<'a> {
     pub labels: Option<usize>,
     /// How tick values print (plotters' default when `None`).
     pub format: Option<TickFormat>,
+    /// The tick values of a log axis, where the data's points are (plotters' choice when `None`;
+    /// on a log axis it may leave the first points unlabelled). [`Chart::draw`] fails when this is
+    /// set on a linear axis.
+    pub ticks: Option<&'a [f64]>,
 }
 
 impl<'a> Axis<'a> {
@@ -75,7 +79,7 @@ impl<'a> Axis<'a> {
     /// ```
     #[must_use]
     pub fn linear(low: f64, high: f64, desc: &'a str) -> Self {
-        Self { range: (low, high), log: false, desc, labels: None, format: None }
+        Self { range: (low, high), log: false, desc, labels: None, format: None, ticks: None }
     }
 
     /// A logarithmic axis over `low..high` (both positive) titled `desc`.
@@ -420,11 +424,28 @@ impl<'a> Chart<'a> {
             let units_per_pixel = (x.1 - x.0) / inside(width, self.label_areas.1);
             y.1 = y.0 + units_per_pixel * inside(height, self.label_areas.0);
         }
-        match (self.x.log, self.y.log) {
-            (false, false) => self.draw_in(area, x.0..x.1, y.0..y.1),
-            (false, true) => self.draw_in(area, x.0..x.1, (y.0..y.1).log_scale()),
-            (true, false) => self.draw_in(area, (x.0..x.1).log_scale(), y.0..y.1),
-            (true, true) => self.draw_in(area, (x.0..x.1).log_scale(), (y.0..y.1).log_scale()),
+        if (self.x.ticks.is_some() && !self.x.log) || (self.y.ticks.is_some() && !self.y.log) {
+            return Err("tick values are for log axes only".into());
+        }
+        match (self.y.log, self.y.ticks) {
+            (false, _) => self.draw_x(area, y.0..y.1),
+            (true, None) => self.draw_x(area, (y.0..y.1).log_scale()),
+            (true, Some(ticks)) => self.draw_x(area, (y.0..y.1).log_scale().with_key_points(ticks.to_vec())),
+        }
+    }
+
+    /// [`Chart::draw_in`] with the x axis's coordinate built (linear, log, or log with its ticks).
+    fn draw_x<DB, Y>(&self, area: &DrawingArea<DB, Shift>, y: Y) -> Result<(), String>
+    where
+        DB: DrawingBackend,
+        Y: AsRangedCoord<Value = f64>,
+        Y::CoordDescType: ValueFormatter<f64>,
+    {
+        let x = self.x.range;
+        match (self.x.log, self.x.ticks) {
+            (false, _) => self.draw_in(area, x.0..x.1, y),
+            (true, None) => self.draw_in(area, (x.0..x.1).log_scale(), y),
+            (true, Some(ticks)) => self.draw_in(area, (x.0..x.1).log_scale().with_key_points(ticks.to_vec()), y),
         }
     }
 
