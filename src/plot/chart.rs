@@ -28,7 +28,8 @@ pub type TickFormat = fn(&f64) -> String;
 /// # Examples
 /// ```
 /// use hw3::plot::compact_tick;
-/// assert_eq!(compact_tick(&9.999999999999998e-5), "1e-5");
+/// assert_eq!(compact_tick(&9.999999999999998e-5), "1e-4");
+/// assert_eq!(compact_tick(&1e-5), "1e-5");
 /// assert_eq!(compact_tick(&1_000_000.0), "1e6");
 /// assert_eq!(compact_tick(&0.999_999_999_999_999_8), "1");
 /// assert_eq!(compact_tick(&0.001), "1e-3");
