@@ -11,7 +11,7 @@ mod chart;
 mod job;
 mod table;
 
-pub use chart::{Axis, Chart, Dots, Legend, LegendMark, Mesh, Note, Series, Shape, Stroke, TickFormat};
+pub use chart::{Axis, Chart, Dots, Legend, LegendMark, Mesh, Note, Series, Shape, Stroke, TickFormat, compact_tick};
 pub use job::{FigureJob, run_jobs};
 pub use table::markdown_table;
 

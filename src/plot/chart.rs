@@ -17,6 +17,40 @@ use plotters::prelude::*;
 /// Formats one tick value of an axis.
 pub type TickFormat = fn(&f64) -> String;
 
+/// A compact tick label for a log axis: a power of ten from 0.01 to 1000 prints as a plain number
+/// (`0.01`, `1`, `1000`), a smaller or larger one as `1e-5` or `1e6` (plotters' default prints
+/// `9.999999999999998e-5` and `1000000.0`); any other value prints with at most four significant
+/// digits and no trailing zeros (`250`, `0.05`).
+///
+/// Numeric behaviour: a value within a relative 1e-9 of a power of ten counts as that power;
+/// zero, negative and non-finite values print as Rust's `{}` does.
+///
+/// # Examples
+/// ```
+/// use hw3::plot::compact_tick;
+/// assert_eq!(compact_tick(&9.999999999999998e-5), "1e-4");
+/// assert_eq!(compact_tick(&1e-5), "1e-5");
+/// assert_eq!(compact_tick(&1_000_000.0), "1e6");
+/// assert_eq!(compact_tick(&0.999_999_999_999_999_8), "1");
+/// assert_eq!(compact_tick(&0.001), "1e-3");
+/// assert_eq!(compact_tick(&250.0), "250");
+/// assert_eq!(compact_tick(&0.05), "0.05");
+/// ```
+#[must_use]
+pub fn compact_tick(value: &f64) -> String {
+    let value = *value;
+    if !(value.is_finite() && value > 0.0) {
+        return format!("{value}");
+    }
+    let exponent = value.log10().round();
+    if (value / 10f64.powf(exponent) - 1.0).abs() < 1e-9 && !(-2.0..=3.0).contains(&exponent) {
+        return format!("1e{exponent}");
+    }
+    let digits = (3.0 - exponent.min(value.log10().floor())).max(0.0);
+    let scale = 10f64.powf(digits);
+    format!("{}", (value * scale).round() / scale)
+}
+
 /// One axis: its range, its scale, its title and its ticks.
 #[derive(Debug, Clone, Copy)]
 pub struct Axis<'a> {
@@ -30,6 +64,10 @@ pub struct Axis<'a> {
     pub labels: Option<usize>,
     /// How tick values print (plotters' default when `None`).
     pub format: Option<TickFormat>,
+    /// The tick values of a log axis, where the data's points are (plotters' choice when `None`;
+    /// on a log axis it may leave the first points unlabelled). [`Chart::draw`] fails when this is
+    /// set on a linear axis.
+    pub ticks: Option<&'a [f64]>,
 }
 
 impl<'a> Axis<'a> {
@@ -42,7 +80,7 @@ impl<'a> Axis<'a> {
     /// ```
     #[must_use]
     pub fn linear(low: f64, high: f64, desc: &'a str) -> Self {
-        Self { range: (low, high), log: false, desc, labels: None, format: None }
+        Self { range: (low, high), log: false, desc, labels: None, format: None, ticks: None }
     }
 
     /// A logarithmic axis over `low..high` (both positive) titled `desc`.
@@ -387,11 +425,28 @@ impl<'a> Chart<'a> {
             let units_per_pixel = (x.1 - x.0) / inside(width, self.label_areas.1);
             y.1 = y.0 + units_per_pixel * inside(height, self.label_areas.0);
         }
-        match (self.x.log, self.y.log) {
-            (false, false) => self.draw_in(area, x.0..x.1, y.0..y.1),
-            (false, true) => self.draw_in(area, x.0..x.1, (y.0..y.1).log_scale()),
-            (true, false) => self.draw_in(area, (x.0..x.1).log_scale(), y.0..y.1),
-            (true, true) => self.draw_in(area, (x.0..x.1).log_scale(), (y.0..y.1).log_scale()),
+        if (self.x.ticks.is_some() && !self.x.log) || (self.y.ticks.is_some() && !self.y.log) {
+            return Err("tick values are for log axes only".into());
+        }
+        match (self.y.log, self.y.ticks) {
+            (false, _) => self.draw_x(area, y.0..y.1),
+            (true, None) => self.draw_x(area, (y.0..y.1).log_scale()),
+            (true, Some(ticks)) => self.draw_x(area, (y.0..y.1).log_scale().with_key_points(ticks.to_vec())),
+        }
+    }
+
+    /// [`Chart::draw_in`] with the x axis's coordinate built (linear, log, or log with its ticks).
+    fn draw_x<DB, Y>(&self, area: &DrawingArea<DB, Shift>, y: Y) -> Result<(), String>
+    where
+        DB: DrawingBackend,
+        Y: AsRangedCoord<Value = f64>,
+        Y::CoordDescType: ValueFormatter<f64>,
+    {
+        let x = self.x.range;
+        match (self.x.log, self.x.ticks) {
+            (false, _) => self.draw_in(area, x.0..x.1, y),
+            (true, None) => self.draw_in(area, (x.0..x.1).log_scale(), y),
+            (true, Some(ticks)) => self.draw_in(area, (x.0..x.1).log_scale().with_key_points(ticks.to_vec()), y),
         }
     }
 

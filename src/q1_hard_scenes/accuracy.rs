@@ -50,9 +50,9 @@ fn accuracy_figures(rows: &[AccuracyRow]) -> Result<Vec<Figure>, PlotError> {
     let by = |x: fn(&AccuracyRow) -> f64| -> Vec<Series> {
         let mut out = Vec::new();
         for (k, scene) in scenes.iter().enumerate() {
-            for (integrator, line) in [("path", true), ("whitted", false)] {
+            for (integrator, name, line) in [("path", "path", true), ("whitted", "Whitted", false)] {
                 out.push(series(
-                    format!("{scene}, {integrator}"),
+                    format!("{scene}, {name}"),
                     rows.iter()
                         .filter(|r| r.scene == *scene && r.integrator == integrator)
                         .map(|r| (x(r), r.rmse))
@@ -69,7 +69,12 @@ fn accuracy_figures(rows: &[AccuracyRow]) -> Result<Vec<Figure>, PlotError> {
         let high = values.iter().copied().fold(0.0, f64::max);
         Axis::log(low * 0.8, high * 1.25, "")
     };
-    let rmse_range = || range(rows.iter().map(|r| r.rmse).collect());
+    // The error axis reaches 16 times below the smallest error: the legend (lower left) sits in
+    // that band instead of on the data.
+    let rmse_range = || {
+        let axis = range(rows.iter().map(|r| r.rmse).collect());
+        Axis::log(axis.range.0 / 16.0, axis.range.1, "")
+    };
     Ok(vec![
         chart(
             "q1_accuracy_spp.svg",

@@ -22,7 +22,9 @@ pub(super) fn chart(
     legend: SeriesLabelPosition,
     series: &[Series],
 ) -> Result<Figure, PlotError> {
-    let ticks = |axis: Axis<'_>, desc, labels| Axis { desc, labels: Some(labels), format: Some(tick), ..axis };
+    fn ticks<'a>(axis: Axis<'a>, desc: &'a str, labels: usize) -> Axis<'a> {
+        Axis { desc, labels: Some(labels), format: Some(tick), ..axis }
+    }
     Chart {
         label_size: 13,
         light_grid: false,

@@ -56,6 +56,18 @@ fn input_error(figure: &str, e: InputError) -> PlotError {
     PlotError::Draw { figure: figure.into(), message: e.to_string() }
 }
 
+/// The clutter chart's sphere-count ticks: the measured counts ([`CLUTTER_COUNTS`]), which
+/// plotters' own log ticks leave unlabelled below 1000.
+const CLUTTER_TICKS: [f64; CLUTTER_COUNTS.len()] = {
+    let mut ticks = [0.0; CLUTTER_COUNTS.len()];
+    let mut i = 0;
+    while i < ticks.len() {
+        ticks[i] = CLUTTER_COUNTS[i] as f64;
+        i += 1;
+    }
+    ticks
+};
+
 /// The clutter figures: render, gap-fraction chart, table.
 fn clutter_figures(rows: &[ClutterRow]) -> Result<Vec<Figure>, PlotError> {
     let counts: Vec<f64> = rows.iter().map(|r| r.count as f64).collect();
@@ -65,7 +77,7 @@ fn clutter_figures(rows: &[ClutterRow]) -> Result<Vec<Figure>, PlotError> {
         "q1_clutter_gap.svg",
         "Clutter: gap fraction and visible fraction vs sphere count",
         ("spheres N in the slab", "fraction"),
-        (Axis::log(200.0, 5000.0, ""), Axis::linear(0.0, 1.05, "")),
+        (Axis { ticks: Some(&CLUTTER_TICKS), ..Axis::log(200.0, 5000.0, "") }, Axis::linear(0.0, 1.05, "")),
         SeriesLabelPosition::LowerLeft,
         &[
             series("gap fraction, measured", pick(|r| r.gap_fraction), false, PALETTE[0]),
@@ -107,7 +119,7 @@ fn fog_figures(rows: &[FogRow]) -> Result<Vec<Figure>, PlotError> {
     }
     let transmittance = chart(
         "q1_fog_transmittance.svg",
-        "Fog: contrast (transmittance) vs distance",
+        "Fog: transmittance vs distance",
         ("target distance d", "transmittance T = ΔL / L_emitted"),
         (Axis::linear(0.0, 41.0, ""), Axis::log(1e-4, 1.2, "")),
         SeriesLabelPosition::LowerLeft,

@@ -99,6 +99,12 @@ fn dot(at: DVec3, color: RGBColor) -> Shape {
     Shape::dot((at.x, at.y), 4, color)
 }
 
+/// Font size of a case panel's title (the figure is 900 px wide and shown scaled down in the
+/// chapter's column, so its text is drawn larger than the single diagrams').
+const CASE_TITLE_PX: u32 = 17;
+/// Font size of a case panel's roots line and its eye label.
+const CASE_TEXT_PX: u32 = 16;
+
 /// The cases of the homework's root analysis, one panel each: (name, eye, direction), all
 /// against the worked example's sphere (centre 0, radius 2).
 const CASES: [(&str, [f64; 3], [f64; 3]); 6] = [
@@ -107,7 +113,7 @@ const CASES: [(&str, [f64; 3], [f64; 3]); 6] = [
     ("behind", [4.0, 1.0, 0.0], [1.0, 0.0, 0.0]),
     ("tangent", [-5.0, 2.0, 0.0], [1.0, 0.0, 0.0]),
     ("miss", [-5.0, 3.0, 0.0], [1.0, 0.0, 0.0]),
-    ("origin on the surface", [-2.0, 0.0, 0.0], [1.0, 0.0, 0.0]),
+    ("eye e on the surface", [-2.0, 0.0, 0.0], [1.0, 0.0, 0.0]),
 ];
 
 /// The six cases of the root analysis as a small multiple: in each panel the sphere, the ray
@@ -125,7 +131,10 @@ fn draw_cases(root: &DrawingArea<SVGBackend<'_>, Shift>) -> Result<(), String> {
             None => "no real root".into(),
         };
         let verdict = hit.map_or("no hit".into(), |t| format!("first hit t = {t:.3}"));
-        let area = area.margin(4, 4, 4, 4).titled(&format!("{name}: {verdict}"), ("sans-serif", 14)).map_err(err)?;
+        let area = area
+            .margin(4, 4, 4, 4)
+            .titled(&format!("{name}: {verdict}"), ("sans-serif", CASE_TITLE_PX))
+            .map_err(err)?;
         let (behind, ahead) = (ray.at(-12.0), ray.at(12.0));
         let mut shapes = vec![
             Shape::line(circle(sphere.radius), PALETTE[7], 2),
@@ -137,7 +146,7 @@ fn draw_cases(root: &DrawingArea<SVGBackend<'_>, Shift>) -> Result<(), String> {
         ];
         shapes.extend(arrow(ray.origin, ray.at(1.2), PALETTE[0]));
         shapes.push(dot(ray.origin, PALETTE[0]));
-        shapes.push(label((ray.origin.x - 0.3, ray.origin.y + 0.9), "e", PALETTE[0]));
+        shapes.push(Shape::text("e", (ray.origin.x - 0.3, ray.origin.y + 0.9), CASE_TEXT_PX, PALETTE[0]));
         if let Some(r) = roots {
             for t in [r.near, r.far] {
                 shapes.push(dot(ray.at(t), if t < 0.0 { PALETTE[5] } else { PALETTE[1] }));
@@ -151,10 +160,10 @@ fn draw_cases(root: &DrawingArea<SVGBackend<'_>, Shift>) -> Result<(), String> {
                 ..Series::dots("", vec![(p.x, p.y)], PALETTE[1], 8)
             }));
         }
-        // No mesh: the 22 px under the plotting area, its x label area, holds the roots' line.
+        // No mesh: the 26 px under the plotting area, its x label area, holds the roots' line.
         Chart {
             margin: 0,
-            label_areas: (22, 0),
+            label_areas: (26, 0),
             mesh: Mesh::Hidden,
             equal_scale: true,
             shapes,
@@ -163,8 +172,8 @@ fn draw_cases(root: &DrawingArea<SVGBackend<'_>, Shift>) -> Result<(), String> {
         }
         .draw(&area)?;
         let height = area.dim_in_pixel().1;
-        let style = TextStyle::from(("sans-serif", 12)).color(&PALETTE[7]);
-        area.draw(&Text::new(numbers, (6, i32::try_from(height).unwrap_or(0) - 18), style)).map_err(err)?;
+        let style = TextStyle::from(("sans-serif", CASE_TEXT_PX)).color(&PALETTE[7]);
+        area.draw(&Text::new(numbers, (6, i32::try_from(height).unwrap_or(0) - 22), style)).map_err(err)?;
     }
     Ok(())
 }

@@ -6,7 +6,8 @@ use super::irradiance::Irradiance;
 use super::maps::{AnalyticMap, sun_direction};
 use crate::envmap::{BuiltinMap, Probe, ProbeFormat, horizontal_camera, luminance};
 use crate::plot::{
-    Axis, Chart, Figure, FigureJob, Legend, LegendMark, Note, PALETTE, PlotError, Series, Stroke, err, png_bytes,
+    Axis, Chart, Figure, FigureJob, Legend, LegendMark, Note, PALETTE, PlotError, Series, Stroke, compact_tick, err,
+    png_bytes,
 };
 use glam::DMat3;
 use glam::DVec3;
@@ -432,7 +433,7 @@ fn pareto_figure(map: &str) -> Result<Figure, PlotError> {
             let points = rows.iter().filter(|r| r.method == *method).map(|r| (r.nanoseconds, r.mean_percent)).collect();
             Series {
                 line: Some(Stroke { width: 1, dash: None }),
-                ..Series::dots(*method, points, PALETTE[index % PALETTE.len()], 4)
+                ..Series::dots(method_name(method), points, PALETTE[index % PALETTE.len()], 4)
             }
         })
         .collect();
@@ -440,7 +441,7 @@ fn pareto_figure(map: &str) -> Result<Figure, PlotError> {
     let notes = rows
         .iter()
         .filter(|r| r.label == "sh9 256²" || r.label == "weighted 256²")
-        .map(|r| Note::new(r.label.clone(), (r.nanoseconds * 1.15, r.mean_percent), 11))
+        .map(|r| Note::new(r.label.replace("sh9", "SH9"), (r.nanoseconds * 1.15, r.mean_percent), 11))
         .collect();
     let caption = format!("Error vs time per normal, {map} map (benchmark data)");
     Chart {
@@ -451,11 +452,26 @@ fn pareto_figure(map: &str) -> Result<Figure, PlotError> {
         legend: Some(LEGEND),
         ..Chart::new(
             &caption,
-            Axis::log(t_min.min(1.0) * 0.5, t_max.max(10.0) * 2.0, "time per normal, ns (log)"),
-            Axis::log(e_min.min(1e-3) * 0.5, e_max.max(1.0) * 2.0, "mean error, % of peak E (log)"),
+            Axis {
+                format: Some(compact_tick),
+                ..Axis::log(t_min.min(1.0) * 0.5, t_max.max(10.0) * 2.0, "time per normal, ns (log)")
+            },
+            Axis {
+                format: Some(compact_tick),
+                ..Axis::log(e_min.min(1e-3) * 0.5, e_max.max(1.0) * 2.0, "mean error, % of peak E (log)")
+            },
         )
     }
     .svg(&format!("q4_pareto_{map}.svg"), (680, 440))
+}
+
+/// A benchmark method key as the chapter writes it: SH9 and MIS are acronyms, the other keys
+/// (unweighted, weighted, uniform, cosine, map) are words.
+fn method_name(method: &str) -> String {
+    match method {
+        "sh9" | "mis" => method.to_uppercase(),
+        _ => method.to_string(),
+    }
 }
 
 #[cfg(test)]

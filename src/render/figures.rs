@@ -42,7 +42,7 @@ fn render_scene(
 /// `render_probe_lit.png` (the `probe-lit` scene, lit only by Q4's courtyard map) and
 /// `render_fog_panel.png` (the `fog-panel` scene: a panel light's glow in fog), 640×480 each,
 /// and `render_caustic.png` (the `caustic` scene with its plan beside the same render with the
-/// caustic pass forced off, 320×240 per panel, labelled), all rendered Whitted-style with
+/// caustic pass forced off, 320×240 per panel, labelled below the panels), all rendered Whitted-style with
 /// their [`SPP`] samples per pixel and seed 1, so the bytes are the same on every run and thread count.
 /// The [`jobs`] run in parallel.
 ///
@@ -85,7 +85,8 @@ pub fn jobs() -> Vec<FigureJob> {
                 Panel { image: on, label: format!("the plan: caustic pass on\nWhitted + caustic map, {spp} spp") },
                 Panel { image: off, label: format!("caustic pass forced off\nWhitted, {spp} spp\n{difference}") },
             ];
-            Ok(vec![plot::panel_grid(caustic, &panels, 2)?])
+            // Labels below the panels: on the right panel the three-line label covered the ball.
+            Ok(vec![plot::panel_grid_labels_below(caustic, &panels, 2)?])
         }),
     ]
 }
