@@ -113,8 +113,9 @@ pub enum Expected {
 }
 
 impl Expected {
-    /// A number accepted within `rtol·|value| + 10⁻⁹`: every numeric part of the checker's keys
-    /// uses this absolute floor, so an answer of exactly zero is judged by it alone.
+    /// A number accepted within `rtol·|value| + 10⁻⁹`, the absolute floor the checker's numeric
+    /// parts use unless they need another (then they write [`Expected::Number`] out); for a key of
+    /// exactly zero the floor alone decides.
     ///
     /// # Examples
     /// ```

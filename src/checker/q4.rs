@@ -231,7 +231,7 @@ fn direction(value: DVec3) -> Expected {
 }
 
 fn probe_number(value: f64) -> Expected {
-    Expected::Number { value, rtol: PROBE_RTOL, atol: 1e-9 }
+    Expected::number(value, PROBE_RTOL)
 }
 
 impl ProbeImage {
@@ -464,7 +464,7 @@ impl ProbeImage {
             explained_in: PROBE_NOTES,
             method: UNWEIGHTED_METHOD,
         });
-        let ratio = |value| Expected::Number { value, rtol: RATIO_RTOL, atol: 1e-9 };
+        let ratio = |value| Expected::number(value, RATIO_RTOL);
         parts.push(Part {
             key: "q4c.bias_ratio",
             prompt: "bias of the unweighted sum, as the ratio unweighted/weighted",
@@ -493,7 +493,7 @@ impl ProbeImage {
             key: "q4c.masked_solid_angle",
             prompt: "solid angle held by the masked texels, 4 pi minus the sum of dw, steradians",
             points: 0.5,
-            expected: Expected::Number { value: masked, rtol: PROBE_RTOL, atol: 1e-9 },
+            expected: probe_number(masked),
             mal_rules: vec![MalRule {
                 value: Expected::Number { value: 0.0, rtol: 0.0, atol: 1e-3 },
                 message: "the ball shows every direction but one, yet the masked corner texels drop the part of \
