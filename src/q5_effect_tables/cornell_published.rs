@@ -17,7 +17,6 @@
 //! coincident surfaces do not tie (a tie would go to the lower object index, hiding the light
 //! behind the ceiling for half the rays).
 
-use super::budget::Budget;
 use super::error::ExperimentError;
 use super::photon_cornell::Reference;
 use super::radiosity::{Mesh, Solver, System};
@@ -333,30 +332,20 @@ pub fn relative_errors(n: usize, reference: &[f64]) -> Result<Vec<f64>, Experime
     Ok(radiosity_at_probes(n, 1)?.iter().zip(reference).map(|(v, r)| v / r - 1.0).collect())
 }
 
-/// The validation as markdown: for each of the `budget`'s [`levels`](Budget::levels) ([`LEVELS`]
-/// at [`Budget::PUBLISHED`], the committed `q5_cornell_published.md`), the patch count and the
-/// largest, mean and RMS relative error over the 20 wall probes against the committed path-traced
-/// reference ([`converged_reference`], [`REFERENCE_SPP`] samples per probe), then each probe's
-/// error at the finest level.
+/// The validation as markdown: for each of [`LEVELS`], the patch count and the largest, mean and
+/// RMS relative error over the 20 wall probes against the path tracer ([`REFERENCE_SPP`]).
 ///
 /// # Errors
 /// As [`radiosity_at_probes`].
 ///
-/// # Panics
-/// If `budget.levels` is empty.
-///
 /// # Examples
+/// ```no_run
+/// // Not run here: a 4096-sample path-traced reference and radiosity up to 12 × 12 patches;
+/// // `tests/docs.rs` compares it with the committed `q5_cornell_published.md`.
+/// let table = hw3::q5_effect_tables::cornell_published::validation_table().unwrap();
+/// assert!(table.contains("| 12 |"));
 /// ```
-/// use hw3::q5_effect_tables::{Budget, cornell_published::validation_table};
-/// // 2 × 2 and 3 × 3 patches per quad.
-/// let table = validation_table(&Budget::TINY).unwrap();
-/// let (levels, probes) = table.split_once("| probe |").unwrap();
-/// assert!(levels.contains("\n| 2 | ") && levels.contains("\n| 3 | ") && !levels.contains("\n| 12 | "));
-/// // One row per probe, numbered 0 to 19, under the per-probe header.
-/// assert_eq!(probes.lines().filter(|l| l.starts_with("| ") && !l.starts_with("|---")).count(), 20);
-/// ```
-pub fn validation_table(budget: &Budget) -> Result<String, ExperimentError> {
-    let finest_level = *budget.levels.last().expect("a budget has at least one level");
+pub fn validation_table() -> Result<String, ExperimentError> {
     let scene = scene()?;
     let reference = converged_reference().map_err(ExperimentError::Data)?;
     let mut out = format!(
@@ -365,7 +354,7 @@ pub fn validation_table(budget: &Budget) -> Result<String, ExperimentError> {
     );
     let mut finest = Vec::new();
     let mut rows = Vec::new();
-    for &n in budget.levels {
+    for n in LEVELS {
         let errors = relative_errors(n, &reference.radiance)?;
         let patches = Mesh::new(&scene, n)?.patches.len();
         let count = errors.len() as f64;
@@ -386,7 +375,8 @@ pub fn validation_table(budget: &Budget) -> Result<String, ExperimentError> {
     let header = ["patches per edge", "patches", "patch width", "largest error", "mean error", "RMS error"];
     out.push_str(&markdown_table(&header, rows));
     out.push_str(&format!(
-        "\nPer probe: the reference radiance (channel mean), its standard error, and radiosity's error at {finest_level} × {finest_level} patches per quad.\n\n"
+        "\nPer probe: the reference radiance (channel mean), its standard error, and radiosity's error at {0} × {0} patches per quad.\n\n",
+        LEVELS[LEVELS.len() - 1]
     ));
     let probes =
         reference.radiance.iter().zip(&reference.standard_error).zip(&finest).enumerate().map(|(p, ((l, se), e))| {

@@ -1,7 +1,6 @@
 //! Experiments that decide table cells by measurement: each effect gets a scene built to show it
 //! and a number with a threshold, measured for every method against the path-traced reference.
 
-use super::budget::Budget;
 use super::effect_scenes::{self, GLOSSY_FLOOR, WHITE_FLOOR, lit_floor, mirror_room};
 use super::error::ExperimentError;
 use super::grammar::{ALGORITHMS, EFFECTS, LightKind, StudentAnswer, Verdict, decide, student_answer};
@@ -84,7 +83,7 @@ pub enum Measured {
     Whitted,
     /// The renderer's path tracer, the reference ([`REFERENCE_SPP`] samples per point).
     PathTracing,
-    /// The student's two-pass method: eye rays with direct light (Whitted's shadow rays, not traced
+    /// The seed's two-pass method: eye rays with direct light (Whitted's shadow rays, not traced
     /// further) plus the radiance of the *indirect* photon map ([`PHOTONS`], [`NEIGHBOURS`]).
     TwoPass,
     /// Photon mapping: the two-pass method plus the caustic map's radiance at the eye ray's
@@ -110,6 +109,9 @@ pub const PHOTONS: usize = 200_000;
 /// assert!(hw3::render::photon::Gather::new(NEIGHBOURS, f64::MAX).is_ok());
 /// ```
 pub const NEIGHBOURS: usize = 100;
+
+/// Radiosity at the measured table's mesh ([`TABLE_MESH`]).
+const TABLE_RADIOSITY: Measured = Measured::Radiosity { subdivisions: TABLE_MESH.0, samples: TABLE_MESH.1 };
 
 impl Measured {
     /// The method's column id in [`ALGORITHMS`].
@@ -138,14 +140,8 @@ pub(super) const DIRECT_SPP: u32 = 16;
 /// Specular bounces that photon mapping's eye rays follow (and Whitted's).
 pub(super) const SPECULAR_DEPTH: u32 = 5;
 
-/// Mean radiance arriving along the probe rays in `scene` by `method`, with the sample and photon
-/// counts of `budget`.
-fn mean_radiance(
-    scene: &Scene,
-    method: Measured,
-    probes: &[Ray<f64>],
-    budget: &Budget,
-) -> Result<DVec3, ExperimentError> {
+/// Mean radiance arriving along the probe rays in `scene` by `method`.
+fn mean_radiance(scene: &Scene, method: Measured, probes: &[Ray<f64>]) -> Result<DVec3, ExperimentError> {
     let sum: DVec3 = match method {
         Measured::Radiosity { subdivisions, samples } => {
             let system = System::new(scene, Mesh::new(scene, subdivisions)?, samples)?;
@@ -161,9 +157,9 @@ fn mean_radiance(
         }
         Measured::Whitted | Measured::PathTracing => {
             let (integrator, spp) = if method == Measured::Whitted {
-                (Integrator::Whitted { max_depth: SPECULAR_DEPTH }, budget.light_samples)
+                (Integrator::Whitted { max_depth: SPECULAR_DEPTH }, DIRECT_SPP)
             } else {
-                (Integrator::PathTracer { max_depth: 12 }, budget.reference_spp)
+                (Integrator::PathTracer { max_depth: 12 }, REFERENCE_SPP)
             };
             let passes = if method == Measured::PathTracing {
                 reference_passes(scene)
@@ -182,9 +178,8 @@ fn mean_radiance(
                 .sum()
         }
         Measured::TwoPass | Measured::PhotonMapping => {
-            let maps = trace_photons(scene, budget.photons, PHOTON_SEED)?;
-            let (tracer, integrator) =
-                photon_eye(scene, &maps, method == Measured::PhotonMapping, budget.light_samples)?;
+            let maps = trace_photons(scene, PHOTONS, PHOTON_SEED)?;
+            let (tracer, integrator) = photon_eye(scene, &maps, method == Measured::PhotonMapping)?;
             probes
                 .iter()
                 .enumerate()
@@ -206,8 +201,8 @@ pub(super) fn reference_passes(scene: &Scene) -> Passes {
 pub(super) const PHOTON_SEED: u64 = 3;
 
 /// The eye pass of the two photon methods, as the renderer's [`Tracer`] and the integrator to
-/// run it with. The student's two-pass method: the eye ray's first hit gets direct light from shadow
-/// rays (Whitted at depth 0, the mean of `light_samples` light samples: a mirror or glass hit stays
+/// run it with. The seed's two-pass method: the eye ray's first hit gets direct light from shadow
+/// rays (Whitted at depth 0, the mean of [`DIRECT_SPP`] light samples: a mirror or glass hit stays
 /// black, the ray is not traced further) plus the *indirect* photon map (photons after a diffuse
 /// bounce). Photon mapping (`caustics`, Jensen): eye rays are traced through up to
 /// [`SPECULAR_DEPTH`] mirror and glass bounces, and the diffuse hit adds the *caustic* map of the
@@ -221,12 +216,11 @@ pub(super) fn photon_eye<'a>(
     scene: &'a Scene,
     maps: &'a PhotonMaps,
     caustics: bool,
-    light_samples: u32,
 ) -> Result<(Tracer<'a>, Integrator), PhotonError> {
     let gather = Gather::new(NEIGHBOURS, f64::MAX)?;
     let integrator = Integrator::Whitted { max_depth: if caustics { SPECULAR_DEPTH } else { 0 } };
     let passes = integrator.restrict(analyze(scene).plan).with(Pass::SpecularRecursion, caustics);
-    let tracer = Tracer::new(scene, passes).with_light_samples(light_samples).with_indirect(&maps.indirect, gather);
+    let tracer = Tracer::new(scene, passes).with_light_samples(DIRECT_SPP).with_indirect(&maps.indirect, gather);
     Ok((if caustics { tracer.with_caustics(&maps.caustic, gather) } else { tracer }, integrator))
 }
 
@@ -281,16 +275,15 @@ pub struct MeasuredCell {
 /// # Examples
 /// ```
 /// use hw3::q5_effect_tables::experiments::{Measured, highlight};
-/// use hw3::q5_effect_tables::Budget;
 /// // Whitted's shadow rays evaluate the Phong lobe; radiosity keeps only the diffuse part.
-/// assert!(highlight(Measured::Whitted, &Budget::PUBLISHED).unwrap() > 1.0);
-/// assert_eq!(highlight(Measured::Radiosity { subdivisions: 2, samples: 1 }, &Budget::PUBLISHED).unwrap(), 0.0);
+/// assert!(highlight(Measured::Whitted).unwrap() > 1.0);
+/// assert_eq!(highlight(Measured::Radiosity { subdivisions: 2, samples: 1 }).unwrap(), 0.0);
 /// ```
-pub fn highlight(method: Measured, budget: &Budget) -> Result<f64, ExperimentError> {
+pub fn highlight(method: Measured) -> Result<f64, ExperimentError> {
     let Material::Glossy { diffuse, .. } = GLOSSY_FLOOR else { return Err(ExperimentError::UnknownId("glossy")) };
     let probes = effect_scenes::highlight_probes();
-    let glossy = mean_radiance(&lit_floor(GLOSSY_FLOOR, false)?, method, &probes, budget)?;
-    let matte = mean_radiance(&lit_floor(Material::Diffuse { albedo: diffuse }, false)?, method, &probes, budget)?;
+    let glossy = mean_radiance(&lit_floor(GLOSSY_FLOOR, false)?, method, &probes)?;
+    let matte = mean_radiance(&lit_floor(Material::Diffuse { albedo: diffuse }, false)?, method, &probes)?;
     Ok(grey(glossy - matte))
 }
 
@@ -304,13 +297,12 @@ pub fn highlight(method: Measured, budget: &Budget) -> Result<f64, ExperimentErr
 /// # Examples
 /// ```
 /// use hw3::q5_effect_tables::experiments::{Measured, direct_shading};
-/// use hw3::q5_effect_tables::Budget;
-/// assert!(direct_shading(Measured::Whitted, &Budget::PUBLISHED).unwrap() > 0.03);
+/// assert!(direct_shading(Measured::Whitted).unwrap() > 0.03);
 /// ```
-pub fn direct_shading(method: Measured, budget: &Budget) -> Result<f64, ExperimentError> {
+pub fn direct_shading(method: Measured) -> Result<f64, ExperimentError> {
     let scene = lit_floor(WHITE_FLOOR, false)?;
-    let near = mean_radiance(&scene, method, &effect_scenes::floor_probes(DVec3::ZERO, 0.05), budget)?;
-    let far = mean_radiance(&scene, method, &effect_scenes::floor_probes(DVec3::X * 1.5, 0.05), budget)?;
+    let near = mean_radiance(&scene, method, &effect_scenes::floor_probes(DVec3::ZERO, 0.05))?;
+    let far = mean_radiance(&scene, method, &effect_scenes::floor_probes(DVec3::X * 1.5, 0.05))?;
     Ok(grey(near - far))
 }
 
@@ -324,12 +316,11 @@ pub fn direct_shading(method: Measured, budget: &Budget) -> Result<f64, Experime
 /// # Examples
 /// ```
 /// use hw3::q5_effect_tables::experiments::{Measured, mirror_image};
-/// use hw3::q5_effect_tables::Budget;
-/// assert!(mirror_image(Measured::Whitted, &Budget::PUBLISHED).unwrap() > 0.2);
-/// assert_eq!(mirror_image(Measured::Radiosity { subdivisions: 2, samples: 1 }, &Budget::PUBLISHED).unwrap(), 0.0);
+/// assert!(mirror_image(Measured::Whitted).unwrap() > 0.2);
+/// assert_eq!(mirror_image(Measured::Radiosity { subdivisions: 2, samples: 1 }).unwrap(), 0.0);
 /// ```
-pub fn mirror_image(method: Measured, budget: &Budget) -> Result<f64, ExperimentError> {
-    Ok(grey(mean_radiance(&mirror_room()?, method, &effect_scenes::mirror_probes(), budget)?))
+pub fn mirror_image(method: Measured) -> Result<f64, ExperimentError> {
+    Ok(grey(mean_radiance(&mirror_room()?, method, &effect_scenes::mirror_probes())?))
 }
 
 /// (d caustic) Light focused under a glass ball: the radiance of the white floor in the focus
@@ -342,14 +333,13 @@ pub fn mirror_image(method: Measured, budget: &Budget) -> Result<f64, Experiment
 /// # Examples
 /// ```
 /// use hw3::q5_effect_tables::experiments::{Measured, caustic};
-/// use hw3::q5_effect_tables::Budget;
 /// // Whitted's shadow ray from the focus is blocked by the glass: the shadow, no caustic.
-/// assert_eq!(caustic(Measured::Whitted, &Budget::PUBLISHED).unwrap(), 0.0);
+/// assert_eq!(caustic(Measured::Whitted).unwrap(), 0.0);
 /// ```
-pub fn caustic(method: Measured, budget: &Budget) -> Result<f64, ExperimentError> {
+pub fn caustic(method: Measured) -> Result<f64, ExperimentError> {
     let probes = effect_scenes::floor_probes(DVec3::ZERO, 0.01);
-    let focused = mean_radiance(&lit_floor(WHITE_FLOOR, true)?, method, &probes, budget)?;
-    let open = mean_radiance(&lit_floor(WHITE_FLOOR, false)?, method, &probes, budget)?;
+    let focused = mean_radiance(&lit_floor(WHITE_FLOOR, true)?, method, &probes)?;
+    let open = mean_radiance(&lit_floor(WHITE_FLOOR, false)?, method, &probes)?;
     Ok(grey(focused) / grey(open))
 }
 
@@ -362,14 +352,13 @@ pub fn caustic(method: Measured, budget: &Budget) -> Result<f64, ExperimentError
 /// # Examples
 /// ```
 /// use hw3::q5_effect_tables::experiments::{Measured, bleeding};
-/// use hw3::q5_effect_tables::Budget;
 /// // Red light reaches the floor only by a diffuse bounce off the wall: radiosity has it, direct light not.
-/// assert!(bleeding(Measured::Radiosity { subdivisions: 2, samples: 1 }, &Budget::PUBLISHED).unwrap() > 0.05);
-/// assert!(bleeding(Measured::Whitted, &Budget::PUBLISHED).unwrap().abs() < 1e-12);
+/// assert!(bleeding(Measured::Radiosity { subdivisions: 2, samples: 1 }).unwrap() > 0.05);
+/// assert!(bleeding(Measured::Whitted).unwrap().abs() < 1e-12);
 /// ```
-pub fn bleeding(method: Measured, budget: &Budget) -> Result<f64, ExperimentError> {
+pub fn bleeding(method: Measured) -> Result<f64, ExperimentError> {
     let ratio = |red: bool| -> Result<f64, ExperimentError> {
-        let l = mean_radiance(&cornell_box(red, CornellContents::Block)?, method, &bleeding_region(), budget)?;
+        let l = mean_radiance(&cornell_box(red, CornellContents::Block)?, method, &bleeding_region())?;
         Ok(l.x / l.y)
     };
     Ok(ratio(true)? / ratio(false)? - 1.0)
@@ -383,12 +372,11 @@ pub fn bleeding(method: Measured, budget: &Budget) -> Result<f64, ExperimentErro
 /// # Examples
 /// ```
 /// use hw3::q5_effect_tables::experiments::{Measured, glow};
-/// use hw3::q5_effect_tables::Budget;
-/// assert!(glow(Measured::Radiosity { subdivisions: 2, samples: 1 }, &Budget::PUBLISHED).unwrap() > 0.0);
-/// assert_eq!(glow(Measured::Whitted, &Budget::PUBLISHED).unwrap(), 0.0);
+/// assert!(glow(Measured::Radiosity { subdivisions: 2, samples: 1 }).unwrap() > 0.0);
+/// assert_eq!(glow(Measured::Whitted).unwrap(), 0.0);
 /// ```
-pub fn glow(method: Measured, budget: &Budget) -> Result<f64, ExperimentError> {
-    Ok(grey(mean_radiance(&cornell_box(true, CornellContents::Block)?, method, &glow_region(), budget)?))
+pub fn glow(method: Measured) -> Result<f64, ExperimentError> {
+    Ok(grey(mean_radiance(&cornell_box(true, CornellContents::Block)?, method, &glow_region())?))
 }
 
 /// A measurement: the size of one effect for one method.
@@ -396,11 +384,10 @@ pub fn glow(method: Measured, budget: &Budget) -> Result<f64, ExperimentError> {
 /// # Examples
 /// ```
 /// use hw3::q5_effect_tables::experiments::{Experiment, Measured, glow};
-/// use hw3::q5_effect_tables::Budget;
 /// let measure: Experiment = glow;
-/// assert_eq!(measure(Measured::Whitted, &Budget::TINY).unwrap(), 0.0);
+/// assert_eq!(measure(Measured::Whitted).unwrap(), 0.0);
 /// ```
-pub type Experiment = fn(Measured, &Budget) -> Result<f64, ExperimentError>;
+pub type Experiment = fn(Measured) -> Result<f64, ExperimentError>;
 
 /// Every effect row of [`EFFECTS`] with its experiment, in table order.
 ///
@@ -418,8 +405,7 @@ pub const EXPERIMENTS: [(&str, Experiment); 6] = [
     ("e", glow),
 ];
 
-/// The methods of the measured table at the published budget, in column order
-/// ([`Budget::table_methods`]).
+/// The methods of the measured table, in column order.
 ///
 /// # Examples
 /// ```
@@ -427,7 +413,8 @@ pub const EXPERIMENTS: [(&str, Experiment); 6] = [
 /// // Every measured method is a column of the grammar's table.
 /// assert!(TABLE_METHODS.iter().all(|m| ALGORITHMS.iter().any(|column| column.id == m.id())));
 /// ```
-pub const TABLE_METHODS: [Measured; 4] = Budget::PUBLISHED.table_methods();
+pub const TABLE_METHODS: [Measured; 4] =
+    [TABLE_RADIOSITY, Measured::TwoPass, Measured::Whitted, Measured::PhotonMapping];
 
 /// The verdict for a measured fraction: Yes at [`YES_FRACTION`] or more, No at [`NO_FRACTION`]
 /// or less, Impractical (partial) in between.
@@ -449,42 +436,33 @@ pub fn verdict(fraction: f64) -> Verdict {
 }
 
 /// The measured table: every effect of [`EXPERIMENTS`] for radiosity, the two-pass method,
-/// Whitted ray tracing and photon mapping ([`Budget::table_methods`]) against the path tracer,
-/// with the sample and photon counts of `budget`.
+/// Whitted ray tracing and photon mapping ([`TABLE_METHODS`]) against the path tracer.
 ///
-/// At [`Budget::PUBLISHED`] (the committed `q5_measured_table.md`, pinned by
-/// `experiments::tests`) it is computed once per process (about 10 s in a debug test build) and
-/// then cloned: the test, the figures and `hw3 effect-tables` share it. Any other budget is
-/// measured afresh on every call.
+/// Computed once per process (about 10 s in a debug test build) and then cloned: the test, the
+/// figures and `hw3 effect-tables` share it.
 ///
 /// # Errors
 /// [`ExperimentError`] if an experiment fails (never for the built-in scenes).
 ///
 /// # Examples
+/// ```no_run
+/// // Not run here: 24 cells against a 1024-sample path tracer; `experiments::tests` runs it and
+/// // pins the table.
+/// let cells = hw3::q5_effect_tables::experiments::measured_table().unwrap();
+/// assert_eq!(cells.len(), 24);
 /// ```
-/// use hw3::q5_effect_tables::{Budget, experiments::{EXPERIMENTS, measured_table}};
-/// let cells = measured_table(&Budget::TINY).unwrap();
-/// assert_eq!(cells.len(), EXPERIMENTS.len() * 4);
-/// // Whatever the budget, radiosity sees no highlight and nothing in a mirror: exactly 0.
-/// let radiosity = |effect: &str| cells.iter().find(|c| c.effect == effect && c.algorithm == "radiosity").unwrap().value;
-/// assert_eq!((radiosity("a"), radiosity("d_mirror")), (0.0, 0.0));
-/// ```
-pub fn measured_table(budget: &Budget) -> Result<Vec<MeasuredCell>, ExperimentError> {
+pub fn measured_table() -> Result<Vec<MeasuredCell>, ExperimentError> {
     static TABLE: OnceLock<Result<Vec<MeasuredCell>, ExperimentError>> = OnceLock::new();
-    if *budget == Budget::PUBLISHED {
-        TABLE.get_or_init(|| measure_table(&Budget::PUBLISHED)).clone()
-    } else {
-        measure_table(budget)
-    }
+    TABLE.get_or_init(measure_table).clone()
 }
 
-fn measure_table(budget: &Budget) -> Result<Vec<MeasuredCell>, ExperimentError> {
+fn measure_table() -> Result<Vec<MeasuredCell>, ExperimentError> {
     let mut cells = Vec::new();
     for (effect, measure) in EXPERIMENTS {
-        let reference = measure(Measured::PathTracing, budget)?;
+        let reference = measure(Measured::PathTracing)?;
         let row = EFFECTS.iter().find(|e| e.id == effect).ok_or(ExperimentError::UnknownId(effect))?;
-        for method in budget.table_methods() {
-            let value = measure(method, budget)?;
+        for method in TABLE_METHODS {
+            let value = measure(method)?;
             let fraction = value / reference;
             let column =
                 ALGORITHMS.iter().find(|m| m.id == method.id()).ok_or(ExperimentError::UnknownId(method.id()))?;
@@ -572,14 +550,14 @@ mod tests {
     use crate::render::{camera::Camera, scene::Object};
     use std::f64::consts::PI;
 
-    /// Every measured verdict equals the grammar's but one, the student's two-pass method on the
+    /// Every measured verdict equals the grammar's but one, the seed's two-pass method on the
     /// caustic: its photon pass stores photons only after a diffuse bounce, so the `LS+D` photons
     /// that make a caustic never reach the map it reads (measured 0, No), while the grammar's
     /// two-pass language lets photons bounce off mirrors before landing (Impractical). Photon
     /// mapping, which reads the caustic map at the same first hit, captures it.
     #[test]
     fn measured_cells_agree_with_the_grammar_and_are_pinned() {
-        let cells = measured_table(&Budget::PUBLISHED).unwrap();
+        let cells = measured_table().unwrap();
         assert_eq!(cells.len(), EXPERIMENTS.len() * TABLE_METHODS.len());
         for c in &cells {
             assert!(c.reference > 0.0 && c.fraction.is_finite(), "{c:?}");
@@ -641,6 +619,6 @@ mod tests {
     #[test]
     fn the_glow_region_gets_no_direct_light() {
         // Direct light only (Whitted) sees nothing on the ceiling: the region is lit indirectly.
-        assert_eq!(glow(Measured::Whitted, &Budget::PUBLISHED).unwrap(), 0.0);
+        assert_eq!(glow(Measured::Whitted).unwrap(), 0.0);
     }
 }
