@@ -231,9 +231,16 @@ impl Builder {
             push_leaf(&prims, out);
             return;
         };
-        // One pass per child, each box read in order.
-        let lower: Vec<Prim> = prims.iter().filter(|p| p.bounds.min[axis] <= split).copied().collect();
-        let upper: Vec<Prim> = prims.iter().filter(|p| p.bounds.max[axis] >= split).copied().collect();
+        // One pass, each box read once, in order, for both children.
+        let (mut lower, mut upper) = (Vec::with_capacity(prims.len()), Vec::with_capacity(prims.len()));
+        for p in &prims {
+            if p.bounds.min[axis] <= split {
+                lower.push(*p);
+            }
+            if p.bounds.max[axis] >= split {
+                upper.push(*p);
+            }
+        }
         drop(prims);
         let here = out.nodes.len();
         out.nodes.push(Node::leaf(0, 0));

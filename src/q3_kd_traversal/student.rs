@@ -150,7 +150,7 @@ pub fn compare(ours: &super::Trace, handwritten: &[Step]) -> Vec<StepComparison>
 /// The student's rules taken literally, on the homework tree: rule (b) at the root (near side by
 /// `e_x ≥ 3`, crossing only if `t > 0`), rule (c) at both children ("the right branch is handled
 /// similarly": the `y = 3` node uses (c) with 3 for 1), including its `else // dy < 0` branch
-/// for `d_y = 0` and its strict `t < tmin` / `t > tmax` tests. Kept only to check the student's;
+/// for `d_y = 0` and its strict `t < tmin` / `t > tmax` tests. Kept only to check the student's rules;
 /// the crate traverses with [`crate::kdtree::split_interval`].
 ///
 /// # Examples
