@@ -252,6 +252,8 @@ fn draw(root: &DrawingArea<SVGBackend<'_>, Shift>, title: &str, ray: &Ray2, step
     Chart {
         caption_size: 17,
         label_areas: (36, 40),
+        // 13 px ticks, as the cell labels: the figure is shown at its own width.
+        label_size: 13,
         light_grid: false,
         grid_colour: Some(RGBColor(230, 230, 230)),
         shapes,
