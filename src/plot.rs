@@ -11,7 +11,9 @@ mod chart;
 mod job;
 mod table;
 
-pub use chart::{Axis, Chart, Dots, Legend, LegendMark, Mesh, Note, Series, Shape, Stroke, TickFormat, compact_tick};
+pub use chart::{
+    Axis, Chart, Dots, Legend, LegendMark, Mesh, Note, Series, Shape, Stroke, TickFormat, compact_tick, legend_grid,
+};
 pub use job::{FigureJob, run_jobs};
 pub use table::markdown_table;
 

@@ -12,6 +12,7 @@ use super::{Figure, PlotError, err, png_figure, svg_figure};
 use plotters::chart::SeriesAnno;
 use plotters::coord::Shift;
 use plotters::coord::ranged1d::{AsRangedCoord, Ranged, ValueFormatter};
+use plotters::element::DashedPathElement;
 use plotters::prelude::*;
 
 /// Formats one tick value of an axis.
@@ -573,6 +574,56 @@ where
         if !label_on_line {
             label(annotation);
         }
+    }
+    Ok(())
+}
+
+/// Draws a legend on an area of its own (a strip below or beside the panels it explains, so that
+/// it hides no data): each labelled series of `series`, in rows of `columns` left to right, as a
+/// sample 22 px long (the series' line, dashed as it is drawn, and a dot in its middle when the
+/// series has dots) followed by its label in `font`-px text. Rows are `font + 12` px apart, the
+/// columns split the area's width evenly; nothing is drawn for a series without a label.
+///
+/// # Errors
+/// The drawing backend's error, as text; a message when `columns` is 0.
+///
+/// # Examples
+/// ```
+/// use hw3::plot::{PALETTE, Series, legend_grid, svg_figure};
+/// let entries = [Series::line("kd-tree", vec![], PALETTE[0], 2), Series::dots("measured", vec![], PALETTE[1], 3)];
+/// let figure = svg_figure("legend.svg", (400, 40), |root| legend_grid(root, &entries, 2, 13)).unwrap();
+/// let svg = String::from_utf8(figure.bytes).unwrap();
+/// assert!(svg.contains("kd-tree") && svg.contains("measured"));
+/// ```
+pub fn legend_grid<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    series: &[Series],
+    columns: usize,
+    font: u32,
+) -> Result<(), String> {
+    if columns == 0 {
+        return Err("a legend needs at least one column".into());
+    }
+    let column_width = area.dim_in_pixel().0 as i32 / columns as i32;
+    let row_height = font as i32 + 12;
+    for (k, series) in series.iter().filter(|s| s.label.is_some()).enumerate() {
+        let (x, y) = (12 + column_width * (k % columns) as i32, 6 + row_height * (k / columns) as i32);
+        let middle = y + font as i32 / 2 + 1;
+        if let Some(stroke) = series.line {
+            let ends = vec![(x, middle), (x + 22, middle)];
+            let style = series.colour.stroke_width(stroke.width);
+            match stroke.dash {
+                None => area.draw(&PathElement::new(ends, style)),
+                Some((dash, gap)) => area.draw(&DashedPathElement::new(ends, dash, gap, style)),
+            }
+            .map_err(err)?;
+        }
+        if let Some(dots) = series.dots {
+            let style = dots.ring.map_or(series.colour.filled(), |width| series.colour.stroke_width(width));
+            area.draw(&Circle::new((x + 11, middle), dots.radius, style)).map_err(err)?;
+        }
+        let label = series.label.clone().unwrap_or_default();
+        area.draw(&Text::new(label, (x + 30, y), ("sans-serif", font))).map_err(err)?;
     }
     Ok(())
 }

@@ -1,7 +1,7 @@
 //! The accuracy-versus-time data that `benches/render.rs` commits (`docs/data/q1_accuracy.csv`),
 //! and its two charts.
 
-use super::chart::{Series, chart, series};
+use super::chart::{Series, chart, key, series};
 use crate::plot::{Axis, Figure, PALETTE, PlotError};
 use plotters::prelude::*;
 
@@ -47,12 +47,14 @@ fn accuracy_figures(rows: &[AccuracyRow]) -> Result<Vec<Figure>, PlotError> {
         }
         names
     });
+    // The legend names each scene once (its colour) and says once what a line and a dot mean,
+    // six entries instead of eight, small enough for a corner the data leave empty.
     let by = |x: fn(&AccuracyRow) -> f64| -> Vec<Series> {
         let mut out = Vec::new();
         for (k, scene) in scenes.iter().enumerate() {
-            for (integrator, name, line) in [("path", "path", true), ("whitted", "Whitted", false)] {
+            for (integrator, line) in [("path", true), ("whitted", false)] {
                 out.push(series(
-                    format!("{scene}, {name}"),
+                    if line { scene.to_string() } else { String::new() },
                     rows.iter()
                         .filter(|r| r.scene == *scene && r.integrator == integrator)
                         .map(|r| (x(r), r.rmse))
@@ -62,6 +64,7 @@ fn accuracy_figures(rows: &[AccuracyRow]) -> Result<Vec<Figure>, PlotError> {
                 ));
             }
         }
+        out.extend([key("path tracing", true), key("Whitted", false)]);
         out
     };
     let range = |values: Vec<f64>| {
@@ -69,18 +72,19 @@ fn accuracy_figures(rows: &[AccuracyRow]) -> Result<Vec<Figure>, PlotError> {
         let high = values.iter().copied().fold(0.0, f64::max);
         Axis::log(low * 0.8, high * 1.25, "")
     };
-    // The error axis reaches 16 times below the smallest error: the legend (lower left) sits in
-    // that band instead of on the data.
-    let rmse_range = || {
-        let axis = range(rows.iter().map(|r| r.rmse).collect());
-        Axis::log(axis.range.0 / 16.0, axis.range.1, "")
-    };
+    // Ticks at 1-2-5 steps (and the measured sample counts): plotters' own log ticks label only
+    // the powers of ten, one or two per axis here.
+    let ticked = |axis: Axis<'static>, ticks: &'static [f64]| Axis { ticks: Some(ticks), ..axis };
+    let rmse_range = || ticked(range(rows.iter().map(|r| r.rmse).collect()), &[0.005, 0.01, 0.02, 0.05, 0.1, 0.2]);
     Ok(vec![
         chart(
             "q1_accuracy_spp.svg",
             "Error against a converged path-traced reference vs samples per pixel",
             ("samples per pixel", "RMS luminance error"),
-            (range(rows.iter().map(|r| r.spp).collect()), rmse_range()),
+            (
+                ticked(range(rows.iter().map(|r| r.spp).collect()), &[1.0, 2.0, 4.0, 8.0, 16.0, 32.0, 64.0]),
+                rmse_range(),
+            ),
             SeriesLabelPosition::LowerLeft,
             &by(|r| r.spp),
         )?,
@@ -88,8 +92,14 @@ fn accuracy_figures(rows: &[AccuracyRow]) -> Result<Vec<Figure>, PlotError> {
             "q1_accuracy_seconds.svg",
             "Error vs render time (benchmark machine, 48×36 pixels)",
             ("seconds", "RMS luminance error"),
-            (range(rows.iter().map(|r| r.seconds).collect()), rmse_range()),
-            SeriesLabelPosition::LowerLeft,
+            (
+                ticked(
+                    range(rows.iter().map(|r| r.seconds).collect()),
+                    &[0.002, 0.005, 0.01, 0.02, 0.05, 0.1, 0.2, 0.5],
+                ),
+                rmse_range(),
+            ),
+            SeriesLabelPosition::UpperRight,
             &by(|r| r.seconds),
         )?,
     ])

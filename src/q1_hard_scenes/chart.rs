@@ -4,7 +4,8 @@
 use crate::plot::{self, Axis, Chart, Figure, Legend, LegendMark, PlotError};
 use plotters::prelude::{RGBColor, SeriesLabelPosition};
 
-/// One series of a chart: points (markers) or a line.
+/// One series of a chart: points (markers) or a line, with a legend entry unless its label is
+/// empty.
 pub(super) struct Series {
     label: String,
     points: Vec<(f64, f64)>,
@@ -31,14 +32,15 @@ pub(super) fn chart(
         series: series
             .iter()
             .map(|s| {
-                if s.line {
+                let drawn = if s.line {
                     plot::Series {
-                        legend: LegendMark::Line { length: 16, width: 1 },
+                        legend: LegendMark::Line { length: 16, width: 2 },
                         ..plot::Series::line(s.label.as_str(), s.points.clone(), s.color, 2)
                     }
                 } else {
                     plot::Series::dots(s.label.as_str(), s.points.clone(), s.color, 4)
-                }
+                };
+                plot::Series { label: (!s.label.is_empty()).then(|| s.label.clone()), ..drawn }
             })
             .collect(),
         legend: Some(Legend { position: Some(legend), font: 13, opacity: 0.85 }),
@@ -49,6 +51,12 @@ pub(super) fn chart(
 
 pub(super) fn series(label: impl Into<String>, points: Vec<(f64, f64)>, line: bool, color: RGBColor) -> Series {
     Series { label: label.into(), points, line, color }
+}
+
+/// A legend entry with no points: a black line (`line`) or dot saying what lines or dots mean
+/// when the colours name something else.
+pub(super) fn key(label: impl Into<String>, line: bool) -> Series {
+    series(label, Vec::new(), line, plotters::prelude::BLACK)
 }
 
 /// An axis label: the value rounded to six decimals, so that `0.6000000001` prints `0.6`.

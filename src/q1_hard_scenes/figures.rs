@@ -6,15 +6,18 @@ use super::chart::{chart, series};
 use super::clutter::{CLUTTER_COUNTS, ClutterRow, clutter_row, clutter_table};
 use super::fog::{FOG_SIGMAS, FogRow, airlight_rows, airlight_table, fog_probe_direction, fog_rows, fog_table};
 use super::mirrors::{
-    DIVERGENCE_TRIALS, MirrorDivergence, divergence_table, mirror_divergence, mirror_sensitivity, mirror_table,
+    DIVERGENCE_TRIALS, MIRROR_STEPS, MirrorDivergence, divergence_table, mirror_divergence, mirror_sensitivity,
+    mirror_table,
 };
 use super::motion::{MOTION_SPEED, MotionChange, MotionNoise, motion_change, motion_noise, motion_tables};
 use crate::geometry::InputError;
 use crate::plot::{self, Axis, Figure, FigureJob, PALETTE, PlotError};
 use crate::render::analysis::analyze;
+use crate::render::camera::Camera;
 use crate::render::catalogue;
 use crate::render::scene::Scene;
 use crate::render::{Settings, render};
+use glam::DVec3;
 use plotters::prelude::*;
 
 /// A text file placed among the figures (the chapter includes it as a generated table).
@@ -140,7 +143,7 @@ fn mirror_figures(rows: &[(f64, f64, f64)], divergence: &MirrorDivergence) -> Re
         "q1_mirror_sensitivity.svg",
         "Mirrors: image change per unit camera move (sphere pixels)",
         ("camera displacement δ", "S(δ) = mean |ΔI| / δ"),
-        (Axis::log(0.004, 0.12, ""), Axis::linear(0.0, 0.6, "")),
+        (Axis { ticks: Some(&MIRROR_STEPS), ..Axis::log(0.004, 0.12, "") }, Axis::linear(0.0, 0.6, "")),
         SeriesLabelPosition::LowerRight,
         &[
             series("mirror spheres", rows.iter().map(|r| (r.0, r.1)).collect(), true, PALETTE[0]),
@@ -160,7 +163,10 @@ fn motion_figures(change: &MotionChange, noise: &MotionNoise) -> Result<Vec<Figu
         "q1_motion_noise.svg",
         "Motion blur: RMS error vs samples per pixel",
         ("samples per pixel", "RMS luminance error"),
-        (Axis::log(0.8, 40.0, ""), Axis::log(4e-3, 5e-2, "")),
+        (
+            Axis { ticks: Some(&[1.0, 2.0, 4.0, 8.0, 16.0, 32.0]), ..Axis::log(0.8, 40.0, "") },
+            Axis { ticks: Some(&[0.005, 0.01, 0.02, 0.04]), ..Axis::log(4e-3, 5e-2, "") },
+        ),
         SeriesLabelPosition::LowerLeft,
         &[
             series("moving ball", noise.rows.iter().map(|r| (f64::from(r.0), r.1)).collect(), false, PALETTE[0]),
@@ -289,7 +295,11 @@ pub fn render_jobs() -> Vec<FigureJob> {
             Ok(vec![pair_figure("q1_fog.png", HALF, [(&clear, f, "no medium"), (&foggy, f, "fog, σ_s = 0.08")])?])
         }),
         FigureJob::rendered("q1 mirror renders", || {
-            let mirrors = |m| catalogue::mirror_spheres(m).map_err(|e| input_error("q1_mirrors.png", e));
+            let mirrors = |m| {
+                catalogue::mirror_spheres(m)
+                    .and_then(|scene| scene.with_camera(mirror_figure_camera()))
+                    .map_err(|e| input_error("q1_mirrors.png", e))
+            };
             let (mirror, diffuse, m) = (mirrors(true)?, mirrors(false)?, spp_of("mirrors"));
             let pair = [(&mirror, m, "mirror spheres"), (&diffuse, m, "the same spheres, diffuse")];
             Ok(vec![pair_figure("q1_mirrors.png", HALF, pair)?])
@@ -301,6 +311,14 @@ pub fn render_jobs() -> Vec<FigureJob> {
             Ok(vec![pair_figure("q1_motion.png", HALF, pair)?])
         }),
     ]
+}
+
+/// The camera of the mirror render: not the measurements' camera ([`catalogue::mirror_camera`],
+/// which looks along the block's axis, so that the back pair of spheres hides behind the front
+/// pair) but one looking down at about 55° along the 2×2 block's diagonal, from which all four
+/// spheres stand apart and the gaps between them, where the inter-reflections are, show.
+fn mirror_figure_camera() -> Camera {
+    Camera::looking_at(DVec3::new(2.45, 5.4, -0.55), DVec3::new(0.0, 0.45, -3.0), 40.0)
 }
 
 #[cfg(test)]

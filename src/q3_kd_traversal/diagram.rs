@@ -3,7 +3,7 @@
 
 use super::{Axis2, Interval, Node2, Ray2, RayText, student, traverse, write_path};
 use crate::kdtree::Side;
-use crate::plot::{Axis, Chart, Figure, PALETTE, PlotError, Shape, err, svg_figure};
+use crate::plot::{Axis, Chart, Figure, PALETTE, PlotError, Series, Shape, legend_grid, svg_figure};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::fmt;
@@ -60,10 +60,36 @@ fn split_lines(node: &Node2, bounds: [(f64, f64); 2], out: &mut Vec<[(f64, f64);
     }
 }
 
-/// Approximate size of a 13 px cell label in plot units (10 units span about 480 px): 0.14 per
-/// character wide, 0.3 high.
-fn label_size(text: &str) -> (f64, f64) {
-    (0.14 * text.chars().count() as f64, 0.3)
+/// Width in pixels of a diagram drawn alone; a step panel is narrower ([`STEPS_WIDTH`]).
+const DIAGRAM_WIDTH: u32 = 560;
+/// Largest width in pixels of a steps figure, all its panels together: the notes' text column,
+/// so that the figure is shown at its own size and its labels keep their pixel sizes on screen
+/// (a panel is never wider than [`DIAGRAM_WIDTH`]).
+const STEPS_WIDTH: u32 = 936;
+
+/// Approximate size of a 13 px cell label in plot units, in a panel `width` pixels wide (at
+/// [`DIAGRAM_WIDTH`] 10 units span about 480 px: 0.14 per character wide, 0.3 high).
+fn label_size(text: &str, width: u32) -> (f64, f64) {
+    let scale = f64::from(DIAGRAM_WIDTH) / f64::from(width);
+    (0.14 * text.chars().count() as f64 * scale, 0.3 * scale)
+}
+
+/// [`label_size`] of a 14 px interval label: 0.15 per character wide.
+fn interval_label_size(text: &str, width: u32) -> (f64, f64) {
+    let (w, h) = label_size(text, width);
+    (w * 15.0 / 14.0, h)
+}
+
+/// Distance from the box `[x0, x1] × [y0, y1]` to the segment `a`–`b` (0 when they meet),
+/// measured at 64 points along the segment: finer than any label is wide.
+fn box_clearance([(x0, x1), (y0, y1)]: [(f64, f64); 2], a: (f64, f64), b: (f64, f64)) -> f64 {
+    (0..=64)
+        .map(|i| {
+            let s = f64::from(i) / 64.0;
+            let (px, py) = (a.0 + s * (b.0 - a.0), a.1 + s * (b.1 - a.1));
+            (x0 - px).max(px - x1).max(0.0).hypot((y0 - py).max(py - y1).max(0.0))
+        })
+        .fold(f64::INFINITY, f64::min)
 }
 
 /// Distance from the point `p` to the segment `a`–`b`.
@@ -77,8 +103,8 @@ fn distance_to_segment(p: (f64, f64), a: (f64, f64), b: (f64, f64)) -> f64 {
 /// Where to anchor (top-left) a cell's label: the inner corner of the cell's visible box whose
 /// label box lies farthest from the drawn ray (ties: the first of top-left, top-right,
 /// bottom-left, bottom-right).
-fn label_anchor(text: &str, bounds: [(f64, f64); 2], ray: [(f64, f64); 2]) -> (f64, f64) {
-    let (w, h) = label_size(text);
+fn label_anchor(text: &str, bounds: [(f64, f64); 2], ray: [(f64, f64); 2], width: u32) -> (f64, f64) {
+    let (w, h) = label_size(text, width);
     let margin = 0.15;
     let [(x0, x1), (y0, y1)] = bounds;
     let corners = [
@@ -111,8 +137,53 @@ impl fmt::Display for PathText<'_> {
     }
 }
 
+/// Where to anchor (top-left) the label `text` of the leaf piece `[from, to]` of `ray`, in the
+/// leaf's visible cell `bounds`: beside the piece's middle on its right-hand side ([`beside`])
+/// when that box stays inside the cell; otherwise the first box, off the piece's middle or
+/// nearer either end, on either side, ever farther out, that lies inside the cell (pushed in
+/// from its edges) and 0.12 units clear of the drawn ray, so that no label sits on a split line
+/// or on the ray. Falls back to [`beside`] when no box fits.
+fn interval_anchor(
+    text: &str,
+    ray: &Ray2,
+    (from, to): (f64, f64),
+    bounds: [(f64, f64); 2],
+    drawn_ray: [(f64, f64); 2],
+    width: u32,
+) -> (f64, f64) {
+    let (w, h) = interval_label_size(text, width);
+    let margin = 0.06;
+    let [(x0, x1), (y0, y1)] = bounds;
+    let boxed = |(x, y): (f64, f64)| [(x, x + w), (y - h, y)];
+    let inside = |[(a0, a1), (b0, b1)]: [(f64, f64); 2]| {
+        a0 >= x0 + margin && a1 <= x1 - margin && b0 >= y0 + margin && b1 <= y1 - margin
+    };
+    let clear = |corners| box_clearance(corners, drawn_ray[0], drawn_ray[1]) >= 0.12;
+    let middle = beside(ray, (from + to) / 2.0);
+    if inside(boxed(middle)) && clear(boxed(middle)) {
+        return middle;
+    }
+    let [dx, dy] = ray.dir;
+    let length = dx.hypot(dy);
+    let normal = (dy / length, -dx / length);
+    for offset in (3..=15).map(|k| f64::from(k) / 10.0) {
+        for fraction in [0.5, 0.3, 0.7] {
+            let p = ray.at(from + fraction * (to - from));
+            for side in [1.0, -1.0] {
+                let centre = (p[0] + side * offset * normal.0, p[1] + side * offset * normal.1);
+                let x = (centre.0 - w / 2.0).clamp(x0 + margin, (x1 - margin - w).max(x0 + margin));
+                let y = (centre.1 + h / 2.0).clamp((y0 + margin + h).min(y1 - margin), y1 - margin);
+                if inside(boxed((x, y))) && clear(boxed((x, y))) {
+                    return (x, y);
+                }
+            }
+        }
+    }
+    middle
+}
+
 fn diagram(file_name: &str, title: &str, ray: &Ray2) -> Result<Figure, PlotError> {
-    svg_figure(file_name, (560, 640), |root| draw(root, title, ray, None))
+    svg_figure(file_name, (DIAGRAM_WIDTH, DIAGRAM_WIDTH + 80), |root| draw(root, title, ray, None))
 }
 
 /// The traversal of `ray` cell by cell: one panel per visited leaf, in the order the traversal
@@ -120,7 +191,8 @@ fn diagram(file_name: &str, title: &str, ray: &Ray2) -> Result<Figure, PlotError
 fn steps(file_name: &str, ray: &Ray2) -> Result<Figure, PlotError> {
     let leaves = traverse(&Node2::homework(), ray).leaves();
     let count = leaves.len().max(1);
-    svg_figure(file_name, (560 * count as u32, 640), |root| {
+    let panel = (STEPS_WIDTH / count as u32).min(DIAGRAM_WIDTH);
+    svg_figure(file_name, (panel * count as u32, panel + 80), |root| {
         for (k, area) in root.split_evenly((1, count)).iter().enumerate() {
             let Some(leaf) = leaves.get(k) else { continue };
             let title = format!("step {} of {count}: leaf {}, t in {}", k + 1, PathText(&leaf.path), leaf.interval);
@@ -135,7 +207,8 @@ fn steps(file_name: &str, ray: &Ray2) -> Result<Figure, PlotError> {
 fn draw(root: &DrawingArea<SVGBackend<'_>, Shift>, title: &str, ray: &Ray2, step: Option<usize>) -> Result<(), String> {
     let tree = Node2::homework();
     let [(x0, x1), (y0, y1)] = WINDOW;
-    let (plot_area, legend_area) = root.split_vertically(560);
+    let width = root.dim_in_pixel().0;
+    let (plot_area, legend_area) = root.split_vertically(width);
     let visible = |cell: &super::Cell| {
         [Axis2::X, Axis2::Y].map(|axis| {
             let (lo, hi) = cell.bounds(axis);
@@ -158,7 +231,7 @@ fn draw(root: &DrawingArea<SVGBackend<'_>, Shift>, title: &str, ray: &Ray2, step
     let drawn_ray = [tuple(ray.at(0.0)), tuple(ray.at(t_exit))];
     for cell in tree.cells() {
         let text = PathText(&cell.path).to_string();
-        let anchor = label_anchor(&text, visible(&cell), drawn_ray);
+        let anchor = label_anchor(&text, visible(&cell), drawn_ray, width);
         shapes.push(Shape::text(text, anchor, 13, grey));
     }
     shapes.push(Shape::line(drawn_ray.to_vec(), BLACK, 1));
@@ -168,7 +241,10 @@ fn draw(root: &DrawingArea<SVGBackend<'_>, Shift>, title: &str, ray: &Ray2, step
         let Interval { t_min, t_max } = leaf.interval;
         let (from, to) = (t_min.min(t_exit), t_max.min(t_exit));
         shapes.push(Shape::line(vec![tuple(ray.at(from)), tuple(ray.at(to))], colour, 5));
-        shapes.push(Shape::text(leaf.interval.to_string(), beside(ray, (from + to) / 2.0), 14, colour));
+        let text = leaf.interval.to_string();
+        let bounds = visible(&super::Cell { path: leaf.path.clone() });
+        let anchor = interval_anchor(&text, ray, (from, to), bounds, drawn_ray, width);
+        shapes.push(Shape::text(text, anchor, 14, colour));
     }
     shapes.push(Shape::dot(tuple(ray.origin), 4, BLACK));
     shapes.push(Shape::text("e", (ray.origin[0] + 0.12, ray.origin[1] + 0.35), 15, BLACK));
@@ -176,6 +252,8 @@ fn draw(root: &DrawingArea<SVGBackend<'_>, Shift>, title: &str, ray: &Ray2, step
     Chart {
         caption_size: 17,
         label_areas: (36, 40),
+        // 13 px ticks, as the cell labels: the figure is shown at its own width.
+        label_size: 13,
         light_grid: false,
         grid_colour: Some(RGBColor(230, 230, 230)),
         shapes,
@@ -183,15 +261,18 @@ fn draw(root: &DrawingArea<SVGBackend<'_>, Shift>, title: &str, ray: &Ray2, step
         ..Chart::new(title, axis((x0, x1), "x"), axis((y0, y1), "y"))
     }
     .draw(&plot_area)?;
-    // The legend sits below the chart, two entries per row, so it never hides a cell.
-    for (i, leaf) in leaves.iter().take(shown).enumerate() {
-        let colour = PALETTE[i % PALETTE.len()];
-        let (x, y) = (60 + 250 * (i as i32 % 2), 12 + 26 * (i as i32 / 2));
-        legend_area.draw(&PathElement::new(vec![(x, y + 7), (x + 22, y + 7)], colour.stroke_width(5))).map_err(err)?;
-        let text = format!("leaf {}: t in {}", PathText(&leaf.path), leaf.interval);
-        legend_area.draw(&Text::new(text, (x + 30, y), ("sans-serif", 13))).map_err(err)?;
-    }
-    Ok(())
+    // The legend sits below the chart, so it never hides a cell: two entries per row, one in a
+    // step panel (too narrow for two).
+    let entries: Vec<Series> = leaves
+        .iter()
+        .take(shown)
+        .enumerate()
+        .map(|(i, leaf)| {
+            let text = format!("leaf {}: t in {}", PathText(&leaf.path), leaf.interval);
+            Series::line(text, Vec::new(), PALETTE[i % PALETTE.len()], 5)
+        })
+        .collect();
+    legend_grid(&legend_area, &entries, if width >= DIAGRAM_WIDTH { 2 } else { 1 }, 13)
 }
 
 /// A text anchor (top-left) beside the ray at `t`: 0.3 units off the line on its right-hand

@@ -3,7 +3,7 @@
 //! `cargo run` stays deterministic: timings come only from the benchmark.
 
 use crate::data;
-use crate::plot::{Axis, Chart, Dots, Figure, Legend, LegendMark, PALETTE, PlotError, Series, svg_figure};
+use crate::plot::{Axis, Chart, Dots, Figure, LegendMark, PALETTE, PlotError, Series, Stroke, legend_grid, svg_figure};
 use plotters::prelude::*;
 
 /// The committed measurements.
@@ -37,7 +37,7 @@ struct Structure {
 /// `obvhs` BVH2 and CWBVH) are measured in the same run as the kd-tree, on an `f32` scene.
 const STRUCTURES: [Structure; 5] = [
     Structure { label: "kd-tree (this crate, f64)", camera_column: 5, random_column: 10, colour: 0 },
-    Structure { label: "brute force", camera_column: 15, random_column: 16, colour: 7 },
+    Structure { label: "brute force", camera_column: 15, random_column: 16, colour: 3 },
     Structure { label: "bvh 0.13 + own loop", camera_column: 20, random_column: 21, colour: 4 },
     Structure { label: "obvhs BVH2", camera_column: 24, random_column: 25, colour: 2 },
     Structure { label: "obvhs CWBVH", camera_column: 28, random_column: 29, colour: 1 },
@@ -61,14 +61,54 @@ fn rows(text: &str) -> Vec<Row> {
         .collect()
 }
 
+/// Width of the cost figure in pixels: the notes' text column, so that it is shown at its own
+/// size (its 12 px labels stay 12 px on screen).
+const WIDTH: u32 = 936;
+/// Height of each panel, and of the legend strip below both.
+const PANEL_HEIGHT: u32 = 430;
+const LEGEND_HEIGHT: u32 = 64;
+
 pub(super) fn figure() -> Result<Figure, PlotError> {
     let rows = rows(CSV);
     let n_max = rows.iter().map(|r| r.n).fold(100.0, f64::max);
-    svg_figure("q3_kdtree_cost.svg", (1000, 460), |root| {
-        let (left, right) = root.split_horizontally(500);
+    svg_figure("q3_kdtree_cost.svg", (WIDTH, PANEL_HEIGHT + LEGEND_HEIGHT), |root| {
+        let (panels, legend) = root.split_vertically(PANEL_HEIGHT);
+        let (left, right) = panels.split_horizontally(WIDTH / 2);
         panel(&left, &rows, n_max, Rays::Camera)?;
-        panel(&right, &rows, n_max, Rays::Random)
+        panel(&right, &rows, n_max, Rays::Random)?;
+        // One legend for both panels, below them, so that it hides no line.
+        legend_grid(&legend, &series(&rows, Rays::Camera), 3, 13)
     })
+}
+
+/// µs per ray against N for every method, on one ray set: every method at fixed k (the main
+/// workload), and the kd-tree also at fixed volume fraction, dashed and in sky blue, to show the
+/// density scaling.
+fn series(rows: &[Row], rays: Rays) -> Vec<Series> {
+    let methods = STRUCTURES.iter().map(|m| (m, "fixed_k")).chain(std::iter::once((&STRUCTURES[0], "fixed_volume")));
+    methods
+        .map(|(method, density)| {
+            let column = match rays {
+                Rays::Camera => method.camera_column,
+                Rays::Random => method.random_column,
+            };
+            let (colour, dash, scaling) = match density {
+                "fixed_k" => (PALETTE[method.colour], None, "fixed k"),
+                _ => (PALETTE[5], Some((7, 4)), "fixed volume"),
+            };
+            let points = rows
+                .iter()
+                .filter(|r| r.density == density)
+                .filter_map(|r| Some((r.n, r.us_per_ray(column)?)))
+                .collect();
+            Series {
+                line: Some(Stroke { width: 2, dash }),
+                dots: Some(Dots { radius: 3, ring: None }),
+                legend: LegendMark::Line { length: 18, width: 2 },
+                ..Series::line(format!("{}, {scaling}", method.label), points, colour, 2)
+            }
+        })
+        .collect()
 }
 
 /// One log-log panel: µs per ray against N for every method.
@@ -79,43 +119,19 @@ fn panel<DB: DrawingBackend>(
     rays: Rays,
 ) -> Result<(), String> {
     let title = match rays {
-        Rays::Camera => "camera rays 512×512: µs per ray vs N (1 thread)",
-        Rays::Random => "10⁶ random rays: µs per ray vs N (1 thread)",
+        Rays::Camera => "camera rays 512×512 (1 thread)",
+        Rays::Random => "10⁶ random rays (1 thread)",
     };
-    // Every method at fixed k (the main workload); the kd-tree also at fixed volume
-    // fraction, thinner and in sky blue, to show the density scaling.
-    let methods = STRUCTURES.iter().map(|m| (m, "fixed_k")).chain(std::iter::once((&STRUCTURES[0], "fixed_volume")));
-    let series = methods
-        .map(|(method, density)| {
-            let column = match rays {
-                Rays::Camera => method.camera_column,
-                Rays::Random => method.random_column,
-            };
-            let (colour, width, scaling) = match density {
-                "fixed_k" => (PALETTE[method.colour], 2, "fixed k"),
-                _ => (PALETTE[5], 1, "fixed volume"),
-            };
-            let points = rows
-                .iter()
-                .filter(|r| r.density == density)
-                .filter_map(|r| Some((r.n, r.us_per_ray(column)?)))
-                .collect();
-            Series {
-                dots: Some(Dots { radius: 3, ring: None }),
-                legend: LegendMark::Line { length: 18, width: 2 },
-                ..Series::line(format!("{}, {scaling}", method.label), points, colour, width)
-            }
-        })
-        .collect();
     Chart {
-        caption_size: 15,
-        label_areas: (36, 52),
-        series,
-        legend: Some(Legend { position: Some(SeriesLabelPosition::UpperRight), font: 11, opacity: 0.9 }),
+        caption_size: 16,
+        label_areas: (40, 56),
+        label_size: 13,
+        series: series(rows, rays),
+        legend: None,
         ..Chart::new(
             title,
             Axis { format: Some(|v| format!("{v:.0e}")), ..Axis::log(50.0, 2.0 * n_max, "N spheres") },
-            Axis { format: Some(|v| format!("{v}")), ..Axis::log(0.05, 5000.0, "µs per ray") },
+            Axis { format: Some(|v| format!("{v}")), ..Axis::log(0.05, 100.0, "µs per ray") },
         )
     }
     .draw(area)

@@ -7,7 +7,6 @@ use super::maps::{AnalyticMap, sun_direction};
 use crate::envmap::{BuiltinMap, Probe, ProbeFormat, horizontal_camera, luminance};
 use crate::plot::{
     Axis, Chart, Figure, FigureJob, Legend, LegendMark, Note, PALETTE, PlotError, Series, Stroke, compact_tick, err,
-    png_bytes,
 };
 use glam::DMat3;
 use glam::DVec3;
@@ -169,6 +168,10 @@ type Curve = Box<dyn Fn(f64) -> f64>;
 /// The legend box every Q4 chart uses.
 const LEGEND: Legend = Legend { position: Some(SeriesLabelPosition::LowerLeft), font: 12, opacity: 0.85 };
 
+/// The blind-spot chart's distance ticks: plotters' own log ticks label only 10, 20, 30, 40 and
+/// 50, none of the close distances where the curves change fastest.
+const BLIND_SPOT_DISTANCES: [f64; 8] = [1.5, 2.0, 3.0, 5.0, 7.0, 10.0, 20.0, 50.0];
+
 fn blind_spot_figure() -> Result<Figure, PlotError> {
     let distances: Vec<f64> = (0..=200).map(|k| 1.2 * (50.0_f64 / 1.2).powf(k as f64 / 200.0)).collect();
     let curves: [(&str, Curve); 3] = [
@@ -201,53 +204,83 @@ fn blind_spot_figure() -> Result<Figure, PlotError> {
         legend: Some(LEGEND),
         ..Chart::new(
             "What a mirrored ball misses, vs camera distance D/R",
-            Axis::log(1.2, 50.0, "D/R (camera distance in ball radii)"),
-            Axis::log(0.01, 100.0, "degrees  /  percent"),
+            Axis {
+                ticks: Some(&BLIND_SPOT_DISTANCES),
+                format: Some(compact_tick),
+                ..Axis::log(1.2, 50.0, "D/R (camera distance in ball radii)")
+            },
+            Axis {
+                ticks: Some(&[0.01, 0.1, 1.0, 10.0, 100.0]),
+                format: Some(compact_tick),
+                ..Axis::log(0.01, 100.0, "degrees  /  percent")
+            },
         )
     }
     .svg("q4_blind_spot.svg", (640, 400))
 }
 
+/// Side of each panel of the texel solid-angle figure, in pixels: one texel per pixel, and
+/// large enough that a 13 px label fits under every panel of a figure as wide as the notes' text
+/// column.
+const SOLID_ANGLE_PANEL: usize = 192;
+
 /// A false-colour image of `Δω / (mean Δω)` per texel for each disk format and lat-long, on a
-/// shared logarithmic scale: where the format spends its resolution.
+/// shared logarithmic scale (one colour bar, its ticks the ratio): where the format spends its
+/// resolution. Each panel's label names the format and states the mean, `4π` over the image's
+/// texel count, in steradians.
 fn solid_angle_figure() -> Result<Figure, PlotError> {
-    let size = 128_usize;
+    let name = "q4_texel_solid_angle.png";
+    let size = SOLID_ANGLE_PANEL;
     let formats = [
-        ProbeFormat::MirrorBall,
-        ProbeFormat::PerspectiveBall { distance_over_radius: 3.0 },
-        ProbeFormat::AngularMap,
-        ProbeFormat::LatLong,
+        (ProbeFormat::MirrorBall, "orthographic mirror ball"),
+        (ProbeFormat::PerspectiveBall { distance_over_radius: 3.0 }, "perspective ball, D/R = 3"),
+        (ProbeFormat::AngularMap, "angular map"),
+        (ProbeFormat::LatLong, "latitude-longitude"),
     ];
-    let gap = 8;
-    let mut image = image::RgbImage::from_pixel(
-        (formats.len() * (size + gap) - gap) as u32,
-        size as u32,
-        image::Rgb([255, 255, 255]),
-    );
-    for (slot, format) in formats.iter().enumerate() {
-        let (w, h) = if *format == ProbeFormat::LatLong { (size, size / 2) } else { (size, size) };
-        let probe = Probe::from_fn(*format, w, h, DMat3::IDENTITY, |_| glam::DVec3::ZERO)
-            .map_err(|e| PlotError::Draw { figure: "q4_texel_solid_angle.png".into(), message: e.to_string() })?;
+    let mut panels = Vec::new();
+    for (format, label) in formats {
+        let (w, h) = if format == ProbeFormat::LatLong { (size, size / 2) } else { (size, size) };
+        let probe = Probe::from_fn(format, w, h, DMat3::IDENTITY, |_| glam::DVec3::ZERO)
+            .map_err(|e| PlotError::Draw { figure: name.into(), message: e.to_string() })?;
         let mean = 4.0 * std::f64::consts::PI / (w * h) as f64;
-        let y_offset = (size - h) / 2;
-        for (index, texel) in probe.texels().iter().enumerate() {
-            if texel.solid_angle <= 0.0 {
-                continue;
-            }
-            // log10 of the ratio on a diverging ramp: blue (10× smaller) → pale grey (the mean)
-            // → vermillion (10× larger).
-            let t = (texel.solid_angle / mean).log10().clamp(-1.0, 1.0);
-            let end = if t < 0.0 { PALETTE[0] } else { PALETTE[1] };
-            let mid = 235.0;
-            let mix = |y: u8| (mid + (y as f64 - mid) * t.abs()).round() as u8;
-            image.put_pixel(
-                (slot * (size + gap) + index % w) as u32,
-                (y_offset + index / w) as u32,
-                image::Rgb([mix(end.0), mix(end.1), mix(end.2)]),
-            );
-        }
+        // log10 of the ratio, −1 (10× smaller) … 1 (10× larger); `None` outside the image's disk.
+        let ratios: Vec<Option<f64>> = probe
+            .texels()
+            .iter()
+            .map(|texel| (texel.solid_angle > 0.0).then(|| (texel.solid_angle / mean).log10().clamp(-1.0, 1.0)))
+            .collect();
+        panels.push((label, format!("{w}×{h} texels, mean {mean:.1e} sr"), (w, h), ratios));
     }
-    png_bytes("q4_texel_solid_angle.png", &image)
+    // A diverging ramp: blue (10× smaller) → pale grey (the mean) → vermillion (10× larger).
+    let ramp = |t: f64| {
+        let end = if t < 0.0 { PALETTE[0] } else { PALETTE[1] };
+        let mid = 235.0;
+        let mix = |y: u8| (mid + (f64::from(y) - mid) * t.abs()).round() as u8;
+        RGBColor(mix(end.0), mix(end.1), mix(end.2))
+    };
+    let (gap, label_band, bar_band) = (12_usize, 44_usize, 96_usize);
+    let width = formats.len() * (size + gap) - gap + bar_band;
+    crate::plot::png_figure(name, (width as u32, (size + label_band) as u32), |root| {
+        for (slot, (label, mean, (w, h), ratios)) in panels.iter().enumerate() {
+            let x0 = slot * (size + gap);
+            let y0 = (size - h) / 2;
+            for (index, ratio) in ratios.iter().enumerate() {
+                if let Some(t) = ratio {
+                    root.draw_pixel(((x0 + index % w) as i32, (y0 + index / w) as i32), &ramp(*t)).map_err(err)?;
+                }
+            }
+            let text_at = |line: usize| (x0 as i32 + 2, (size + 6 + 17 * line) as i32);
+            root.draw(&Text::new(*label, text_at(0), ("sans-serif", 13))).map_err(err)?;
+            root.draw(&Text::new(mean.as_str(), text_at(1), ("sans-serif", 12))).map_err(err)?;
+        }
+        let bar_x = (formats.len() * (size + gap)) as i32 + 4;
+        let at = |ratio: f64| (ratio.log10() + 1.0) / 2.0;
+        let ticks = [(at(0.1), "0.1×"), (at(0.3), "0.3×"), (at(1.0), "1× mean"), (at(3.0), "3×"), (at(10.0), "10×")];
+        crate::plot::color_bar(root, (bar_x, 8), (14, size as i32 - 16), &|v| ramp(2.0 * v - 1.0), &ticks)?;
+        let title = ("sans-serif", 12);
+        root.draw(&Text::new("texel Δω / mean", (bar_x - 4, size as i32 + 6), title)).map_err(err)?;
+        root.draw(&Text::new("(log scale)", (bar_x - 4, size as i32 + 23), title)).map_err(err)
+    })
 }
 
 /// Side length of a rendered sphere panel, in pixels.
@@ -433,7 +466,7 @@ fn pareto_figure(map: &str) -> Result<Figure, PlotError> {
             let points = rows.iter().filter(|r| r.method == *method).map(|r| (r.nanoseconds, r.mean_percent)).collect();
             Series {
                 line: Some(Stroke { width: 1, dash: None }),
-                ..Series::dots(method_name(method), points, PALETTE[index % PALETTE.len()], 4)
+                ..Series::dots(method_name(method), points, pareto_colour(index), 4)
             }
         })
         .collect();
@@ -463,6 +496,12 @@ fn pareto_figure(map: &str) -> Result<Figure, PlotError> {
         )
     }
     .svg(&format!("q4_pareto_{map}.svg"), (680, 440))
+}
+
+/// The colour of the `index`-th method of the Pareto charts: [`PALETTE`] in order, but black for
+/// the seventh (MIS) instead of the palette's yellow, which barely shows on white.
+fn pareto_colour(index: usize) -> RGBColor {
+    if index == 6 { PALETTE[7] } else { PALETTE[index % PALETTE.len()] }
 }
 
 /// A benchmark method key as the chapter writes it: SH9 and MIS are acronyms, the other keys
