@@ -508,15 +508,21 @@ mod tests {
         }
     }
 
-    #[test]
-    fn camera_inside_a_diffuse_sphere_with_a_light_at_its_centre_sees_the_furnace_value() {
-        // pbrt-v4's integrator test: albedo 0.5, point light I = π at the centre, all bounces
-        // → radiance 0.5/(1 − 0.5) = 1; direct light alone gives 0.5.
+    /// pbrt-v4's furnace: inside a diffuse sphere of albedo 0.5 with a point light of intensity π
+    /// at its centre, and a ray from near the centre.
+    fn furnace() -> (Scene, Ray<f64>) {
         let shell =
             Object::sphere(Sphere::new(DVec3::ZERO, 1.0).unwrap(), Material::Diffuse { albedo: DVec3::splat(0.5) });
         let light = PointLight { position: DVec3::ZERO, intensity: DVec3::splat(PI) };
         let scene = Scene::new(camera(), vec![shell], vec![light], None, DVec3::ZERO).unwrap();
-        let ray = Ray { origin: DVec3::new(0.1, 0.0, 0.0), dir: DVec3::new(0.3, 0.4, -0.5).normalize() };
+        (scene, Ray { origin: DVec3::new(0.1, 0.0, 0.0), dir: DVec3::new(0.3, 0.4, -0.5).normalize() })
+    }
+
+    #[test]
+    fn camera_inside_a_diffuse_sphere_with_a_light_at_its_centre_sees_the_furnace_value() {
+        // pbrt-v4's integrator test: albedo 0.5, point light I = π at the centre, all bounces
+        // → radiance 0.5/(1 − 0.5) = 1; direct light alone gives 0.5.
+        let (scene, ray) = furnace();
         let whitted = Tracer::new(&scene, Passes::default()).radiance(
             Integrator::Whitted { max_depth: 0 },
             &ray,
@@ -538,16 +544,12 @@ mod tests {
         assert!((mean - 1.0).abs() < 1e-9, "{mean}");
     }
 
-    /// Russian roulette keeps the furnace's mean: from [`ROULETTE_FROM`] on each path survives
-    /// with probability 0.5 per bounce (its throughput before the draw is 0.5 or less), so the
-    /// samples now spread, and their mean is 1 within four standard errors.
+    /// Russian roulette keeps the furnace's mean: from [`ROULETTE_FROM`] on a path survives with
+    /// probability equal to its throughput (0.5⁴ at the first draw, 0.5 at the later ones), so
+    /// the samples now spread, and their mean is 1 within four standard errors.
     #[test]
     fn russian_roulette_keeps_the_furnace_value() {
-        let shell =
-            Object::sphere(Sphere::new(DVec3::ZERO, 1.0).unwrap(), Material::Diffuse { albedo: DVec3::splat(0.5) });
-        let light = PointLight { position: DVec3::ZERO, intensity: DVec3::splat(PI) };
-        let scene = Scene::new(camera(), vec![shell], vec![light], None, DVec3::ZERO).unwrap();
-        let ray = Ray { origin: DVec3::new(0.1, 0.0, 0.0), dir: DVec3::new(0.3, 0.4, -0.5).normalize() };
+        let (scene, ray) = furnace();
         let tracer = Tracer::new(&scene, Passes::default().with(Pass::IndirectBounces, true));
         let samples: Vec<f64> = (0..20_000)
             .map(|i| {
