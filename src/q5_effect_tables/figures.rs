@@ -75,7 +75,7 @@ const EFFECT_SCENES_PNG: &str = "q5_effect_scenes.png";
 
 /// Samples per pixel of the montage's highlight, direct-light and mirror panels
 /// ([`EFFECT_SCENES_PNG`]): at 128 their noise is at most 1 display level of 255 (0.72, 0.44 and
-/// 0.97 levels measured; 1.4, 0.9 and 2.0 at 32 spp).
+/// 1.00 levels measured; 1.4, 0.9 and 2.0 at 32 spp).
 ///
 /// # Examples
 /// ```
