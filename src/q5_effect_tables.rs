@@ -6,7 +6,7 @@ pub mod effect_scenes;
 pub mod error;
 pub mod experiments;
 mod figures;
-pub use figures::{PATH_SPP, renders};
+pub use figures::{CAUSTIC_SPP, NOISY_SPP, PATH_SPP, PUBLISHED_SPP, renders};
 mod grammar;
 pub mod photon_accuracy;
 pub mod photon_cornell;

@@ -202,7 +202,7 @@ pub fn render(scene: &Scene, settings: &Settings, progress: &(dyn Fn(u32) + Sync
         Integrator::Whitted { .. } if settings.passes.caustics => {
             Some(photon::trace_caustic_photons(scene, settings.caustics.photons, settings.seed)?)
         }
-        Integrator::Whitted { .. } | Integrator::PathTracer { .. } => None,
+        Integrator::Whitted { .. } | Integrator::PathTracer { .. } | Integrator::PathTracerWithRoulette { .. } => None,
     };
     let tracer = match &caustic_map {
         Some(map) => Tracer::new(scene, settings.passes).with_caustics(map, settings.caustics.gather),

@@ -194,40 +194,70 @@ pub fn radiosity_at_probes(n: usize, samples: usize) -> Result<Vec<f64>, Experim
         .collect())
 }
 
-/// The radiosity solution rendered from the published camera next to the path tracer's image of
-/// the same scene (`size × size` each; radiosity at `patches × patches` per quad and one
-/// form-factor sample, 80 Gauss–Seidel sweeps; the path tracer at `spp` samples per pixel, seed 1).
-/// The figure takes [`SIDE_BY_SIDE_PATCHES`] and [`PATH_SPP`](super::PATH_SPP).
+/// The radiosity solution rendered from the published camera (`size × size`; `patches × patches`
+/// per quad and one form-factor sample, 80 Gauss–Seidel sweeps, interpolated). The figure takes
+/// [`SIDE_BY_SIDE_PATCHES`].
 ///
 /// # Errors
-/// [`ExperimentError`] for a zero count, or if the render fails.
+/// [`ExperimentError`] for a zero patch count.
 ///
 /// # Examples
 /// ```
-/// // A thumbnail: 2 × 2 patches per quad and one sample per pixel.
-/// let both = hw3::q5_effect_tables::cornell_published::side_by_side(12, 2, 1).unwrap();
-/// assert_eq!(both.dimensions(), (24, 12));
-/// // The ceiling light shows in both halves: the top middle pixel of each is bright.
-/// assert!([6, 18].iter().all(|&x| both.get_pixel(x, 0).0[0] > 0 || both.get_pixel(x, 1).0[0] > 0));
-/// assert!(hw3::q5_effect_tables::cornell_published::side_by_side(12, 0, 1).is_err());
+/// // A thumbnail at 2 × 2 patches per quad: the ceiling light shows in the top middle.
+/// let image = hw3::q5_effect_tables::cornell_published::radiosity_image(12, 2).unwrap();
+/// assert_eq!(image.dimensions(), (12, 12));
+/// assert!(image.get_pixel(6, 0).0[0] > 0 || image.get_pixel(6, 1).0[0] > 0);
+/// assert!(hw3::q5_effect_tables::cornell_published::radiosity_image(12, 0).is_err());
 /// ```
-pub fn side_by_side(size: u32, patches: usize, spp: u32) -> Result<image::RgbImage, ExperimentError> {
+pub fn radiosity_image(size: u32, patches: usize) -> Result<image::RgbImage, ExperimentError> {
     let scene = scene()?;
     let system = System::new(&scene, Mesh::new(&scene, patches)?, 1)?;
     let solution = system.solve(Solver::GaussSeidel, 80).pop().unwrap_or_default();
-    let radiosity = system.render(&scene, &solution, size, size).to_rgb8();
-    let settings = Settings {
-        integrator: Integrator::PathTracer { max_depth: 12 },
-        ..Settings::whitted(size, size, spp, analyze(&scene).plan)
-    };
-    let traced = render(&scene, &settings, &|_| {}).map_err(|e| ExperimentError::Render(e.to_string()))?.to_rgb8();
-    let mut both = image::RgbImage::new(2 * size, size);
-    image::imageops::replace(&mut both, &radiosity, 0, 0);
-    image::imageops::replace(&mut both, &traced, i64::from(size), 0);
-    Ok(both)
+    Ok(system.render(&scene, &solution, size, size).to_rgb8())
 }
 
-/// Radiosity's patches per quad edge in the published box's figure ([`side_by_side`]).
+/// The path tracer's settings for a `size × size` image of [`scene`] at `spp` samples per pixel:
+/// every bounce the scene's plan keeps, 12 at most, with Russian roulette from the third (in this
+/// closed box it halves the seconds per sample for 1.1 times the noise,
+/// [`Integrator::PathTracerWithRoulette`]), seed 1, the same camera as [`radiosity_image`].
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::cornell_published::{path_settings, scene};
+/// use hw3::render::integrator::Integrator;
+/// let settings = path_settings(&scene().unwrap(), 320, 64);
+/// assert_eq!((settings.width, settings.height, settings.spp, settings.seed), (320, 320, 64, 1));
+/// assert_eq!(settings.integrator, Integrator::PathTracerWithRoulette { max_depth: 12 });
+/// ```
+#[must_use]
+pub fn path_settings(scene: &Scene, size: u32, spp: u32) -> Settings {
+    Settings {
+        integrator: Integrator::PathTracerWithRoulette { max_depth: 12 },
+        ..Settings::whitted(size, size, spp, analyze(scene).plan)
+    }
+}
+
+/// The path tracer's image of [`scene`] with [`path_settings`].
+///
+/// # Errors
+/// [`ExperimentError`] for zero samples, or if the render fails.
+///
+/// # Examples
+/// ```
+/// // A thumbnail at one sample per pixel: the ceiling light shows in the top middle.
+/// let image = hw3::q5_effect_tables::cornell_published::path_traced_image(12, 1).unwrap();
+/// assert_eq!(image.dimensions(), (12, 12));
+/// assert!(image.get_pixel(6, 0).0[0] > 0 || image.get_pixel(6, 1).0[0] > 0);
+/// assert!(hw3::q5_effect_tables::cornell_published::path_traced_image(12, 0).is_err());
+/// ```
+pub fn path_traced_image(size: u32, spp: u32) -> Result<image::RgbImage, ExperimentError> {
+    let scene = scene()?;
+    Ok(render(&scene, &path_settings(&scene, size, spp), &|_| {})
+        .map_err(|e| ExperimentError::Render(e.to_string()))?
+        .to_rgb8())
+}
+
+/// Radiosity's patches per quad edge in the published box's figure ([`radiosity_image`]).
 ///
 /// # Examples
 /// ```

