@@ -399,7 +399,8 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         }
         Some(Command::Irradiance(args)) => irradiance(args),
         Some(Command::EffectTables { json }) => {
-            let measured = hw3::q5_effect_tables::experiments::measured_table()?;
+            let measured =
+                hw3::q5_effect_tables::experiments::measured_table(&hw3::q5_effect_tables::Budget::PUBLISHED)?;
             emit_line(&hw3::q5_effect_tables::effect_tables_command(json, &measured).map_err(anyhow::Error::msg)?)
         }
     }

@@ -1,7 +1,8 @@
 //! Q5's radiosity and experiment figures: the radiosity Cornell box, the solvers' convergence,
 //! the experiment scenes, the published Cornell box, and the measured and grammar tables.
 
-use super::cornell_published::{self, SIDE_BY_SIDE_PATCHES};
+use super::budget::Budget;
+use super::cornell_published;
 use super::effect_scenes::{self, GLOSSY_FLOOR, WHITE_FLOOR, lit_floor, mirror_room};
 use super::error::ExperimentError;
 use super::experiments::{cornell_system, measured_table, measured_table_markdown, reference_passes};
@@ -12,11 +13,12 @@ use crate::render::integrator::Integrator;
 use crate::render::{Settings, render};
 
 /// The drawn figures: solver convergence (SVG), the published Cornell box's validation, the
-/// measured table and the grammar tables (markdown); the renders are [`renders`].
+/// measured table and the grammar tables (markdown), the tables at `budget`; the renders are
+/// [`renders`].
 ///
 /// # Errors
 /// [`PlotError`] if drawing fails.
-pub(super) fn figures() -> Result<Vec<Figure>, PlotError> {
+pub(super) fn figures(budget: &Budget) -> Result<Vec<Figure>, PlotError> {
     let draw_error =
         |figure: &str, e: &dyn std::fmt::Display| PlotError::Draw { figure: figure.into(), message: e.to_string() };
     let mut figures = Vec::new();
@@ -50,9 +52,10 @@ pub(super) fn figures() -> Result<Vec<Figure>, PlotError> {
         )
     };
     figures.push(convergence.svg("q5_radiosity_convergence.svg", (640, 400))?);
-    let validation = cornell_published::validation_table().map_err(|e| draw_error("q5_cornell_published.md", &e))?;
+    let validation =
+        cornell_published::validation_table(budget).map_err(|e| draw_error("q5_cornell_published.md", &e))?;
     figures.push(Figure { file_name: "q5_cornell_published.md".into(), bytes: validation.into_bytes() });
-    let measured = measured_table().map_err(|e| draw_error("q5_measured_table.md", &e))?;
+    let measured = measured_table(budget).map_err(|e| draw_error("q5_measured_table.md", &e))?;
     figures.push(Figure {
         file_name: "q5_measured_table.md".into(),
         bytes: measured_table_markdown(&measured).into_bytes(),
@@ -79,58 +82,67 @@ const EFFECT_SCENES_PNG: &str = "q5_effect_scenes.png";
 /// use hw3::q5_effect_tables::{PATH_SPP, experiments::REFERENCE_SPP};
 /// assert!(PATH_SPP < REFERENCE_SPP);
 /// ```
-pub const PATH_SPP: u32 = 32;
+pub const PATH_SPP: u32 = Budget::PUBLISHED.path_spp;
 
-/// Q5's renders (PNG, seeded: the same bytes on every run and thread count): the radiosity
-/// Cornell box at 640×640 (the box is square); the four open experiment scenes as a labelled 2 × 2 grid of
-/// 320×240 panels; the published Cornell box by radiosity beside the path tracer, 320×320 each,
-/// labelled below the panels (on them the labels would cover the ceiling light and the mirrored panel).
+/// Q5's renders (PNG, seeded: the same bytes on every run and thread count) at `budget`; at
+/// [`Budget::PUBLISHED`], the committed ones: the radiosity Cornell box at 640×640 (the box is
+/// square); the four open experiment scenes as a labelled 2 × 2 grid of 320×240 panels; the
+/// published Cornell box by radiosity beside the path tracer, 320×320 each, labelled below the
+/// panels (on them the labels would cover the ceiling light and the mirrored panel).
 ///
 /// # Errors
 /// [`PlotError`] if a scene cannot be built, rendered or labelled.
 ///
 /// # Examples
-/// ```no_run
-/// // Not run here: three path-traced and radiosity renders; CI's release run compares them with
-/// // the committed figures.
-/// let renders = hw3::q5_effect_tables::renders().unwrap();
-/// assert!(renders.iter().any(|f| f.file_name == "q5_effect_scenes.png"));
 /// ```
-pub fn renders() -> Result<Vec<Figure>, PlotError> {
+/// use hw3::q5_effect_tables::{Budget, renders};
+/// let figures = renders(&Budget::TINY).unwrap();
+/// let names: Vec<&str> = figures.iter().map(|f| f.file_name.as_str()).collect();
+/// assert_eq!(names, ["q5_radiosity_cornell.png", "q5_effect_scenes.png", "q5_cornell_published.png"]);
+/// // The radiosity box is square: 640 / 40 pixels a side, its label drawn on it.
+/// let radiosity = image::load_from_memory(&figures[0].bytes).unwrap();
+/// assert_eq!((radiosity.width(), radiosity.height()), (16, 16));
+/// // Two panels across in the other two, their labels on strips below.
+/// assert!(figures[1..].iter().all(|f| image::load_from_memory(&f.bytes).unwrap().width() == 16));
+/// ```
+pub fn renders(budget: &Budget) -> Result<Vec<Figure>, PlotError> {
     let draw_error =
         |figure: &str, e: &dyn std::fmt::Display| PlotError::Draw { figure: figure.into(), message: e.to_string() };
     let radiosity_png = "q5_radiosity_cornell.png";
-    let (scene, system) = cornell_system(8, 2).map_err(|e| draw_error(radiosity_png, &e))?;
+    let (patches, samples) = budget.render_mesh;
+    let (scene, system) = cornell_system(patches, samples).map_err(|e| draw_error(radiosity_png, &e))?;
     let solution = system.solve(Solver::GaussSeidel, 60).pop().unwrap_or_default();
-    let image = system.render(&scene, &solution, 640, 640).to_rgb8();
-    let label = "radiosity, 8 × 8 patches per quad\n2 × 2 form-factor samples, Gauss–Seidel".to_string();
+    let (width, height) = budget.image_size((640, 640));
+    let image = system.render(&scene, &solution, width, height).to_rgb8();
+    let label = format!(
+        "radiosity, {patches} × {patches} patches per quad\n{samples} × {samples} form-factor samples, Gauss–Seidel"
+    );
     let mut figures = vec![plot::panel_grid(radiosity_png, &[Panel { image, label }], 1)?];
-    figures.push(effect_scenes_figure()?);
-    let size = 320;
-    let both = cornell_published::side_by_side(size, SIDE_BY_SIDE_PATCHES, PATH_SPP)
-        .map_err(|e| draw_error(PUBLISHED_PNG, &e))?;
+    figures.push(effect_scenes_figure(budget)?);
+    let (size, _) = budget.image_size((320, 320));
+    let (patches, spp) = (budget.side_by_side_patches, budget.path_spp);
+    let both = cornell_published::side_by_side(size, patches, spp).map_err(|e| draw_error(PUBLISHED_PNG, &e))?;
     let half = |x| image::imageops::crop_imm(&both, x, 0, size, size).to_image();
     let (radiosity, path) = (half(0), half(size));
     let difference = plot::difference_line("radiosity", &path, &radiosity);
     let panels = [
-        Panel {
-            image: radiosity,
-            label: format!("radiosity\n{SIDE_BY_SIDE_PATCHES} × {SIDE_BY_SIDE_PATCHES} patches per quad, interpolated"),
-        },
-        Panel { image: path, label: format!("path tracing\n{PATH_SPP} spp\n{difference}") },
+        Panel { image: radiosity, label: format!("radiosity\n{patches} × {patches} patches per quad, interpolated") },
+        Panel { image: path, label: format!("path tracing\n{spp} spp\n{difference}") },
     ];
     // Below the panels: on them the labels covered the ceiling light.
     figures.push(plot::panel_grid_labels_below(PUBLISHED_PNG, &panels, 2)?);
     Ok(figures)
 }
 
-/// The four open experiment scenes, path-traced (320 × 240 each, [`PATH_SPP`] samples per pixel,
-/// every bounce on, seed 1): the glossy floor's highlight, the white floor's cosine falloff, the
-/// red panel in the mirror, the caustic under the glass ball, as a labelled 2 × 2 grid.
-fn effect_scenes_figure() -> Result<Figure, PlotError> {
+/// The four open experiment scenes, path-traced (320 × 240 each and [`PATH_SPP`] samples per pixel
+/// at the published `budget`, every bounce on, seed 1): the glossy floor's highlight, the white
+/// floor's cosine falloff, the red panel in the mirror, the caustic under the glass ball, as a
+/// labelled 2 × 2 grid.
+fn effect_scenes_figure(budget: &Budget) -> Result<Figure, PlotError> {
     let render_error =
         |e: &dyn std::fmt::Display| PlotError::Draw { figure: EFFECT_SCENES_PNG.into(), message: e.to_string() };
-    let (width, height) = (320, 240);
+    let (width, height) = budget.image_size((320, 240));
+    let spp = budget.path_spp;
     let scenes = (|| -> Result<_, ExperimentError> {
         Ok([
             (
@@ -147,10 +159,10 @@ fn effect_scenes_figure() -> Result<Figure, PlotError> {
     for (scene, what) in &scenes {
         let settings = Settings {
             integrator: Integrator::PathTracer { max_depth: 12 },
-            ..Settings::whitted(width, height, PATH_SPP, reference_passes(scene))
+            ..Settings::whitted(width, height, spp, reference_passes(scene))
         };
         let image = render(scene, &settings, &|_| {}).map_err(|e| render_error(&e))?.to_rgb8();
-        panels.push(Panel { image, label: format!("{what}\npath tracing, {PATH_SPP} spp") });
+        panels.push(Panel { image, label: format!("{what}\npath tracing, {spp} spp") });
     }
     // Below the panels: on them a label covered the mirrored red panel's corner.
     plot::panel_grid_labels_below(EFFECT_SCENES_PNG, &panels, 2)
