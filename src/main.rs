@@ -76,7 +76,7 @@ enum Command {
         #[arg(long)]
         out: Option<PathBuf>,
     },
-    /// Q5: the effect tables (light-path grammar, seed's answers, measured cells).
+    /// Q5: the effect tables (light-path grammar, the student's answers, measured cells).
     #[command(alias = "effects-table")]
     EffectTables {
         /// Print one JSON object instead of markdown tables.

@@ -69,7 +69,7 @@ pub fn student_comparison_markdown(measured: &[experiments::MeasuredCell]) -> Re
             experiment,
         ]);
     }
-    let header = ["seed cell", "effect", "seed", "grammar", "shortest path missed", "comparison", "measured"];
+    let header = ["cell", "effect", "student", "grammar", "shortest path missed", "comparison", "measured"];
     Ok(markdown_table(&header, rows))
 }
 
@@ -129,8 +129,8 @@ const CAUSTIC_PERCENT: (&str, &str) = ("0.03", "100");
 pub fn answers() -> Answers {
     let (two_pass, photon_mapping) = CAUSTIC_PERCENT;
     let text = format!(
-        "(a) radiosity, LD*E: (a) highlight No (misses LGE), (b) colour bleeding Yes, (c) diffuse shading Yes, (d) specular effects No (misses LDSE, LSDE), (e) ambient glow Yes — all five as the seed says, and all five measured so against the path tracer (table q5_measured).\n\
-         (b) two-pass (direct light from eye rays + photon tracing): (a) Yes, (b) Yes, (c) Yes, (d) mirror images No (misses LDSE: eye rays are not traced further), caustics possible but impractical by the grammar (LSDE only in the diffuse photon map) and No when measured (a photon pass that stores photons only after a diffuse bounce never holds LS+D photons: {two_pass} % of the path-traced caustic; photon mapping with a caustic map: {photon_mapping} %), (e) Yes (the seed: Yes, as in (b)).\n\
+        "(a) radiosity, LD*E: (a) highlight No (misses LGE), (b) colour bleeding Yes, (c) diffuse shading Yes, (d) specular effects No (misses LDSE, LSDE), (e) ambient glow Yes — all five as the student says, and all five measured so against the path tracer (table q5_measured).\n\
+         (b) two-pass (direct light from eye rays + photon tracing): (a) Yes, (b) Yes, (c) Yes, (d) mirror images No (misses LDSE: eye rays are not traced further), caustics possible but impractical by the grammar (LSDE only in the diffuse photon map) and No when measured (a photon pass that stores photons only after a diffuse bounce never holds LS+D photons: {two_pass} % of the path-traced caustic; photon mapping with a caustic map: {photon_mapping} %), (e) Yes (the student: Yes, as in (b)).\n\
          With a point light the path tracer loses caustics altogether (No: LSDE), photon mapping keeps them."
     );
     Answers {
@@ -230,7 +230,7 @@ mod tests {
         assert_eq!((first["verdict"].as_str(), first["seed"].as_str()), (Some("no"), Some("no")));
         assert_eq!(value["measured"].as_array().unwrap().len(), 24);
         let text = effect_tables_command(false, &measured).unwrap();
-        assert!(text.contains("No `LGE` (seed: No)") && text.contains("measured verdict"));
+        assert!(text.contains("No `LGE` (student: No)") && text.contains("measured verdict"));
     }
 
     #[test]
@@ -299,7 +299,7 @@ mod tests {
         );
         assert!(line.contains(&expected), "{expected}");
         assert_eq!(cell("two_pass", "d_caustic").verdict, Verdict::Impractical, "printed as possible but impractical");
-        // "all five as the seed says" (printed): one answer of the student's per letter of Q5(a).
+        // "all five as the student says" (printed): one answer of the student's per letter of Q5(a).
         assert_eq!(STUDENT_ANSWERS.iter().filter(|(part, _, _)| *part == 'a').count(), 5);
     }
 }

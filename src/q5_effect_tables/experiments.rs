@@ -539,7 +539,7 @@ fn measure_table(budget: &Budget) -> Result<Vec<MeasuredCell>, ExperimentError> 
 #[must_use]
 pub fn measured_table_markdown(cells: &[MeasuredCell]) -> String {
     let header =
-        ["effect", "method", "measured", "path-traced reference", "fraction", "measured verdict", "grammar", "seed"];
+        ["effect", "method", "measured", "path-traced reference", "fraction", "measured verdict", "grammar", "student"];
     markdown_table(
         &header,
         cells.iter().map(|c| {
