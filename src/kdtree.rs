@@ -154,8 +154,8 @@ pub trait AxisLine: Copy {
 }
 
 /// The homework's arithmetic: `t = (s − e_a)/d_a`, one subtraction and one correctly rounded
-/// division. The 2-D traversal of Q3 uses it, so that its traces equal the seed's formula and a
-/// brute-force clip bit for bit.
+/// division. The 2-D traversal of Q3 uses it, so that its traces equal the homework's hand
+/// computation and a brute-force clip bit for bit.
 ///
 /// # Examples
 /// ```

@@ -104,14 +104,16 @@ pub fn figure_jobs() -> Vec<plot::FigureJob> {
     ]);
     jobs.extend(q4_light_probe::figure_jobs());
     jobs.extend([
-        FigureJob::drawn("q5 figures", q5_effect_tables::figures),
+        FigureJob::drawn("q5 figures", || q5_effect_tables::figures(&q5_effect_tables::Budget::PUBLISHED)),
         FigureJob::drawn("answer key", solution::figures),
     ]);
     jobs.extend(q1_hard_scenes::render_jobs());
     jobs.extend(render::figures::jobs());
-    jobs.push(FigureJob::rendered("q5 renders", q5_effect_tables::renders));
+    jobs.push(FigureJob::rendered("q5 renders", || q5_effect_tables::renders(&q5_effect_tables::Budget::PUBLISHED)));
     // The grid is the longest render job: on its own it runs beside the others.
-    jobs.push(FigureJob::rendered("q5 effect grid", || Ok(vec![q5_effect_tables::effect_grid::figure()?])));
+    jobs.push(FigureJob::rendered("q5 effect grid", || {
+        Ok(vec![q5_effect_tables::effect_grid::figure(&q5_effect_tables::Budget::PUBLISHED)?])
+    }));
     jobs
 }
 

@@ -76,7 +76,7 @@ enum Command {
         #[arg(long)]
         out: Option<PathBuf>,
     },
-    /// Q5: the effect tables (light-path grammar, seed's answers, measured cells).
+    /// Q5: the effect tables (light-path grammar, the student's answers, measured cells).
     #[command(alias = "effects-table")]
     EffectTables {
         /// Print one JSON object instead of markdown tables.
@@ -399,7 +399,8 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         }
         Some(Command::Irradiance(args)) => irradiance(args),
         Some(Command::EffectTables { json }) => {
-            let measured = hw3::q5_effect_tables::experiments::measured_table()?;
+            let measured =
+                hw3::q5_effect_tables::experiments::measured_table(&hw3::q5_effect_tables::Budget::PUBLISHED)?;
             emit_line(&hw3::q5_effect_tables::effect_tables_command(json, &measured).map_err(anyhow::Error::msg)?)
         }
     }

@@ -15,11 +15,12 @@ pub use fog::{
     FOG_DISTANCES, FOG_SIGMAS, FogRow, airlight_rows, airlight_traced, fog_row, transmittance, visual_range,
 };
 pub use mirrors::{
-    DIVERGENCE_TRIALS, MIRROR_STEPS, MirrorDivergence, mirror_divergence, mirror_sensitivity, reflection_turn,
+    DIVERGENCE_TRIALS, MIRROR_SPP, MIRROR_STEPS, MirrorDivergence, mirror_divergence, mirror_sensitivity,
+    reflection_turn,
 };
 pub use motion::{
-    MOTION_SPP, MotionChange, MotionNoise, NOISE_TARGET, focal_length_pixels, motion_change, motion_noise,
-    pixels_per_frame,
+    MOTION_REFERENCE_SPP, MOTION_SPP, MotionChange, MotionNoise, NOISE_TARGET, focal_length_pixels, motion_change,
+    motion_noise, pixels_per_frame,
 };
 
 use crate::answers::Answers;
@@ -97,7 +98,8 @@ mod tests {
     fn printed_measurements_are_what_the_code_measures() {
         let divergence = mirror_divergence(DIVERGENCE_TRIALS).unwrap();
         assert_eq!(format!("{:.2}", divergence.median_factor), MIRROR_GROWTH);
-        let ratios: Vec<f64> = mirror_sensitivity().unwrap().iter().map(|&(_, m, d)| m / d).collect();
+        let ratios: Vec<f64> =
+            mirror_sensitivity(&MIRROR_STEPS, MIRROR_SPP).unwrap().iter().map(|&(_, m, d)| m / d).collect();
         let cut = |r: f64| format!("{:.1}", (r * 10.0).floor() / 10.0);
         let (low, high) = ratios.iter().fold((f64::INFINITY, 0.0f64), |(l, h), &r| (l.min(r), h.max(r)));
         assert_eq!((cut(low).as_str(), cut(high).as_str()), SENSITIVITY_RATIOS);

@@ -569,7 +569,7 @@ fn clip_to_cell(cell: &Cell, ray: &Ray2) -> Option<Interval> {
 /// ```
 /// let answers = hw3::q3_kd_traversal::answers();
 /// assert_eq!(answers.question, "q3");
-/// assert!(answers.text.contains("seed error in (d)"));
+/// assert!(answers.text.contains("the student's error in (d)"));
 /// ```
 #[must_use]
 pub fn answers() -> crate::answers::Answers {
@@ -589,12 +589,12 @@ pub fn answers() -> crate::answers::Answers {
         }
         for row in student::compare(&trace, &case.handwritten) {
             if !row.agrees() {
-                let _ = writeln!(text, "  seed differs: {row}");
+                let _ = writeln!(text, "  the student differs: {row}");
             }
         }
     }
     text.push_str(
-        "seed error in (d): x<3 starts at the root plane's t = 2, not at the y = 3 plane's t = 3 \
+        "the student's error in (d): x<3 starts at the root plane's t = 2, not at the y = 3 plane's t = 3 \
          (at t = 2.5 the ray is at (2.5, 2.5), in leaf x<3, y>=1).\n",
     );
     crate::answers::Answers {

@@ -176,7 +176,7 @@ pub fn answers() -> Answers {
     let _ = writeln!(
         text,
         "Diffuse light from a mirrored-ball probe: E(n) = Σ_t L_t max(0, n·ω_t) Δω_t, and L_o = (K_d/π) E \
-         with K_d the albedo. The seed's Σ K_d L (n·l) omits Δω_t: right only if every texel subtends the same solid angle."
+         with K_d the albedo. The student's Σ K_d L (n·l) omits Δω_t: right only if every texel subtends the same solid angle."
     );
     let _ = writeln!(
         text,
@@ -193,12 +193,12 @@ pub fn answers() -> Answers {
     }
     let _ = writeln!(
         text,
-        "The orthographic ball is equal-area (dω = {} dA), so the seed's sum is right there and only there.",
+        "The orthographic ball is equal-area (dω = {} dA), so the student's sum is right there and only there.",
         ProbeFormat::MirrorBall.jacobian(DVec2::ZERO)
     );
     let _ = writeln!(
         text,
-        "Seed's claim \"only light that would pass through the ball to reach the eye & light occluded by the camera is missing\": \
+        "The student's claim \"only light that would pass through the ball to reach the eye & light occluded by the camera is missing\": \
          right for an ideal ball, and quantifiable: the blind cone behind the ball has half-angle arcsin(R/D):"
     );
     for d in [3.0, 5.0, 10.0, 20.0] {

@@ -1,5 +1,7 @@
 #![doc = include_str!(concat!(env!("OUT_DIR"), "/q5_effect_tables.md"))]
 
+mod budget;
+pub use budget::Budget;
 pub mod cornell_published;
 pub mod effect_grid;
 pub mod effect_scenes;
@@ -22,8 +24,8 @@ use crate::answers::Answers;
 use crate::plot::{Figure, PlotError, markdown_table};
 use grammar::agreement;
 
-/// The cell-by-cell comparison with the seed (area light, the seed's two columns): the seed's
-/// answer, the grammar's verdict with the shortest missed path, and the measured verdict with
+/// The cell-by-cell comparison with the student's answers (area light, the student's two
+/// columns): the student's answer, the grammar's verdict with the shortest missed path, and the measured verdict with
 /// the fraction of the path-traced effect captured, read from `measured` (the cells of
 /// [`experiments::measured_table`]; "–" for a cell it lacks).
 ///
@@ -44,7 +46,7 @@ use grammar::agreement;
 ///     student: StudentAnswer::No,
 /// };
 /// let markdown = student_comparison_markdown(&[cell]).unwrap();
-/// // 5(a)(a) carries the measured cell; the other eleven seed cells have none here.
+/// // 5(a)(a) carries the measured cell; the other eleven cells of the student's have none here.
 /// assert!(markdown.lines().any(|l| l.starts_with("| 5(a)(a) |") && l.ends_with("| No (0.00) |")));
 /// assert_eq!(markdown.lines().filter(|l| l.starts_with("| 5(") && l.ends_with("| – |")).count(), 11);
 /// ```
@@ -67,13 +69,13 @@ pub fn student_comparison_markdown(measured: &[experiments::MeasuredCell]) -> Re
             experiment,
         ]);
     }
-    let header = ["seed cell", "effect", "seed", "grammar", "shortest path missed", "comparison", "measured"];
+    let header = ["cell", "effect", "student", "grammar", "shortest path missed", "comparison", "measured"];
     Ok(markdown_table(&header, rows))
 }
 
 /// The output of `hw3 effect-tables` for the measured cells `measured` (the CLI passes
-/// [`experiments::measured_table`]): the grammar tables, the seed comparison and the measured
-/// table as text, or everything as one JSON value.
+/// [`experiments::measured_table`]): the grammar tables, the comparison with the student's answers
+/// and the measured table as text, or everything as one JSON value.
 ///
 /// # Errors
 /// A message when a table cannot be built (a grammar overflow).
@@ -111,7 +113,7 @@ pub fn effect_tables_command(json: bool, measured: &[experiments::MeasuredCell])
     }
 }
 
-/// Percentage of the path-traced caustic that the seed's two-pass method captures (two
+/// Percentage of the path-traced caustic that the student's two-pass method captures (two
 /// decimals) and that photon mapping captures (no decimals), as [`answers`] prints them. Measured
 /// by [`experiments::measured_table`], too slow for `answers`; pinned by
 /// `tests::printed_caustic_fractions_are_the_measured_ones`.
@@ -127,8 +129,8 @@ const CAUSTIC_PERCENT: (&str, &str) = ("0.03", "100");
 pub fn answers() -> Answers {
     let (two_pass, photon_mapping) = CAUSTIC_PERCENT;
     let text = format!(
-        "(a) radiosity, LD*E: (a) highlight No (misses LGE), (b) colour bleeding Yes, (c) diffuse shading Yes, (d) specular effects No (misses LDSE, LSDE), (e) ambient glow Yes — all five as the seed says, and all five measured so against the path tracer (table q5_measured).\n\
-         (b) two-pass (direct light from eye rays + photon tracing): (a) Yes, (b) Yes, (c) Yes, (d) mirror images No (misses LDSE: eye rays are not traced further), caustics possible but impractical by the grammar (LSDE only in the diffuse photon map) and No when measured (a photon pass that stores photons only after a diffuse bounce never holds LS+D photons: {two_pass} % of the path-traced caustic; photon mapping with a caustic map: {photon_mapping} %), (e) Yes (the seed: Yes, as in (b)).\n\
+        "(a) radiosity, LD*E: (a) highlight No (misses LGE), (b) colour bleeding Yes, (c) diffuse shading Yes, (d) specular effects No (misses LDSE, LSDE), (e) ambient glow Yes — all five as the student says, and all five measured so against the path tracer (table q5_measured).\n\
+         (b) two-pass (direct light from eye rays + photon tracing): (a) Yes, (b) Yes, (c) Yes, (d) mirror images No (misses LDSE: eye rays are not traced further), caustics possible but impractical by the grammar (LSDE only in the diffuse photon map) and No when measured (a photon pass that stores photons only after a diffuse bounce never holds LS+D photons: {two_pass} % of the path-traced caustic; photon mapping with a caustic map: {photon_mapping} %), (e) Yes (the student: Yes, as in (b)).\n\
          With a point light the path tracer loses caustics altogether (No: LSDE), photon mapping keeps them."
     );
     Answers {
@@ -138,22 +140,29 @@ pub fn answers() -> Answers {
     }
 }
 
-/// Q5's figures: the radiosity Cornell box and the solver convergence plot.
+/// Q5's drawn figures and tables, with the measurements at `budget` (the renders are
+/// [`renders`]): the solvers' convergence chart, the published Cornell box's validation table,
+/// the measured table, the grammar tables, the comparison with the student's answers, and the two
+/// photon-map charts (drawn from committed data). [`Budget::PUBLISHED`] gives the committed
+/// files, which `cargo run --release` rewrites byte for byte.
 ///
 /// # Errors
 /// [`PlotError`] if a figure cannot be drawn or a scene fails.
 ///
 /// # Examples
-/// ```no_run
-/// // Not run here: it runs every Q5 measurement; `tests/docs.rs` compares its output with the
-/// // committed figures byte for byte.
-/// let figures = hw3::q5_effect_tables::figures().unwrap();
-/// assert!(figures.iter().any(|f| f.file_name == "q5_measured_table.md"));
 /// ```
-pub fn figures() -> Result<Vec<Figure>, PlotError> {
-    let mut figures = figures::figures()?;
+/// use hw3::q5_effect_tables::{Budget, figures};
+/// let figures = figures(&Budget::TINY).unwrap();
+/// let text = |name: &str| String::from_utf8(figures.iter().find(|f| f.file_name == name).unwrap().bytes.clone()).unwrap();
+/// // Every one of the 24 measured cells is a row of the measured table...
+/// assert_eq!(text("q5_measured_table.md").lines().filter(|l| l.starts_with("| (")).count(), 24);
+/// // ...and the student's ten answers (twelve cells, Q5's (d) split in two) are compared.
+/// assert_eq!(text("q5_seed_comparison.md").lines().filter(|l| l.starts_with("| 5(")).count(), 12);
+/// ```
+pub fn figures(budget: &Budget) -> Result<Vec<Figure>, PlotError> {
+    let mut figures = figures::figures(budget)?;
     let draw_error = |message| PlotError::Draw { figure: "q5_seed_comparison.md".into(), message };
-    let measured = experiments::measured_table().map_err(|e| draw_error(e.to_string()))?;
+    let measured = experiments::measured_table(budget).map_err(|e| draw_error(e.to_string()))?;
     let comparison = student_comparison_markdown(&measured).map_err(draw_error)?;
     figures.push(Figure { file_name: "q5_seed_comparison.md".into(), bytes: comparison.into_bytes() });
     figures.push(photon_accuracy::figure()?);
@@ -186,7 +195,7 @@ mod tests {
     }
 
     #[test]
-    fn grammar_agrees_with_every_transcribed_seed_cell() {
+    fn grammar_agrees_with_every_transcribed_student_cell() {
         let cells = grammar_table().unwrap();
         let disagreements: Vec<String> = cells
             .iter()
@@ -211,8 +220,8 @@ mod tests {
     }
 
     #[test]
-    fn effect_tables_json_has_every_cell_with_its_seed_answer() {
-        let measured = experiments::measured_table().unwrap();
+    fn effect_tables_json_has_every_cell_with_its_student_answer() {
+        let measured = experiments::measured_table(&Budget::PUBLISHED).unwrap();
         let value: serde_json::Value = serde_json::from_str(&effect_tables_command(true, &measured).unwrap()).unwrap();
         let grammar = value["grammar"].as_array().unwrap();
         assert_eq!(grammar.len(), 2 * EFFECTS.len() * ALGORITHMS.len());
@@ -221,23 +230,23 @@ mod tests {
         assert_eq!((first["verdict"].as_str(), first["seed"].as_str()), (Some("no"), Some("no")));
         assert_eq!(value["measured"].as_array().unwrap().len(), 24);
         let text = effect_tables_command(false, &measured).unwrap();
-        assert!(text.contains("No `LGE` (seed: No)") && text.contains("measured verdict"));
+        assert!(text.contains("No `LGE` (student: No)") && text.contains("measured verdict"));
     }
 
     #[test]
     fn grammar_tables_snapshot() {
         crate::test_support::insta_settings().bind(|| {
             insta::assert_snapshot!("q5_grammar_tables", grammar_table_markdown().unwrap());
-            let measured = experiments::measured_table().unwrap();
+            let measured = experiments::measured_table(&Budget::PUBLISHED).unwrap();
             insta::assert_snapshot!("q5_seed_comparison", student_comparison_markdown(&measured).unwrap());
         });
     }
 
     /// The caustic percentages [`answers`] prints are the measured table's, and every radiosity
-    /// cell is measured as the seed answers it ("all five measured so").
+    /// cell is measured as the student answers it ("all five measured so").
     #[test]
     fn printed_caustic_fractions_are_the_measured_ones() {
-        let cells = experiments::measured_table().unwrap();
+        let cells = experiments::measured_table(&Budget::PUBLISHED).unwrap();
         let fraction = |method: &str| {
             cells.iter().find(|c| c.effect == "d_caustic" && c.algorithm == method).map(|c| 100.0 * c.fraction).unwrap()
         };
@@ -290,7 +299,7 @@ mod tests {
         );
         assert!(line.contains(&expected), "{expected}");
         assert_eq!(cell("two_pass", "d_caustic").verdict, Verdict::Impractical, "printed as possible but impractical");
-        // "all five as the seed says": one seed answer per letter of Q5(a).
+        // "all five as the student says" (printed): one answer of the student's per letter of Q5(a).
         assert_eq!(STUDENT_ANSWERS.iter().filter(|(part, _, _)| *part == 'a').count(), 5);
     }
 }

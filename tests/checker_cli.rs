@@ -376,7 +376,7 @@ mod class_demo {
         let about = "carried: r for r^2 in C, then t = 4 from it, its point, normal and reflection";
         push(about.into(), written(about, &file), "carried_q2_c_with_r");
         let mut file = key_table(0);
-        // The seed's erratum: the x<3 cell entered at t = 3 (the y = 3 crossing), in its descent
+        // The student's erratum: the x<3 cell entered at t = 3 (the y = 3 crossing), in its descent
         // and again in its leaf.
         for part in ["descents", "leaves"] {
             let entries = file["q3d"][part].as_array().unwrap().clone();

@@ -529,7 +529,7 @@ impl ProbeImage {
             &[
                 (
                     "L*dot(n, w)",
-                    "the solid angle dw and the clamp max(0, .) are missing (the seed's K_d L (n . l))",
+                    "the solid angle dw and the clamp max(0, .) are missing (the student's K_d L (n . l))",
                     Rule::WrongTerm,
                 ),
                 (
@@ -677,7 +677,7 @@ mod tests {
         }
         // The student's own sum as a formula, and the key's, written with the clamp as (x + |x|)/2.
         let text = feedback("q4c.term_formula", "\"L*dot(n, w)\"".into());
-        assert!(text.contains("the seed's K_d L (n . l)"), "{text}");
+        assert!(text.contains("the student's K_d L (n . l)"), "{text}");
         let text = feedback("q4c.term_formula", "\"L*(dot(n, w) + abs(dot(n, w)))/2*dw\"".into());
         assert!(!text.contains("missing"), "{text}");
     }

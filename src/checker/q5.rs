@@ -159,7 +159,7 @@ mod tests {
         let mut found = Vec::new();
         for row in table.lines().skip(2) {
             let cells: Vec<&str> = row.split('|').map(str::trim).collect();
-            // | effect | method | measured | reference | fraction | measured verdict | grammar | seed |
+            // | effect | method | measured | reference | fraction | measured verdict | grammar | student |
             if cells.len() > 7 && cells[6] == "No" && cells[7] == "Impractical" {
                 let effect = cells[1].trim_matches(|c| c == '(' || c == ')').replace(' ', "_");
                 found.push((cells[2].to_string(), effect));

@@ -6,10 +6,13 @@ use super::chart::{chart, series};
 use super::clutter::{CLUTTER_COUNTS, ClutterRow, clutter_row, clutter_table};
 use super::fog::{FOG_SIGMAS, FogRow, airlight_rows, airlight_table, fog_probe_direction, fog_rows, fog_table};
 use super::mirrors::{
-    DIVERGENCE_TRIALS, MIRROR_STEPS, MirrorDivergence, divergence_table, mirror_divergence, mirror_sensitivity,
-    mirror_table,
+    DIVERGENCE_TRIALS, MIRROR_SPP, MIRROR_STEPS, MirrorDivergence, divergence_table, mirror_divergence,
+    mirror_sensitivity, mirror_table,
 };
-use super::motion::{MOTION_SPEED, MotionChange, MotionNoise, motion_change, motion_noise, motion_tables};
+use super::motion::{
+    MOTION_REFERENCE_SPP, MOTION_SPEED, MOTION_SPP, MotionChange, MotionNoise, motion_change, motion_noise,
+    motion_tables,
+};
 use crate::geometry::InputError;
 use crate::plot::{self, Axis, Figure, FigureJob, PALETTE, PlotError};
 use crate::render::analysis::analyze;
@@ -218,14 +221,16 @@ pub fn figure_jobs() -> Vec<FigureJob> {
             fog_figures(&fog_rows().map_err(|e| input_error("q1_fog_table.md", e))?)
         }),
         FigureJob::drawn("q1 mirror measurements", || {
-            let mirrors = mirror_sensitivity().map_err(|e| input_error("q1_mirror_table.md", e))?;
+            let mirrors =
+                mirror_sensitivity(&MIRROR_STEPS, MIRROR_SPP).map_err(|e| input_error("q1_mirror_table.md", e))?;
             let divergence =
                 mirror_divergence(DIVERGENCE_TRIALS).map_err(|e| input_error("q1_mirror_divergence_table.md", e))?;
             mirror_figures(&mirrors, &divergence)
         }),
         FigureJob::drawn("q1 motion measurements", || {
             let change = motion_change().map_err(|e| input_error("q1_motion_table.md", e))?;
-            let noise = motion_noise().map_err(|e| input_error("q1_motion_table.md", e))?;
+            let noise =
+                motion_noise(&MOTION_SPP, MOTION_REFERENCE_SPP).map_err(|e| input_error("q1_motion_table.md", e))?;
             motion_figures(&change, &noise)
         }),
         FigureJob::drawn("q1 accuracy data", committed_accuracy_figures),

@@ -42,24 +42,39 @@ pub fn reflection_turn(step: f64, radius: f64) -> f64 {
 /// assert!(MIRROR_STEPS.windows(2).all(|w| w[1] > w[0]));
 /// ```
 pub const MIRROR_STEPS: [f64; 5] = [0.005, 0.01, 0.02, 0.05, 0.1];
-/// Samples per pixel of the mirror experiment.
-const MIRROR_SPP: u32 = 4;
+/// Samples per pixel of the mirror experiment (the chapter's table: [`mirror_sensitivity`] at
+/// [`MIRROR_STEPS`] and this).
+///
+/// # Examples
+/// ```
+/// use hw3::q1_hard_scenes::{MIRROR_SPP, RENDER_SPP};
+/// // Fewer samples than the mirror picture: common random numbers cancel most of the noise
+/// // between camera positions.
+/// let (_, picture) = RENDER_SPP.iter().find(|(scene, _)| *scene == "mirrors").unwrap();
+/// assert!(MIRROR_SPP < *picture);
+/// ```
+pub const MIRROR_SPP: u32 = 4;
 
 /// Image sensitivity `S(δ) = mean_p |I_p(c + δ x̂) − I_p(c)| / δ` over the pixels where the
 /// undisplaced camera sees a sphere, for the mirror scene and its diffuse twin, one
-/// `(δ, S_mirror, S_diffuse)` per step. Whitted, 64×48 pixels, 4 spp with the
-/// same per-pixel random numbers at every camera position (common random numbers).
+/// `(δ, S_mirror, S_diffuse)` per camera step δ of `steps`. Whitted, 64×48 pixels, `spp` samples
+/// per pixel with the same per-pixel random numbers at every camera position (common random
+/// numbers): `2 (steps.len() + 1)` renders. The chapter's table is [`MIRROR_STEPS`] at
+/// [`MIRROR_SPP`] (twelve renders; `mirrors::tests` pins it).
 ///
 /// # Errors
 /// [`InputError`] never for the built-in numbers.
 ///
 /// # Examples
-/// ```no_run
-/// // Not run here: it renders twelve images; `mirrors::tests` runs it and pins the table.
-/// let rows = hw3::q1_hard_scenes::mirror_sensitivity().unwrap();
-/// assert!(rows.iter().all(|&(_, mirror, diffuse)| mirror > diffuse));
 /// ```
-pub fn mirror_sensitivity() -> Result<Vec<(f64, f64, f64)>, InputError> {
+/// use hw3::q1_hard_scenes::mirror_sensitivity;
+/// // One step of 0.02 at one sample per pixel: four renders.
+/// let rows = mirror_sensitivity(&[0.02], 1).unwrap();
+/// assert_eq!(rows.len(), 1);
+/// let (delta, mirror, diffuse) = rows[0];
+/// assert!(delta == 0.02 && mirror > diffuse && diffuse > 0.0);
+/// ```
+pub fn mirror_sensitivity(steps: &[f64], spp: u32) -> Result<Vec<(f64, f64, f64)>, InputError> {
     let mask = sphere_pixels(&catalogue::mirror_spheres(true)?);
     let masked_change = |a: &Image, b: &Image| {
         let (a, b) = (a.luminance(), b.luminance());
@@ -68,17 +83,17 @@ pub fn mirror_sensitivity() -> Result<Vec<(f64, f64, f64)>, InputError> {
     };
     let sensitivity = |mirror: bool| -> Result<Vec<f64>, InputError> {
         let scene = catalogue::mirror_spheres(mirror)?;
-        let base = render_metric(&scene, MIRROR_SPP, 1)?;
-        MIRROR_STEPS
+        let base = render_metric(&scene, spp, 1)?;
+        steps
             .iter()
             .map(|&delta| {
                 let moved = scene.with_camera(catalogue::mirror_camera(DVec3::X * delta))?;
-                Ok(masked_change(&render_metric(&moved, MIRROR_SPP, 1)?, &base) / delta)
+                Ok(masked_change(&render_metric(&moved, spp, 1)?, &base) / delta)
             })
             .collect()
     };
     let (mirror, diffuse) = (sensitivity(true)?, sensitivity(false)?);
-    Ok(MIRROR_STEPS.iter().zip(mirror.iter().zip(&diffuse)).map(|(&d, (&m, &f))| (d, m, f)).collect())
+    Ok(steps.iter().zip(mirror.iter().zip(&diffuse)).map(|(&d, (&m, &f))| (d, m, f)).collect())
 }
 
 /// Which pixels of the metric-size image see a sphere first (rays through pixel centres).
@@ -265,7 +280,7 @@ mod tests {
 
     #[test]
     fn mirrors_change_faster_than_the_same_scene_made_diffuse() {
-        let rows = mirror_sensitivity().unwrap();
+        let rows = mirror_sensitivity(&MIRROR_STEPS, MIRROR_SPP).unwrap();
         assert!(rows.iter().all(|&(_, mirror, diffuse)| mirror > diffuse));
         snapshot("q1_mirror_metrics", &mirror_table(&rows));
     }

@@ -52,7 +52,16 @@ const MOTION_FRAMES: usize = 10;
 /// assert!(MOTION_SPP.windows(2).all(|w| w[1] == 2 * w[0]));
 /// ```
 pub const MOTION_SPP: [u32; 6] = [1, 2, 4, 8, 16, 32];
-const REFERENCE_SPP: u32 = 256;
+/// Samples per pixel of the noise measurement's reference (rendered from another seed).
+///
+/// # Examples
+/// ```
+/// use hw3::q1_hard_scenes::{MOTION_REFERENCE_SPP, MOTION_SPP};
+/// // Eight times the largest measured count: its own noise adds 1/8 to the last RMSE², which the
+/// // fit of `motion_noise` takes out.
+/// assert_eq!(MOTION_REFERENCE_SPP, 8 * MOTION_SPP[MOTION_SPP.len() - 1]);
+/// ```
+pub const MOTION_REFERENCE_SPP: u32 = 256;
 /// The noise level for which the needed spp is reported (RMS luminance error).
 ///
 /// # Examples
@@ -167,45 +176,50 @@ impl MotionNoise {
     }
 }
 
-/// Measures [`MotionNoise`].
+/// Measures [`MotionNoise`]: one row per sample count of `spp` (at least two, for the fitted
+/// slope), against a `reference_spp` reference, for the moving and the resting ball. The chapter's
+/// table is [`MOTION_SPP`] against [`MOTION_REFERENCE_SPP`] (two 256-spp references;
+/// `motion::tests` pins it).
 ///
 /// # Errors
 /// [`InputError`] never for the built-in numbers.
 ///
 /// # Examples
-/// ```no_run
-/// // Not run here: it renders two 256-spp references; `motion::tests` runs it and pins the table.
-/// let noise = hw3::q1_hard_scenes::motion_noise().unwrap();
-/// assert!((noise.slope_moving + 0.5).abs() < 0.05);
+/// ```
+/// use hw3::q1_hard_scenes::motion_noise;
+/// // Three sample counts against a 16-spp reference: a fraction of the chapter's work.
+/// let noise = motion_noise(&[1, 2, 4], 16).unwrap();
+/// assert_eq!(noise.rows.iter().map(|r| r.0).collect::<Vec<_>>(), [1, 2, 4]);
+/// // Motion blur is noise: the moving ball needs more samples for the same error.
 /// assert!(noise.constant_moving > noise.constant_resting);
 /// ```
-pub fn motion_noise() -> Result<MotionNoise, InputError> {
+pub fn motion_noise(spp: &[u32], reference_spp: u32) -> Result<MotionNoise, InputError> {
     let curve = |speed: f64| -> Result<Vec<f64>, InputError> {
         let scene = catalogue::moving_ball(speed)?;
-        let reference = render_metric(&scene, REFERENCE_SPP, 1_000_003)?;
-        MOTION_SPP.iter().map(|&spp| Ok(render_metric(&scene, spp, 1)?.rms_difference(&reference))).collect()
+        let reference = render_metric(&scene, reference_spp, 1_000_003)?;
+        spp.iter().map(|&n| Ok(render_metric(&scene, n, 1)?.rms_difference(&reference))).collect()
     };
     let (moving, resting) = (curve(MOTION_SPEED)?, curve(0.0)?);
     let fit = |errors: &[f64]| {
-        let xs: Vec<f64> = MOTION_SPP.iter().map(|&s| f64::from(s).ln()).collect();
+        let xs: Vec<f64> = spp.iter().map(|&s| f64::from(s).ln()).collect();
         let ys: Vec<f64> = errors.iter().map(|e| e.ln()).collect();
         let n = xs.len() as f64;
         let (mx, my) = (xs.iter().sum::<f64>() / n, ys.iter().sum::<f64>() / n);
         let sxy: f64 = xs.iter().zip(&ys).map(|(x, y)| (x - mx) * (y - my)).sum();
         let sxx: f64 = xs.iter().map(|x| (x - mx).powi(2)).sum();
-        // The reference has noise of its own: E[RMSE²] = c² (1/spp + 1/REFERENCE_SPP), so c² is
-        // the mean of RMSE² / (1/spp + 1/REFERENCE_SPP).
-        let c_squared = MOTION_SPP
+        // The reference has noise of its own: E[RMSE²] = c² (1/spp + 1/reference_spp), so c² is
+        // the mean of RMSE² / (1/spp + 1/reference_spp).
+        let c_squared = spp
             .iter()
             .zip(errors)
-            .map(|(&spp, e)| e * e / (1.0 / f64::from(spp) + 1.0 / f64::from(REFERENCE_SPP)))
+            .map(|(&n, e)| e * e / (1.0 / f64::from(n) + 1.0 / f64::from(reference_spp)))
             .sum::<f64>()
             / n;
         (sxy / sxx, c_squared.sqrt())
     };
     let ((slope_moving, constant_moving), (slope_resting, constant_resting)) = (fit(&moving), fit(&resting));
     Ok(MotionNoise {
-        rows: MOTION_SPP.iter().zip(moving.iter().zip(&resting)).map(|(&s, (&m, &r))| (s, m, r)).collect(),
+        rows: spp.iter().zip(moving.iter().zip(&resting)).map(|(&s, (&m, &r))| (s, m, r)).collect(),
         slope_moving,
         slope_resting,
         constant_moving,
@@ -268,7 +282,7 @@ mod tests {
         let change = motion_change().unwrap();
         assert!(change.mean_change.iter().all(|&c| c > 0.0));
         assert!(change.pixels_per_frame > 0.5, "faster than the 0.5 px/frame limit");
-        let noise = motion_noise().unwrap();
+        let noise = motion_noise(&MOTION_SPP, MOTION_REFERENCE_SPP).unwrap();
         for slope in [noise.slope_moving, noise.slope_resting] {
             assert!((slope + 0.5).abs() < 0.05, "slope {slope}");
         }

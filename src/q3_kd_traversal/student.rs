@@ -122,7 +122,7 @@ impl fmt::Display for StepComparison {
             step.as_ref().map_or_else(|| "(none)".to_owned(), |s| s.to_string().trim().to_owned())
         };
         let verdict = if self.agrees() { "agree" } else { "DIFFER" };
-        write!(f, "step {}: {verdict}: ours `{}`, seed `{}`", self.index, show(&self.ours), show(&self.student))
+        write!(f, "step {}: {verdict}: ours `{}`, student `{}`", self.index, show(&self.ours), show(&self.student))
     }
 }
 

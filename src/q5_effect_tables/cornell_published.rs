@@ -17,6 +17,7 @@
 //! coincident surfaces do not tie (a tie would go to the lower object index, hiding the light
 //! behind the ceiling for half the rays).
 
+use super::budget::Budget;
 use super::error::ExperimentError;
 use super::photon_cornell::Reference;
 use super::radiosity::{Mesh, Solver, System};
@@ -265,7 +266,7 @@ pub fn path_traced_image(size: u32, spp: u32) -> Result<image::RgbImage, Experim
 /// // The figure shows the validation table's finest mesh.
 /// assert_eq!(SIDE_BY_SIDE_PATCHES, LEVELS[LEVELS.len() - 1]);
 /// ```
-pub const SIDE_BY_SIDE_PATCHES: usize = 12;
+pub const SIDE_BY_SIDE_PATCHES: usize = Budget::PUBLISHED.side_by_side_patches;
 
 /// Path-traced samples per probe of the committed converged reference ([`converged_reference`]).
 ///
@@ -335,7 +336,7 @@ pub fn converged_reference() -> Result<Reference, String> {
     Ok(reference)
 }
 
-/// Patches per quad edge of the validation table.
+/// Patches per quad edge of the committed validation table ([`Budget::PUBLISHED`]).
 ///
 /// # Examples
 /// ```
@@ -344,7 +345,7 @@ pub fn converged_reference() -> Result<Reference, String> {
 /// assert!(LEVELS.windows(2).all(|w| w[0] < w[1]));
 /// assert_eq!((552.8 / LEVELS[3] as f64).round(), 46.0);
 /// ```
-pub const LEVELS: [usize; 4] = [4, 6, 8, 12];
+pub const LEVELS: &[usize] = Budget::PUBLISHED.levels;
 
 /// Relative errors `radiosity/path-traced − 1` at the [`wall_probes`] for `n × n` patches per quad
 /// (one form-factor sample per patch), against `reference` (channel means per probe).
@@ -362,20 +363,30 @@ pub fn relative_errors(n: usize, reference: &[f64]) -> Result<Vec<f64>, Experime
     Ok(radiosity_at_probes(n, 1)?.iter().zip(reference).map(|(v, r)| v / r - 1.0).collect())
 }
 
-/// The validation as markdown: for each of [`LEVELS`], the patch count and the largest, mean and
-/// RMS relative error over the 20 wall probes against the path tracer ([`REFERENCE_SPP`]).
+/// The validation as markdown: for each of the `budget`'s [`levels`](Budget::levels) ([`LEVELS`]
+/// at [`Budget::PUBLISHED`], the committed `q5_cornell_published.md`), the patch count and the
+/// largest, mean and RMS relative error over the 20 wall probes against the committed path-traced
+/// reference ([`converged_reference`], [`REFERENCE_SPP`] samples per probe), then each probe's
+/// error at the finest level.
 ///
 /// # Errors
 /// As [`radiosity_at_probes`].
 ///
+/// # Panics
+/// If `budget.levels` is empty.
+///
 /// # Examples
-/// ```no_run
-/// // Not run here: a 4096-sample path-traced reference and radiosity up to 12 × 12 patches;
-/// // `tests/docs.rs` compares it with the committed `q5_cornell_published.md`.
-/// let table = hw3::q5_effect_tables::cornell_published::validation_table().unwrap();
-/// assert!(table.contains("| 12 |"));
 /// ```
-pub fn validation_table() -> Result<String, ExperimentError> {
+/// use hw3::q5_effect_tables::{Budget, cornell_published::validation_table};
+/// // 2 × 2 and 3 × 3 patches per quad.
+/// let table = validation_table(&Budget::TINY).unwrap();
+/// let (levels, probes) = table.split_once("| probe |").unwrap();
+/// assert!(levels.contains("\n| 2 | ") && levels.contains("\n| 3 | ") && !levels.contains("\n| 12 | "));
+/// // One row per probe, numbered 0 to 19, under the per-probe header.
+/// assert_eq!(probes.lines().filter(|l| l.starts_with("| ") && !l.starts_with("|---")).count(), 20);
+/// ```
+pub fn validation_table(budget: &Budget) -> Result<String, ExperimentError> {
+    let finest_level = *budget.levels.last().expect("a budget has at least one level");
     let scene = scene()?;
     let reference = converged_reference().map_err(ExperimentError::Data)?;
     let mut out = format!(
@@ -384,7 +395,7 @@ pub fn validation_table() -> Result<String, ExperimentError> {
     );
     let mut finest = Vec::new();
     let mut rows = Vec::new();
-    for n in LEVELS {
+    for &n in budget.levels {
         let errors = relative_errors(n, &reference.radiance)?;
         let patches = Mesh::new(&scene, n)?.patches.len();
         let count = errors.len() as f64;
@@ -405,8 +416,7 @@ pub fn validation_table() -> Result<String, ExperimentError> {
     let header = ["patches per edge", "patches", "patch width", "largest error", "mean error", "RMS error"];
     out.push_str(&markdown_table(&header, rows));
     out.push_str(&format!(
-        "\nPer probe: the reference radiance (channel mean), its standard error, and radiosity's error at {0} × {0} patches per quad.\n\n",
-        LEVELS[LEVELS.len() - 1]
+        "\nPer probe: the reference radiance (channel mean), its standard error, and radiosity's error at {finest_level} × {finest_level} patches per quad.\n\n"
     ));
     let probes =
         reference.radiance.iter().zip(&reference.standard_error).zip(&finest).enumerate().map(|(p, ((l, se), e))| {

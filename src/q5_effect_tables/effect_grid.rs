@@ -2,11 +2,12 @@
 //! each effect's four methods in two rows of two panels, each panel labelled with the method, its cost
 //! and the fraction of the path-traced effect it captured in [`measured_table`].
 
+use super::budget::Budget;
 use super::effect_scenes::{GLOSSY_FLOOR, WHITE_FLOOR, highlight_camera, lit_floor, mirror_room};
 use super::error::ExperimentError;
 use super::experiments::{
-    DIRECT_SPP, EXPERIMENTS, Measured, MeasuredCell, NEIGHBOURS, PHOTON_SEED, PHOTONS, SPECULAR_DEPTH, TABLE_METHODS,
-    measured_table, photon_eye,
+    EXPERIMENTS, Measured, MeasuredCell, NEIGHBOURS, PHOTON_SEED, SPECULAR_DEPTH, measured_table, photon_eye,
+    table_methods,
 };
 use super::radiosity::{Mesh, Solver, System};
 use crate::plot::{self, Figure, Panel, PlotError};
@@ -27,7 +28,8 @@ use crate::render::{Image, Settings, render, render_with};
 /// ```
 pub const GRID_PNG: &str = "q5_effect_grid.png";
 
-/// Size of one panel of the grid, in pixels.
+/// Size of one panel of the grid, in pixels, at the published budget ([`Budget::image_size`]
+/// divides it).
 ///
 /// # Examples
 /// ```
@@ -85,14 +87,15 @@ fn has_specular(scene: &Scene) -> bool {
     scene.objects().iter().any(|o| matches!(o.material, Material::Mirror { .. } | Material::Glass { .. }))
 }
 
-/// One scene rendered by every method of [`TABLE_METHODS`], with each method's cost as text.
-fn render_methods(scene: &Scene) -> Result<Vec<(Image, String)>, ExperimentError> {
-    let (width, height) = PANEL_SIZE;
+/// One scene rendered by every method of [`table_methods`] at `budget`, with each
+/// method's cost as text.
+fn render_methods(scene: &Scene, budget: &Budget) -> Result<Vec<(Image, String)>, ExperimentError> {
+    let (width, height) = budget.image_size(PANEL_SIZE);
     let render_error = |e: crate::render::RenderError| ExperimentError::Render(e.to_string());
-    let maps = trace_photons(scene, PHOTONS, PHOTON_SEED)?;
+    let maps = trace_photons(scene, budget.photons, PHOTON_SEED)?;
     let mut images = Vec::new();
     let mut two_pass = None;
-    for method in TABLE_METHODS {
+    for method in table_methods(budget) {
         images.push(match method {
             Measured::Radiosity { subdivisions, samples } => {
                 let system = System::new(scene, Mesh::new(scene, subdivisions)?, samples)?;
@@ -104,8 +107,9 @@ fn render_methods(scene: &Scene) -> Result<Vec<(Image, String)>, ExperimentError
                 let integrator = Integrator::Whitted { max_depth: SPECULAR_DEPTH };
                 // The table's Whitted reads no caustic map: the renderer's caustic pass is off.
                 let passes = integrator.restrict(analyze(scene).plan).with(Pass::Caustics, false);
-                let settings = Settings { integrator, ..Settings::whitted(width, height, DIRECT_SPP, passes) };
-                (render(scene, &settings, &|_| {}).map_err(render_error)?, format!("{DIRECT_SPP} spp"))
+                let spp = budget.light_samples;
+                let settings = Settings { integrator, ..Settings::whitted(width, height, spp, passes) };
+                (render(scene, &settings, &|_| {}).map_err(render_error)?, format!("{spp} spp"))
             }
             // Without a mirror or glass, and so with an empty caustic map, photon mapping traces
             // exactly the two-pass method's rays and estimates (the caustic map adds nothing, bit
@@ -114,9 +118,10 @@ fn render_methods(scene: &Scene) -> Result<Vec<(Image, String)>, ExperimentError
                 two_pass.clone().ok_or(ExperimentError::UnknownId("two_pass"))?
             }
             Measured::TwoPass | Measured::PhotonMapping => {
-                let (tracer, integrator) = photon_eye(scene, &maps, method == Measured::PhotonMapping)?;
+                let caustics = method == Measured::PhotonMapping;
+                let (tracer, integrator) = photon_eye(scene, &maps, caustics, budget.light_samples)?;
                 let settings = Settings { integrator, ..Settings::whitted(width, height, 1, Passes::default()) };
-                let cost = format!("{} photons, k = {NEIGHBOURS}", power_of_ten(PHOTONS));
+                let cost = format!("{} photons, k = {NEIGHBOURS}", power_of_ten(budget.photons));
                 let rendered = (render_with(&tracer, &settings, &|_| {}).map_err(render_error)?, cost);
                 if method == Measured::TwoPass {
                     two_pass = Some(rendered.clone());
@@ -166,22 +171,29 @@ fn label(row: &Row, method: Measured, cost: &str, cell: &MeasuredCell) -> String
 }
 
 /// The grid figure ([`GRID_PNG`]): for each effect of [`EXPERIMENTS`], its four [`PANEL_SIZE`]
-/// panels (the methods of [`TABLE_METHODS`]) in two rows of [`COLUMNS`], labelled below, the
-/// same exposure across an effect's panels, each image rendered once (the bleeding and glow rows
-/// share theirs).
+/// panels (the methods of [`table_methods`]) in two rows of [`COLUMNS`], labelled below with the
+/// cell of [`measured_table`] at the same `budget`, the same exposure across an effect's panels,
+/// each image rendered once (the bleeding and glow rows share theirs). [`Budget::PUBLISHED`] draws
+/// the committed figure (20 renders at 320 × 240, which CI's release run compares with it).
 ///
 /// # Errors
 /// [`PlotError::Draw`] when a scene, a render or the measured table fails.
 ///
 /// # Examples
-/// ```no_run
-/// // Not run here: 20 renders at 320 × 240; CI's release run compares it with the committed one.
-/// let figure = hw3::q5_effect_tables::effect_grid::figure().unwrap();
-/// assert_eq!(figure.file_name, "q5_effect_grid.png");
 /// ```
-pub fn figure() -> Result<Figure, PlotError> {
+/// use hw3::q5_effect_tables::{Budget, effect_grid::{COLUMNS, GRID_PNG, PANEL_SIZE, figure}};
+/// let grid = figure(&Budget::TINY).unwrap();
+/// assert_eq!(grid.file_name, GRID_PNG);
+/// // Two methods across; six effects of two rows each down, every panel a fortieth of the
+/// // published one with its label on a strip below it.
+/// let (width, height) = Budget::TINY.image_size(PANEL_SIZE);
+/// let png = image::load_from_memory(&grid.bytes).unwrap();
+/// assert_eq!(png.width(), COLUMNS as u32 * width);
+/// assert!(png.height() > 12 * height);
+/// ```
+pub fn figure(budget: &Budget) -> Result<Figure, PlotError> {
     let draw_error = |e: &dyn std::fmt::Display| PlotError::Draw { figure: GRID_PNG.into(), message: e.to_string() };
-    let cells = measured_table().map_err(|e| draw_error(&e))?;
+    let cells = measured_table(budget).map_err(|e| draw_error(&e))?;
     let mut rendered: Vec<(&str, Vec<(Image, String)>)> = Vec::new();
     let mut panels = Vec::new();
     for row in &ROWS {
@@ -189,10 +201,10 @@ pub fn figure() -> Result<Figure, PlotError> {
         let shared = if row.effect == "e" { "b" } else { row.effect };
         if !rendered.iter().any(|(id, _)| *id == shared) {
             let scene = row_scene(shared).map_err(|e| draw_error(&e))?;
-            rendered.push((shared, render_methods(&scene).map_err(|e| draw_error(&e))?));
+            rendered.push((shared, render_methods(&scene, budget).map_err(|e| draw_error(&e))?));
         }
         let images = &rendered.iter().find(|(id, _)| *id == shared).expect("rendered above").1;
-        for (method, (image, cost)) in TABLE_METHODS.iter().zip(images) {
+        for (method, (image, cost)) in table_methods(budget).iter().zip(images) {
             let cell = cells
                 .iter()
                 .find(|c| c.effect == row.effect && c.algorithm == method.id())
@@ -219,7 +231,7 @@ mod tests {
         let maps = trace_photons(&scene, 4_000, PHOTON_SEED).unwrap();
         assert!(maps.caustic.is_empty() && !maps.indirect.is_empty());
         let image = |caustics| {
-            let (tracer, integrator) = photon_eye(&scene, &maps, caustics).unwrap();
+            let (tracer, integrator) = photon_eye(&scene, &maps, caustics, Budget::PUBLISHED.light_samples).unwrap();
             let settings = Settings { integrator, ..Settings::whitted(24, 18, 1, Passes::default()) };
             render_with(&tracer, &settings, &|_| {}).unwrap()
         };

@@ -1,7 +1,8 @@
 //! Q5's radiosity and experiment figures: the radiosity Cornell box, the solvers' convergence,
 //! the experiment scenes, the published Cornell box, and the measured and grammar tables.
 
-use super::cornell_published::{self, SIDE_BY_SIDE_PATCHES};
+use super::budget::Budget;
+use super::cornell_published;
 use super::effect_scenes::{self, GLOSSY_FLOOR, WHITE_FLOOR, lit_floor, mirror_room};
 use super::error::ExperimentError;
 use super::experiments::{cornell_system, measured_table, measured_table_markdown, reference_passes};
@@ -13,11 +14,12 @@ use crate::render::scene::Scene;
 use crate::render::{Settings, render};
 
 /// The drawn figures: solver convergence (SVG), the published Cornell box's validation, the
-/// measured table and the grammar tables (markdown); the renders are [`renders`].
+/// measured table and the grammar tables (markdown), the tables at `budget`; the renders are
+/// [`renders`].
 ///
 /// # Errors
 /// [`PlotError`] if drawing fails.
-pub(super) fn figures() -> Result<Vec<Figure>, PlotError> {
+pub(super) fn figures(budget: &Budget) -> Result<Vec<Figure>, PlotError> {
     let draw_error =
         |figure: &str, e: &dyn std::fmt::Display| PlotError::Draw { figure: figure.into(), message: e.to_string() };
     let mut figures = Vec::new();
@@ -51,9 +53,10 @@ pub(super) fn figures() -> Result<Vec<Figure>, PlotError> {
         )
     };
     figures.push(convergence.svg("q5_radiosity_convergence.svg", (640, 400))?);
-    let validation = cornell_published::validation_table().map_err(|e| draw_error("q5_cornell_published.md", &e))?;
+    let validation =
+        cornell_published::validation_table(budget).map_err(|e| draw_error("q5_cornell_published.md", &e))?;
     figures.push(Figure { file_name: "q5_cornell_published.md".into(), bytes: validation.into_bytes() });
-    let measured = measured_table().map_err(|e| draw_error("q5_measured_table.md", &e))?;
+    let measured = measured_table(budget).map_err(|e| draw_error("q5_measured_table.md", &e))?;
     figures.push(Figure {
         file_name: "q5_measured_table.md".into(),
         bytes: measured_table_markdown(&measured).into_bytes(),
@@ -82,7 +85,7 @@ const EFFECT_SCENES_PNG: &str = "q5_effect_scenes.png";
 /// use hw3::q5_effect_tables::{PATH_SPP, experiments::REFERENCE_SPP};
 /// assert!(PATH_SPP < REFERENCE_SPP);
 /// ```
-pub const PATH_SPP: u32 = 128;
+pub const PATH_SPP: u32 = Budget::PUBLISHED.path_spp;
 
 /// Samples per pixel of the published Cornell box's noisy path-traced panel ([`PUBLISHED_PNG`]):
 /// few enough that path tracing's noise is in plain view beside radiosity's smooth image.
@@ -92,10 +95,10 @@ pub const PATH_SPP: u32 = 128;
 /// use hw3::q5_effect_tables::{NOISY_SPP, PUBLISHED_SPP};
 /// assert!(NOISY_SPP * 8 == PUBLISHED_SPP);
 /// ```
-pub const NOISY_SPP: u32 = 32;
+pub const NOISY_SPP: u32 = Budget::PUBLISHED.noisy_spp;
 
-/// Q5's renders (PNG, seeded: the same bytes on every run and thread count): the radiosity
-/// Cornell box at 640×640 (the box is square); the four open experiment scenes as a labelled 2 × 2
+/// Q5's renders (PNG, seeded: the same bytes on every run and thread count) at `budget`; at
+/// [`Budget::PUBLISHED`], the committed ones: the radiosity Cornell box at 640×640 (the box is square); the four open experiment scenes as a labelled 2 × 2
 /// grid of 320×240 panels; the published Cornell box by radiosity and by the path tracer at
 /// [`NOISY_SPP`] and [`PUBLISHED_SPP`], 320×320 each; both grids labelled below the panels (on
 /// them the labels would cover the ceiling light and the mirrored panel).
@@ -104,23 +107,33 @@ pub const NOISY_SPP: u32 = 32;
 /// [`PlotError`] if a scene cannot be built, rendered or labelled.
 ///
 /// # Examples
-/// ```no_run
-/// // Not run here: three path-traced and radiosity renders; CI's release run compares them with
-/// // the committed figures.
-/// let renders = hw3::q5_effect_tables::renders().unwrap();
-/// assert!(renders.iter().any(|f| f.file_name == "q5_effect_scenes.png"));
 /// ```
-pub fn renders() -> Result<Vec<Figure>, PlotError> {
+/// use hw3::q5_effect_tables::{Budget, renders};
+/// let figures = renders(&Budget::TINY).unwrap();
+/// let names: Vec<&str> = figures.iter().map(|f| f.file_name.as_str()).collect();
+/// assert_eq!(names, ["q5_radiosity_cornell.png", "q5_effect_scenes.png", "q5_cornell_published.png"]);
+/// // The radiosity box is square: 640 / 40 pixels a side, its label drawn on it.
+/// let radiosity = image::load_from_memory(&figures[0].bytes).unwrap();
+/// assert_eq!((radiosity.width(), radiosity.height()), (16, 16));
+/// // The montage two panels across, the Cornell comparison three, labels on strips below.
+/// let width = |f: &hw3::plot::Figure| image::load_from_memory(&f.bytes).unwrap().width();
+/// assert_eq!((width(&figures[1]), width(&figures[2])), (16, 24));
+/// ```
+pub fn renders(budget: &Budget) -> Result<Vec<Figure>, PlotError> {
     let draw_error =
         |figure: &str, e: &dyn std::fmt::Display| PlotError::Draw { figure: figure.into(), message: e.to_string() };
     let radiosity_png = "q5_radiosity_cornell.png";
-    let (scene, system) = cornell_system(8, 2).map_err(|e| draw_error(radiosity_png, &e))?;
+    let (patches, samples) = budget.render_mesh;
+    let (scene, system) = cornell_system(patches, samples).map_err(|e| draw_error(radiosity_png, &e))?;
     let solution = system.solve(Solver::GaussSeidel, 60).pop().unwrap_or_default();
-    let image = system.render(&scene, &solution, 640, 640).to_rgb8();
-    let label = "radiosity, 8 × 8 patches per quad\n2 × 2 form-factor samples, Gauss–Seidel".to_string();
+    let (width, height) = budget.image_size((640, 640));
+    let image = system.render(&scene, &solution, width, height).to_rgb8();
+    let label = format!(
+        "radiosity, {patches} × {patches} patches per quad\n{samples} × {samples} form-factor samples, Gauss–Seidel"
+    );
     let mut figures = vec![plot::panel_grid(radiosity_png, &[Panel { image, label }], 1)?];
-    figures.push(effect_scenes_figure()?);
-    figures.push(published_figure()?);
+    figures.push(effect_scenes_figure(budget)?);
+    figures.push(published_figure(budget)?);
     Ok(figures)
 }
 
@@ -128,25 +141,25 @@ pub fn renders() -> Result<Vec<Figure>, PlotError> {
 const PUBLISHED_SIZE: u32 = 320;
 
 /// The published Cornell box by radiosity, by the path tracer at [`NOISY_SPP`] (its noise in
-/// plain view) and by the path tracer at [`PUBLISHED_SPP`] (close to converged), labelled below.
-fn published_figure() -> Result<Figure, PlotError> {
-    let size = PUBLISHED_SIZE;
+/// plain view) and by the path tracer at [`PUBLISHED_SPP`] (close to converged), labelled below;
+/// those counts, the patches and the size at [`Budget::PUBLISHED`].
+fn published_figure(budget: &Budget) -> Result<Figure, PlotError> {
+    let (size, _) = budget.image_size((PUBLISHED_SIZE, PUBLISHED_SIZE));
+    let (patches, noisy_spp, converged_spp) = (budget.side_by_side_patches, budget.noisy_spp, budget.converged_spp);
     let draw_error = |e: ExperimentError| PlotError::Draw { figure: PUBLISHED_PNG.into(), message: e.to_string() };
-    let radiosity = cornell_published::radiosity_image(size, SIDE_BY_SIDE_PATCHES).map_err(draw_error)?;
-    let noisy = cornell_published::path_traced_image(size, NOISY_SPP).map_err(draw_error)?;
-    let converged = cornell_published::path_traced_image(size, PUBLISHED_SPP).map_err(draw_error)?;
-    let against = format!("{PUBLISHED_SPP} spp");
+    let radiosity = cornell_published::radiosity_image(size, patches).map_err(draw_error)?;
+    let noisy = cornell_published::path_traced_image(size, noisy_spp).map_err(draw_error)?;
+    let converged = cornell_published::path_traced_image(size, converged_spp).map_err(draw_error)?;
+    let against = format!("{converged_spp} spp");
     let (radiosity_error, noisy_error) =
         (plot::difference_line(&against, &radiosity, &converged), plot::difference_line(&against, &noisy, &converged));
     let panels = [
         Panel {
             image: radiosity,
-            label: format!(
-                "radiosity\n{SIDE_BY_SIDE_PATCHES} × {SIDE_BY_SIDE_PATCHES} patches per quad\n{radiosity_error}"
-            ),
+            label: format!("radiosity\n{patches} × {patches} patches per quad\n{radiosity_error}"),
         },
-        Panel { image: noisy, label: format!("path tracing\n{NOISY_SPP} spp\n{noisy_error}") },
-        Panel { image: converged, label: format!("path tracing\n{PUBLISHED_SPP} spp\nthe reference of the other two") },
+        Panel { image: noisy, label: format!("path tracing\n{noisy_spp} spp\n{noisy_error}") },
+        Panel { image: converged, label: format!("path tracing\n{converged_spp} spp\nthe reference of the other two") },
     ];
     // Below the panels: on them the labels covered the ceiling light.
     plot::panel_grid_labels_below(PUBLISHED_PNG, &panels, 3)
@@ -161,7 +174,7 @@ fn published_figure() -> Result<Figure, PlotError> {
 /// use hw3::q5_effect_tables::{PATH_SPP, PUBLISHED_SPP};
 /// assert!(PUBLISHED_SPP > PATH_SPP);
 /// ```
-pub const PUBLISHED_SPP: u32 = 256;
+pub const PUBLISHED_SPP: u32 = Budget::PUBLISHED.converged_spp;
 
 /// Samples per pixel of the montage's caustic panel ([`EFFECT_SCENES_PNG`]). Its noise falls
 /// slowly (8.0 display levels of 255 at 32 spp, 6.1 at 256, 4.0 at 1024): the caustic is found
@@ -174,41 +187,47 @@ pub const PUBLISHED_SPP: u32 = 256;
 /// use hw3::q5_effect_tables::{CAUSTIC_SPP, PATH_SPP};
 /// assert!(CAUSTIC_SPP > PATH_SPP);
 /// ```
-pub const CAUSTIC_SPP: u32 = 1024;
+pub const CAUSTIC_SPP: u32 = Budget::PUBLISHED.caustic_spp;
 
 /// The four open experiment scenes of the montage, each with what its panel shows and its
 /// samples per pixel: the glossy floor's highlight, the white floor's cosine falloff, the red
-/// panel in the mirror, the caustic under the glass ball.
-fn montage_scenes() -> Result<[(Scene, &'static str, u32); 4], ExperimentError> {
+/// panel in the mirror, the caustic under the glass ball ([`PATH_SPP`] and [`CAUSTIC_SPP`] at
+/// [`Budget::PUBLISHED`]).
+fn montage_scenes(budget: &Budget) -> Result<[(Scene, &'static str, u32); 4], ExperimentError> {
     Ok([
         (
             lit_floor(GLOSSY_FLOOR, false)?.with_camera(effect_scenes::highlight_camera())?,
             "(a) highlight on a glossy floor",
-            PATH_SPP,
+            budget.path_spp,
         ),
-        (lit_floor(WHITE_FLOOR, false)?, "(c) direct light on a white floor", PATH_SPP),
-        (mirror_room()?, "(d) the lit red panel in a mirror", PATH_SPP),
-        (lit_floor(WHITE_FLOOR, true)?, "(d) caustic under a glass ball", CAUSTIC_SPP),
+        (lit_floor(WHITE_FLOOR, false)?, "(c) direct light on a white floor", budget.path_spp),
+        (mirror_room()?, "(d) the lit red panel in a mirror", budget.path_spp),
+        (lit_floor(WHITE_FLOOR, true)?, "(d) caustic under a glass ball", budget.caustic_spp),
     ])
 }
 
-/// The path tracer's settings of the montage's panels: 320 × 240, every bounce on, 12 at most,
-/// seed 1.
-fn montage_settings(scene: &Scene, spp: u32) -> Settings {
+/// Width and height of each montage panel at [`Budget::PUBLISHED`].
+const MONTAGE_SIZE: (u32, u32) = (320, 240);
+
+/// The path tracer's settings of the montage's panels: `(width, height)` ([`MONTAGE_SIZE`] in the
+/// committed figure), every bounce on, 12 at most, seed 1.
+fn montage_settings(scene: &Scene, (width, height): (u32, u32), spp: u32) -> Settings {
     Settings {
         integrator: Integrator::PathTracer { max_depth: 12 },
-        ..Settings::whitted(320, 240, spp, reference_passes(scene))
+        ..Settings::whitted(width, height, spp, reference_passes(scene))
     }
 }
 
 /// The four open experiment scenes, path-traced ([`montage_scenes`], [`montage_settings`]), as a
 /// labelled 2 × 2 grid.
-fn effect_scenes_figure() -> Result<Figure, PlotError> {
+fn effect_scenes_figure(budget: &Budget) -> Result<Figure, PlotError> {
     let render_error =
         |e: &dyn std::fmt::Display| PlotError::Draw { figure: EFFECT_SCENES_PNG.into(), message: e.to_string() };
+    let size = budget.image_size(MONTAGE_SIZE);
     let mut panels = Vec::new();
-    for (scene, what, spp) in &montage_scenes().map_err(|e| render_error(&e))? {
-        let image = render(scene, &montage_settings(scene, *spp), &|_| {}).map_err(|e| render_error(&e))?.to_rgb8();
+    for (scene, what, spp) in &montage_scenes(budget).map_err(|e| render_error(&e))? {
+        let settings = montage_settings(scene, size, *spp);
+        let image = render(scene, &settings, &|_| {}).map_err(|e| render_error(&e))?.to_rgb8();
         panels.push(Panel { image, label: format!("{what}\npath tracing, {spp} spp") });
     }
     // Below the panels: on them a label covered the mirrored red panel's corner.
@@ -243,10 +262,11 @@ mod tests {
         let spps: Vec<u32> = std::env::var("HW3_NOISE_SPP")
             .map_or_else(|_| vec![32, 128], |v| v.split(',').map(|s| s.parse().unwrap()).collect());
         let only = std::env::var("HW3_NOISE_ONLY").unwrap_or_default();
-        let mut pictures: Vec<(String, Scene, Box<SettingsAt>)> = montage_scenes()
+        let montage = |scene: &Scene, spp| montage_settings(scene, MONTAGE_SIZE, spp);
+        let mut pictures: Vec<(String, Scene, Box<SettingsAt>)> = montage_scenes(&Budget::PUBLISHED)
             .unwrap()
             .into_iter()
-            .map(|(scene, what, _)| (what.to_string(), scene, Box::new(montage_settings) as Box<_>))
+            .map(|(scene, what, _)| (what.to_string(), scene, Box::new(montage) as Box<_>))
             .collect();
         let published = cornell_published::scene().unwrap();
         let settings = |scene: &Scene, spp| cornell_published::path_settings(scene, PUBLISHED_SIZE, spp);
@@ -258,7 +278,7 @@ mod tests {
         pictures.push(("published Cornell box, no roulette".into(), published, Box::new(without_roulette)));
         if "published Cornell box, radiosity".contains(&only) {
             let start = cpu_seconds();
-            cornell_published::radiosity_image(PUBLISHED_SIZE, SIDE_BY_SIDE_PATCHES).unwrap();
+            cornell_published::radiosity_image(PUBLISHED_SIZE, cornell_published::SIDE_BY_SIDE_PATCHES).unwrap();
             println!("published Cornell box, radiosity: {:6.2} CPU s", cpu_seconds() - start);
         }
         for (name, scene, settings) in pictures.iter().filter(|(name, ..)| name.contains(&only)) {

@@ -423,7 +423,7 @@ pub(super) fn agreement(cell: &Cell) -> &'static str {
 fn cell_text(cell: &Cell) -> String {
     let seed = match cell.student {
         StudentAnswer::NotAsked => String::new(),
-        answer => format!(" (seed: {})", answer.text()),
+        answer => format!(" (student: {})", answer.text()),
     };
     match &cell.witness {
         Some(w) => format!("{} `{w}`{seed}", cell.verdict.text()),
@@ -433,7 +433,7 @@ fn cell_text(cell: &Cell) -> String {
 
 /// The grammar table as markdown, one table per light kind; a No or Impractical cell prints the
 /// shortest path the method misses (or samples only by chance) as code, and the student's answer
-/// beside it (printed as `(seed: …)`).
+/// beside it (printed as `(student: …)`).
 ///
 /// # Errors
 /// As [`decide`].
@@ -442,7 +442,7 @@ fn cell_text(cell: &Cell) -> String {
 /// ```
 /// let markdown = hw3::q5_effect_tables::grammar_table_markdown().unwrap();
 /// assert!(markdown.starts_with("**Area light**"));
-/// assert!(markdown.contains("No `LGE` (seed: No)"));
+/// assert!(markdown.contains("No `LGE` (student: No)"));
 /// ```
 pub fn grammar_table_markdown() -> Result<String, GrammarError> {
     let cells = grammar_table()?;

@@ -89,8 +89,7 @@ fn grade(result: &PartResult) -> String {
 
 /// The answer key as markdown: one table per question (part, what is asked, the answer, the
 /// student's answer, its grade, the section explaining it), the student's total, and the
-/// checker's feedback on every part the student lost points on (the printed table still calls
-/// the student's answers "the seed's").
+/// checker's feedback on every part the student lost points on.
 ///
 /// # Errors
 /// [`SolutionError`] if a solution cannot be written (a bug: seed 0 of every question is tested).
@@ -132,17 +131,17 @@ pub fn answer_key_table() -> Result<String, SolutionError> {
                 lost.push(format!("- `{}`: {}", part.key, cell(&result.feedback)));
             }
         }
-        let header = ["part", "asked", "answer", "the seed's answer", "its grade", "explained in"];
+        let header = ["part", "asked", "answer", "the student's answer", "its grade", "explained in"];
         out.push_str(&markdown_table(&header, rows));
         out.push('\n');
         if !lost.is_empty() {
-            let _ = writeln!(out, "Where the seed lost points:\n\n{}\n", lost.join("\n"));
+            let _ = writeln!(out, "Where the student lost points:\n\n{}\n", lost.join("\n"));
         }
         let _ = writeln!(out, "</div>\n");
     }
     let _ = writeln!(
         out,
-        "The seed's total: **{} / {}** over {} parts.",
+        "The student's total: **{} / {}** over {} parts.",
         report.score,
         report.max_score,
         report.parts.len()
