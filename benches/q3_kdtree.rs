@@ -350,15 +350,22 @@ fn env_override<T: std::str::FromStr>(name: &str) -> Option<T> {
     std::env::var(name).ok().and_then(|v| v.parse().ok())
 }
 
-/// `HW3_Q3_PROFILE=kd|kd32|build` (with `HW3_Q3_PROFILE_N`, default 10⁵, fixed k, and
+/// `HW3_Q3_PROFILE=kd|kd32|build` (with `HW3_Q3_PROFILE_N`, default 10⁵, fixed k unless
+/// `HW3_Q3_PROFILE_DENSITY=volume`, and
 /// `HW3_Q3_PROFILE_RAYS`, default 10⁵ random rays): one contender alone, for a profiler
 /// (`valgrind --tool=callgrind`, whose counts do not depend on the machine's load). Prints the
-/// checksum so the work cannot be optimised away.
+/// checksum so the work cannot be optimised away, with the tree's size, SAH cost and build time.
 fn profile(what: &str) {
     let n = env_override("HW3_Q3_PROFILE_N").unwrap_or(100_000);
     let rays = random_rays(env_override("HW3_Q3_PROFILE_RAYS").unwrap_or(100_000), 0xBEEF);
-    let spheres = scene(n, Density::FixedMeanFreePath);
+    let density = match std::env::var("HW3_Q3_PROFILE_DENSITY").as_deref() {
+        Ok("volume") => Density::FixedVolumeFraction,
+        _ => Density::FixedMeanFreePath,
+    };
+    let spheres = scene(n, density);
+    let start = Instant::now();
     let tree = KdTree::build(&spheres).unwrap();
+    let build_secs = start.elapsed().as_secs_f64();
     let answers: Vec<Hit> = match what {
         "kd" => trace_all(&tree, &rays),
         "kd32" => {
@@ -372,7 +379,14 @@ fn profile(what: &str) {
         }
         _ => Vec::new(),
     };
-    eprintln!("{what} N = {n}: nodes {}, checksum {:?}", tree.node_count(), checksum(&answers));
+    eprintln!(
+        "{what} N = {n}: nodes {}, references {}, SAH cost {:?}, build {:.1} ms (wall), checksum {:?}",
+        tree.node_count(),
+        tree.reference_count(),
+        tree.sah_cost(&SahCosts::default()),
+        build_secs * 1e3,
+        checksum(&answers)
+    );
 }
 
 fn main() {

@@ -1,7 +1,7 @@
 //! Shared geometry core: rays, spheres, input validation, and the numerically stable ray/sphere
 //! solver that every renderer in the crate uses.
 //!
-//! The homework's own formulas live in the question modules (Q2 keeps the seed's literal solver
+//! The homework's own formulas live in the question modules (Q2 keeps the student's literal solver
 //! for comparison); this core holds what the rest of the crate builds on. All public entry points
 //! validate their input and return an [`InputError`] instead of panicking or producing a silent NaN.
 

@@ -7,7 +7,7 @@ pub mod glossary {
     #![doc = include_str!(concat!(env!("OUT_DIR"), "/glossary.md"))]
 }
 
-/// The printable answer key: every part's answer, the seed's answer and its grade, and the
+/// The printable answer key: every part's answer, the student's answer and its grade, and the
 /// section that explains it.
 pub mod answer_key {
     #![doc = include_str!(concat!(env!("OUT_DIR"), "/answer_key.md"))]

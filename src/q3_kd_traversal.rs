@@ -230,7 +230,7 @@ impl Node2 {
         Self::Split { axis, split, lower: Box::new(lower), upper: Box::new(upper) }
     }
 
-    /// The homework's tree, reconstructed from the seed's cases (d) and (e): the root splits
+    /// The homework's tree, reconstructed from the student's cases (d) and (e): the root splits
     /// `x = 3`; its `x < 3` child splits `y = 1` and its `x ≥ 3` child splits `y = 3`; the four
     /// grandchildren are leaves. (Case (d) meets the `y = 3` plane right after descending
     /// `x ≥ 3`, and both cases meet `y = 1` right after descending `x < 3`.)
@@ -473,12 +473,12 @@ impl fmt::Display for Trace {
 
 /// Traverses `tree` front to back along `ray` from `t = 0` to `t = ∞`, recording every step.
 ///
-/// Each split uses the crate's one interval rule, [`split_interval`] (the seed's rules (b) and (c)
+/// Each split uses the crate's one interval rule, [`split_interval`] (the student's rules (b) and (c)
 /// with the ties made explicit; see the chapter). Leaves are reached in increasing `t`, each with
 /// an interval of positive length; together the intervals tile `[0, ∞)`.
 ///
 /// Preconditions: a ray built by [`Ray2::new`] (finite, non-zero direction); its fields are public
-/// for the seed's data, so a hand-made NaN ray would yield NaN parameters, never a panic.
+/// for the student's data, so a hand-made NaN ray would yield NaN parameters, never a panic.
 ///
 /// # Examples
 /// ```
@@ -563,7 +563,7 @@ fn clip_to_cell(cell: &Cell, ray: &Ray2) -> Option<Interval> {
 }
 
 /// Q3's printed answers: the reconstructed tree, the rules, and the traces of (d) and (e) with
-/// their comparison against the seed.
+/// their comparison against the student's.
 ///
 /// # Examples
 /// ```

@@ -80,7 +80,7 @@ fn variant_prints_statement_and_solution() {
 }
 
 #[test]
-fn the_seeds_own_answers_graded() {
+fn the_students_own_answers_graded() {
     let out = hw3(&["check", &answers("seed_hw3.toml")]);
     assert_eq!(out.status.code(), Some(1));
     let text = String::from_utf8(out.stdout).unwrap();
@@ -95,7 +95,7 @@ fn the_seeds_own_answers_graded() {
     // The chapter quotes this score; it must be the one the checker prints.
     let score = text.lines().last().unwrap().trim_start_matches("score ").split(" over").next().unwrap();
     let chapter = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/checker.md")).unwrap();
-    assert!(chapter.contains(&format!("**{score}**")), "docs/checker.md should quote the seed's score {score}");
+    assert!(chapter.contains(&format!("**{score}**")), "docs/checker.md should quote the student's score {score}");
     common::insta_settings().bind(|| insta::assert_snapshot!("checker_seed_graded", text));
 }
 

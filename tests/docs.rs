@@ -147,11 +147,11 @@ fn doc_comments_and_generated_tables_name_nothing_a_reader_cannot_open() {
 fn doc_comments_and_generated_tables_carry_the_corrected_claims() {
     let all = doc_comments_and_generated_tables();
     let text = |suffix: &str| all.iter().find(|(name, _)| name.ends_with(suffix)).map(|(_, t)| t.clone()).unwrap();
-    // Claim 1: the seed's Q5(b)(e) is "(e) Yes - as in (b)", not lost.
+    // Claim 1: the student's Q5(b)(e) is "(e) Yes - as in (b)", not lost.
     let comparison = text("q5_seed_comparison.md");
     let row = comparison.lines().find(|l| l.starts_with("| 5(b)(e)")).expect("the 5(b)(e) row");
     assert!(row.contains("| Yes |") && !row.contains("lost"), "{row}");
-    // Claim 6: the seed never names its light.
+    // Claim 6: the student never names the light.
     for (name, t) in &all {
         assert!(!t.contains("the seed's setting"), "{name}");
         // Claim 3: the ball focuses parallel light on the floor; the light's image is below it.
@@ -356,9 +356,9 @@ fn q5_caustic_ball_focus_and_light_image_are_the_lens_law() {
     }
 }
 
-/// Q5: the seed's last line answers Q5(b)(e), and the seed never names its light.
+/// Q5: the student's last line answers Q5(b)(e), and the student never names the light.
 #[test]
-fn q5_chapter_quotes_the_seeds_last_answer_and_no_light_setting() {
+fn q5_chapter_quotes_the_students_last_answer_and_no_light_setting() {
     let q5 = chapter("q5_effect_tables.md");
     assert!(q5.contains("\"(e) Yes - as in (b)\""));
     for stale in ["cut off in the transcription", "is lost", "seed's setting"] {

@@ -129,8 +129,8 @@ fn formula_points() -> Vec<Point> {
 
 pub(super) fn variant(seed: u64) -> Variant {
     let [d, e] = if seed == 0 {
-        let seed_cases = cases();
-        [seed_cases[0].ray, seed_cases[1].ray]
+        let student_cases = cases();
+        [student_cases[0].ray, student_cases[1].ray]
     } else {
         let mut g = rng::seeded(seed, STREAM);
         let d = random_ray(&mut g);

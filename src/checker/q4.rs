@@ -675,7 +675,7 @@ mod tests {
             let text = feedback(key, rule_value(key, slip));
             assert!(text.starts_with(slip), "{key}: {text}");
         }
-        // The seed's own sum as a formula, and the key's, written with the clamp as (x + |x|)/2.
+        // The student's own sum as a formula, and the key's, written with the clamp as (x + |x|)/2.
         let text = feedback("q4c.term_formula", "\"L*dot(n, w)\"".into());
         assert!(text.contains("the seed's K_d L (n . l)"), "{text}");
         let text = feedback("q4c.term_formula", "\"L*(dot(n, w) + abs(dot(n, w)))/2*dw\"".into());

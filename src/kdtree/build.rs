@@ -189,6 +189,9 @@ fn f32_above(x: f64) -> f64 {
 /// per-subtree bookkeeping costs more than the second thread saves.
 const PARALLEL_MIN: usize = 8_192;
 
+/// Bin counts up to which [`Builder::best_split`] keeps its counts on the stack.
+const INLINE_BINS: usize = 32;
+
 /// The best split found for one node.
 struct Candidate {
     axis: usize,
@@ -196,31 +199,39 @@ struct Candidate {
     cost: f64,
 }
 
+/// Appends a leaf listing `prims` to `out`.
+fn push_leaf(prims: &[Prim], out: &mut Subtree) {
+    let first = u32::try_from(out.indices.len()).expect("index count fits u32");
+    let count = u32::try_from(prims.len()).expect("sphere count fits u32");
+    out.indices.extend(prims.iter().map(|p| p.index));
+    out.nodes.push(Node::leaf(first, count));
+}
+
+/// The two cells of `cell` split on `axis` at `split` (lower, upper).
+fn children(cell: Aabb, axis: usize, split: f64) -> (Aabb, Aabb) {
+    let (mut lower, mut upper) = (cell, cell);
+    lower.max[axis] = split;
+    upper.min[axis] = split;
+    (lower, upper)
+}
+
 impl Builder {
     /// Builds the subtree of `cell` holding `prims`, appending it to `out` (pre-order: the lower
-    /// child directly follows its parent). Large nodes build their children in parallel; the
-    /// result is the same tree as a serial build.
+    /// child directly follows its parent). Nodes of at least [`PARALLEL_MIN`] spheres build their
+    /// children in parallel, each child from a list of its own; smaller ones build serially in
+    /// one scratch list ([`Builder::build_serial`]). The result is the same tree as a serial build.
     pub fn build(&self, cell: Aabb, prims: Vec<Prim>, depth: usize, out: &mut Subtree) {
-        let leaf_cost = self.costs.intersection * prims.len() as f64;
-        let best = if prims.len() <= 1 || depth >= self.max_depth {
-            None
-        } else {
-            let best = if prims.len() <= self.exact_max {
-                self.best_exact_split(&cell, &prims)
-            } else {
-                self.best_split(&cell, &prims)
-            };
-            best.filter(|c| c.cost < leaf_cost)
-        };
-        let Some(Candidate { axis, split, .. }) = best else {
-            let first = u32::try_from(out.indices.len()).expect("index count fits u32");
-            let count = u32::try_from(prims.len()).expect("sphere count fits u32");
-            out.indices.extend(prims.iter().map(|p| p.index));
-            out.nodes.push(Node::leaf(first, count));
+        if prims.len() < PARALLEL_MIN {
+            let count = prims.len();
+            let mut scratch = prims;
+            self.build_serial(cell, &mut scratch, 0, count, depth, out);
+            return;
+        }
+        let Some(Candidate { axis, split, .. }) = self.choose(&cell, &prims, depth) else {
+            push_leaf(&prims, out);
             return;
         };
-        let parallel = prims.len() >= PARALLEL_MIN;
-        // One pass, each box read once, in order.
+        // One pass, each box read once, in order, for both children.
         let (mut lower, mut upper) = (Vec::with_capacity(prims.len()), Vec::with_capacity(prims.len()));
         for p in &prims {
             if p.bounds.min[axis] <= split {
@@ -233,28 +244,76 @@ impl Builder {
         drop(prims);
         let here = out.nodes.len();
         out.nodes.push(Node::leaf(0, 0));
-        let (mut lower_cell, mut upper_cell) = (cell, cell);
-        lower_cell.max[axis] = split;
-        upper_cell.min[axis] = split;
-        let upper_index = if parallel {
-            let subtree = |cell, prims| {
-                let mut part = Subtree::default();
-                self.build(cell, prims, depth + 1, &mut part);
-                part
-            };
-            let (lower_part, upper_part) = rayon::join(|| subtree(lower_cell, lower), || subtree(upper_cell, upper));
-            out.append(lower_part);
-            let upper_index = out.nodes.len();
-            out.append(upper_part);
-            upper_index
-        } else {
-            self.build(lower_cell, lower, depth + 1, out);
-            let upper_index = out.nodes.len();
-            self.build(upper_cell, upper, depth + 1, out);
-            upper_index
+        let (lower_cell, upper_cell) = children(cell, axis, split);
+        let subtree = |cell, prims| {
+            let mut part = Subtree::default();
+            self.build(cell, prims, depth + 1, &mut part);
+            part
         };
-        let upper_index = u32::try_from(upper_index).expect("node count fits u32");
+        let (lower_part, upper_part) = rayon::join(|| subtree(lower_cell, lower), || subtree(upper_cell, upper));
+        out.append(lower_part);
+        let upper_index = u32::try_from(out.nodes.len()).expect("node count fits u32");
+        out.append(upper_part);
         out.nodes[here] = Node::interior(split as f32, axis, upper_index);
+    }
+
+    /// Builds the subtree of `cell` holding `scratch[start..end]` into `out`, on one thread, with
+    /// no allocation of its own: a split keeps the lower child's spheres in place (a compaction of
+    /// `start..end`, in order) and appends the upper child's to `scratch`, whose end is the free
+    /// space of every node below. `scratch[start..end]` is consumed; `scratch`'s length is left as
+    /// it was found.
+    fn build_serial(
+        &self,
+        cell: Aabb,
+        scratch: &mut Vec<Prim>,
+        start: usize,
+        end: usize,
+        depth: usize,
+        out: &mut Subtree,
+    ) {
+        let Some(Candidate { axis, split, .. }) = self.choose(&cell, &scratch[start..end], depth) else {
+            push_leaf(&scratch[start..end], out);
+            return;
+        };
+        let top = scratch.len();
+        scratch.reserve(end - start);
+        // One pass, each box read once, in order; `kept ≤ i`, so the compaction never overwrites a
+        // box not yet read.
+        let mut kept = start;
+        for i in start..end {
+            let p = scratch[i];
+            if p.bounds.max[axis] >= split {
+                scratch.push(p);
+            }
+            if p.bounds.min[axis] <= split {
+                scratch[kept] = p;
+                kept += 1;
+            }
+        }
+        let upper_end = scratch.len();
+        let here = out.nodes.len();
+        out.nodes.push(Node::leaf(0, 0));
+        let (lower_cell, upper_cell) = children(cell, axis, split);
+        self.build_serial(lower_cell, scratch, start, kept, depth + 1, out);
+        let upper_index = u32::try_from(out.nodes.len()).expect("node count fits u32");
+        self.build_serial(upper_cell, scratch, top, upper_end, depth + 1, out);
+        scratch.truncate(top);
+        out.nodes[here] = Node::interior(split as f32, axis, upper_index);
+    }
+
+    /// The split of the node of `cell` holding `prims` at `depth`, or `None` for a leaf: one sphere
+    /// or none, the depth bound, or no candidate cheaper than the leaf.
+    fn choose(&self, cell: &Aabb, prims: &[Prim], depth: usize) -> Option<Candidate> {
+        if prims.len() <= 1 || depth >= self.max_depth {
+            return None;
+        }
+        let leaf_cost = self.costs.intersection * prims.len() as f64;
+        let best = if prims.len() <= self.exact_max {
+            self.best_exact_split(cell, prims)
+        } else {
+            self.best_split(cell, prims)
+        };
+        best.filter(|c| c.cost < leaf_cost)
     }
 
     /// The cost of splitting `cell` (area `area`) on `axis` at `split` with `n_lower` and `n_upper`
@@ -349,7 +408,14 @@ impl Builder {
         let extent = [hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]];
         let scale = extent.map(|e| bins as f64 / e);
         // starts of axis a in [2a·bins, (2a+1)·bins), ends in the next `bins`.
-        let mut counts = vec![0u32; 6 * bins];
+        // On the stack for the default bin count, so that a node allocates nothing.
+        let (mut inline, mut heap) = ([0u32; 6 * INLINE_BINS], Vec::new());
+        let counts: &mut [u32] = if bins <= INLINE_BINS {
+            &mut inline[..6 * bins]
+        } else {
+            heap.resize(6 * bins, 0);
+            &mut heap
+        };
         // Clamping in floating point first (NaN included: it goes to bin 0, as `max(0.0)` sent it)
         // leaves the conversion nothing to saturate.
         let last = (bins - 1) as f64;

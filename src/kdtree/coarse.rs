@@ -4,13 +4,15 @@
 //!
 //! # Why
 //! Under callgrind (N = 10⁵, fixed k, random rays) a random ray read about 20 leaf cache lines of
-//! `f64` spheres and missed the 2 MB second-level cache on about 13 of them, against about 2
-//! misses for its 61 node steps: the leaf spheres, not the nodes, waited on memory. Fewer than one
+//! `f64` spheres and missed a (simulated) 2 MB second-level cache on about 13 of them, against
+//! about 2 misses for its 61 node steps: the leaf spheres, not the nodes, waited on memory. Fewer than one
 //! sphere per ray passes the discriminant test, so the test that rejects needs only enough
 //! precision to reject safely, and the exact sphere is read only for the few it keeps. A 16-byte
 //! `f32` copy halved those misses; at 8 bytes (`u16` counts on a grid, below) the copies of
-//! 123 k references take 1 MB and fit the 2 MB cache beside the 0.7 MB of nodes, and the walk's
-//! misses halve again.
+//! 123 k references take 1 MB and fit a 2 MB cache beside the 0.7 MB of nodes, and the walk's
+//! misses halve again. This machine's second-level cache is 1 MB per core, where each step cuts
+//! the misses by about a third instead (23.9 → 16.5 → 11.0 per random ray; the Q3 engineering
+//! page has the table).
 //!
 //! # The grid
 //! Each tree has one [`Grid`]: a corner `g` (an `f32` at or below its box) and a power-of-two step

@@ -20,7 +20,7 @@ pub enum StudentBranch {
     NoRealRoots,
     /// `4AC = B²`: one double root `−B/2A`, accepted when `≥ 0` (note: `≥`, unlike the `>` below).
     Tangent,
-    /// `4AC < B²` and `t1 < t2`: the seed's first sub-branch. It is dead code for any `A > 0`,
+    /// `4AC < B²` and `t1 < t2`: the student's first sub-branch. It is dead code for any `A > 0`,
     /// because `t1` takes `+√` and `t2` takes `−√` (see the erratum in the chapter).
     TwoRootsT1Smaller,
     /// `4AC < B²` and `t1 ≥ t2`: the branch every real ray takes (`t2` first, then `t1`).
@@ -162,7 +162,7 @@ mod tests {
 
     #[test]
     fn erratum_tangent_branch_accepts_t_equal_zero_but_two_root_branch_does_not() {
-        // Eye on the sphere, ray tangent to it: B = 0 and C = 0, so 4AC = B² exactly and the seed's
+        // Eye on the sphere, ray tangent to it: B = 0 and C = 0, so 4AC = B² exactly and the student's
         // "−B/2A ≥ 0" accepts t = 0 — the eye's own position. The two-root branch uses "> 0".
         let trace = student_trace(&ray([0.0, 1.0, 0.0], [1.0, 0.0, 0.0]), &unit_sphere());
         assert_eq!(trace.branch, StudentBranch::Tangent);
@@ -174,7 +174,7 @@ mod tests {
     }
 
     #[test]
-    fn seed_cases_eye_inside_and_sphere_behind() {
+    fn student_cases_eye_inside_and_sphere_behind() {
         let inside = student_trace(&ray([0.0; 3], [0.0, 0.0, 2.0]), &unit_sphere());
         assert_eq!((inside.t1, inside.t2, inside.chosen), (0.5, -0.5, Some(0.5)));
         let behind = student_trace(&ray([0.0, 0.0, 5.0], [0.0, 0.0, 1.0]), &unit_sphere());
@@ -191,7 +191,7 @@ mod tests {
     }
 
     proptest! {
-        /// Erratum: the seed's `t1 < t2` sub-branch can never run, because `A > 0` and `√disc ≥ 0`
+        /// Erratum: the student's `t1 < t2` sub-branch can never run, because `A > 0` and `√disc ≥ 0`
         /// make `t1 = (−B + √disc)/2A ≥ t2 = (−B − √disc)/2A` in exact *and* rounded arithmetic
         /// (division by a positive number and rounding are both monotone).
         #[test]

@@ -1,4 +1,4 @@
-//! The seed's answers to Q3 encoded as data — the handwritten traces of cases (d) and (e) and a
+//! The student's answers to Q3 encoded as data — the handwritten traces of cases (d) and (e) and a
 //! literal transcription of its rules (b)/(c) — and the step-by-step comparison with ours.
 //!
 //! Nothing here is trusted: the tests in this file and in the chapter decide, by checking where
@@ -10,7 +10,7 @@ use std::fmt;
 
 const INF: f64 = f64::INFINITY;
 
-/// One of the seed's worked cases: its label, its ray, and the seed's handwritten steps.
+/// One of the student's worked cases: its label, its ray, and the student's handwritten steps.
 ///
 /// # Examples
 /// ```
@@ -23,7 +23,7 @@ pub struct StudentCase {
     pub label: &'static str,
     /// The case's ray `e + d t`.
     pub ray: Ray2,
-    /// The seed's steps, in its order (planes and descents; the seed names no leaves).
+    /// The student's steps, in the student's order (planes and descents; the student names no leaves).
     pub handwritten: Vec<Step>,
 }
 
@@ -39,8 +39,8 @@ fn descend(path: &[Branch], t_min: f64, t_max: f64) -> Step {
     Step::Descend { path: path.to_vec(), interval: Interval { t_min, t_max } }
 }
 
-/// The seed's cases (d) and (e), with its handwritten traces transcribed step by step. The seed
-/// names each branch by its last condition only ("descend y<3 branch"); the full path is the one
+/// The student's cases (d) and (e), with the handwritten traces transcribed step by step. The
+/// student names each branch by its last condition only ("descend y<3 branch"); the full path is the one
 /// its preceding steps lead to.
 ///
 /// # Examples
@@ -79,8 +79,8 @@ pub fn cases() -> Vec<StudentCase> {
     vec![d, e]
 }
 
-/// One row of the step-by-step comparison: our step and the seed's at the same position (leaf
-/// steps, which the seed does not write, are left out of ours).
+/// One row of the step-by-step comparison: our step and the student's at the same position
+/// (leaf steps, which the student does not write, are left out of ours).
 ///
 /// # Examples
 /// ```
@@ -96,8 +96,8 @@ pub struct StepComparison {
     pub index: usize,
     /// Our step, if the trace is that long.
     pub ours: Option<Step>,
-    /// The seed's step, if it wrote that many.
-    pub seed: Option<Step>,
+    /// The student's step, if the student wrote that many.
+    pub student: Option<Step>,
 }
 
 impl StepComparison {
@@ -108,11 +108,11 @@ impl StepComparison {
     /// use hw3::q3_kd_traversal::{Node2, student, traverse};
     /// let case = &student::cases()[0]; // (d)
     /// let rows = student::compare(&traverse(&Node2::homework(), &case.ray), &case.handwritten);
-    /// assert!(!rows[4].agrees()); // step 5: [2, inf] vs the seed's [3, inf]
+    /// assert!(!rows[4].agrees()); // step 5: [2, inf] vs the student's [3, inf]
     /// ```
     #[must_use]
     pub fn agrees(&self) -> bool {
-        self.ours == self.seed
+        self.ours == self.student
     }
 }
 
@@ -122,11 +122,11 @@ impl fmt::Display for StepComparison {
             step.as_ref().map_or_else(|| "(none)".to_owned(), |s| s.to_string().trim().to_owned())
         };
         let verdict = if self.agrees() { "agree" } else { "DIFFER" };
-        write!(f, "step {}: {verdict}: ours `{}`, seed `{}`", self.index, show(&self.ours), show(&self.seed))
+        write!(f, "step {}: {verdict}: ours `{}`, seed `{}`", self.index, show(&self.ours), show(&self.student))
     }
 }
 
-/// Compares our trace with the seed's handwritten steps position by position.
+/// Compares our trace with the student's handwritten steps position by position.
 ///
 /// # Examples
 /// ```
@@ -142,15 +142,15 @@ pub fn compare(ours: &super::Trace, handwritten: &[Step]) -> Vec<StepComparison>
         .map(|i| StepComparison {
             index: i + 1,
             ours: ours.get(i).map(|s| (*s).clone()),
-            seed: handwritten.get(i).cloned(),
+            student: handwritten.get(i).cloned(),
         })
         .collect()
 }
 
-/// The seed's rules taken literally, on the homework tree: rule (b) at the root (near side by
+/// The student's rules taken literally, on the homework tree: rule (b) at the root (near side by
 /// `e_x ≥ 3`, crossing only if `t > 0`), rule (c) at both children ("the right branch is handled
 /// similarly": the `y = 3` node uses (c) with 3 for 1), including its `else // dy < 0` branch
-/// for `d_y = 0` and its strict `t < tmin` / `t > tmax` tests. Kept only to check the seed;
+/// for `d_y = 0` and its strict `t < tmin` / `t > tmax` tests. Kept only to check the student's rules;
 /// the crate traverses with [`crate::kdtree::split_interval`].
 ///
 /// # Examples
@@ -220,12 +220,12 @@ mod tests {
     }
 
     #[test]
-    fn case_d_differs_exactly_at_the_x_lower_branch_and_the_seed_is_wrong_there() {
+    fn case_d_differs_exactly_at_the_x_lower_branch_and_the_student_is_wrong_there() {
         let case = &cases()[0];
         let rows = compare(&traverse(&Node2::homework(), &case.ray), &case.handwritten);
         let differing: Vec<usize> = rows.iter().filter(|r| !r.agrees()).map(|r| r.index).collect();
         assert_eq!(differing, [5, 7]);
-        // The seed's [3, inf] for x<3 leaves t in (2, 3) in no leaf, yet the ray is then in the
+        // The student's [3, inf] for x<3 leaves t in (2, 3) in no leaf, yet the ray is then in the
         // x<3, y>=1 cell: at t = 2.5 it is at (2.5, 2.5).
         let cell = Cell { path: vec![branch(Axis2::X, Side::Lower, 3.0), branch(Axis2::Y, Side::Upper, 1.0)] };
         assert_eq!(case.ray.at(2.5), [2.5, 2.5]);

@@ -117,7 +117,7 @@ mod tests {
 
     #[test]
     fn no_traced_ray_reaches_into_the_blind_cone() {
-        // The seed's claim: what is missing is the light that would pass through the ball.
+        // The student's claim: what is missing is the light that would pass through the ball.
         for d in [3.0, 5.0, 10.0, 20.0] {
             let gamma = half_angle(d).unwrap();
             let beta_max = (1.0 / d).asin();

@@ -24,7 +24,7 @@ use std::str::FromStr;
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Estimator {
-    /// The seed's literal sum: every texel inside the ball weighted equally (`Ω_covered / N`).
+    /// The student's literal sum: every texel inside the ball weighted equally (`Ω_covered / N`).
     Unweighted,
     /// Each texel weighted by its solid angle `Δω`.
     Weighted,
@@ -123,7 +123,7 @@ pub fn weighted_sum(n: DVec3, texels: &[Texel]) -> DVec3 {
     texels.iter().map(|t| t.radiance * (n.dot(t.direction).max(0.0) * t.solid_angle)).sum()
 }
 
-/// The seed's sum with equal weights: `weight · Σ_t L_t max(0, n·ω_t)` over the texels of
+/// The student's sum with equal weights: `weight · Σ_t L_t max(0, n·ω_t)` over the texels of
 /// `texels` whose centre is inside the image disk (`weight` is usually [`equal_weight`]).
 ///
 /// # Examples
@@ -210,7 +210,7 @@ pub fn centre_texel(probe: &Probe, index: usize) -> Texel {
 /// Outgoing radiance of a Lambertian surface of albedo `albedo` (`K_d` ∈ [0, 1], the fraction of
 /// incident power reflected) under irradiance `irradiance`: `L_o = (K_d/π) E`.
 ///
-/// The seed's `Σ K_d L (n·l)` is this formula when its `K_d` is read as `albedo/π` and each term
+/// The student's `Σ K_d L (n·l)` is this formula when its `K_d` is read as `albedo/π` and each term
 /// carries its solid angle `Δω`.
 ///
 /// # Examples
@@ -444,7 +444,7 @@ impl<'a> Irradiance<'a> {
         })
     }
 
-    /// The seed's sum with equal weights `Ω_covered / N` over the `N` texels whose centre is in
+    /// The student's sum with equal weights `Ω_covered / N` over the `N` texels whose centre is in
     /// the image disk: right only where texels subtend equal solid angles (the orthographic ball).
     ///
     /// # Examples

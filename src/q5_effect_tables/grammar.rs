@@ -6,26 +6,29 @@ use crate::plot::markdown_table;
 use crate::render::analysis::grammar::{GrammarError, Lang, shortest_word, word_text};
 use serde::Serialize;
 
-/// A lighting effect of Q5, reconstructed from the seed's reasons (the effect list itself is
+/// A lighting effect of Q5, reconstructed from the student's reasons (the effect list itself is
 /// missing from the transcription).
 ///
 /// # Examples
 /// ```
 /// use hw3::q5_effect_tables::EFFECTS;
 /// let highlight = &EFFECTS[0];
-/// assert_eq!((highlight.id, highlight.seed_letter, highlight.paths), ("a", 'a', "LGE"));
+/// assert_eq!((highlight.id, highlight.student_letter, highlight.paths), ("a", 'a', "LGE"));
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 pub struct Effect {
-    /// Row id: `a` … `e`; the seed's (d) "a specular effect" is split into `d_mirror` and `d_caustic`.
+    /// Row id: `a` … `e`; the student's (d) "a specular effect" is split into `d_mirror` and `d_caustic`.
     pub id: &'static str,
-    /// The seed's letter this row is compared with.
-    pub seed_letter: char,
+    /// The student's letter this row is compared with.
+    // Serialized as `seed_letter`, as `Algorithm::student_part` is as `seed_part`: the names
+    // serialized tables already carry.
+    #[serde(rename = "seed_letter")]
+    pub student_letter: char,
     /// What the effect looks like.
     pub name: &'static str,
     /// Its paths in Heckbert's notation (light first).
     pub paths: &'static str,
-    /// The seed's reason that the reconstruction rests on.
+    /// The student's reason that the reconstruction rests on.
     pub evidence: &'static str,
 }
 
@@ -35,49 +38,49 @@ pub struct Effect {
 /// ```
 /// use hw3::q5_effect_tables::EFFECTS;
 /// use hw3::render::analysis::grammar::Lang;
-/// // The seed's (d) is two rows; every row's paths parse.
-/// assert_eq!(EFFECTS.iter().filter(|e| e.seed_letter == 'd').count(), 2);
+/// // The student's (d) is two rows; every row's paths parse.
+/// assert_eq!(EFFECTS.iter().filter(|e| e.student_letter == 'd').count(), 2);
 /// assert!(EFFECTS.iter().all(|e| Lang::parse(e.paths).is_ok()));
 /// ```
 pub const EFFECTS: [Effect; 6] = [
     Effect {
         id: "a",
-        seed_letter: 'a',
+        student_letter: 'a',
         name: "specular highlight on a glossy surface",
         paths: "LGE",
         evidence: "radiosity: \"No - only diffuse effects\"; two-pass: \"Yes - through direct lighting calculation\"",
     },
     Effect {
         id: "b",
-        seed_letter: 'b',
+        student_letter: 'b',
         name: "colour bleeding",
         paths: "LDD+E",
         evidence: "\"effect of light transfer from one diffuse surface to another\"",
     },
     Effect {
         id: "c",
-        seed_letter: 'c',
+        student_letter: 'c',
         name: "diffuse shading that varies with the surface normal",
         paths: "LDE",
         evidence: "\"diffuse reflection varies w/ surface normal\"",
     },
     Effect {
         id: "d_mirror",
-        seed_letter: 'd',
+        student_letter: 'd',
         name: "a specular effect: a diffuse object seen in a mirror",
         paths: "LDS+E",
         evidence: "\"this is a specular effect\"; \"rays are only cast from eye, not traced further\"",
     },
     Effect {
         id: "d_caustic",
-        seed_letter: 'd',
+        student_letter: 'd',
         name: "a specular effect: a caustic (light focused by a mirror or glass onto a diffuse surface)",
         paths: "LS+DE",
         evidence: "\"photon tracing does not capture this specular effect well\"",
     },
     Effect {
         id: "e",
-        seed_letter: 'e',
+        student_letter: 'e',
         name: "ambient glow (light in regions no light sees directly)",
         paths: "LDD+E",
         evidence: "\"most ambient glow is due to diffuse surface interreflections\"",
@@ -104,7 +107,7 @@ pub enum LightKind {
 }
 
 impl LightKind {
-    /// Both kinds, area first (the seed names no light; an area light is the general case).
+    /// Both kinds, area first (the student names no light; an area light is the general case).
     ///
     /// # Examples
     /// ```
@@ -138,7 +141,7 @@ pub struct Algorithm {
     pub id: &'static str,
     /// Display name.
     pub name: &'static str,
-    /// The seed's column letter (`Some('a')` = Q5(a) radiosity, `Some('b')` = Q5(b) two-pass).
+    /// The student's column letter (`Some('a')` = Q5(a) radiosity, `Some('b')` = Q5(b) two-pass).
     #[serde(rename = "seed_part")]
     pub student_part: Option<char>,
     /// Paths the method can produce with an area light / a point light.
@@ -147,12 +150,12 @@ pub struct Algorithm {
     pub efficient: [&'static str; 2],
 }
 
-/// The methods (columns): the seed's two, then three more.
+/// The methods (columns): the student's two, then three more.
 ///
 /// # Examples
 /// ```
 /// use hw3::q5_effect_tables::ALGORITHMS;
-/// // The seed's two columns come first.
+/// // The student's two columns come first.
 /// assert_eq!(ALGORITHMS.map(|m| m.student_part)[..3], [Some('a'), Some('b'), None]);
 /// ```
 pub const ALGORITHMS: [Algorithm; 5] = [
@@ -234,27 +237,27 @@ impl Verdict {
     }
 }
 
-/// The seed's answer for a cell.
+/// The student's answer for a cell.
 ///
 /// # Examples
 /// ```
 /// use hw3::q5_effect_tables::{EFFECTS, ALGORITHMS, StudentAnswer, student_answer};
-/// // Q5(b)(d): the seed says the two-pass method misses the mirror image.
+/// // Q5(b)(d): the student says the two-pass method misses the mirror image.
 /// assert_eq!(student_answer(&ALGORITHMS[1], &EFFECTS[3]), StudentAnswer::No);
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum StudentAnswer {
-    /// The seed wrote Yes.
+    /// The student wrote Yes.
     Yes,
-    /// The seed wrote No.
+    /// The student wrote No.
     No,
-    /// The seed has no such column.
+    /// The student's answers have no such column.
     NotAsked,
 }
 
 impl StudentAnswer {
-    /// The word the tables print (`–` for a column the seed does not have).
+    /// The word the tables print (`–` for a column the student's answers do not have).
     ///
     /// # Examples
     /// ```
@@ -271,7 +274,7 @@ impl StudentAnswer {
     }
 }
 
-/// The seed's answers, as transcribed: Q5(a) radiosity a–e, Q5(b) two-pass a–e (the last line of
+/// The student's answers, as transcribed: Q5(a) radiosity a–e, Q5(b) two-pass a–e (the last line of
 /// the homework is (b)(e), "Yes - as in (b)").
 ///
 /// # Examples
@@ -293,12 +296,12 @@ pub const STUDENT_ANSWERS: [(char, char, StudentAnswer); 10] = [
     ('b', 'e', StudentAnswer::Yes),
 ];
 
-/// The seed's answer for `effect` under `method`.
+/// The student's answer for `effect` under `method`.
 ///
 /// # Examples
 /// ```
 /// use hw3::q5_effect_tables::{EFFECTS, ALGORITHMS, StudentAnswer, student_answer};
-/// // Q5(a)(a): the seed says radiosity misses the highlight; Whitted is not a seed column.
+/// // Q5(a)(a): the student says radiosity misses the highlight; Whitted is not a column of the student's.
 /// assert_eq!(student_answer(&ALGORITHMS[0], &EFFECTS[0]), StudentAnswer::No);
 /// assert_eq!(student_answer(&ALGORITHMS[2], &EFFECTS[0]), StudentAnswer::NotAsked);
 /// ```
@@ -307,7 +310,7 @@ pub fn student_answer(method: &Algorithm, effect: &Effect) -> StudentAnswer {
     method
         .student_part
         .and_then(|part| {
-            STUDENT_ANSWERS.iter().find(|(p, letter, _)| *p == part && *letter == effect.seed_letter).map(|c| c.2)
+            STUDENT_ANSWERS.iter().find(|(p, letter, _)| *p == part && *letter == effect.student_letter).map(|c| c.2)
         })
         .unwrap_or(StudentAnswer::NotAsked)
 }
@@ -406,8 +409,8 @@ pub fn grammar_table() -> Result<Vec<Cell>, GrammarError> {
     Ok(cells)
 }
 
-/// Whether the grammar's verdict agrees with the seed's: Impractical counts as the seed's No
-/// when the seed's reason says "not … well".
+/// Whether the grammar's verdict agrees with the student's: Impractical counts as the student's
+/// No when the student's reason says "not … well".
 pub(super) fn agreement(cell: &Cell) -> &'static str {
     match (cell.student, cell.verdict) {
         (StudentAnswer::Yes, Verdict::Yes) | (StudentAnswer::No, Verdict::No) => "agrees",
@@ -429,8 +432,8 @@ fn cell_text(cell: &Cell) -> String {
 }
 
 /// The grammar table as markdown, one table per light kind; a No or Impractical cell prints the
-/// shortest path the method misses (or samples only by chance) as code, and the seed's answer
-/// beside it.
+/// shortest path the method misses (or samples only by chance) as code, and the student's answer
+/// beside it (printed as `(seed: …)`).
 ///
 /// # Errors
 /// As [`decide`].

@@ -1,5 +1,5 @@
-//! The printable answer key of the notes: every part's final answer for seed 0, the seed's own
-//! answer beside it with the grade the checker gives it, and where the chapter explains it.
+//! The printable answer key of the notes: every part's final answer for seed 0, the student's
+//! own answer beside it with the grade the checker gives it, and where the chapter explains it.
 
 use super::render::value;
 use super::{QUESTIONS, SolutionError, solution};
@@ -7,7 +7,7 @@ use crate::checker::{self, PartResult};
 use crate::plot::{Figure, PlotError, markdown_table};
 use std::fmt::Write as _;
 
-/// The homework's own answers, transcribed as an answers file for seed 0 (the file the checker's
+/// The student's answers, transcribed as an answers file for seed 0 (the file the checker's
 /// tests grade).
 const STUDENT_ANSWERS: &str = include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/tests/answers/seed_hw3.toml"));
 
@@ -88,14 +88,15 @@ fn grade(result: &PartResult) -> String {
 }
 
 /// The answer key as markdown: one table per question (part, what is asked, the answer, the
-/// seed's answer, its grade, the section explaining it), the seed's total, and the checker's
-/// feedback on every part the seed lost points on.
+/// student's answer, its grade, the section explaining it), the student's total, and the
+/// checker's feedback on every part the student lost points on (the printed table still calls
+/// the student's answers "the seed's").
 ///
 /// # Errors
 /// [`SolutionError`] if a solution cannot be written (a bug: seed 0 of every question is tested).
 ///
 /// # Panics
-/// If the transcribed seed's answers no longer grade (the checker's tests pin that they do).
+/// If the student's transcribed answers no longer grade (the checker's tests pin that they do).
 ///
 /// # Examples
 /// ```
@@ -103,7 +104,7 @@ fn grade(result: &PartResult) -> String {
 /// assert!(key.contains("| `q2a.t` |") && key.contains("partial"));
 /// ```
 pub fn answer_key_table() -> Result<String, SolutionError> {
-    let report = checker::check(STUDENT_ANSWERS, Some(0)).expect("the seed's transcribed answers grade");
+    let report = checker::check(STUDENT_ANSWERS, Some(0)).expect("the student's transcribed answers grade");
     let mut out = String::new();
     for question in QUESTIONS {
         let heading = question.to_uppercase();
@@ -181,11 +182,11 @@ mod tests {
     #[test]
     fn anchors_are_rustdocs() {
         assert_eq!(anchor("(c) The closest approach, two ways"), "c-the-closest-approach-two-ways");
-        assert_eq!(anchor("The seed's answer, checked"), "the-seeds-answer-checked");
+        assert_eq!(anchor("The student's answer, checked"), "the-students-answer-checked");
     }
 
     #[test]
-    fn the_key_carries_the_seeds_grade_for_every_part() {
+    fn the_key_carries_the_students_grade_for_every_part() {
         let table = answer_key_table().unwrap();
         let report = checker::check(STUDENT_ANSWERS, Some(0)).unwrap();
         for part in &report.parts {
