@@ -2,7 +2,7 @@
 //! camera rays, interleaved round by round so that the ratios compare like with like, and writes
 //! `docs/data/q2_cost.csv`, which the notes' table and chart are drawn from.
 //!
-//! `cargo bench --bench q2_cost` measures and writes; under `cargo test --benches` it runs one
+//! `cargo bench -p hw3-benches --bench q2_cost` measures and writes; under `cargo test --benches` it runs one
 //! quick round as a smoke test and writes nothing.
 
 use hw3::geometry::sphere::first_hit_stable;

@@ -1,5 +1,5 @@
 //! Q2 timings with divan: the four intersection variants and the two spawn policies on the same
-//! batch of 4096 camera rays. `cargo bench --bench q2_sphere`.
+//! batch of 4096 camera rays. `cargo bench -p hw3-benches --bench q2_sphere`.
 //! (The accuracy-versus-time table in the notes comes from `benches/q2_cost.rs`.)
 
 use divan::black_box;

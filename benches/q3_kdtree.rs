@@ -16,7 +16,7 @@
 //! tree, and, on those rays, which of the two answers a double-double evaluation of both
 //! candidates confirms.
 //!
-//! `cargo bench --bench q3_kdtree` measures and writes (`HW3_Q3_MAX_N=1000000` adds N = 10⁶;
+//! `cargo bench -p hw3-benches --bench q3_kdtree` measures and writes (`HW3_Q3_MAX_N=1000000` adds N = 10⁶;
 //! `HW3_Q3_KI`, `HW3_Q3_EMPTY_BONUS`, `HW3_Q3_BINS`, `HW3_Q3_MIN_N` make a tuning run that only prints);
 //! under `cargo test --benches` it runs one small smoke round and writes nothing.
 

@@ -1,11 +1,11 @@
 //! Q4 accuracy versus time.
 //!
-//! `cargo bench --bench q4_irradiance` first sweeps every method and parameter on the soft and sun
+//! `cargo bench -p hw3-benches --bench q4_irradiance` first sweeps every method and parameter on the soft and sun
 //! maps (error from the closed-form oracle over 64 normals, time per normal with `Instant`: the
 //! median of 101 short samples, each method in its own monomorphised loop, so no per-call dispatch
 //! is timed),
 //! writing `docs/data/q4_accuracy_time.{csv,md}`, then runs the divan benchmarks.
-//! `cargo bench --bench q4_irradiance -- sh9` runs only the matching divan benchmarks (no sweep).
+//! `cargo bench -p hw3-benches --bench q4_irradiance -- sh9` runs only the matching divan benchmarks (no sweep).
 //! `cargo test --benches` runs each divan benchmark once and skips the sweep.
 
 use divan::{Bencher, black_box};
@@ -226,7 +226,7 @@ fn sweep() {
         _ => "load not recorded".to_string(),
     };
     let markdown = format!(
-        "Measured by `cargo bench --bench q4_irradiance` (release, one thread, 2-core shared VM; {load}). Error: % of the peak exact irradiance over 64 Fibonacci normals; \
+        "Measured by `cargo bench -p hw3-benches --bench q4_irradiance` (release, one thread, 2-core shared VM; {load}). Error: % of the peak exact irradiance over 64 Fibonacci normals; \
          Relative error: per normal, against that normal's own reference, normals below 1 % of the peak left out. \
          Time per normal: the median of 101 samples of at least 50 µs of consecutive calls over the 64 \
          normals, each method in its own monomorphised loop (no per-call dispatch or input check is \
@@ -253,8 +253,8 @@ fn human_time(ns: f64) -> String {
     }
 }
 
-/// `cargo bench --bench q4_irradiance` sweeps, then runs every divan benchmark; with a divan filter
-/// (`cargo bench --bench q4_irradiance -- sh9`) only the matching divan benchmarks run, so that a
+/// `cargo bench -p hw3-benches --bench q4_irradiance` sweeps, then runs every divan benchmark; with a divan filter
+/// (`cargo bench -p hw3-benches --bench q4_irradiance -- sh9`) only the matching divan benchmarks run, so that a
 /// quick check leaves the committed table alone.
 fn main() {
     let mut args = std::env::args().skip(1);

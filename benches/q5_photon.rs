@@ -5,7 +5,7 @@
 //!   (`select_nth_unstable` over all squared distances). The crate's own kd-tree
 //!   ([`hw3::kdtree`]) indexes spheres for ray traversal and has no k-nearest query, so it is not
 //!   a candidate without a second traversal.
-//! - `cargo bench --bench q5_photon` also measures the photon map's accuracy against time in the
+//! - `cargo bench -p hw3-benches --bench q5_photon` also measures the photon map's accuracy against time in the
 //!   white furnace (closed unit sphere, ρ = 0.5, point light I = 1 at the centre, exact irradiance
 //!   E = I/(1 − ρ) = 2 everywhere, which the path tracer reproduces to 1e-9 in
 //!   `render::integrator`'s furnace test): the relative RMS error of the irradiance at 1000 wall

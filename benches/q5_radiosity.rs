@@ -2,7 +2,7 @@
 //!
 //! - divan: the grammar table (all cells, both light kinds) and the radiosity form factors of the
 //!   Cornell-like box at 2 × 2 and 4 × 4 patches per quad.
-//! - `cargo bench --bench q5_radiosity` also measures radiosity's accuracy against time: the
+//! - `cargo bench -p hw3-benches --bench q5_radiosity` also measures radiosity's accuracy against time: the
 //!   colour-bleeding and ambient-glow values for 1…8 patches per quad edge, against the path-traced
 //!   reference, with the wall time of form factors plus solve; writes
 //!   `docs/data/q5_radiosity_accuracy.md` and `.csv`. `cargo test --benches` runs each divan bench

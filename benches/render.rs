@@ -4,16 +4,16 @@
 //!   1500-sphere clutter forest, with 1 and 2 rayon threads, and
 //!   on the clutter forest with and without the kd-tree on one thread (the speed-up of
 //!   acceleration; both renders are bit-identical, see `render::tests`).
-//! - `cargo bench --bench render` also measures accuracy against time for each Q1 scene and writes
+//! - `cargo bench -p hw3-benches --bench render` also measures accuracy against time for each Q1 scene and writes
 //!   `docs/data/q1_accuracy.csv` and `docs/data/q1_accuracy.md` (the chapter's table; the CSV is
 //!   plotted by `hw3::q1_hard_scenes::figures`). `cargo test --benches` runs each divan bench once
 //!   and skips that measurement.
-//! - `cargo bench --bench render` also writes `docs/data/render_speed.md`: the kd-tree's speed-up
+//! - `cargo bench -p hw3-benches --bench render` also writes `docs/data/render_speed.md`: the kd-tree's speed-up
 //!   and the 1→2 thread scaling on the clutter scene, with the CPU time the process actually got
 //!   and the machine's load average, so that a shared machine's contention is visible.
 //! - divan: the cost of the caustic pass on the `caustic` scene (Whitted with the pass planned
 //!   and forced off, and tracing the caustic map alone).
-//! - The tables are written only by a run without a name filter: `cargo bench --bench render --
+//! - The tables are written only by a run without a name filter: `cargo bench -p hw3-benches --bench render --
 //!   caustic` runs the matching divan benchmarks and nothing else.
 
 use hw3::render::integrator::Integrator;

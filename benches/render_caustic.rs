@@ -1,7 +1,7 @@
 //! The caustic pass's accuracy against time.
 //!
 //! - divan: 1000 caustic radiance gathers (k = 50 within 0.1) on the `caustic` scene's floor.
-//! - `cargo bench --bench render_caustic` also measures the bias/noise trade-off of the caustic
+//! - `cargo bench -p hw3-benches --bench render_caustic` also measures the bias/noise trade-off of the caustic
 //!   gather on the `caustic` scene: the floor radiance at 200 points of the caustic's footprint
 //!   ([`hw3::render::catalogue::caustic_footprint`]) from maps of 12 500, 50 000 (the render
 //!   default) and 200 000 aimed photons, each with eight seeds, for k = 8…800 within the

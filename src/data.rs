@@ -6,27 +6,27 @@
 //! read them and never measure.
 
 /// `docs/data/q2_cost.csv`: ns per ray/sphere intersection and per spawn policy (written by
-/// `cargo bench --bench q2_cost`).
+/// `cargo bench -p hw3-benches --bench q2_cost`).
 pub const Q2_COST: &str = include_str!("../docs/data/q2_cost.csv");
 
 /// `docs/data/q3_kdtree_perf.csv`: build time, node counts and Mrays/s of the kd-tree and its
-/// peers against scene size (written by `cargo bench --bench q3_kdtree`).
+/// peers against scene size (written by `cargo bench -p hw3-benches --bench q3_kdtree`).
 pub const Q3_KDTREE_PERF: &str = include_str!("../docs/data/q3_kdtree_perf.csv");
 
 /// `docs/data/q1_accuracy.csv`: RMS error and seconds per scene, integrator and samples per pixel
-/// (written by `cargo bench --bench render`).
+/// (written by `cargo bench -p hw3-benches --bench render`).
 pub const Q1_ACCURACY: &str = include_str!("../docs/data/q1_accuracy.csv");
 
 /// `docs/data/q4_accuracy_time.csv`: error and nanoseconds per normal of every irradiance estimator
-/// (written by `cargo bench --bench q4_irradiance`).
+/// (written by `cargo bench -p hw3-benches --bench q4_irradiance`).
 pub const Q4_ACCURACY_TIME: &str = include_str!("../docs/data/q4_accuracy_time.csv");
 
 /// `docs/data/q5_photon_accuracy.csv`: the photon map's error in the white furnace against k and
-/// photon count (written by `cargo bench --bench q5_photon`).
+/// photon count (written by `cargo bench -p hw3-benches --bench q5_photon`).
 pub const Q5_PHOTON_ACCURACY: &str = include_str!("../docs/data/q5_photon_accuracy.csv");
 
 /// `docs/data/q5_photon_cornell.csv`: the photon map's error in the Cornell box against k and photon
-/// count (written by `cargo bench --bench q5_photon`).
+/// count (written by `cargo bench -p hw3-benches --bench q5_photon`).
 pub const Q5_PHOTON_CORNELL: &str = include_str!("../docs/data/q5_photon_cornell.csv");
 
 /// `docs/data/q5_cornell_reference.csv`: the converged path-traced radiance and its standard error

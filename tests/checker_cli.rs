@@ -1,6 +1,6 @@
 //! `hw3 check`, `hw3 template` and `hw3 variant` as a student or grader uses them.
 
-mod common;
+use crate::common;
 
 use std::process::{Command, Output};
 
@@ -435,7 +435,7 @@ fn class_dir() -> std::path::PathBuf {
 }
 
 /// The committed demo class is what [`class_demo::submissions`] writes (`HW3_WRITE_CLASS=1
-/// cargo test --test checker_cli class_demo_files` rewrites it after a change of the key).
+/// cargo test --test integration class_demo_files` rewrites it after a change of the key).
 #[test]
 fn class_demo_files_are_the_generators() {
     let dir = class_dir();

@@ -3,7 +3,7 @@
 //! line's number and vector parsers, the sphere solver, and the kd-tree query.
 //!
 //! Each target is a seeded proptest run (the same inputs every time), short by default so that
-//! `cargo test` stays fast; `HW3_FUZZ_CASES=1000000 cargo test --release --test hostile_fuzz`
+//! `cargo test` stays fast; `HW3_FUZZ_CASES=1000000 cargo test --release --test integration hostile_fuzz::`
 //! runs 10⁶ inputs per target (the counts and times are in the README's "Exit statuses and
 //! limits").
 

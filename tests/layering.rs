@@ -624,7 +624,7 @@ fn breaches(files: &[SourceFile]) -> Vec<String> {
 fn the_crate_keeps_its_layers() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let files = crate_files(root);
-    // `cargo test --test layering -- --nocapture` shows what the allow-lists still cover.
+    // `cargo test --test integration layering:: -- --nocapture` shows what the allow-lists still cover.
     for (file, line, named, why) in forbidden_edges(&files) {
         eprintln!("found: {file}:{line}: {why}: {named}");
     }

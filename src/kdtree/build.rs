@@ -41,7 +41,7 @@ impl Default for SahCosts {
     /// ray/sphere test (a node step is a dependent load from a tree that outgrows the cache, a
     /// sphere test a dozen flops on data that sits next to its leaf's other spheres), so a ray
     /// should rather test a few more spheres than walk many small cells. A sweep of `K_I` over
-    /// 0.2, 0.3, 0.5 and 1.5 (`HW3_Q3_KI=… cargo bench --bench q3_kdtree`, interleaved with the
+    /// 0.2, 0.3, 0.5 and 1.5 (`HW3_Q3_KI=… cargo bench -p hw3-benches --bench q3_kdtree`, interleaved with the
     /// peers) found 0.2–0.5 alike within the shared machine's noise and all far ahead of 1.5 (at
     /// N = 10⁵, fixed k: 47 nodes and 27 tests per camera ray instead of 72 and 7, a tree of 83 k
     /// nodes instead of 413 k, and about 1.6× the rays per second); 0.5 keeps the most sphere tests

@@ -226,7 +226,7 @@ fn draw_closest_approach(root: &DrawingArea<SVGBackend<'_>, Shift>) -> Result<()
     cross_section(root, "Q2c: t = -(e - o).d / |d|^2 is the foot of the perpendicular from o", shapes)
 }
 
-/// One measured row of `docs/data/q2_cost.csv` (written by `cargo bench --bench q2_cost`).
+/// One measured row of `docs/data/q2_cost.csv` (written by `cargo bench -p hw3-benches --bench q2_cost`).
 #[derive(Debug, Clone, PartialEq)]
 struct CostRow {
     kind: String,
@@ -306,7 +306,7 @@ impl CostTable {
         });
         out.push('\n');
         out.push_str(&markdown_table(&header, spawns));
-        out.push_str(&format!("\nMeasured by `cargo bench --bench q2_cost`: {}\n", self.meta));
+        out.push_str(&format!("\nMeasured by `cargo bench -p hw3-benches --bench q2_cost`: {}\n", self.meta));
         out
     }
 

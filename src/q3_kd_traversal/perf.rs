@@ -1,5 +1,5 @@
 //! The cost-versus-N plot of the 3-D kd-tree, drawn from the committed benchmark CSV
-//! (`docs/data/q3_kdtree_perf.csv`, written by `cargo bench --bench q3_kdtree`), so that
+//! (`docs/data/q3_kdtree_perf.csv`, written by `cargo bench -p hw3-benches --bench q3_kdtree`), so that
 //! `cargo run` stays deterministic: timings come only from the benchmark.
 
 use crate::data;

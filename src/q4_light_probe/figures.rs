@@ -12,7 +12,7 @@ use glam::DMat3;
 use glam::DVec3;
 use plotters::prelude::*;
 
-/// The benchmark's committed results (written by `cargo bench --bench q4_irradiance`).
+/// The benchmark's committed results (written by `cargo bench -p hw3-benches --bench q4_irradiance`).
 const ACCURACY_CSV: &str = crate::data::Q4_ACCURACY_TIME;
 
 /// Every Q4 figure, deterministic bytes; the [`figure_jobs`] run in parallel.
@@ -588,7 +588,7 @@ mod tests {
     #[test]
     fn the_committed_csv_parses() {
         let rows = parse_csv(ACCURACY_CSV);
-        assert!(!rows.is_empty(), "run cargo bench --bench q4_irradiance");
+        assert!(!rows.is_empty(), "run cargo bench -p hw3-benches --bench q4_irradiance");
         for map in ["soft", "sun", "courtyard", "sunrise"] {
             assert!(rows.iter().any(|r| r.map == map && r.method == "sh9"));
         }

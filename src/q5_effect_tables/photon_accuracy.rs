@@ -1,5 +1,5 @@
 //! The photon map's accuracy against k and photon count, plotted from the CSV that
-//! `cargo bench --bench q5_photon` writes (`docs/data/q5_photon_accuracy.csv`), so that
+//! `cargo bench -p hw3-benches --bench q5_photon` writes (`docs/data/q5_photon_accuracy.csv`), so that
 //! [`super::figures`] stays deterministic: timings come only from the benchmark.
 
 use crate::plot::{Axis, Chart, Dots, Figure, Legend, PALETTE, PlotError, Series, Stroke, TickFormat};

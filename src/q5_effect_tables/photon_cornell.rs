@@ -1,6 +1,6 @@
 //! The photon map's error in a scene with gradients: the global (`all`) map's radiance estimate
 //! at fixed floor points of the Cornell box with the block ([`cornell_box`]) against the path tracer, for
-//! several photon counts and k. `cargo bench --bench q5_photon` measures it and writes
+//! several photon counts and k. `cargo bench -p hw3-benches --bench q5_photon` measures it and writes
 //! `docs/data/q5_photon_cornell.md` and `.csv`; [`figure`] plots the committed CSV, so the
 //! figures stay deterministic (timings come only from the benchmark).
 //!

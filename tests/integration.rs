@@ -1,0 +1,28 @@
+//! The integration tests, in one test binary: each file in `tests/` is a module here, so the
+//! dependencies are linked once instead of once per file (`Cargo.toml`, `autotests = false`).
+//! Run one file's tests with its module name as the filter, e.g.
+//! `cargo test --test integration hostile_fuzz::`. The browser test (`tests/browser.rs`) stays a
+//! binary of its own: it is ignored by default and run alone.
+
+mod common;
+
+#[path = "checker_cli.rs"]
+mod checker_cli;
+#[path = "checker_policy.rs"]
+mod checker_policy;
+#[path = "cli.rs"]
+mod cli;
+#[path = "cli_render.rs"]
+mod cli_render;
+#[path = "docs.rs"]
+mod docs;
+#[path = "hostile_cli.rs"]
+mod hostile_cli;
+#[path = "hostile_fuzz.rs"]
+mod hostile_fuzz;
+#[path = "layering.rs"]
+mod layering;
+#[path = "q4_cli.rs"]
+mod q4_cli;
+#[path = "solution_cli.rs"]
+mod solution_cli;
