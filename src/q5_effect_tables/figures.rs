@@ -77,7 +77,7 @@ const PUBLISHED_PNG: &str = "q5_cornell_published.png";
 const EFFECT_SCENES_PNG: &str = "q5_effect_scenes.png";
 
 /// Samples per pixel of the montage's highlight, direct-light and mirror panels
-/// ([`EFFECT_SCENES_PNG`]): at 128 their noise is at most 1 display level of 255 (0.72, 0.44 and
+/// (`q5_effect_scenes.png`): at 128 their noise is at most 1 display level of 255 (0.72, 0.44 and
 /// 1.00 levels measured; 1.4, 0.9 and 2.0 at 32 spp).
 ///
 /// # Examples
@@ -87,7 +87,7 @@ const EFFECT_SCENES_PNG: &str = "q5_effect_scenes.png";
 /// ```
 pub const PATH_SPP: u32 = Budget::PUBLISHED.path_spp;
 
-/// Samples per pixel of the published Cornell box's noisy path-traced panel ([`PUBLISHED_PNG`]):
+/// Samples per pixel of the published Cornell box's noisy path-traced panel (`q5_cornell_published.png`):
 /// few enough that path tracing's noise is in plain view beside radiosity's smooth image.
 ///
 /// # Examples
@@ -176,7 +176,7 @@ fn published_figure(budget: &Budget) -> Result<Figure, PlotError> {
 /// ```
 pub const PUBLISHED_SPP: u32 = Budget::PUBLISHED.converged_spp;
 
-/// Samples per pixel of the montage's caustic panel ([`EFFECT_SCENES_PNG`]). Its noise falls
+/// Samples per pixel of the montage's caustic panel (`q5_effect_scenes.png`). Its noise falls
 /// slowly (8.0 display levels of 255 at 32 spp, 6.1 at 256, 4.0 at 1024): the caustic is found
 /// only when a diffuse bounce happens to reach the light through the ball, rare bright samples
 /// (fireflies) that more samples dim one by one. At 1024 the focus is plain; the speckles left in
