@@ -10,7 +10,7 @@ mod mirrors;
 mod motion;
 
 pub use clutter::{CLUTTER_COUNTS, CLUTTER_SEEDS, ClutterRow, block_probability, clutter_row, gap_fraction};
-pub use figures::{RENDER_SPP, figure_jobs, figures, render_jobs, renders};
+pub use figures::{Budget, RENDER_SPP, figure_jobs, figures, render_jobs, renders};
 pub use fog::{
     FOG_DISTANCES, FOG_SIGMAS, FogRow, airlight_rows, airlight_traced, fog_row, transmittance, visual_range,
 };

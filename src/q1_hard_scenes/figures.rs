@@ -188,11 +188,18 @@ fn motion_figures(change: &MotionChange, noise: &MotionNoise) -> Result<Vec<Figu
 /// [`PlotError`] if a chart cannot be drawn.
 ///
 /// # Examples
-/// ```no_run
-/// // Not run here: it runs every Q1 measurement; `tests/docs.rs` compares its output with the
+/// ```
+/// // Every Q1 measurement (about a second); `tests/docs.rs` compares the output with the
 /// // committed figures byte for byte.
 /// let figures = hw3::q1_hard_scenes::figures().unwrap();
-/// assert!(figures.iter().any(|f| f.file_name == "q1_clutter_table.md"));
+/// let names: Vec<&str> = figures.iter().map(|f| f.file_name.as_str()).collect();
+/// assert_eq!(names.len(), 12);
+/// assert_eq!(names[..4], ["q1_clutter_gap.svg", "q1_clutter_table.md", "q1_fog_transmittance.svg", "q1_fog_table.md"]);
+/// for figure in &figures {
+///     let text = std::str::from_utf8(&figure.bytes).unwrap();
+///     // Charts are SVG documents; tables are markdown with a header rule.
+///     assert!(if figure.file_name.ends_with(".svg") { text.contains("<svg") } else { text.contains("|---") });
+/// }
 /// ```
 pub fn figures() -> Result<Vec<Figure>, PlotError> {
     plot::run_jobs(&figure_jobs())
@@ -264,17 +271,53 @@ fn spp_of(scene: &str) -> u32 {
 /// Whitted tracing with seed 1, so the bytes are the same on every run and thread count. The
 /// [`render_jobs`] run in parallel.
 ///
+/// At [`Budget::Published`] these are the committed files (CI's release run compares them byte
+/// for byte); at [`Budget::Tiny`] the same scenes at a fortieth of the size and samples per pixel
+/// (at least 1), in well under a second.
+///
 /// # Errors
 /// [`PlotError`] if a scene cannot be built or a label cannot be drawn.
 ///
 /// # Examples
-/// ```no_run
-/// // Not run here: four renders; CI's release run compares them with the committed figures.
-/// let renders = hw3::q1_hard_scenes::renders().unwrap();
-/// assert!(renders.iter().any(|f| f.file_name == "q1_clutter.png"));
 /// ```
-pub fn renders() -> Result<Vec<Figure>, PlotError> {
-    plot::run_jobs(&render_jobs())
+/// use hw3::q1_hard_scenes::{Budget, renders};
+/// let renders = renders(Budget::Tiny).unwrap();
+/// let names: Vec<&str> = renders.iter().map(|f| f.file_name.as_str()).collect();
+/// assert_eq!(names, ["q1_clutter.png", "q1_fog.png", "q1_mirrors.png", "q1_motion.png"]);
+/// // The slab alone, 640 / 40 pixels wide; each other scene beside its twin, 2 × 320 / 40.
+/// let width = |i: usize| image::load_from_memory(&renders[i].bytes).unwrap().width();
+/// assert_eq!((width(0), width(1)), (16, 16));
+/// ```
+pub fn renders(budget: Budget) -> Result<Vec<Figure>, PlotError> {
+    match budget {
+        Budget::Published => plot::run_jobs(&render_jobs()),
+        Budget::Tiny => plot::run_jobs(&scaled_render_jobs::<TINY_DIVISOR>()),
+    }
+}
+
+/// How much work [`renders`] does: the committed pictures, or a tiny version of each for examples
+/// and smoke tests (its pixels are noise: it checks that the pipeline runs and what it returns).
+///
+/// # Examples
+/// ```
+/// use hw3::q1_hard_scenes::Budget;
+/// assert_ne!(Budget::Published, Budget::Tiny);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Budget {
+    /// The committed sizes and samples per pixel ([`RENDER_SPP`]).
+    Published,
+    /// A fortieth of the published sizes and samples per pixel (at least one sample).
+    Tiny,
+}
+
+/// What [`Budget::Tiny`] divides the renders' sizes and samples per pixel by.
+const TINY_DIVISOR: u32 = 40;
+
+/// `(width, height)` and `spp` divided by `DIVISOR` (samples at least 1).
+const fn scaled<const DIVISOR: u32>((width, height): (u32, u32), spp: u32) -> ((u32, u32), u32) {
+    let spp = spp / DIVISOR;
+    ((width / DIVISOR, height / DIVISOR), if spp == 0 { 1 } else { spp })
 }
 
 /// Q1's renders as independent jobs, one per figure, in the chapter's order.
@@ -286,18 +329,25 @@ pub fn renders() -> Result<Vec<Figure>, PlotError> {
 /// ```
 #[must_use]
 pub fn render_jobs() -> Vec<FigureJob> {
+    scaled_render_jobs::<1>()
+}
+
+/// [`render_jobs`] with sizes and samples divided by `DIVISOR` ([`scaled`]); a const parameter,
+/// since a job is a plain function and cannot capture a value.
+fn scaled_render_jobs<const DIVISOR: u32>() -> Vec<FigureJob> {
     vec![
         FigureJob::rendered("q1 clutter render", || {
             let forest = catalogue::clutter_forest(1500, 1).map_err(|e| input_error("q1_clutter.png", e))?;
-            let spp = spp_of("clutter");
-            let image = render_image(&forest, FULL, spp);
+            let (size, spp) = scaled::<DIVISOR>(FULL, spp_of("clutter"));
+            let image = render_image(&forest, size, spp);
             let label = format!("1500 spheres, τ = 0.70\nWhitted, {spp} spp");
             Ok(vec![plot::panel_grid("q1_clutter.png", &[plot::Panel { image, label }], 1)?])
         }),
         FigureJob::rendered("q1 fog renders", || {
             let fog = |sigma| catalogue::fog_street(sigma).map_err(|e| input_error("q1_fog.png", e));
-            let (clear, foggy, f) = (fog(0.0)?, fog(0.08)?, spp_of("fog"));
-            Ok(vec![pair_figure("q1_fog.png", HALF, [(&clear, f, "no medium"), (&foggy, f, "fog, σ_s = 0.08")])?])
+            let (clear, foggy) = (fog(0.0)?, fog(0.08)?);
+            let (half, f) = scaled::<DIVISOR>(HALF, spp_of("fog"));
+            Ok(vec![pair_figure("q1_fog.png", half, [(&clear, f, "no medium"), (&foggy, f, "fog, σ_s = 0.08")])?])
         }),
         FigureJob::rendered("q1 mirror renders", || {
             let mirrors = |m| {
@@ -305,15 +355,17 @@ pub fn render_jobs() -> Vec<FigureJob> {
                     .and_then(|scene| scene.with_camera(mirror_figure_camera()))
                     .map_err(|e| input_error("q1_mirrors.png", e))
             };
-            let (mirror, diffuse, m) = (mirrors(true)?, mirrors(false)?, spp_of("mirrors"));
+            let (mirror, diffuse) = (mirrors(true)?, mirrors(false)?);
+            let (half, m) = scaled::<DIVISOR>(HALF, spp_of("mirrors"));
             let pair = [(&mirror, m, "mirror spheres"), (&diffuse, m, "the same spheres, diffuse")];
-            Ok(vec![pair_figure("q1_mirrors.png", HALF, pair)?])
+            Ok(vec![pair_figure("q1_mirrors.png", half, pair)?])
         }),
         FigureJob::rendered("q1 motion renders", || {
             let ball = |speed| catalogue::moving_ball(speed).map_err(|e| input_error("q1_motion.png", e));
-            let (moving, still, b) = (ball(MOTION_SPEED)?, ball(0.0)?, spp_of("motion"));
+            let (moving, still) = (ball(MOTION_SPEED)?, ball(0.0)?);
+            let (half, b) = scaled::<DIVISOR>(HALF, spp_of("motion"));
             let pair = [(&moving, b, "ball moving during the shutter"), (&still, b, "ball at rest")];
-            Ok(vec![pair_figure("q1_motion.png", HALF, pair)?])
+            Ok(vec![pair_figure("q1_motion.png", half, pair)?])
         }),
     ]
 }
