@@ -12,7 +12,14 @@ pub(super) const METRIC_SIZE: (u32, u32) = (64, 48);
 pub(super) fn render_metric(scene: &Scene, spp: u32, seed: u64) -> Result<Image, InputError> {
     let (width, height) = METRIC_SIZE;
     let settings = Settings { seed, ..Settings::whitted(width, height, spp, analyze(scene).plan) };
-    Ok(render(scene, &settings, &|_| {}).expect("the metric settings are within limits"))
+    // The sample count comes from the public measurements' callers, so a count the renderer
+    // refuses (0, or past its work bound) is an error, not a panic.
+    // The size is fixed, so the sample count is the only setting the renderer can refuse.
+    render(scene, &settings, &|_| {}).map_err(|_| InputError::OutOfRange {
+        name: "samples per pixel",
+        value: spp.to_string(),
+        expected: if spp == 0 { "at least 1" } else { "within the renderer's work bound" },
+    })
 }
 
 /// Pins `text` as the snapshot `name` in the crate's `snapshots/` folder.

@@ -63,11 +63,14 @@ pub const MIRROR_SPP: u32 = 4;
 /// [`MIRROR_SPP`] (twelve renders; `mirrors::tests` pins it).
 ///
 /// # Errors
-/// [`InputError`] never for the built-in numbers.
+/// [`InputError::OutOfRange`] for a step that is zero or not finite (the sensitivity divides by
+/// it), or a sample count the renderer refuses (0, or past its work bound), found before any
+/// render; never for the built-in numbers.
 ///
 /// # Examples
 /// ```
 /// use hw3::q1_hard_scenes::mirror_sensitivity;
+/// assert!(mirror_sensitivity(&[0.0], 1).is_err() && mirror_sensitivity(&[0.02], 0).is_err());
 /// // One step of 0.02 at one sample per pixel: four renders.
 /// let rows = mirror_sensitivity(&[0.02], 1).unwrap();
 /// assert_eq!(rows.len(), 1);
@@ -75,6 +78,16 @@ pub const MIRROR_SPP: u32 = 4;
 /// assert!(delta == 0.02 && mirror > diffuse && diffuse > 0.0);
 /// ```
 pub fn mirror_sensitivity(steps: &[f64], spp: u32) -> Result<Vec<(f64, f64, f64)>, InputError> {
+    if let Some(delta) = steps.iter().find(|d| !(d.is_finite() && **d != 0.0)) {
+        return Err(InputError::OutOfRange {
+            name: "camera step",
+            value: delta.to_string(),
+            expected: "finite and non-zero",
+        });
+    }
+    if spp == 0 {
+        return Err(InputError::OutOfRange { name: "samples per pixel", value: "0".into(), expected: "at least 1" });
+    }
     let mask = sphere_pixels(&catalogue::mirror_spheres(true)?);
     let masked_change = |a: &Image, b: &Image| {
         let (a, b) = (a.luminance(), b.luminance());

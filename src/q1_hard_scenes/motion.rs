@@ -182,11 +182,14 @@ impl MotionNoise {
 /// `motion::tests` pins it).
 ///
 /// # Errors
-/// [`InputError`] never for the built-in numbers.
+/// [`InputError::OutOfRange`] unless `spp` holds at least two counts, increasing (the slope is
+/// fitted to them), every count and `reference_spp` at least 1, found before any render; or for
+/// a count the renderer refuses (past its work bound). Never for the built-in numbers.
 ///
 /// # Examples
 /// ```
 /// use hw3::q1_hard_scenes::motion_noise;
+/// assert!(motion_noise(&[4], 16).is_err() && motion_noise(&[0, 1], 16).is_err() && motion_noise(&[1, 2], 0).is_err());
 /// // Three sample counts against a 16-spp reference: a fraction of the chapter's work.
 /// let noise = motion_noise(&[1, 2, 4], 16).unwrap();
 /// assert_eq!(noise.rows.iter().map(|r| r.0).collect::<Vec<_>>(), [1, 2, 4]);
@@ -194,6 +197,20 @@ impl MotionNoise {
 /// assert!(noise.constant_moving > noise.constant_resting);
 /// ```
 pub fn motion_noise(spp: &[u32], reference_spp: u32) -> Result<MotionNoise, InputError> {
+    if spp.len() < 2 || !spp.windows(2).all(|w| w[0] < w[1]) || spp[0] == 0 {
+        return Err(InputError::OutOfRange {
+            name: "samples per pixel",
+            value: format!("{spp:?}"),
+            expected: "at least two counts, increasing, from 1",
+        });
+    }
+    if reference_spp == 0 {
+        return Err(InputError::OutOfRange {
+            name: "reference samples per pixel",
+            value: "0".into(),
+            expected: "at least 1",
+        });
+    }
     let curve = |speed: f64| -> Result<Vec<f64>, InputError> {
         let scene = catalogue::moving_ball(speed)?;
         let reference = render_metric(&scene, reference_spp, 1_000_003)?;
