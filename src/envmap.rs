@@ -19,6 +19,7 @@ pub mod distribution;
 mod filter;
 pub mod format;
 pub mod probe;
+mod radiance;
 
 pub use builtin::BuiltinMap;
 pub use distribution::{LUMINANCE_WEIGHTS, MapDistribution, MapSample, luminance};

@@ -9,17 +9,18 @@
 
 mod chart;
 mod job;
+mod raster;
 mod table;
 
 pub use chart::{
     Axis, Chart, Dots, Legend, LegendMark, Mesh, Note, Series, Shape, Stroke, TickFormat, compact_tick, legend_grid,
 };
 pub use job::{FigureJob, run_jobs};
+pub use raster::{PngError, Rgb, RgbImage, decode_png, encode_png};
 pub use table::markdown_table;
 
 use plotters::prelude::*;
 use plotters::style::FontStyle;
-use std::io::Cursor;
 use std::sync::Once;
 
 /// A generated figure: the file name under `docs/figures/` and its bytes.
@@ -48,7 +49,7 @@ pub enum PlotError {
         /// The figure being encoded.
         figure: String,
         /// The encoder's error.
-        source: image::ImageError,
+        source: PngError,
     },
 }
 
@@ -94,8 +95,8 @@ where
     Ok(Figure { file_name: file_name.into(), bytes: svg.into_bytes() })
 }
 
-/// Draws a PNG figure of `width`×`height` pixels with `draw` (plotters' bitmap backend, then the
-/// `image` crate's PNG encoder, which is deterministic for identical pixels).
+/// Draws a PNG figure of `width`×`height` pixels with `draw` (plotters' bitmap backend, then
+/// [`encode_png`], which is deterministic for identical pixels).
 ///
 /// # Errors
 /// [`PlotError::Draw`] when drawing fails, [`PlotError::Encode`] when encoding does.
@@ -111,7 +112,7 @@ where
         draw(&root).map_err(|message| PlotError::Draw { figure: file_name.into(), message })?;
         root.present().map_err(|e| draw_error(file_name, e))?;
     }
-    let image = image::RgbImage::from_raw(width, height, rgb).expect("buffer has width*height*3 bytes");
+    let image = RgbImage::from_raw(width, height, rgb).expect("buffer has width*height*3 bytes");
     png_bytes(file_name, &image)
 }
 
@@ -119,11 +120,8 @@ where
 ///
 /// # Errors
 /// [`PlotError::Encode`] when the encoder fails.
-pub fn png_bytes(file_name: &str, image: &image::RgbImage) -> Result<Figure, PlotError> {
-    let mut bytes = Vec::new();
-    image
-        .write_to(&mut Cursor::new(&mut bytes), image::ImageFormat::Png)
-        .map_err(|source| PlotError::Encode { figure: file_name.into(), source })?;
+pub fn png_bytes(file_name: &str, image: &RgbImage) -> Result<Figure, PlotError> {
+    let bytes = encode_png(image).map_err(|source| PlotError::Encode { figure: file_name.into(), source })?;
     Ok(Figure { file_name: file_name.into(), bytes })
 }
 
@@ -141,7 +139,7 @@ fn draw_error<E: std::fmt::Display>(figure: &str, e: E) -> PlotError {
 #[derive(Debug, Clone)]
 pub struct Panel {
     /// The picture (every panel of a grid has the same size).
-    pub image: image::RgbImage,
+    pub image: RgbImage,
     /// The label, drawn white on a dark strip so it reads on bright and dark pictures alike.
     pub label: String,
 }
@@ -183,10 +181,10 @@ fn draw_label<DB: DrawingBackend>(
 ///
 /// # Examples
 /// ```
-/// use hw3::plot::{Panel, panel_grid};
-/// let grey = |v| Panel { image: image::RgbImage::from_pixel(40, 30, image::Rgb([v; 3])), label: format!("v = {v}") };
+/// use hw3::plot::{Panel, Rgb, RgbImage, panel_grid};
+/// let grey = |v| Panel { image: RgbImage::from_pixel(40, 30, Rgb([v; 3])), label: format!("v = {v}") };
 /// let figure = panel_grid("grid.png", &[grey(20), grey(200), grey(90)], 2).unwrap();
-/// let grid = image::load_from_memory(&figure.bytes).unwrap().to_rgb8();
+/// let grid = hw3::plot::decode_png(&figure.bytes).unwrap();
 /// assert_eq!(grid.dimensions(), (80, 60));
 /// ```
 pub fn panel_grid(file_name: &str, panels: &[Panel], columns: usize) -> Result<Figure, PlotError> {
@@ -202,10 +200,10 @@ pub fn panel_grid(file_name: &str, panels: &[Panel], columns: usize) -> Result<F
 ///
 /// # Examples
 /// ```
-/// use hw3::plot::{Panel, panel_grid_labels_below};
-/// let grey = |v| Panel { image: image::RgbImage::from_pixel(40, 30, image::Rgb([v; 3])), label: format!("v = {v}\nsecond line") };
+/// use hw3::plot::{Panel, Rgb, RgbImage, panel_grid_labels_below};
+/// let grey = |v| Panel { image: RgbImage::from_pixel(40, 30, Rgb([v; 3])), label: format!("v = {v}\nsecond line") };
 /// let figure = panel_grid_labels_below("grid.png", &[grey(20), grey(200)], 2).unwrap();
-/// let grid = image::load_from_memory(&figure.bytes).unwrap().to_rgb8();
+/// let grid = hw3::plot::decode_png(&figure.bytes).unwrap();
 /// assert_eq!(grid.dimensions(), (80, 30 + 2 * 18 + 8));
 /// assert_eq!(grid.get_pixel(20, 15).0, [20; 3], "the panel itself is untouched");
 /// ```
@@ -232,11 +230,11 @@ fn grid_of_panels(file_name: &str, panels: &[Panel], columns: usize, below: bool
     };
     let rows = panels.len().div_ceil(columns) as u32;
     let (grid_width, grid_height) = (width * columns.min(panels.len()) as u32, (height + strip) * rows);
-    let mut grid = image::RgbImage::new(grid_width, grid_height);
+    let mut grid = RgbImage::new(grid_width, grid_height);
     let corner = |k: usize| ((k % columns) as u32 * width, (k / columns) as u32 * (height + strip));
     for (k, panel) in panels.iter().enumerate() {
         let (x, y) = corner(k);
-        image::imageops::replace(&mut grid, &panel.image, i64::from(x), i64::from(y));
+        grid.paste(&panel.image, x, y);
     }
     let mut rgb = grid.into_raw();
     {
@@ -249,7 +247,7 @@ fn grid_of_panels(file_name: &str, panels: &[Panel], columns: usize, below: bool
         }
         root.present().map_err(|e| draw_error(file_name, e))?;
     }
-    let grid = image::RgbImage::from_raw(grid_width, grid_height, rgb).expect("buffer has width*height*3 bytes");
+    let grid = RgbImage::from_raw(grid_width, grid_height, rgb).expect("buffer has width*height*3 bytes");
     png_bytes(file_name, &grid)
 }
 
@@ -262,13 +260,14 @@ fn grid_of_panels(file_name: &str, panels: &[Panel], columns: usize, below: bool
 ///
 /// # Examples
 /// ```
-/// let a = image::RgbImage::from_pixel(4, 2, image::Rgb([10, 10, 10]));
+/// use hw3::plot::{Rgb, RgbImage};
+/// let a = RgbImage::from_pixel(4, 2, Rgb([10, 10, 10]));
 /// let mut b = a.clone();
-/// b.put_pixel(0, 0, image::Rgb([10, 10, 250])); // one channel of one pixel in 24 differs by 240
+/// b.put_pixel(0, 0, Rgb([10, 10, 250])); // one channel of one pixel in 24 differs by 240
 /// assert!((hw3::plot::rms_difference(&a, &b) - (240.0_f64.powi(2) / 24.0).sqrt()).abs() < 1e-12);
 /// ```
 #[must_use]
-pub fn rms_difference(a: &image::RgbImage, b: &image::RgbImage) -> f64 {
+pub fn rms_difference(a: &RgbImage, b: &RgbImage) -> f64 {
     assert_eq!(a.dimensions(), b.dimensions(), "compared images share one size");
     let squares: f64 = a.as_raw().iter().zip(b.as_raw()).map(|(x, y)| (f64::from(*x) - f64::from(*y)).powi(2)).sum();
     (squares / a.as_raw().len().max(1) as f64).sqrt()
@@ -276,7 +275,7 @@ pub fn rms_difference(a: &image::RgbImage, b: &image::RgbImage) -> f64 {
 
 /// The label line that states [`rms_difference`] of a panel from the one it is compared with.
 #[must_use]
-pub fn difference_line(against: &str, a: &image::RgbImage, b: &image::RgbImage) -> String {
+pub fn difference_line(against: &str, a: &RgbImage, b: &RgbImage) -> String {
     format!("RMS difference from {against}: {:.1} / 255", rms_difference(a, b))
 }
 
@@ -295,7 +294,7 @@ pub fn difference_line(against: &str, a: &image::RgbImage, b: &image::RgbImage) 
 ///     hw3::plot::color_bar(root, (10, 10), (12, 80), &ramp, &[(0.0, "0"), (1.0, "10 %")])
 /// })
 /// .unwrap();
-/// let image = image::load_from_memory(&figure.bytes).unwrap().to_rgb8();
+/// let image = hw3::plot::decode_png(&figure.bytes).unwrap();
 /// assert_eq!(image.get_pixel(15, 89).0, [0, 0, 0]);
 /// assert!(image.get_pixel(15, 10).0[0] > 250);
 /// ```
@@ -371,17 +370,17 @@ mod tests {
         let a = png_figure("t.png", (64, 32), draw).unwrap();
         let b = png_figure("t.png", (64, 32), draw).unwrap();
         assert_eq!(a, b);
-        let decoded = image::load_from_memory(&a.bytes).unwrap().to_rgb8();
+        let decoded = decode_png(&a.bytes).unwrap();
         assert!(decoded.pixels().any(|p| p.0 != [255, 255, 255]), "text drew some pixels");
     }
 
     #[test]
     fn panel_grid_is_byte_identical_and_labels_every_panel() {
-        let panel = |v| Panel { image: image::RgbImage::from_pixel(80, 60, image::Rgb([v; 3])), label: "a\nb".into() };
+        let panel = |v| Panel { image: RgbImage::from_pixel(80, 60, Rgb([v; 3])), label: "a\nb".into() };
         let panels = [panel(255), panel(255), panel(255)];
         let a = panel_grid("g.png", &panels, 2).unwrap();
         assert_eq!(a, panel_grid("g.png", &panels, 2).unwrap());
-        let grid = image::load_from_memory(&a.bytes).unwrap().to_rgb8();
+        let grid = decode_png(&a.bytes).unwrap();
         assert_eq!(grid.dimensions(), (160, 120));
         for (x, y) in [(0, 0), (80, 0), (0, 60)] {
             let darkened = (x..x + 40).any(|i| (y..y + 30).any(|j| grid.get_pixel(i, j).0[0] < 200));
@@ -389,8 +388,7 @@ mod tests {
         }
         assert_eq!(grid.get_pixel(120, 90).0, [0, 0, 0], "the missing fourth panel stays black");
         assert!(
-            panel_grid("g.png", &[panel(1), Panel { image: image::RgbImage::new(2, 2), label: String::new() }], 2)
-                .is_err()
+            panel_grid("g.png", &[panel(1), Panel { image: RgbImage::new(2, 2), label: String::new() }], 2).is_err()
         );
     }
 }

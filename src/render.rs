@@ -85,14 +85,14 @@ pub struct Image {
 impl Image {
     /// 8-bit sRGB (radiance clamped to `[0, 1]`, then the sRGB transfer curve).
     #[must_use]
-    pub fn to_rgb8(&self) -> image::RgbImage {
+    pub fn to_rgb8(&self) -> crate::plot::RgbImage {
         let encode = |c: f64| {
             let c = c.clamp(0.0, 1.0);
             let s = if c <= 0.003_130_8 { 12.92 * c } else { 1.055 * c.powf(1.0 / 2.4) - 0.055 };
             (s * 255.0).round() as u8
         };
         let bytes = self.pixels.iter().flat_map(|p| [encode(p.x), encode(p.y), encode(p.z)]).collect();
-        image::RgbImage::from_raw(self.width, self.height, bytes).expect("width × height × 3 bytes")
+        crate::plot::RgbImage::from_raw(self.width, self.height, bytes).expect("width × height × 3 bytes")
     }
 
     /// The [`color::luminance`] of every pixel, in pixel order.

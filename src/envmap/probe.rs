@@ -426,8 +426,7 @@ impl Probe {
         let name = path.display().to_string();
         let file =
             std::fs::File::open(path).map_err(|e| ProbeError::Read { path: name.clone(), message: e.to_string() })?;
-        let reader = image::ImageReader::with_format(std::io::BufReader::new(file), image::ImageFormat::Hdr);
-        Self::decode_bounded(reader, &name, max_texels)
+        Self::decode_bounded(std::io::BufReader::new(file), &name, max_texels)
     }
 
     /// Decodes a latitude-longitude Radiance `.hdr` image held in memory (top row = `+z`), such
@@ -447,30 +446,20 @@ impl Probe {
     /// assert!(matches!(broken, Err(ProbeError::Read { .. })));
     /// ```
     pub fn decode_lat_long(bytes: &[u8], name: &str) -> Result<Self, ProbeError> {
-        let reader = image::ImageReader::with_format(std::io::Cursor::new(bytes), image::ImageFormat::Hdr);
-        Self::decode_bounded(reader, name, Self::MAX_READ_TEXELS)
+        Self::decode_bounded(bytes, name, Self::MAX_READ_TEXELS)
     }
 
     /// Reads the header, refuses more than `max_texels`, then decodes.
-    fn decode_bounded<R: std::io::BufRead + std::io::Seek>(
-        reader: image::ImageReader<R>,
-        name: &str,
-        max_texels: u64,
-    ) -> Result<Self, ProbeError> {
-        let read_error = |e: image::ImageError| ProbeError::Read { path: name.to_string(), message: e.to_string() };
-        let decoder = reader.into_decoder().map_err(read_error)?;
-        let (width, height) = image::ImageDecoder::dimensions(&decoder);
+    fn decode_bounded<R: std::io::BufRead>(mut reader: R, name: &str, max_texels: u64) -> Result<Self, ProbeError> {
+        let read_error =
+            |e: super::radiance::RadianceError| ProbeError::Read { path: name.to_string(), message: e.to_string() };
+        let (width, height) = super::radiance::read_header(&mut reader).map_err(read_error)?;
         if u64::from(width) * u64::from(height) > max_texels {
             return Err(ProbeError::TooLarge { path: name.to_string(), width, height, max_texels });
         }
-        Self::from_lat_long_image(image::DynamicImage::from_decoder(decoder).map_err(read_error)?)
-    }
-
-    fn from_lat_long_image(image: image::DynamicImage) -> Result<Self, ProbeError> {
-        let image = image.into_rgb32f();
-        let (width, height) = (image.width() as usize, image.height() as usize);
-        let radiance = image.pixels().map(|p| DVec3::new(p.0[0].into(), p.0[1].into(), p.0[2].into())).collect();
-        Self::from_radiance(ProbeFormat::LatLong, width, height, DMat3::IDENTITY, radiance)
+        let rgb = super::radiance::read_pixels(&mut reader, width, height).map_err(read_error)?;
+        let radiance = rgb.iter().map(|&[r, g, b]| DVec3::new(r.into(), g.into(), b.into())).collect();
+        Self::from_radiance(ProbeFormat::LatLong, width as usize, height as usize, DMat3::IDENTITY, radiance)
     }
 
     /// The image format.
@@ -675,9 +664,8 @@ mod tests {
         let dir = std::env::temp_dir().join(format!("hw3-envmap-rt-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
         let path = dir.join("map.hdr");
-        let pixels: Vec<image::Rgb<f32>> = (0..8 * 4).map(|i| image::Rgb([i as f32 * 0.25, 1.0, 2.0])).collect();
-        let file = std::fs::File::create(&path).unwrap();
-        image::codecs::hdr::HdrEncoder::new(file).encode(&pixels, 8, 4).unwrap();
+        let pixels: Vec<[f32; 3]> = (0..8 * 4).map(|i| [i as f32 * 0.25, 1.0, 2.0]).collect();
+        std::fs::write(&path, super::super::radiance::flat_file(8, 4, &pixels)).unwrap();
         let probe = Probe::read_lat_long(&path).unwrap();
         assert_eq!((probe.width(), probe.height()), (8, 4));
         // RGBE keeps 8 mantissa bits: 1.75 and 2.0 are exact.
@@ -704,12 +692,11 @@ mod tests {
         );
         assert!(error.to_string().contains("32768×32768"), "{error}");
         let small = dir.join("small.hdr");
-        let pixels = vec![image::Rgb([1.0f32, 1.0, 1.0]); 32 * 16];
-        image::codecs::hdr::HdrEncoder::new(std::fs::File::create(&small).unwrap()).encode(&pixels, 32, 16).unwrap();
+        std::fs::write(&small, super::super::radiance::flat_file(32, 16, &[[1.0; 3]; 32 * 16])).unwrap();
         assert!(matches!(Probe::read_lat_long_limited(&small, 511), Err(ProbeError::TooLarge { .. })));
         assert_eq!(Probe::read_lat_long_limited(&small, 512).unwrap().texels().len(), 512);
         let png = dir.join("picture.hdr");
-        image::RgbImage::new(4, 4).save_with_format(&png, image::ImageFormat::Png).unwrap();
+        std::fs::write(&png, crate::plot::encode_png(&crate::plot::RgbImage::new(4, 4)).unwrap()).unwrap();
         assert!(matches!(Probe::read_lat_long(&png), Err(ProbeError::Read { .. })));
         std::fs::remove_dir_all(&dir).unwrap();
     }

@@ -34,7 +34,7 @@ const FULL: (u32, u32) = (640, 480);
 const HALF: (u32, u32) = (320, 240);
 
 /// Renders `scene` (Whitted, its own plan, seed 1: the same bytes on every run and thread count).
-fn render_image(scene: &Scene, (width, height): (u32, u32), spp: u32) -> image::RgbImage {
+fn render_image(scene: &Scene, (width, height): (u32, u32), spp: u32) -> crate::plot::RgbImage {
     let settings = Settings::whitted(width, height, spp, analyze(scene).plan);
     render(scene, &settings, &|_| {}).expect("the figure settings are within limits").to_rgb8()
 }
@@ -285,7 +285,7 @@ fn spp_of(scene: &str) -> u32 {
 /// let names: Vec<&str> = renders.iter().map(|f| f.file_name.as_str()).collect();
 /// assert_eq!(names, ["q1_clutter.png", "q1_fog.png", "q1_mirrors.png", "q1_motion.png"]);
 /// // The slab alone, 640 / 40 pixels wide; each other scene beside its twin, 2 × 320 / 40.
-/// let width = |i: usize| image::load_from_memory(&renders[i].bytes).unwrap().width();
+/// let width = |i: usize| hw3::plot::decode_png(&renders[i].bytes).unwrap().width();
 /// assert_eq!((width(0), width(1)), (16, 16));
 /// ```
 pub fn renders(budget: Budget) -> Result<Vec<Figure>, PlotError> {
@@ -395,7 +395,7 @@ mod tests {
         let one = on(1);
         assert_eq!(one, on(2));
         assert_eq!(one, on(1), "and from run to run");
-        let image = image::load_from_memory(&one.bytes).unwrap().to_rgb8();
+        let image = crate::plot::decode_png(&one.bytes).unwrap();
         assert_eq!(image.dimensions(), (96, 36));
     }
 

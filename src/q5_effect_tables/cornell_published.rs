@@ -210,7 +210,7 @@ pub fn radiosity_at_probes(n: usize, samples: usize) -> Result<Vec<f64>, Experim
 /// assert!(image.get_pixel(6, 0).0[0] > 0 || image.get_pixel(6, 1).0[0] > 0);
 /// assert!(hw3::q5_effect_tables::cornell_published::radiosity_image(12, 0).is_err());
 /// ```
-pub fn radiosity_image(size: u32, patches: usize) -> Result<image::RgbImage, ExperimentError> {
+pub fn radiosity_image(size: u32, patches: usize) -> Result<crate::plot::RgbImage, ExperimentError> {
     let scene = scene()?;
     let system = System::new(&scene, Mesh::new(&scene, patches)?, 1)?;
     let solution = system.solve(Solver::GaussSeidel, 80).pop().unwrap_or_default();
@@ -251,7 +251,7 @@ pub fn path_settings(scene: &Scene, size: u32, spp: u32) -> Settings {
 /// assert!(image.get_pixel(6, 0).0[0] > 0 || image.get_pixel(6, 1).0[0] > 0);
 /// assert!(hw3::q5_effect_tables::cornell_published::path_traced_image(12, 0).is_err());
 /// ```
-pub fn path_traced_image(size: u32, spp: u32) -> Result<image::RgbImage, ExperimentError> {
+pub fn path_traced_image(size: u32, spp: u32) -> Result<crate::plot::RgbImage, ExperimentError> {
     let scene = scene()?;
     Ok(render(&scene, &path_settings(&scene, size, spp), &|_| {})
         .map_err(|e| ExperimentError::Render(e.to_string()))?

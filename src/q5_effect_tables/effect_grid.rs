@@ -187,7 +187,7 @@ fn label(row: &Row, method: Measured, cost: &str, cell: &MeasuredCell) -> String
 /// // Two methods across; six effects of two rows each down, every panel a fortieth of the
 /// // published one with its label on a strip below it.
 /// let (width, height) = Budget::TINY.image_size(PANEL_SIZE);
-/// let png = image::load_from_memory(&grid.bytes).unwrap();
+/// let png = hw3::plot::decode_png(&grid.bytes).unwrap();
 /// assert_eq!(png.width(), COLUMNS as u32 * width);
 /// assert!(png.height() > 12 * height);
 /// ```

@@ -113,10 +113,10 @@ pub const NOISY_SPP: u32 = Budget::PUBLISHED.noisy_spp;
 /// let names: Vec<&str> = figures.iter().map(|f| f.file_name.as_str()).collect();
 /// assert_eq!(names, ["q5_radiosity_cornell.png", "q5_effect_scenes.png", "q5_cornell_published.png"]);
 /// // The radiosity box is square: 640 / 40 pixels a side, its label drawn on it.
-/// let radiosity = image::load_from_memory(&figures[0].bytes).unwrap();
+/// let radiosity = hw3::plot::decode_png(&figures[0].bytes).unwrap();
 /// assert_eq!((radiosity.width(), radiosity.height()), (16, 16));
 /// // The montage two panels across, the Cornell comparison three, labels on strips below.
-/// let width = |f: &hw3::plot::Figure| image::load_from_memory(&f.bytes).unwrap().width();
+/// let width = |f: &hw3::plot::Figure| hw3::plot::decode_png(&f.bytes).unwrap().width();
 /// assert_eq!((width(&figures[1]), width(&figures[2])), (16, 24));
 /// ```
 pub fn renders(budget: &Budget) -> Result<Vec<Figure>, PlotError> {

@@ -29,7 +29,7 @@ fn render_scene(
     name: &str,
     switched_off: Option<Pass>,
     (width, height): (u32, u32),
-) -> Result<image::RgbImage, PlotError> {
+) -> Result<crate::plot::RgbImage, PlotError> {
     let scene =
         catalogue::by_name(name).map_err(|e| PlotError::Draw { figure: file_name.into(), message: e.to_string() })?;
     let plan = analyze(&scene).plan;

@@ -27,7 +27,7 @@ use super::{RenderError, Settings, render};
 /// assert!(fine < coarse / 2.0, "16× the samples, about a quarter of the noise: {coarse} → {fine}");
 /// ```
 pub fn noise_level(scene: &Scene, settings: &Settings) -> Result<f64, RenderError> {
-    let draw = |seed| -> Result<image::RgbImage, RenderError> {
+    let draw = |seed| -> Result<crate::plot::RgbImage, RenderError> {
         Ok(render(scene, &Settings { seed, ..*settings }, &|_| {})?.to_rgb8())
     };
     let (a, b) = (draw(settings.seed)?, draw(settings.seed.wrapping_add(1))?);
@@ -40,7 +40,7 @@ pub fn noise_level(scene: &Scene, settings: &Settings) -> Result<f64, RenderErro
 /// # Panics
 /// If the images differ in size.
 #[must_use]
-pub fn noise_between(a: &image::RgbImage, b: &image::RgbImage) -> f64 {
+pub fn noise_between(a: &crate::plot::RgbImage, b: &crate::plot::RgbImage) -> f64 {
     crate::plot::rms_difference(a, b) / std::f64::consts::SQRT_2
 }
 
