@@ -366,6 +366,9 @@ impl KdTree {
             match self.nodes[node as usize].kind() {
                 NodeKind::Interior { split, upper, axis: a } => {
                     prefetch(&self.nodes, upper);
+                    if let NodeKind::Leaf { first, .. } = self.nodes[node as usize + 1].kind() {
+                        prefetch(&self.coarse, first);
+                    }
                     let pieces = split_pieces(axes[a], split, cell_min, cell_max);
                     let (near, far) = match pieces.near {
                         Side::Lower => (node + 1, upper),
