@@ -365,6 +365,10 @@ impl KdTree {
             counter.node();
             match self.nodes[node as usize].kind() {
                 NodeKind::Interior { split, upper, axis: a } => {
+                    prefetch(&self.nodes, upper);
+                    if let NodeKind::Leaf { first, .. } = self.nodes[node as usize + 1].kind() {
+                        prefetch(&self.coarse, first);
+                    }
                     let pieces = split_pieces(axes[a], split, cell_min, cell_max);
                     let (near, far) = match pieces.near {
                         Side::Lower => (node + 1, upper),
@@ -412,6 +416,21 @@ impl KdTree {
             (node, cell_min, cell_max) = stack[depth];
         }
     }
+}
+
+/// Asks the CPU to start loading `items[index]`'s cache line without waiting for it.
+#[inline]
+pub(super) fn prefetch<T>(items: &[T], index: u32) {
+    #[cfg(target_arch = "x86_64")]
+    {
+        use std::arch::x86_64::{_MM_HINT_T0, _mm_prefetch};
+        let at = items.as_ptr().wrapping_add(index as usize).cast::<i8>();
+        // SAFETY: a prefetch is only a hint: it never faults, whatever the address, and changes no
+        // memory; SSE is part of every x86-64 CPU.
+        unsafe { _mm_prefetch::<_MM_HINT_T0>(at) };
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    let _ = (items, index);
 }
 
 /// `sphere` moved by `velocity · time`; a static sphere untouched (no `+ 0·t`, which would turn a

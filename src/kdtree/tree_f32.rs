@@ -5,7 +5,7 @@
 
 use super::KdTree;
 use super::node::{Aabb, Node, NodeKind};
-use super::tree::STACK;
+use super::tree::{STACK, prefetch};
 use crate::geometry::sphere::roots_stable;
 use crate::geometry::{Ray, Sphere};
 use glam::Vec3;
@@ -124,6 +124,7 @@ impl KdTreeF32 {
         loop {
             match self.nodes[node as usize].kind() {
                 NodeKind::Interior { split, upper, axis } => {
+                    prefetch(&self.nodes, upper);
                     let split = split as f32;
                     if inv[axis].is_infinite() {
                         // Parallel (±0 or subnormal): the origin's side, no product 0·∞.
