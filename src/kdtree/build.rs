@@ -192,6 +192,18 @@ const PARALLEL_MIN: usize = 8_192;
 /// Bin counts up to which [`Builder::best_split`] keeps its counts on the stack.
 const INLINE_BINS: usize = 32;
 
+/// One axis of a small node for [`Builder::exact_axis`]: its boxes' starts and ends on the axis,
+/// the first `m` real and the rest padding.
+#[derive(Clone, Copy)]
+struct ExactAxis<'a> {
+    cell: &'a Aabb,
+    area: f64,
+    axis: usize,
+    starts: &'a [f64; EXACT_MAX_LIMIT],
+    ends: &'a [f64; EXACT_MAX_LIMIT],
+    m: usize,
+}
+
 /// The best split found for one node.
 struct Candidate {
     axis: usize,
@@ -304,10 +316,12 @@ impl Builder {
     /// The split of the node of `cell` holding `prims` at `depth`, or `None` for a leaf: one sphere
     /// or none, the depth bound, or no candidate cheaper than the leaf.
     fn choose(&self, cell: &Aabb, prims: &[Prim], depth: usize) -> Option<Candidate> {
-        if prims.len() <= 1 || depth >= self.max_depth {
+        let leaf_cost = self.costs.intersection * prims.len() as f64;
+        // A split costs at least K_T (its other terms are products of non-negative factors), so a
+        // leaf that costs no more (two spheres, with the default constants) needs no search.
+        if prims.len() <= 1 || depth >= self.max_depth || leaf_cost <= self.costs.traversal {
             return None;
         }
-        let leaf_cost = self.costs.intersection * prims.len() as f64;
         let best = if prims.len() <= self.exact_max {
             self.best_exact_split(cell, prims)
         } else {
@@ -316,91 +330,85 @@ impl Builder {
         best.filter(|c| c.cost < leaf_cost)
     }
 
-    /// The cost of splitting `cell` (area `area`) on `axis` at `split` with `n_lower` and `n_upper`
-    /// spheres on the two sides.
-    fn split_cost(&self, cell: &Aabb, area: f64, axis: usize, split: f64, n_lower: f64, n_upper: f64) -> f64 {
-        let (lo, hi) = (cell.min[axis], cell.max[axis]);
-        let (p_lower, p_upper) = if area > 0.0 {
-            let e = cell.max - cell.min;
-            let (eb, ec) = (e[(axis + 1) % 3], e[(axis + 2) % 3]);
-            let (cap, side) = (2.0 * eb * ec, 2.0 * (eb + ec));
-            ((cap + side * (split - lo)) / area, (cap + side * (hi - split)) / area)
-        } else {
-            let f = (split - lo) / (hi - lo);
-            (f, 1.0 - f)
-        };
-        let bonus = if n_lower == 0.0 || n_upper == 0.0 { 1.0 - self.costs.empty_bonus } else { 1.0 };
-        self.costs.traversal + self.costs.intersection * bonus * (p_lower * n_lower + p_upper * n_upper)
-    }
-
     /// The cheapest plane among every sphere's box faces (Wald & Havran's candidates, for a node
-    /// small enough that sorting them costs less than binning): each face is moved to the nearest
-    /// `f32` just outside its box, so that a plane at a box's start leaves that box wholly above it
-    /// (the cut-off side really is empty and earns the bonus) and one at its end wholly below.
-    /// The two sides' counts come from one sweep over the sorted starts and ends.
+    /// small enough that counting its spheres on each side of each face costs less than binning):
+    /// each face is moved to the nearest `f32` just outside its box, so that a plane at a box's
+    /// start leaves that box wholly above it (the cut-off side really is empty and earns the bonus)
+    /// and one at its end wholly below. Each plane's two counts are taken over all the node's boxes
+    /// (at most [`EXACT_MAX_LIMIT`], in fixed-size arrays the compiler turns into vector compares):
+    /// no sort, and no branch that depends on the data but the choice of the best. Among equally
+    /// cheap planes of an axis the lowest wins, as in a sweep in plane order.
+    #[inline(never)] // one call per node: a profile names it, and its callers stay small
     fn best_exact_split(&self, cell: &Aabb, prims: &[Prim]) -> Option<Candidate> {
         let area = cell.surface_area();
-        let n = prims.len() as f64;
-        let mut best: Option<Candidate> = None;
         let m = prims.len();
         assert!(m <= EXACT_MAX_LIMIT, "exact candidates for {m} spheres (at most {EXACT_MAX_LIMIT})");
-        let (mut starts, mut ends) = ([0.0; EXACT_MAX_LIMIT], [0.0; EXACT_MAX_LIMIT]);
-        let mut planes = [0.0; 2 * EXACT_MAX_LIMIT];
+        let mut best: Option<Candidate> = None;
+        // The padding never counts: no plane lies above a start of +∞ or below an end of −∞.
+        let (mut starts, mut ends) = ([f64::INFINITY; EXACT_MAX_LIMIT], [f64::NEG_INFINITY; EXACT_MAX_LIMIT]);
         for axis in 0..3 {
             let (lo, hi) = (cell.min[axis], cell.max[axis]);
             if !(hi - lo > 0.0) {
                 continue;
             }
             for (k, p) in prims.iter().enumerate() {
-                let b = &p.bounds;
-                (starts[k], ends[k]) = (b.min[axis], b.max[axis]);
+                (starts[k], ends[k]) = (p.bounds.min[axis], p.bounds.max[axis]);
             }
-            let (starts, ends, planes) = (&mut starts[..m], &mut ends[..m], &mut planes[..2 * m]);
-            starts.sort_unstable_by(f64::total_cmp);
-            ends.sort_unstable_by(f64::total_cmp);
-            // The planes in order without a third sort: `f32_below` and `f32_above` are monotone,
-            // so the sorted starts and ends give two sorted lists, merged here.
-            let (mut s, mut e) = (0, 0);
-            for plane in planes.iter_mut() {
-                let below = starts.get(s).map(|&x| f32_below(x));
-                let above = ends.get(e).map(|&x| f32_above(x));
-                *plane = match (below, above) {
-                    (Some(b), Some(a)) if b.total_cmp(&a).is_le() => {
-                        s += 1;
-                        b
-                    }
-                    (Some(b), None) => {
-                        s += 1;
-                        b
-                    }
-                    (_, Some(a)) => {
-                        e += 1;
-                        a
-                    }
-                    (None, None) => unreachable!("2m planes from m starts and m ends"),
-                };
-            }
-            // n_lower = #(start ≤ split), n_upper = n − #(end < split): the builder's closed tests.
-            let (mut started, mut ended) = (0, 0);
-            for &split in planes.iter().filter(|&&s| lo < s && s < hi) {
-                while started < starts.len() && starts[started] <= split {
-                    started += 1;
-                }
-                while ended < ends.len() && ends[ended] < split {
-                    ended += 1;
-                }
-                let cost = self.split_cost(cell, area, axis, split, started as f64, n - ended as f64);
-                if best.as_ref().is_none_or(|b| cost < b.cost) {
-                    best = Some(Candidate { axis, split, cost });
-                }
+            // The counts over the smallest padded width that holds the node's boxes: a node has
+            // about six on average, and sixteen compares per count would triple the work.
+            let faces = ExactAxis { cell, area, axis, starts: &starts, ends: &ends, m };
+            match m {
+                0..=4 => self.exact_axis::<4>(&faces, &mut best),
+                5..=8 => self.exact_axis::<8>(&faces, &mut best),
+                _ => self.exact_axis::<EXACT_MAX_LIMIT>(&faces, &mut best),
             }
         }
         best
     }
 
+    /// Tries every face of one axis of [`Builder::best_exact_split`], counting over the first `W`
+    /// entries of the padded arrays (`W ≥ m`, a constant so that the counts become vector code).
+    #[inline(always)]
+    fn exact_axis<const W: usize>(&self, faces: &ExactAxis<'_>, best: &mut Option<Candidate>) {
+        let ExactAxis { cell, area, axis, starts, ends, m } = *faces;
+        let (lo, hi) = (cell.min[axis], cell.max[axis]);
+        let (starts_w, ends_w) = (&starts[..W], &ends[..W]);
+        // The cost model (module docs) with the cell's constants taken once per axis; the binned
+        // search computes it the same way.
+        let e = cell.max - cell.min;
+        let (eb, ec) = (e[(axis + 1) % 3], e[(axis + 2) % 3]);
+        let (cap, side) = (2.0 * eb * ec, 2.0 * (eb + ec));
+        let (k_t, k_i, kept) = (self.costs.traversal, self.costs.intersection, 1.0 - self.costs.empty_bonus);
+        for k in 0..m {
+            for split in [f32_below(starts[k]), f32_above(ends[k])] {
+                if !(lo < split && split < hi) {
+                    continue;
+                }
+                // n_lower = #(start ≤ split), n_upper = #(end ≥ split): the builder's closed tests.
+                let n_lower: u32 = starts_w.iter().map(|&x| u32::from(x <= split)).sum();
+                let n_upper: u32 = ends_w.iter().map(|&x| u32::from(x >= split)).sum();
+                let (p_lower, p_upper) = if area > 0.0 {
+                    ((cap + side * (split - lo)) / area, (cap + side * (hi - split)) / area)
+                } else {
+                    let f = (split - lo) / (hi - lo);
+                    (f, 1.0 - f)
+                };
+                let bonus = if n_lower == 0 || n_upper == 0 { kept } else { 1.0 };
+                let cost = k_t + k_i * bonus * (p_lower * f64::from(n_lower) + p_upper * f64::from(n_upper));
+                let better = best.as_ref().is_none_or(|b| {
+                    cost < b.cost || (cost == b.cost && b.axis == axis && split.total_cmp(&b.split).is_lt())
+                });
+                if better {
+                    *best = Some(Candidate { axis, split, cost });
+                }
+            }
+        }
+    }
+
     /// The cheapest binned plane over the three axes, if any axis has extent. One pass over the
     /// spheres bins all three axes; a candidate's child areas are linear in its plane, so each
     /// costs a few flops.
+    #[inline(never)] // one call per node: a profile names it, and its callers stay small
     fn best_split(&self, cell: &Aabb, prims: &[Prim]) -> Option<Candidate> {
         let bins = self.costs.bins;
         let area = cell.surface_area();
@@ -419,7 +427,9 @@ impl Builder {
         // Clamping in floating point first (NaN included: it goes to bin 0, as `max(0.0)` sent it)
         // leaves the conversion nothing to saturate.
         let last = (bins - 1) as f64;
-        let bin_of = |a: usize, x: f64| ((x - lo[a]) * scale[a]).clamp(0.0, last) as usize;
+        // Through `i32` (exact: at most 1023 after the clamp), whose saturating conversion is a few
+        // instructions shorter than `usize`'s; NaN still lands in bin 0.
+        let bin_of = |a: usize, x: f64| ((x - lo[a]) * scale[a]).clamp(0.0, last) as i32 as usize;
         for p in prims {
             let b = &p.bounds;
             let (min, max) = (b.min.to_array(), b.max.to_array());
