@@ -121,7 +121,12 @@ struct SlabRay {
 }
 
 impl SlabRay {
-    fn new(ray: &Ray<f64>) -> Self {
+    /// The ray's slab data, or an unusable one (no work) when `wanted` is false.
+    #[inline]
+    fn new(ray: &Ray<f64>, wanted: bool) -> Self {
+        if !wanted {
+            return Self { origin: ray.origin, inverse_dir: DVec3::ZERO, origin_scale: 0.0, usable: false };
+        }
         let inverse_dir = ray.dir.recip();
         let finite_inverse = (0..3).all(|axis| ray.dir[axis] == 0.0 || inverse_dir[axis].is_finite());
         Self {
@@ -189,6 +194,8 @@ pub(super) struct QuadSet {
     quads: Vec<PreparedQuad>,
     /// Consecutive runs covering `quads` in order.
     runs: Vec<Run>,
+    /// Whether some run has a box (else a query computes no [`SlabRay`]).
+    boxed: bool,
 }
 
 impl QuadSet {
@@ -214,14 +221,15 @@ impl QuadSet {
             })
             .collect();
         let runs = runs(&quads);
-        Self { quads, runs }
+        let boxed = runs.iter().any(|run| run.bounds.is_some());
+        Self { quads, runs, boxed }
     }
 
     /// Lowers `best` (the closest `(t, object)` so far, `t < t_max`) to every quad hit that
     /// beats it by [`offer`]'s rule; a quad whose plane lies beyond `best` costs no edge test, a
     /// run whose box lies beyond it no test at all.
     pub(super) fn closest(&self, ray: &Ray<f64>, t_max: f64, best: &mut Option<(f64, usize)>) {
-        let (dir_length, slab) = (ray.dir.length(), SlabRay::new(ray));
+        let (dir_length, slab) = (ray.dir.length(), SlabRay::new(ray, self.boxed));
         for run in &self.runs {
             if let Some(bounds) = run.bounds
                 && !bounds.may_hit(&slab, best.map_or(t_max, |(limit, _)| limit))
@@ -242,7 +250,7 @@ impl QuadSet {
 
     /// Whether some quad is hit with `t ∈ (0, t_max)`; stops at the first one found.
     pub(super) fn any_before(&self, ray: &Ray<f64>, t_max: f64) -> bool {
-        let (dir_length, slab) = (ray.dir.length(), SlabRay::new(ray));
+        let (dir_length, slab) = (ray.dir.length(), SlabRay::new(ray, self.boxed));
         for run in &self.runs {
             if run.bounds.is_none_or(|bounds| bounds.may_hit(&slab, t_max)) {
                 for quad in &self.quads[run.quads.clone()] {
@@ -257,7 +265,7 @@ impl QuadSet {
 
     /// How many quads are hit with `t ∈ (0, t_max)`.
     pub(super) fn count_before(&self, ray: &Ray<f64>, t_max: f64) -> usize {
-        let (dir_length, slab) = (ray.dir.length(), SlabRay::new(ray));
+        let (dir_length, slab) = (ray.dir.length(), SlabRay::new(ray, self.boxed));
         let mut count = 0;
         for run in self.runs.iter().filter(|run| run.bounds.is_none_or(|bounds| bounds.may_hit(&slab, t_max))) {
             let quads = &self.quads[run.quads.clone()];
