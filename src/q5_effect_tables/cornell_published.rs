@@ -26,7 +26,8 @@ use crate::plot::markdown_table;
 use crate::render::analysis::analyze;
 use crate::render::catalogue::{CORNELL_GREEN, CORNELL_RED, CORNELL_WHITE};
 use crate::render::integrator::Integrator;
-use crate::render::{Settings, render};
+use crate::render::noise::noise_between;
+use crate::render::{Image, Settings, render};
 use crate::render::{
     camera::Camera,
     scene::{Material, Object, Scene, Shape},
@@ -256,6 +257,43 @@ pub fn path_traced_image(size: u32, spp: u32) -> Result<crate::plot::RgbImage, E
     Ok(render(&scene, &path_settings(&scene, size, spp), &|_| {})
         .map_err(|e| ExperimentError::Render(e.to_string()))?
         .to_rgb8())
+}
+
+/// Seeds of the two halves of [`path_traced_with_noise`]: not the seed 1 of [`path_settings`], whose
+/// streams the noisy panel's samples start (a reference drawn from them would share its first
+/// samples and understate its difference).
+const HALF_SEEDS: [u64; 2] = [2, 3];
+
+/// The path tracer's image of [`scene`] at `spp` samples per pixel ([`path_settings`]) as the
+/// mean of two independent renders of `spp / 2` each (seeds 2 and 3), with the noise of that mean
+/// in display levels of 255, measured from the two: their noise-free parts are equal, so their
+/// difference is their two noises and `rms(a − b) / √2` is the noise of either
+/// ([`noise_between`]); the mean of two halves has `1/√2` of it.
+///
+/// # Errors
+/// [`ExperimentError::Render`] for an odd or zero `spp`, or if the render fails.
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::cornell_published::path_traced_with_noise;
+/// let (image, noise) = path_traced_with_noise(12, 4).unwrap();
+/// assert_eq!(image.dimensions(), (12, 12));
+/// assert!(noise > 0.0 && noise < 255.0);
+/// assert!(path_traced_with_noise(12, 3).is_err() && path_traced_with_noise(12, 0).is_err());
+/// ```
+pub fn path_traced_with_noise(size: u32, spp: u32) -> Result<(image::RgbImage, f64), ExperimentError> {
+    if spp == 0 || !spp.is_multiple_of(2) {
+        return Err(ExperimentError::Render(format!("{spp} samples per pixel do not split into two equal halves")));
+    }
+    let scene = scene()?;
+    let half = |seed| {
+        render(&scene, &Settings { seed, ..path_settings(&scene, size, spp / 2) }, &|_| {})
+            .map_err(|e| ExperimentError::Render(e.to_string()))
+    };
+    let (a, b) = (half(HALF_SEEDS[0])?, half(HALF_SEEDS[1])?);
+    let noise = noise_between(&a.to_rgb8(), &b.to_rgb8()) / std::f64::consts::SQRT_2;
+    let pixels = a.pixels.iter().zip(&b.pixels).map(|(&p, &q)| (p + q) * 0.5).collect();
+    Ok((Image { pixels, ..a }.to_rgb8(), noise))
 }
 
 /// Radiosity's patches per quad edge in the published box's figure ([`radiosity_image`]).

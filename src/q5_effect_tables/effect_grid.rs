@@ -1,5 +1,5 @@
 //! The measured table as pictures: each effect's scene rendered by every method of the table,
-//! each effect's four methods in two rows of two panels, each panel labelled with the method, its cost
+//! one row per effect with its four methods across, each panel labelled with the method, its cost
 //! and the fraction of the path-traced effect it captured in [`measured_table`].
 
 use super::budget::Budget;
@@ -34,20 +34,20 @@ pub const GRID_PNG: &str = "q5_effect_grid.png";
 /// # Examples
 /// ```
 /// use hw3::q5_effect_tables::effect_grid::{COLUMNS, PANEL_SIZE};
-/// // Two columns of panels: 640 pixels wide, shown at full size, so the labels' 15-pixel text
-/// // is 15 pixels on screen.
-/// assert_eq!(PANEL_SIZE.0 * COLUMNS as u32, 640);
+/// // Four panels across fill the notes' 936-pixel text column and are shown at full size, so
+/// // the labels' 15-pixel text is 15 pixels on screen; 4 : 3 like the other renders.
+/// assert!(PANEL_SIZE.0 * COLUMNS as u32 <= 936 && PANEL_SIZE.0 * 3 == PANEL_SIZE.1 * 4);
 /// ```
-pub const PANEL_SIZE: (u32, u32) = (320, 240);
+pub const PANEL_SIZE: (u32, u32) = (232, 174);
 
-/// Panels per row of the grid: each effect's four methods fill two rows of two.
+/// Panels per row of the grid: one row per effect, its four methods across.
 ///
 /// # Examples
 /// ```
 /// use hw3::q5_effect_tables::{effect_grid::COLUMNS, experiments::TABLE_METHODS};
-/// assert_eq!(TABLE_METHODS.len() % COLUMNS, 0, "no effect's panels share a row with another's");
+/// assert_eq!(TABLE_METHODS.len(), COLUMNS, "each effect's methods fill one row");
 /// ```
-pub const COLUMNS: usize = 2;
+pub const COLUMNS: usize = 4;
 
 /// A row of the grid: the effect's id (a row of [`EXPERIMENTS`]), its title, and the exposure its
 /// panels share (radiance is multiplied by it before the sRGB curve clips at 1).
@@ -64,7 +64,7 @@ const ROWS: [Row; 6] = [
     Row { effect: "a", title: "(a) highlight", exposure: 1.0 },
     Row { effect: "b", title: "(b) colour bleeding", exposure: 1.0 },
     Row { effect: "c", title: "(c) direct shading", exposure: 1.0 },
-    Row { effect: "d_mirror", title: "(d) panel in a mirror", exposure: 1.0 },
+    Row { effect: "d_mirror", title: "(d) mirror image", exposure: 1.0 },
     Row { effect: "d_caustic", title: "(d) caustic", exposure: 1.0 },
     Row { effect: "e", title: "(e) ambient glow", exposure: 4.0 },
 ];
@@ -159,22 +159,17 @@ fn power_of_ten(n: usize) -> String {
     format!("{}·10{exponent}", &digits[..1])
 }
 
-/// The label of one panel: the effect, the method and its cost, and the measured cell.
+/// The label of one panel, four short lines that fit a [`PANEL_SIZE`] panel's width: the effect,
+/// the method, its cost, and the measured cell.
 fn label(row: &Row, method: Measured, cost: &str, cell: &MeasuredCell) -> String {
-    format!(
-        "{}\n{}: {cost}\ncaptures {:.3} of the effect: {}",
-        row.title,
-        method_name(method),
-        cell.fraction,
-        cell.verdict.text()
-    )
+    format!("{}\n{}\n{cost}\ncaptures {:.3}: {}", row.title, method_name(method), cell.fraction, cell.verdict.text())
 }
 
-/// The grid figure ([`GRID_PNG`]): for each effect of [`EXPERIMENTS`], its four [`PANEL_SIZE`]
-/// panels (the methods of [`table_methods`]) in two rows of [`COLUMNS`], labelled below with the
+/// The grid figure ([`GRID_PNG`]): for each effect of [`EXPERIMENTS`], one row of its four
+/// [`PANEL_SIZE`] panels (the [`COLUMNS`] methods of [`table_methods`]), labelled below with the
 /// cell of [`measured_table`] at the same `budget`, the same exposure across an effect's panels,
 /// each image rendered once (the bleeding and glow rows share theirs). [`Budget::PUBLISHED`] draws
-/// the committed figure (20 renders at 320 × 240, which CI's release run compares with it).
+/// the committed figure (the renders at 232 × 174, which CI's release run compares with it).
 ///
 /// # Errors
 /// [`PlotError::Draw`] when a scene, a render or the measured table fails.
@@ -184,12 +179,12 @@ fn label(row: &Row, method: Measured, cost: &str, cell: &MeasuredCell) -> String
 /// use hw3::q5_effect_tables::{Budget, effect_grid::{COLUMNS, GRID_PNG, PANEL_SIZE, figure}};
 /// let grid = figure(&Budget::TINY).unwrap();
 /// assert_eq!(grid.file_name, GRID_PNG);
-/// // Two methods across; six effects of two rows each down, every panel a fortieth of the
-/// // published one with its label on a strip below it.
+/// // Four methods across, six effects down, every panel a fortieth of the published one with
+/// // its label on a strip below it.
 /// let (width, height) = Budget::TINY.image_size(PANEL_SIZE);
 /// let png = hw3::plot::decode_png(&grid.bytes).unwrap();
 /// assert_eq!(png.width(), COLUMNS as u32 * width);
-/// assert!(png.height() > 12 * height);
+/// assert!(png.height() > 6 * height);
 /// ```
 pub fn figure(budget: &Budget) -> Result<Figure, PlotError> {
     let draw_error = |e: &dyn std::fmt::Display| PlotError::Draw { figure: GRID_PNG.into(), message: e.to_string() };
@@ -256,7 +251,7 @@ mod tests {
             student: super::super::StudentAnswer::NotAsked,
         };
         let text = label(&ROWS[4], Measured::PhotonMapping, "2·10⁵ photons, k = 100", &cell);
-        assert_eq!(text, "(d) caustic\nphoton mapping: 2·10⁵ photons, k = 100\ncaptures 0.998 of the effect: Yes");
+        assert_eq!(text, "(d) caustic\nphoton mapping\n2·10⁵ photons, k = 100\ncaptures 0.998: Yes");
         for (row, (id, _)) in ROWS.iter().zip(EXPERIMENTS) {
             assert_eq!(row.effect, id, "one row per experiment, in table order");
         }

@@ -149,7 +149,8 @@ fn published_figure(budget: &Budget) -> Result<Figure, PlotError> {
     let draw_error = |e: ExperimentError| PlotError::Draw { figure: PUBLISHED_PNG.into(), message: e.to_string() };
     let radiosity = cornell_published::radiosity_image(size, patches).map_err(draw_error)?;
     let noisy = cornell_published::path_traced_image(size, noisy_spp).map_err(draw_error)?;
-    let converged = cornell_published::path_traced_image(size, converged_spp).map_err(draw_error)?;
+    let (converged, converged_noise) =
+        cornell_published::path_traced_with_noise(size, converged_spp).map_err(draw_error)?;
     let against = format!("{converged_spp} spp");
     let (radiosity_error, noisy_error) =
         (plot::difference_line(&against, &radiosity, &converged), plot::difference_line(&against, &noisy, &converged));
@@ -159,7 +160,12 @@ fn published_figure(budget: &Budget) -> Result<Figure, PlotError> {
             label: format!("radiosity\n{patches} × {patches} patches per quad\n{radiosity_error}"),
         },
         Panel { image: noisy, label: format!("path tracing\n{noisy_spp} spp\n{noisy_error}") },
-        Panel { image: converged, label: format!("path tracing\n{converged_spp} spp\nthe reference of the other two") },
+        Panel {
+            image: converged,
+            label: format!(
+                "path tracing\n{converged_spp} spp, noise {converged_noise:.1} / 255\nthe reference of the other two"
+            ),
+        },
     ];
     // Below the panels: on them the labels covered the ceiling light.
     plot::panel_grid_labels_below(PUBLISHED_PNG, &panels, 3)
@@ -201,7 +207,7 @@ fn montage_scenes(budget: &Budget) -> Result<[(Scene, &'static str, u32); 4], Ex
             budget.path_spp,
         ),
         (lit_floor(WHITE_FLOOR, false)?, "(c) direct light on a white floor", budget.path_spp),
-        (mirror_room()?, "(d) the lit red panel in a mirror", budget.path_spp),
+        (mirror_room()?, "(d) mirror image: the lit red panel", budget.path_spp),
         (lit_floor(WHITE_FLOOR, true)?, "(d) caustic under a glass ball", budget.caustic_spp),
     ])
 }
