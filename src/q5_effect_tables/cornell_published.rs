@@ -281,7 +281,7 @@ const HALF_SEEDS: [u64; 2] = [2, 3];
 /// assert!(noise > 0.0 && noise < 255.0);
 /// assert!(path_traced_with_noise(12, 3).is_err() && path_traced_with_noise(12, 0).is_err());
 /// ```
-pub fn path_traced_with_noise(size: u32, spp: u32) -> Result<(image::RgbImage, f64), ExperimentError> {
+pub fn path_traced_with_noise(size: u32, spp: u32) -> Result<(crate::plot::RgbImage, f64), ExperimentError> {
     if spp == 0 || !spp.is_multiple_of(2) {
         return Err(ExperimentError::Render(format!("{spp} samples per pixel do not split into two equal halves")));
     }
