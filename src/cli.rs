@@ -242,8 +242,9 @@ pub fn read_text_bounded(path: &std::path::Path, limit: u64) -> Result<String, S
     String::from_utf8(bytes).map_err(|e| format!("{name} is not UTF-8 text (byte {})", e.utf8_error().valid_up_to()))
 }
 
-/// Checks a Radiance `.hdr` file before it is decoded: its signature, its size in bytes, and the
-/// resolution its header declares, against [`MAP_TEXELS`] and [`MAP_MIN_SIDES`].
+/// Checks a Radiance `.hdr` file before it is decoded: its size in bytes, its header (read by the
+/// decoder's own header reader: signature, `FORMAT`, resolution line), and the resolution it
+/// declares, against [`MAP_TEXELS`] and [`MAP_MIN_SIDES`].
 ///
 /// # Errors
 /// A one-line message naming the file and what is wrong (not a Radiance file, too large, too small).
@@ -256,7 +257,7 @@ pub fn read_text_bounded(path: &std::path::Path, limit: u64) -> Result<String, S
 /// std::fs::remove_file(&path).unwrap();
 /// ```
 pub fn check_hdr_file(path: &std::path::Path, allow_large: bool) -> Result<(), String> {
-    use std::io::{BufRead as _, Read as _};
+    use std::io::Read as _;
     let name = quote(&path.display().to_string());
     let file = std::fs::File::open(path).map_err(|e| format!("--env: cannot read {name}: {}", io_reason(&e)))?;
     let meta = file.metadata().map_err(|e| format!("--env: cannot read {name}: {}", io_reason(&e)))?;
@@ -266,31 +267,19 @@ pub fn check_hdr_file(path: &std::path::Path, allow_large: bool) -> Result<(), S
     if meta.len() > MAP_FILE_BYTES {
         return Err(format!("--env: {name} has {} bytes, over the limit of {MAP_FILE_BYTES}", meta.len()));
     }
-    // The header is short text lines ending in an empty line, then the resolution line.
+    // The decoder's own header reader, on at most 64 KiB: what passes here is what it will read.
+    use crate::envmap::radiance::{RadianceError, read_header};
     let mut reader = std::io::BufReader::new(file.take(64 * 1024));
-    let mut line = Vec::new();
-    let mut read_line = |line: &mut Vec<u8>| {
-        line.clear();
-        reader.read_until(b'\n', line).map(|_| String::from_utf8_lossy(line).trim_end().to_owned())
-    };
-    let io = |e: std::io::Error| format!("--env: cannot read {name}: {}", io_reason(&e));
-    let first = read_line(&mut line).map_err(io)?;
-    if !(first.starts_with("#?RADIANCE") || first.starts_with("#?RGBE")) {
-        return Err(format!("--env: {name} is not a Radiance .hdr file (it does not start with #?RADIANCE)"));
-    }
-    let resolution = loop {
-        let text = read_line(&mut line).map_err(io)?;
-        if line.is_empty() {
-            return Err(format!("--env: {name} ends inside its header"));
+    let (width, height) = read_header(&mut reader).map_err(|e| match e {
+        RadianceError::Signature => {
+            format!("--env: {name} is not a Radiance .hdr file (it does not start with #?RADIANCE)")
         }
-        if text.starts_with("-Y") || text.starts_with("+Y") || text.starts_with("-X") || text.starts_with("+X") {
-            break text;
+        RadianceError::Resolution(line) => {
+            format!("--env: {name} has an unreadable resolution line `{}`", quote(&line))
         }
-    };
-    let numbers: Vec<u64> = resolution.split_whitespace().filter_map(|w| w.parse().ok()).collect();
-    let [height, width] = numbers[..] else {
-        return Err(format!("--env: {name} has an unreadable resolution line `{}`", quote(&resolution)));
-    };
+        other => format!("--env: {name}: {other}"),
+    })?;
+    let (width, height) = (u64::from(width), u64::from(height));
     if width < MAP_MIN_SIDES.0 || height < MAP_MIN_SIDES.1 {
         return Err(format!(
             "--env: {name} is {width}×{height}; a map needs at least {}×{} texels for the estimators to agree",

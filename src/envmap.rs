@@ -19,7 +19,7 @@ pub mod distribution;
 mod filter;
 pub mod format;
 pub mod probe;
-mod radiance;
+pub(crate) mod radiance;
 
 pub use builtin::BuiltinMap;
 pub use distribution::{LUMINANCE_WEIGHTS, MapDistribution, MapSample, luminance};

@@ -33,12 +33,17 @@ pub struct RgbImage {
     bytes: Vec<u8>,
 }
 
-/// Bytes of a `width` × `height` RGB picture.
+/// Bytes of a `width` × `height` RGB picture, or `None` past `usize`.
+fn checked_byte_count(width: u32, height: u32) -> Option<usize> {
+    (width as usize).checked_mul(height as usize)?.checked_mul(3)
+}
+
+/// [`checked_byte_count`] of a picture this crate makes.
 ///
 /// # Panics
 /// If the count overflows `usize` (2⁶⁴ bytes: never a picture this crate makes).
 fn byte_count(width: u32, height: u32) -> usize {
-    (width as usize).checked_mul(height as usize).and_then(|n| n.checked_mul(3)).expect("picture size fits in memory")
+    checked_byte_count(width, height).expect("picture size fits in memory")
 }
 
 impl RgbImage {
@@ -76,8 +81,7 @@ impl RgbImage {
     /// ```
     #[must_use]
     pub fn from_raw(width: u32, height: u32, bytes: Vec<u8>) -> Option<Self> {
-        let expected = (width as usize).checked_mul(height as usize).and_then(|n| n.checked_mul(3))?;
-        (bytes.len() == expected).then_some(Self { width, height, bytes })
+        (Some(bytes.len()) == checked_byte_count(width, height)).then_some(Self { width, height, bytes })
     }
 
     /// Width in pixels.

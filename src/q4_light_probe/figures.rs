@@ -288,7 +288,7 @@ fn solid_angle_figure() -> Result<Figure, PlotError> {
     })
 }
 
-/// Side length of a rendered sphere panel, in pixels: three across fill the notes' text column.
+/// Side length of a rendered sphere panel, in pixels: three across span about the notes' text column.
 const RENDER_SIZE: usize = 320;
 
 /// One rendered row: per pixel (row-major, `None` outside the sphere) the reference, SH9 and

@@ -251,28 +251,24 @@ impl QuadSet {
     /// Whether some quad is hit with `t ∈ (0, t_max)`; stops at the first one found.
     pub(super) fn any_before(&self, ray: &Ray<f64>, t_max: f64) -> bool {
         let (dir_length, slab) = (ray.dir.length(), SlabRay::new(ray, self.boxed));
-        for run in &self.runs {
-            if run.bounds.is_none_or(|bounds| bounds.may_hit(&slab, t_max)) {
-                for quad in &self.quads[run.quads.clone()] {
-                    if quad.hit_within(ray, dir_length, t_max).is_some_and(|t| t < t_max) {
-                        return true;
-                    }
-                }
-            }
-        }
-        false
+        self.quads_near(&slab, t_max).any(|quad| quad.hit_within(ray, dir_length, t_max).is_some_and(|t| t < t_max))
     }
 
     /// How many quads are hit with `t ∈ (0, t_max)`.
     pub(super) fn count_before(&self, ray: &Ray<f64>, t_max: f64) -> usize {
         let (dir_length, slab) = (ray.dir.length(), SlabRay::new(ray, self.boxed));
-        let mut count = 0;
-        for run in self.runs.iter().filter(|run| run.bounds.is_none_or(|bounds| bounds.may_hit(&slab, t_max))) {
-            let quads = &self.quads[run.quads.clone()];
-            count +=
-                quads.iter().filter(|quad| quad.hit_within(ray, dir_length, t_max).is_some_and(|t| t < t_max)).count();
-        }
-        count
+        self.quads_near(&slab, t_max)
+            .filter(|quad| quad.hit_within(ray, dir_length, t_max).is_some_and(|t| t < t_max))
+            .count()
+    }
+
+    /// The quads of every run whose box the ray may meet within `(0, limit]` (all of an unboxed
+    /// run's), in object order: the candidates of a query with a fixed limit.
+    fn quads_near<'a>(&'a self, slab: &'a SlabRay, limit: f64) -> impl Iterator<Item = &'a PreparedQuad> + 'a {
+        self.runs
+            .iter()
+            .filter(move |run| run.bounds.is_none_or(|bounds| bounds.may_hit(slab, limit)))
+            .flat_map(|run| &self.quads[run.quads.clone()])
     }
 }
 
