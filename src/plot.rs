@@ -188,7 +188,7 @@ fn draw_label<DB: DrawingBackend>(
 /// assert_eq!(grid.dimensions(), (80, 60));
 /// ```
 pub fn panel_grid(file_name: &str, panels: &[Panel], columns: usize) -> Result<Figure, PlotError> {
-    grid_of_panels(file_name, panels, columns, false)
+    grid_of_panels(file_name, panels, columns, LabelPlace::On)
 }
 
 /// [`panel_grid`] with each label drawn on a black strip *below* its panel instead of onto it,
@@ -208,11 +208,49 @@ pub fn panel_grid(file_name: &str, panels: &[Panel], columns: usize) -> Result<F
 /// assert_eq!(grid.get_pixel(20, 15).0, [20; 3], "the panel itself is untouched");
 /// ```
 pub fn panel_grid_labels_below(file_name: &str, panels: &[Panel], columns: usize) -> Result<Figure, PlotError> {
-    grid_of_panels(file_name, panels, columns, true)
+    grid_of_panels(file_name, panels, columns, LabelPlace::Below)
 }
 
-/// The grid of [`panel_grid`], labels on the panels or on strips below them.
-fn grid_of_panels(file_name: &str, panels: &[Panel], columns: usize, below: bool) -> Result<Figure, PlotError> {
+/// [`panel_grid`] with each label drawn in a black column of `label_width` pixels to the *right*
+/// of its panel: for panels that are compared side by side at full size, where a strip below each
+/// would make a tall figure taller and text on the panel would cover what it shows.
+///
+/// # Errors
+/// As [`panel_grid`], and [`PlotError::Draw`] when a label line is wider than `label_width`
+/// less an 8-pixel margin (a label never runs into the next panel).
+///
+/// # Examples
+/// ```
+/// use hw3::plot::{Panel, Rgb, RgbImage, panel_grid_labels_beside};
+/// let grey = |v| Panel { image: RgbImage::from_pixel(40, 30, Rgb([v; 3])), label: format!("v = {v}") };
+/// let figure = panel_grid_labels_beside("grid.png", &[grey(20), grey(200)], 2, 60).unwrap();
+/// let grid = hw3::plot::decode_png(&figure.bytes).unwrap();
+/// assert_eq!(grid.dimensions(), (2 * (40 + 60), 30));
+/// assert_eq!(grid.get_pixel(20, 15).0, [20; 3], "the panel itself is untouched");
+/// assert!(panel_grid_labels_beside("grid.png", &[grey(20)], 1, 20).is_err(), "too narrow for its label");
+/// ```
+pub fn panel_grid_labels_beside(
+    file_name: &str,
+    panels: &[Panel],
+    columns: usize,
+    label_width: u32,
+) -> Result<Figure, PlotError> {
+    grid_of_panels(file_name, panels, columns, LabelPlace::Beside(label_width))
+}
+
+/// Where [`grid_of_panels`] draws a panel's label.
+#[derive(Clone, Copy, PartialEq)]
+enum LabelPlace {
+    /// Onto the panel's top-left corner.
+    On,
+    /// On a strip below the panel, as tall as the longest label.
+    Below,
+    /// In a column of this many pixels to the panel's right.
+    Beside(u32),
+}
+
+/// The grid of [`panel_grid`], labels on the panels, below or beside them.
+fn grid_of_panels(file_name: &str, panels: &[Panel], columns: usize, place: LabelPlace) -> Result<Figure, PlotError> {
     init_fonts();
     let Some(first) = panels.first() else {
         return Err(PlotError::Draw { figure: file_name.into(), message: "no panels".into() });
@@ -222,16 +260,19 @@ fn grid_of_panels(file_name: &str, panels: &[Panel], columns: usize, below: bool
         let message = "panels must share one size and columns must be at least 1".into();
         return Err(PlotError::Draw { figure: file_name.into(), message });
     }
-    let strip = if below {
-        let lines = panels.iter().map(|p| p.label.lines().count()).max().unwrap_or(0) as u32;
-        lines * (LABEL_PX + 3) + 8
-    } else {
-        0
+    let (strip, side) = match place {
+        LabelPlace::On => (0, 0),
+        LabelPlace::Below => {
+            let lines = panels.iter().map(|p| p.label.lines().count()).max().unwrap_or(0) as u32;
+            (lines * (LABEL_PX + 3) + 8, 0)
+        }
+        LabelPlace::Beside(label_width) => (0, label_width),
     };
+    let (cell_width, cell_height) = (width + side, height + strip);
     let rows = panels.len().div_ceil(columns) as u32;
-    let (grid_width, grid_height) = (width * columns.min(panels.len()) as u32, (height + strip) * rows);
+    let (grid_width, grid_height) = (cell_width * columns.min(panels.len()) as u32, cell_height * rows);
     let mut grid = RgbImage::new(grid_width, grid_height);
-    let corner = |k: usize| ((k % columns) as u32 * width, (k / columns) as u32 * (height + strip));
+    let corner = |k: usize| ((k % columns) as u32 * cell_width, (k / columns) as u32 * cell_height);
     for (k, panel) in panels.iter().enumerate() {
         let (x, y) = corner(k);
         grid.paste(&panel.image, x, y);
@@ -241,8 +282,24 @@ fn grid_of_panels(file_name: &str, panels: &[Panel], columns: usize, below: bool
         let root = BitMapBackend::with_buffer(&mut rgb, (grid_width, grid_height)).into_drawing_area();
         for (k, panel) in panels.iter().enumerate() {
             let (x, y) = corner(k);
-            let top = if below { y + height + 2 } else { y + 4 };
-            draw_label(&root, &panel.label, (x as i32 + 4, top as i32))
+            let at = match place {
+                LabelPlace::On => (x + 4, y + 4),
+                LabelPlace::Below => (x + 4, y + height + 2),
+                LabelPlace::Beside(label_width) => {
+                    let font = ("sans-serif", LABEL_PX).into_font().color(&WHITE);
+                    for line in panel.label.lines() {
+                        let (text_width, _) =
+                            root.estimate_text_size(line, &font).map_err(|e| draw_error(file_name, e))?;
+                        if text_width + 8 > label_width {
+                            let message =
+                                format!("label line {line:?} is {text_width} px, wider than {label_width} px less 8");
+                            return Err(PlotError::Draw { figure: file_name.into(), message });
+                        }
+                    }
+                    (x + width, y + 2)
+                }
+            };
+            draw_label(&root, &panel.label, (at.0 as i32, at.1 as i32))
                 .map_err(|message| PlotError::Draw { figure: file_name.into(), message })?;
         }
         root.present().map_err(|e| draw_error(file_name, e))?;

@@ -1,6 +1,6 @@
 //! The measured table as pictures: each effect's scene rendered by every method of the table,
-//! one row per effect with its four methods across, each panel labelled with the method, its cost
-//! and the fraction of the path-traced effect it captured in [`measured_table`].
+//! two rows of two panels per effect, each panel labelled beside it with the method, its cost and
+//! the fraction of the path-traced effect it captured in [`measured_table`].
 
 use super::budget::Budget;
 use super::effect_scenes::{GLOSSY_FLOOR, WHITE_FLOOR, highlight_camera, lit_floor, mirror_room};
@@ -33,21 +33,33 @@ pub const GRID_PNG: &str = "q5_effect_grid.png";
 ///
 /// # Examples
 /// ```
-/// use hw3::q5_effect_tables::effect_grid::{COLUMNS, PANEL_SIZE};
-/// // Four panels across fill the notes' 936-pixel text column and are shown at full size, so
-/// // the labels' 15-pixel text is 15 pixels on screen; 4 : 3 like the other renders.
-/// assert!(PANEL_SIZE.0 * COLUMNS as u32 <= 936 && PANEL_SIZE.0 * 3 == PANEL_SIZE.1 * 4);
+/// use hw3::q5_effect_tables::effect_grid::{COLUMNS, LABEL_WIDTH, PANEL_SIZE};
+/// // Two panels and their label columns fill the notes' 936-pixel text column, so they are shown
+/// // at full size (the labels' 15-pixel text is 15 pixels on screen); 4 : 3 like the other renders.
+/// assert!((PANEL_SIZE.0 + LABEL_WIDTH) * COLUMNS as u32 <= 936 && PANEL_SIZE.0 * 3 == PANEL_SIZE.1 * 4);
+/// assert!(PANEL_SIZE.0 >= 320, "a compared panel at least 320 × 240");
 /// ```
-pub const PANEL_SIZE: (u32, u32) = (232, 174);
+pub const PANEL_SIZE: (u32, u32) = (320, 240);
 
-/// Panels per row of the grid: one row per effect, its four methods across.
+/// Width in pixels of the label column to the right of each panel (the longest line, "(b) colour
+/// bleeding", is about 140 pixels of 15-pixel text).
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::effect_grid::{COLUMNS, LABEL_WIDTH, PANEL_SIZE};
+/// assert_eq!((PANEL_SIZE.0 + LABEL_WIDTH) * COLUMNS as u32, 936);
+/// ```
+pub const LABEL_WIDTH: u32 = 148;
+
+/// Panels per row of the grid: each effect's four methods on two rows of two (radiosity and the
+/// two-pass method above, Whitted ray tracing and photon mapping below).
 ///
 /// # Examples
 /// ```
 /// use hw3::q5_effect_tables::{effect_grid::COLUMNS, experiments::TABLE_METHODS};
-/// assert_eq!(TABLE_METHODS.len(), COLUMNS, "each effect's methods fill one row");
+/// assert_eq!(TABLE_METHODS.len() % COLUMNS, 0, "each effect's methods fill whole rows");
 /// ```
-pub const COLUMNS: usize = 4;
+pub const COLUMNS: usize = 2;
 
 /// A row of the grid: the effect's id (a row of [`EXPERIMENTS`]), its title, and the exposure its
 /// panels share (radiance is multiplied by it before the sRGB curve clips at 1).
@@ -121,7 +133,7 @@ fn render_methods(scene: &Scene, budget: &Budget) -> Result<Vec<(Image, String)>
                 let caustics = method == Measured::PhotonMapping;
                 let (tracer, integrator) = photon_eye(scene, &maps, caustics, budget.light_samples)?;
                 let settings = Settings { integrator, ..Settings::whitted(width, height, 1, Passes::default()) };
-                let cost = format!("{} photons, k = {NEIGHBOURS}", power_of_ten(budget.photons));
+                let cost = format!("{} photons,\nk = {NEIGHBOURS}", power_of_ten(budget.photons));
                 let rendered = (render_with(&tracer, &settings, &|_| {}).map_err(render_error)?, cost);
                 if method == Measured::TwoPass {
                     two_pass = Some(rendered.clone());
@@ -159,32 +171,38 @@ fn power_of_ten(n: usize) -> String {
     format!("{}·10{exponent}", &digits[..1])
 }
 
-/// The label of one panel, four short lines that fit a [`PANEL_SIZE`] panel's width: the effect,
-/// the method, its cost, and the measured cell.
+/// The label of one panel, short lines that fit [`LABEL_WIDTH`]: the effect, the method, its cost,
+/// and the measured cell (the fraction captured and the table's verdict).
 fn label(row: &Row, method: Measured, cost: &str, cell: &MeasuredCell) -> String {
-    format!("{}\n{}\n{cost}\ncaptures {:.3}: {}", row.title, method_name(method), cell.fraction, cell.verdict.text())
+    format!(
+        "{}\n{}\n{cost}\ncaptures {:.3}\nverdict: {}",
+        row.title,
+        method_name(method),
+        cell.fraction,
+        cell.verdict.text()
+    )
 }
 
-/// The grid figure ([`GRID_PNG`]): for each effect of [`EXPERIMENTS`], one row of its four
-/// [`PANEL_SIZE`] panels (the [`COLUMNS`] methods of [`table_methods`]), labelled below with the
-/// cell of [`measured_table`] at the same `budget`, the same exposure across an effect's panels,
-/// each image rendered once (the bleeding and glow rows share theirs). [`Budget::PUBLISHED`] draws
-/// the committed figure (the renders at 232 × 174, which CI's release run compares with it).
+/// The grid figure ([`GRID_PNG`]): for each effect of [`EXPERIMENTS`], its four [`PANEL_SIZE`]
+/// panels (the methods of [`table_methods`]) on two rows of [`COLUMNS`], each labelled to its right
+/// with the cell of [`measured_table`] at the same `budget`, the same exposure across an effect's
+/// panels, each image rendered once (the bleeding and glow rows share theirs).
+/// [`Budget::PUBLISHED`] draws the committed figure (the renders at 320 × 240, which CI's release
+/// run compares with it).
 ///
 /// # Errors
 /// [`PlotError::Draw`] when a scene, a render or the measured table fails.
 ///
 /// # Examples
 /// ```
-/// use hw3::q5_effect_tables::{Budget, effect_grid::{COLUMNS, GRID_PNG, PANEL_SIZE, figure}};
+/// use hw3::q5_effect_tables::{Budget, effect_grid::{COLUMNS, GRID_PNG, LABEL_WIDTH, PANEL_SIZE, figure}};
 /// let grid = figure(&Budget::TINY).unwrap();
 /// assert_eq!(grid.file_name, GRID_PNG);
-/// // Four methods across, six effects down, every panel a fortieth of the published one with
-/// // its label on a strip below it.
+/// // Two methods across, two rows per effect, six effects down; every panel a fortieth of the
+/// // published one, its label in a column beside it.
 /// let (width, height) = Budget::TINY.image_size(PANEL_SIZE);
 /// let png = hw3::plot::decode_png(&grid.bytes).unwrap();
-/// assert_eq!(png.width(), COLUMNS as u32 * width);
-/// assert!(png.height() > 6 * height);
+/// assert_eq!(png.dimensions(), (COLUMNS as u32 * (width + LABEL_WIDTH), 12 * height));
 /// ```
 pub fn figure(budget: &Budget) -> Result<Figure, PlotError> {
     let draw_error = |e: &dyn std::fmt::Display| PlotError::Draw { figure: GRID_PNG.into(), message: e.to_string() };
@@ -208,9 +226,9 @@ pub fn figure(budget: &Budget) -> Result<Figure, PlotError> {
             panels.push(Panel { image: exposed.to_rgb8(), label: label(row, *method, cost, cell) });
         }
     }
-    // Below the panels: on them the labels covered the box's ceiling light and the mirrored
-    // panel's top edge.
-    plot::panel_grid_labels_below(GRID_PNG, &panels, COLUMNS)
+    // Beside the panels: on them the labels covered the box's ceiling light and the mirrored
+    // panel's top edge; below them, twelve strips made a tall figure taller.
+    plot::panel_grid_labels_beside(GRID_PNG, &panels, COLUMNS, LABEL_WIDTH)
 }
 
 #[cfg(test)]
@@ -250,8 +268,8 @@ mod tests {
             grammar: super::super::Verdict::Yes,
             student: super::super::StudentAnswer::NotAsked,
         };
-        let text = label(&ROWS[4], Measured::PhotonMapping, "2·10⁵ photons, k = 100", &cell);
-        assert_eq!(text, "(d) caustic\nphoton mapping\n2·10⁵ photons, k = 100\ncaptures 0.998: Yes");
+        let text = label(&ROWS[4], Measured::PhotonMapping, "2·10⁵ photons,\nk = 100", &cell);
+        assert_eq!(text, "(d) caustic\nphoton mapping\n2·10⁵ photons,\nk = 100\ncaptures 0.998\nverdict: Yes");
         for (row, (id, _)) in ROWS.iter().zip(EXPERIMENTS) {
             assert_eq!(row.effect, id, "one row per experiment, in table order");
         }

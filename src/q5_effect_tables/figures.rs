@@ -296,4 +296,45 @@ mod tests {
             }
         }
     }
+
+    /// The caption's claim about the committed figure: away from the edges radiosity and the
+    /// 256-sample panel agree, the mean of each face (over a rectangle well inside it, in the
+    /// figure's own display levels) within 1 level in every channel. Reads the committed PNG, which
+    /// CI's release run regenerates and compares byte for byte.
+    #[test]
+    fn published_figure_faces_agree_between_radiosity_and_256_spp() {
+        let bytes =
+            std::fs::read(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/figures/q5_cornell_published.png")).unwrap();
+        let figure = plot::decode_png(&bytes).unwrap();
+        assert_eq!(figure.width(), 3 * PUBLISHED_SIZE, "three panels side by side");
+        // (face, x, y, width, height) inside a panel: interiors of seven faces, clear of edges and
+        // of the blocks' shadows.
+        let faces = [
+            ("back wall", 175, 80, 60, 45),
+            ("left wall", 20, 100, 35, 100),
+            ("right wall", 265, 100, 35, 100),
+            ("ceiling", 100, 14, 110, 14),
+            ("floor", 20, 287, 60, 18),
+            ("tall block front", 110, 155, 40, 100),
+            ("short block front", 172, 228, 55, 60),
+        ];
+        let mean = |panel: u32, (x, y, w, h): (u32, u32, u32, u32)| {
+            let mut sum = [0.0f64; 3];
+            for j in y..y + h {
+                for i in x..x + w {
+                    let p = figure.get_pixel(panel * PUBLISHED_SIZE + i, j).0;
+                    (0..3).for_each(|c| sum[c] += f64::from(p[c]));
+                }
+            }
+            sum.map(|v| v / f64::from(w * h))
+        };
+        for (face, x, y, w, h) in faces {
+            let (radiosity, converged) = (mean(0, (x, y, w, h)), mean(2, (x, y, w, h)));
+            for c in 0..3 {
+                assert!(converged[c] > 5.0, "{face}: the rectangle lies on a lit face");
+                let gap = (radiosity[c] - converged[c]).abs();
+                assert!(gap < 1.0, "{face}, channel {c}: radiosity {} against {} levels", radiosity[c], converged[c]);
+            }
+        }
+    }
 }
