@@ -135,6 +135,79 @@ pub(super) struct Builder {
     pub max_depth: usize,
     /// Nodes of at most this many spheres try every box face ([`EXACT_MAX`] in the crate's trees).
     pub exact_max: usize,
+    /// The static spheres and the margin for split clipping ([`Clip`]); `None` (a moving tree,
+    /// whose boxes are swept) distributes by box alone.
+    pub clip: Option<Clip>,
+}
+
+/// Split clipping ("perfect splits", Wald & Havran 2006, §4.5, for spheres): a sphere whose box
+/// straddles a plane is listed in a child only if the sphere itself, grown by `margin`, meets
+/// the child's closed cell, and each child's copy of its box is clipped to the child's cell, so
+/// the split search below counts only the part inside.
+///
+/// Why dropping a sphere from a cell it does not meet keeps the answer: the walk tests every
+/// sphere of a leaf over the ray's whole `[t_min, t_max]`, not just the cell's piece, and exits
+/// early only when the next cell on its stack begins after the best hit. So a sphere is found as
+/// long as one leaf that lists it is visited before the walk passes its hit; the leaf whose
+/// piece of the ray holds the hit `t*` is always visited first, and its cell contains the point
+/// `e + d t*` up to rounding, a point on the sphere up to rounding. `margin` (a few `f32` units
+/// of the scene's largest coordinate, see [`Clip::new`]) covers those roundings many times over,
+/// for the `f64` walk and for the `f32` copy of the tree alike; the distance test itself is
+/// conservative (below).
+#[derive(Debug, Clone)]
+pub(super) struct Clip {
+    spheres: std::sync::Arc<[Sphere<f64>]>,
+    margin: f64,
+}
+
+impl Clip {
+    /// Clipping for `spheres` in the root cell `bounds`: the margin is `2⁻²⁰` of the largest
+    /// coordinate's magnitude (about 8 `f32` units in the last place there).
+    pub fn new(spheres: &[Sphere<f64>], bounds: &Aabb) -> Self {
+        let scale = bounds.min.abs().max(bounds.max.abs()).max_element();
+        Self { spheres: spheres.into(), margin: scale * f64::from(f32::EPSILON) * 8.0 }
+    }
+
+    /// Whether sphere `index`, grown by the margin, may meet the closed `cell`. The squared
+    /// distance from the centre to the cell is rounded a handful of times (relative error below
+    /// `5·2⁻⁵³`) and so is `(r + margin)²`; the factor `1 + 2⁻³⁰` swamps both, so rounding never
+    /// drops a sphere that meets the cell (an underflowing term only shrinks the distance).
+    fn meets(&self, index: u32, cell: &Aabb) -> bool {
+        let s = self.spheres[index as usize];
+        let below = (cell.min - s.center).max(glam::DVec3::ZERO);
+        let above = (s.center - cell.max).max(glam::DVec3::ZERO);
+        let gap = below + above;
+        let reach = s.radius + self.margin;
+        gap.length_squared() <= reach * reach * (1.0 + f64::from(f32::EPSILON).powi(2) * 16.0)
+    }
+}
+
+/// Which children of the split of `cell` on `axis` at `split` list `p` (lower, upper), and the
+/// copies of its box for them, clipped to each child's cell.
+#[inline]
+fn sides(clip: Option<&Clip>, p: &Prim, cell: &Aabb, axis: usize, split: f64) -> (Option<Prim>, Option<Prim>) {
+    let (mut lo, mut hi) = (p.bounds.min[axis] <= split, p.bounds.max[axis] >= split);
+    if lo && hi {
+        if let Some(clip) = clip {
+            let (lower_cell, upper_cell) = children(*cell, axis, split);
+            (lo, hi) = (clip.meets(p.index, &lower_cell), clip.meets(p.index, &upper_cell));
+        }
+    }
+    let lower = lo.then(|| {
+        let mut q = *p;
+        if clip.is_some() {
+            q.bounds.max[axis] = q.bounds.max[axis].min(split);
+        }
+        q
+    });
+    let upper = hi.then(|| {
+        let mut q = *p;
+        if clip.is_some() {
+            q.bounds.min[axis] = q.bounds.min[axis].max(split);
+        }
+        q
+    });
+    (lower, upper)
 }
 
 /// A sphere as the builder reads it: its index in the input slice and its bounding box, carried
@@ -246,12 +319,9 @@ impl Builder {
         // One pass, each box read once, in order, for both children.
         let (mut lower, mut upper) = (Vec::with_capacity(prims.len()), Vec::with_capacity(prims.len()));
         for p in &prims {
-            if p.bounds.min[axis] <= split {
-                lower.push(*p);
-            }
-            if p.bounds.max[axis] >= split {
-                upper.push(*p);
-            }
+            let (lo, hi) = sides(self.clip.as_ref(), p, &cell, axis, split);
+            lower.extend(lo);
+            upper.extend(hi);
         }
         drop(prims);
         let here = out.nodes.len();
@@ -293,11 +363,9 @@ impl Builder {
         // box not yet read.
         let mut kept = start;
         for i in start..end {
-            let p = scratch[i];
-            if p.bounds.max[axis] >= split {
-                scratch.push(p);
-            }
-            if p.bounds.min[axis] <= split {
+            let (lo, hi) = sides(self.clip.as_ref(), &scratch[i], &cell, axis, split);
+            scratch.extend(hi);
+            if let Some(p) = lo {
                 scratch[kept] = p;
                 kept += 1;
             }
