@@ -379,8 +379,10 @@ fn profile(what: &str) {
         }
         _ => Vec::new(),
     };
+    let (nodes_per_ray, tests_per_ray) = work_per_ray(&tree, &rays);
     eprintln!(
-        "{what} N = {n}: nodes {}, references {}, SAH cost {:?}, build {:.1} ms (wall), checksum {:?}",
+        "{what} N = {n}: nodes {}, references {}, SAH cost {:?}, build {:.1} ms (wall), \
+         per random ray {nodes_per_ray:.2} nodes and {tests_per_ray:.2} sphere tests, checksum {:?}",
         tree.node_count(),
         tree.reference_count(),
         tree.sah_cost(&SahCosts::default()),

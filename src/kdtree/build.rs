@@ -168,46 +168,51 @@ impl Clip {
         Self { spheres: spheres.into(), margin: scale * f64::from(f32::EPSILON) * 8.0 }
     }
 
-    /// Whether sphere `index`, grown by the margin, may meet the closed `cell`. The squared
-    /// distance from the centre to the cell is rounded a handful of times (relative error below
-    /// `5·2⁻⁵³`) and so is `(r + margin)²`; the factor `1 + 2⁻³⁰` swamps both, so rounding never
-    /// drops a sphere that meets the cell (an underflowing term only shrinks the distance).
-    fn meets(&self, index: u32, cell: &Aabb) -> bool {
+    /// A box holding the part of sphere `index` (grown by the margin) inside the closed `cell`,
+    /// or `None` when the sphere does not meet the cell. On each axis `b` the part lies within
+    /// `c_b ± √(r² − h_b²)`, where `h_b²` is the squared distance from the centre to the cell
+    /// along the other two axes (a point of the part is at least that far from the centre across
+    /// `b`), and within the cell. Rounding never shrinks it: the squared distances are rounded a
+    /// handful of times (relative error below `8·2⁻⁵³`), which the factor `PAD = 1 + 2⁻⁴⁰` on
+    /// `(r + margin)²` swamps, and the box's ends move out by the margin once more against the
+    /// rounding of `c_b ± …` (the margin is far above `2⁻⁵²` of any coordinate); an underflowing
+    /// term only shrinks a distance.
+    fn part_in(&self, index: u32, cell: &Aabb) -> Option<Aabb> {
+        const PAD: f64 = 1.0 + 1.0 / (1u64 << 40) as f64;
         let s = self.spheres[index as usize];
-        let below = (cell.min - s.center).max(glam::DVec3::ZERO);
-        let above = (s.center - cell.max).max(glam::DVec3::ZERO);
-        let gap = below + above;
+        let gap = (cell.min - s.center).max(glam::DVec3::ZERO) + (s.center - cell.max).max(glam::DVec3::ZERO);
+        let gap2 = gap * gap;
+        let all = gap2.x + gap2.y + gap2.z;
         let reach = s.radius + self.margin;
-        gap.length_squared() <= reach * reach * (1.0 + f64::from(f32::EPSILON).powi(2) * 16.0)
+        let rr = reach * reach * PAD;
+        if !(all <= rr) {
+            return None;
+        }
+        let others = glam::DVec3::splat(all) - gap2;
+        let half = (glam::DVec3::splat(rr) - others / PAD).max(glam::DVec3::ZERO).powf(0.5) * PAD + self.margin;
+        let part = Aabb { min: (s.center - half).max(cell.min), max: (s.center + half).min(cell.max) };
+        Some(part)
     }
 }
 
-/// Which children of the split of `cell` on `axis` at `split` list `p` (lower, upper), and the
-/// copies of its box for them, clipped to each child's cell.
+/// Which children of the split of `cell` on `axis` at `split` list `p` (lower, upper), each with
+/// its box for that child (with clipping, tightened to the sphere's part in the child's cell).
 #[inline]
 fn sides(clip: Option<&Clip>, p: &Prim, cell: &Aabb, axis: usize, split: f64) -> (Option<Prim>, Option<Prim>) {
-    let (mut lo, mut hi) = (p.bounds.min[axis] <= split, p.bounds.max[axis] >= split);
-    if lo && hi {
-        if let Some(clip) = clip {
+    let (lo, hi) = (p.bounds.min[axis] <= split, p.bounds.max[axis] >= split);
+    match clip {
+        Some(clip) if lo && hi => {
             let (lower_cell, upper_cell) = children(*cell, axis, split);
-            (lo, hi) = (clip.meets(p.index, &lower_cell), clip.meets(p.index, &upper_cell));
+            let part = |child: &Aabb| {
+                clip.part_in(p.index, child).map(|b| Prim {
+                    index: p.index,
+                    bounds: Aabb { min: b.min.max(p.bounds.min), max: b.max.min(p.bounds.max) },
+                })
+            };
+            (part(&lower_cell), part(&upper_cell))
         }
+        _ => (lo.then_some(*p), hi.then_some(*p)),
     }
-    let lower = lo.then(|| {
-        let mut q = *p;
-        if clip.is_some() {
-            q.bounds.max[axis] = q.bounds.max[axis].min(split);
-        }
-        q
-    });
-    let upper = hi.then(|| {
-        let mut q = *p;
-        if clip.is_some() {
-            q.bounds.min[axis] = q.bounds.min[axis].max(split);
-        }
-        q
-    });
-    (lower, upper)
 }
 
 /// A sphere as the builder reads it: its index in the input slice and its bounding box, carried
