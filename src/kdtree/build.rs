@@ -135,84 +135,6 @@ pub(super) struct Builder {
     pub max_depth: usize,
     /// Nodes of at most this many spheres try every box face ([`EXACT_MAX`] in the crate's trees).
     pub exact_max: usize,
-    /// The static spheres and the margin for split clipping ([`Clip`]); `None` (a moving tree,
-    /// whose boxes are swept) distributes by box alone.
-    pub clip: Option<Clip>,
-}
-
-/// Split clipping ("perfect splits", Wald & Havran 2006, §4.5, for spheres): a sphere whose box
-/// straddles a plane is listed in a child only if the sphere itself, grown by `margin`, meets
-/// the child's closed cell, and each child's copy of its box is clipped to the child's cell, so
-/// the split search below counts only the part inside.
-///
-/// Why dropping a sphere from a cell it does not meet keeps the answer: the walk tests every
-/// sphere of a leaf over the ray's whole `[t_min, t_max]`, not just the cell's piece, and exits
-/// early only when the next cell on its stack begins after the best hit. So a sphere is found as
-/// long as one leaf that lists it is visited before the walk passes its hit; the leaf whose
-/// piece of the ray holds the hit `t*` is always visited first, and its cell contains the point
-/// `e + d t*` up to rounding, a point on the sphere up to rounding. `margin` (a few `f32` units
-/// of the scene's largest coordinate, see [`Clip::new`]) covers those roundings many times over,
-/// for the `f64` walk and for the `f32` copy of the tree alike; the distance test itself is
-/// conservative (below).
-#[derive(Debug, Clone)]
-pub(super) struct Clip {
-    spheres: std::sync::Arc<[Sphere<f64>]>,
-    margin: f64,
-}
-
-impl Clip {
-    /// Clipping for `spheres` in the root cell `bounds`: the margin is `2⁻²⁰` of the largest
-    /// coordinate's magnitude (about 8 `f32` units in the last place there).
-    pub fn new(spheres: &[Sphere<f64>], bounds: &Aabb) -> Self {
-        let scale = bounds.min.abs().max(bounds.max.abs()).max_element();
-        Self { spheres: spheres.into(), margin: scale * f64::from(f32::EPSILON) * 8.0 }
-    }
-
-    /// A box holding the part of sphere `index` (grown by the margin) inside the closed `cell`,
-    /// or `None` when the sphere does not meet the cell. On each axis `b` the part lies within
-    /// `c_b ± √(r² − h_b²)`, where `h_b²` is the squared distance from the centre to the cell
-    /// along the other two axes (a point of the part is at least that far from the centre across
-    /// `b`), and within the cell. Rounding never shrinks it: the squared distances are rounded a
-    /// handful of times (relative error below `8·2⁻⁵³`), which the factor `PAD = 1 + 2⁻⁴⁰` on
-    /// `(r + margin)²` swamps, and the box's ends move out by the margin once more against the
-    /// rounding of `c_b ± …` (the margin is far above `2⁻⁵²` of any coordinate); an underflowing
-    /// term only shrinks a distance.
-    fn part_in(&self, index: u32, cell: &Aabb) -> Option<Aabb> {
-        const PAD: f64 = 1.0 + 1.0 / (1u64 << 40) as f64;
-        let s = self.spheres[index as usize];
-        let gap = (cell.min - s.center).max(glam::DVec3::ZERO) + (s.center - cell.max).max(glam::DVec3::ZERO);
-        let gap2 = gap * gap;
-        let all = gap2.x + gap2.y + gap2.z;
-        let reach = s.radius + self.margin;
-        let rr = reach * reach * PAD;
-        if !(all <= rr) {
-            return None;
-        }
-        let others = glam::DVec3::splat(all) - gap2;
-        let half = (glam::DVec3::splat(rr) - others / PAD).max(glam::DVec3::ZERO).powf(0.5) * PAD + self.margin;
-        let part = Aabb { min: (s.center - half).max(cell.min), max: (s.center + half).min(cell.max) };
-        Some(part)
-    }
-}
-
-/// Which children of the split of `cell` on `axis` at `split` list `p` (lower, upper), each with
-/// its box for that child (with clipping, tightened to the sphere's part in the child's cell).
-#[inline]
-fn sides(clip: Option<&Clip>, p: &Prim, cell: &Aabb, axis: usize, split: f64) -> (Option<Prim>, Option<Prim>) {
-    let (lo, hi) = (p.bounds.min[axis] <= split, p.bounds.max[axis] >= split);
-    match clip {
-        Some(clip) if lo && hi => {
-            let (lower_cell, upper_cell) = children(*cell, axis, split);
-            let part = |child: &Aabb| {
-                clip.part_in(p.index, child).map(|b| Prim {
-                    index: p.index,
-                    bounds: Aabb { min: b.min.max(p.bounds.min), max: b.max.min(p.bounds.max) },
-                })
-            };
-            (part(&lower_cell), part(&upper_cell))
-        }
-        _ => (lo.then_some(*p), hi.then_some(*p)),
-    }
 }
 
 /// A sphere as the builder reads it: its index in the input slice and its bounding box, carried
@@ -324,9 +246,12 @@ impl Builder {
         // One pass, each box read once, in order, for both children.
         let (mut lower, mut upper) = (Vec::with_capacity(prims.len()), Vec::with_capacity(prims.len()));
         for p in &prims {
-            let (lo, hi) = sides(self.clip.as_ref(), p, &cell, axis, split);
-            lower.extend(lo);
-            upper.extend(hi);
+            if p.bounds.min[axis] <= split {
+                lower.push(*p);
+            }
+            if p.bounds.max[axis] >= split {
+                upper.push(*p);
+            }
         }
         drop(prims);
         let here = out.nodes.len();
@@ -368,9 +293,11 @@ impl Builder {
         // box not yet read.
         let mut kept = start;
         for i in start..end {
-            let (lo, hi) = sides(self.clip.as_ref(), &scratch[i], &cell, axis, split);
-            scratch.extend(hi);
-            if let Some(p) = lo {
+            let p = scratch[i];
+            if p.bounds.max[axis] >= split {
+                scratch.push(p);
+            }
+            if p.bounds.min[axis] <= split {
                 scratch[kept] = p;
                 kept += 1;
             }

@@ -1,6 +1,6 @@
 //! The 3-D kd-tree over spheres: flat node array, closest-hit traversal with early exit.
 
-use super::build::{Builder, Clip, EXACT_MAX, Prim, SahCosts, Subtree, check_costs, max_depth, sphere_boxes};
+use super::build::{Builder, EXACT_MAX, Prim, SahCosts, Subtree, check_costs, max_depth, sphere_boxes};
 use super::coarse::{CoarseRay, CoarseSphere, Grid};
 use super::node::{Aabb, Node, NodeKind};
 use super::{BuildError, ReciprocalAxis, Side, split_pieces};
@@ -121,7 +121,7 @@ impl KdTree {
     pub fn build_with(spheres: &[Sphere<f64>], costs: SahCosts) -> Result<Self, BuildError> {
         check_costs(&costs)?;
         let boxes = sphere_boxes(spheres)?;
-        Ok(Self::from_boxes(spheres, &boxes, costs, true))
+        Ok(Self::from_boxes(spheres, &boxes, costs))
     }
 
     /// Builds the tree over spheres moving with constant `velocities` (one per sphere; a zero
@@ -160,23 +160,21 @@ impl KdTree {
         };
         let (open, close) = (sphere_boxes(&at(interval.0))?, sphere_boxes(&at(interval.1))?);
         let boxes: Vec<Aabb> = open.into_iter().zip(close).map(|(a, b)| a.union(b)).collect();
-        let mut tree = Self::from_boxes(spheres, &boxes, SahCosts::default(), false);
+        let mut tree = Self::from_boxes(spheres, &boxes, SahCosts::default());
         tree.motion = Some(Motion { spheres: spheres.to_vec(), velocities: velocities.to_vec(), interval });
         Ok(tree)
     }
 
-    /// The tree over `spheres` bounded by `boxes` (validated, one per sphere); `clip` lists a
-    /// straddling sphere only in the cells the sphere meets (static spheres only: [`Clip`]).
-    fn from_boxes(spheres: &[Sphere<f64>], boxes: &[Aabb], costs: SahCosts, clip: bool) -> Self {
-        Self::from_boxes_with(spheres, boxes, costs, EXACT_MAX, clip)
+    /// The tree over `spheres` bounded by `boxes` (validated, one per sphere).
+    fn from_boxes(spheres: &[Sphere<f64>], boxes: &[Aabb], costs: SahCosts) -> Self {
+        Self::from_boxes_with(spheres, boxes, costs, EXACT_MAX)
     }
 
     /// [`KdTree::from_boxes`] with nodes of at most `exact_max` spheres trying every box face.
-    fn from_boxes_with(spheres: &[Sphere<f64>], boxes: &[Aabb], costs: SahCosts, exact_max: usize, clip: bool) -> Self {
+    fn from_boxes_with(spheres: &[Sphere<f64>], boxes: &[Aabb], costs: SahCosts, exact_max: usize) -> Self {
         let empty = Aabb { min: DVec3::INFINITY, max: DVec3::NEG_INFINITY };
         let bounds = boxes.iter().copied().fold(empty, Aabb::union);
-        let clip = clip.then(|| Clip::new(spheres, &bounds));
-        let builder = Builder { costs, max_depth: max_depth(spheres.len()), exact_max, clip };
+        let builder = Builder { costs, max_depth: max_depth(spheres.len()), exact_max };
         let all: Vec<Prim> = (0u32..).zip(boxes).map(|(index, &bounds)| Prim { index, bounds }).collect();
         let mut built = Subtree::default();
         if spheres.is_empty() {
@@ -566,8 +564,8 @@ mod tests {
                 .collect();
             let boxes = sphere_boxes(&spheres).unwrap();
             let costs = SahCosts::default();
-            let binned = KdTree::from_boxes_with(&spheres, &boxes, costs, 0, true).sah_cost(&costs);
-            let exact = KdTree::from_boxes_with(&spheres, &boxes, costs, EXACT_MAX, true).sah_cost(&costs);
+            let binned = KdTree::from_boxes_with(&spheres, &boxes, costs, 0).sah_cost(&costs);
+            let exact = KdTree::from_boxes_with(&spheres, &boxes, costs, EXACT_MAX).sah_cost(&costs);
             assert!(exact < binned, "N = {n}: SAH cost {exact} with exact small nodes, {binned} binned");
         }
     }
