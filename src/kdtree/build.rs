@@ -43,8 +43,8 @@ impl Default for SahCosts {
     /// spheres), so a ray should rather test a few more spheres than walk many small cells. A first
     /// sweep of `K_I` over 0.2, 0.3, 0.5 and 1.5 found 0.2–0.5 alike and all far ahead of 1.5;
     /// once the leaves' quantised copies and the prefetches had made tests and waits cheaper, a
-    /// second (the Q3 engineering notes, What made it fast) found 0.3 faster than 0.5 by about
-    /// 10 % on random and camera rays at N = 10⁵ and 16 % on random rays at 10⁶ in CPU time (at
+    /// second (the Q3 engineering notes, What made it fast) found 0.3 faster than 0.5 in CPU time by about
+    /// 12 % on random rays and 9 % on fixed-k camera rays at N = 10⁵, 16 % on random rays at 10⁶ (at
     /// 10⁵, fixed k, a tree of 44 k nodes instead of 84 k). Textbook defaults for comparison: pbrt
     /// `(1, 80)` for expensive shapes, Mitsuba `(15, 20)`.
     fn default() -> Self {
