@@ -352,19 +352,27 @@ fn env_override<T: std::str::FromStr>(name: &str) -> Option<T> {
 
 /// `HW3_Q3_PROFILE=kd|kd32|build` (with `HW3_Q3_PROFILE_N`, default 10⁵, fixed k unless
 /// `HW3_Q3_PROFILE_DENSITY=volume`, and
-/// `HW3_Q3_PROFILE_RAYS`, default 10⁵ random rays): one contender alone, for a profiler
+/// `HW3_Q3_PROFILE_RAYS`, default 10⁵ random rays, and `HW3_Q3_KI` for the tree's `K_I`): one contender alone, for a profiler
 /// (`valgrind --tool=callgrind`, whose counts do not depend on the machine's load). Prints the
 /// checksum so the work cannot be optimised away, with the tree's size, SAH cost and build time.
 fn profile(what: &str) {
     let n = env_override("HW3_Q3_PROFILE_N").unwrap_or(100_000);
-    let rays = random_rays(env_override("HW3_Q3_PROFILE_RAYS").unwrap_or(100_000), 0xBEEF);
+    let count = env_override("HW3_Q3_PROFILE_RAYS").unwrap_or(100_000);
+    // `HW3_Q3_PROFILE_CAMERA=1`: the benchmark's 512 × 512 camera rays, repeated up to `count`.
+    let rays: Vec<Ray<f64>> = if std::env::var("HW3_Q3_PROFILE_CAMERA").is_ok() {
+        camera_rays(512, 512).into_iter().cycle().take(count).collect()
+    } else {
+        random_rays(count, 0xBEEF)
+    };
     let density = match std::env::var("HW3_Q3_PROFILE_DENSITY").as_deref() {
         Ok("volume") => Density::FixedVolumeFraction,
         _ => Density::FixedMeanFreePath,
     };
     let spheres = scene(n, density);
+    let defaults = SahCosts::default();
+    let costs = SahCosts { intersection: env_override("HW3_Q3_KI").unwrap_or(defaults.intersection), ..defaults };
     let start = Instant::now();
-    let tree = KdTree::build(&spheres).unwrap();
+    let tree = KdTree::build_with(&spheres, costs).unwrap();
     let build_secs = start.elapsed().as_secs_f64();
     let answers: Vec<Hit> = match what {
         "kd" => trace_all(&tree, &rays),
@@ -379,8 +387,10 @@ fn profile(what: &str) {
         }
         _ => Vec::new(),
     };
+    let (nodes_per_ray, tests_per_ray) = work_per_ray(&tree, &rays);
     eprintln!(
-        "{what} N = {n}: nodes {}, references {}, SAH cost {:?}, build {:.1} ms (wall), checksum {:?}",
+        "{what} N = {n}: nodes {}, references {}, SAH cost {:?}, build {:.1} ms (wall), \
+         per ray {nodes_per_ray:.2} nodes and {tests_per_ray:.2} sphere tests, checksum {:?}",
         tree.node_count(),
         tree.reference_count(),
         tree.sah_cost(&SahCosts::default()),

@@ -36,19 +36,19 @@ pub struct SahCosts {
 }
 
 impl Default for SahCosts {
-    /// `K_T = 1`, `K_I = 0.5`, `b = 0.2`, 32 bins. The constants are *measured* costs, not
+    /// `K_T = 1`, `K_I = 0.3`, `b = 0.2`, 32 bins. The constants are *measured* costs, not
     /// textbook ones: on the Q3 benchmark workload a node step costs several times a
     /// ray/sphere test (a node step is a dependent load from a tree that outgrows the cache, a
-    /// sphere test a dozen flops on data that sits next to its leaf's other spheres), so a ray
-    /// should rather test a few more spheres than walk many small cells. A sweep of `K_I` over
-    /// 0.2, 0.3, 0.5 and 1.5 (`HW3_Q3_KI=… cargo bench -p hw3-benches --bench q3_kdtree`, interleaved with the
-    /// peers) found 0.2–0.5 alike within the shared machine's noise and all far ahead of 1.5 (at
-    /// N = 10⁵, fixed k: 47 nodes and 27 tests per camera ray instead of 72 and 7, a tree of 83 k
-    /// nodes instead of 413 k, and about 1.6× the rays per second); 0.5 keeps the most sphere tests
-    /// out of the leaves among them. Textbook defaults for comparison: pbrt `(1, 80)` for expensive
-    /// shapes, Mitsuba `(15, 20)`.
+    /// sphere test mostly an 8-byte conservative reject on data that sits next to its leaf's other
+    /// spheres), so a ray should rather test a few more spheres than walk many small cells. A first
+    /// sweep of `K_I` over 0.2, 0.3, 0.5 and 1.5 found 0.2–0.5 alike and all far ahead of 1.5;
+    /// once the leaves' quantised copies and the prefetches had made tests and waits cheaper, a
+    /// second (the Q3 engineering notes, What made it fast) found 0.3 faster than 0.5 in CPU time by about
+    /// 12 % on random rays and 9 % on fixed-k camera rays at N = 10⁵, 16 % on random rays at 10⁶ (at
+    /// 10⁵, fixed k, a tree of 44 k nodes instead of 84 k). Textbook defaults for comparison: pbrt
+    /// `(1, 80)` for expensive shapes, Mitsuba `(15, 20)`.
     fn default() -> Self {
-        Self { traversal: 1.0, intersection: 0.5, empty_bonus: 0.2, bins: 32 }
+        Self { traversal: 1.0, intersection: 0.3, empty_bonus: 0.2, bins: 32 }
     }
 }
 
