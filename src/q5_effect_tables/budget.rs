@@ -84,8 +84,8 @@ impl Budget {
     /// # Examples
     /// ```
     /// use hw3::q5_effect_tables::{Budget, effect_grid::PANEL_SIZE};
-    /// // Grid panels of 5 × 4 pixels: still whole pixels.
-    /// assert_eq!((PANEL_SIZE.0 / Budget::TINY.image_divisor, PANEL_SIZE.1 / Budget::TINY.image_divisor), (5, 4));
+    /// // Grid panels of 8 × 6 pixels: still whole pixels.
+    /// assert_eq!((PANEL_SIZE.0 / Budget::TINY.image_divisor, PANEL_SIZE.1 / Budget::TINY.image_divisor), (8, 6));
     /// ```
     pub const TINY: Budget = Budget {
         reference_spp: 2,
