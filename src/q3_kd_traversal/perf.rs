@@ -5,6 +5,7 @@
 use crate::data;
 use crate::plot::{Axis, Chart, Dots, Figure, LegendMark, PALETTE, PlotError, Series, Stroke, legend_grid, svg_figure};
 use plotters::prelude::*;
+use std::collections::BTreeMap;
 
 /// The committed measurements.
 const CSV: &str = data::Q3_KDTREE_PERF;
@@ -16,47 +17,83 @@ enum Rays {
     Random,
 }
 
-/// One measured row: density label, N, and the CSV's Mrays/s fields per method.
+/// One measured row: density label, N, and every field of the row by its CSV column name.
 #[derive(Debug, Clone, PartialEq)]
 struct Row {
     density: String,
     n: f64,
-    fields: Vec<String>,
+    fields: BTreeMap<String, String>,
 }
 
-/// A plotted method: legend label, the CSV columns of its camera and random Mrays/s, and its colour
-/// index in [`PALETTE`].
+/// A plotted method: legend label, the CSV column names of its camera and random Mrays/s, and its
+/// colour in [`PALETTE`].
 struct Structure {
     label: &'static str,
-    camera_column: usize,
-    random_column: usize,
+    camera_column: &'static str,
+    random_column: &'static str,
     colour: usize,
 }
 
 /// The methods of the plot. The peers (`bvh` crate with the bench's own front-to-back loop,
-/// `obvhs` BVH2 and CWBVH) are measured in the same run as the kd-tree, on an `f32` scene.
-const STRUCTURES: [Structure; 5] = [
-    Structure { label: "kd-tree (this crate, f64)", camera_column: 5, random_column: 10, colour: 0 },
-    Structure { label: "brute force", camera_column: 15, random_column: 16, colour: 3 },
-    Structure { label: "bvh 0.13 + own loop", camera_column: 20, random_column: 21, colour: 4 },
-    Structure { label: "obvhs BVH2", camera_column: 24, random_column: 25, colour: 2 },
-    Structure { label: "obvhs CWBVH", camera_column: 28, random_column: 29, colour: 1 },
+/// `obvhs` BVH2 and CWBVH, Embree 3) are measured in the same run as the kd-tree, on an `f32`
+/// scene. Columns are found by name, so that the benchmark may add columns anywhere.
+const STRUCTURES: [Structure; 6] = [
+    Structure {
+        label: "kd-tree (this crate, f64)",
+        camera_column: "camera_mrays",
+        random_column: "random_mrays",
+        colour: 0,
+    },
+    Structure {
+        label: "brute force",
+        camera_column: "brute_camera_mrays",
+        random_column: "brute_random_mrays",
+        colour: 3,
+    },
+    Structure {
+        label: "bvh 0.13 + own loop",
+        camera_column: "bvh_camera_mrays",
+        random_column: "bvh_random_mrays",
+        colour: 4,
+    },
+    Structure {
+        label: "obvhs BVH2",
+        camera_column: "obvhs_bvh2_camera_mrays",
+        random_column: "obvhs_bvh2_random_mrays",
+        colour: 2,
+    },
+    Structure {
+        label: "obvhs CWBVH",
+        camera_column: "obvhs_cwbvh_camera_mrays",
+        random_column: "obvhs_cwbvh_random_mrays",
+        colour: 1,
+    },
+    Structure {
+        label: "Embree 3.13",
+        camera_column: "embree3_camera_mrays",
+        random_column: "embree3_random_mrays",
+        colour: 7,
+    },
 ];
 
 impl Row {
     /// Microseconds per ray from a Mrays/s field (`-`, absent or zero: not measured).
-    fn us_per_ray(&self, column: usize) -> Option<f64> {
+    fn us_per_ray(&self, column: &str) -> Option<f64> {
         self.fields.get(column)?.parse::<f64>().ok().filter(|m| *m > 0.0).map(|m| 1.0 / m)
     }
 }
 
 fn rows(text: &str) -> Vec<Row> {
-    data::csv(text)
+    let table = data::csv(text);
+    table
         .records
         .into_iter()
         .filter_map(|fields| {
-            let fields: Vec<String> = fields.into_iter().map(str::to_string).collect();
-            Some(Row { density: fields.first()?.clone(), n: fields.get(1)?.parse().ok()?, fields })
+            let density = (*fields.first()?).to_string();
+            let n = fields.get(1)?.parse().ok()?;
+            let fields =
+                table.header.iter().zip(fields).map(|(&name, field)| (name.to_string(), field.to_string())).collect();
+            Some(Row { density, n, fields })
         })
         .collect()
 }
@@ -66,7 +103,7 @@ fn rows(text: &str) -> Vec<Row> {
 const WIDTH: u32 = 936;
 /// Height of each panel, and of the legend strip below both.
 const PANEL_HEIGHT: u32 = 430;
-const LEGEND_HEIGHT: u32 = 64;
+const LEGEND_HEIGHT: u32 = 88;
 
 pub(super) fn figure() -> Result<Figure, PlotError> {
     let rows = rows(CSV);
@@ -152,7 +189,9 @@ mod tests {
     }
 
     /// Every peer's camera and random rates are present for every committed row (they are measured
-    /// in the same run as the kd-tree), so the plot shows no silently missing series.
+    /// in the same run as the kd-tree), so the plot shows no silently missing series. Embree's
+    /// columns need the benchmark's `embree` feature: the committed data come from
+    /// `HW3_Q3_MAX_N=1000000 cargo bench -p hw3-benches --bench q3_kdtree --features embree`.
     #[test]
     fn committed_csv_has_every_peer_for_every_row() {
         for row in rows(CSV) {
