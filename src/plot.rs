@@ -213,7 +213,9 @@ pub fn panel_grid_labels_below(file_name: &str, panels: &[Panel], columns: usize
 
 /// [`panel_grid`] with each label drawn in a black column of `label_width` pixels to the *right*
 /// of its panel: for panels that are compared side by side at full size, where a strip below each
-/// would make a tall figure taller and text on the panel would cover what it shows.
+/// would make a tall figure taller and text on the panel would cover what it shows. Every
+/// `rows_per_group` rows are followed by a white gap of [`GROUP_GAP`] pixels, so that a group (one
+/// effect's panels, say) reads as one block; 0 or at least the row count means no gap.
 ///
 /// # Errors
 /// As [`panel_grid`], and [`PlotError::Draw`] when a label line is wider than `label_width`
@@ -221,22 +223,32 @@ pub fn panel_grid_labels_below(file_name: &str, panels: &[Panel], columns: usize
 ///
 /// # Examples
 /// ```
-/// use hw3::plot::{Panel, Rgb, RgbImage, panel_grid_labels_beside};
+/// use hw3::plot::{GROUP_GAP, Panel, Rgb, RgbImage, panel_grid_labels_beside};
 /// let grey = |v| Panel { image: RgbImage::from_pixel(40, 30, Rgb([v; 3])), label: format!("v = {v}") };
-/// let figure = panel_grid_labels_beside("grid.png", &[grey(20), grey(200)], 2, 60).unwrap();
+/// let figure = panel_grid_labels_beside("grid.png", &[grey(20), grey(200)], 2, 60, 0).unwrap();
 /// let grid = hw3::plot::decode_png(&figure.bytes).unwrap();
 /// assert_eq!(grid.dimensions(), (2 * (40 + 60), 30));
 /// assert_eq!(grid.get_pixel(20, 15).0, [20; 3], "the panel itself is untouched");
-/// assert!(panel_grid_labels_beside("grid.png", &[grey(20)], 1, 20).is_err(), "too narrow for its label");
+/// assert!(panel_grid_labels_beside("grid.png", &[grey(20)], 1, 20, 0).is_err(), "too narrow for its label");
+/// // Four rows in groups of two: one gap, white, between the second and the third row.
+/// let rows = [grey(20), grey(20), grey(90), grey(90)];
+/// let grouped = hw3::plot::decode_png(&panel_grid_labels_beside("g.png", &rows, 1, 60, 2).unwrap().bytes).unwrap();
+/// assert_eq!(grouped.dimensions(), (100, 4 * 30 + GROUP_GAP));
+/// assert_eq!(grouped.get_pixel(20, 60).0, [255; 3]);
+/// assert_eq!(grouped.get_pixel(20, 60 + GROUP_GAP).0, [90; 3]);
 /// ```
 pub fn panel_grid_labels_beside(
     file_name: &str,
     panels: &[Panel],
     columns: usize,
     label_width: u32,
+    rows_per_group: usize,
 ) -> Result<Figure, PlotError> {
-    grid_of_panels(file_name, panels, columns, LabelPlace::Beside(label_width))
+    grid_of_panels(file_name, panels, columns, LabelPlace::Beside { label_width, rows_per_group })
 }
+
+/// Height in pixels of the white gap [`panel_grid_labels_beside`] leaves between groups of rows.
+pub const GROUP_GAP: u32 = 12;
 
 /// Where [`grid_of_panels`] draws a panel's label.
 #[derive(Clone, Copy, PartialEq)]
@@ -245,8 +257,9 @@ enum LabelPlace {
     On,
     /// On a strip below the panel, as tall as the longest label.
     Below,
-    /// In a column of this many pixels to the panel's right.
-    Beside(u32),
+    /// In a column of `label_width` pixels to the panel's right, with a gap after every
+    /// `rows_per_group` rows (0: none).
+    Beside { label_width: u32, rows_per_group: usize },
 }
 
 /// The grid of [`panel_grid`], labels on the panels, below or beside them.
@@ -266,13 +279,27 @@ fn grid_of_panels(file_name: &str, panels: &[Panel], columns: usize, place: Labe
             let lines = panels.iter().map(|p| p.label.lines().count()).max().unwrap_or(0) as u32;
             (lines * (LABEL_PX + 3) + 8, 0)
         }
-        LabelPlace::Beside(label_width) => (0, label_width),
+        LabelPlace::Beside { label_width, .. } => (0, label_width),
     };
     let (cell_width, cell_height) = (width + side, height + strip);
-    let rows = panels.len().div_ceil(columns) as u32;
-    let (grid_width, grid_height) = (cell_width * columns.min(panels.len()) as u32, cell_height * rows);
+    let rows = panels.len().div_ceil(columns);
+    let group = match place {
+        LabelPlace::Beside { rows_per_group, .. } if rows_per_group > 0 => rows_per_group,
+        _ => rows,
+    };
+    // Gaps before rows `group`, `2 group`, …: the grid's rows plus one gap per group boundary.
+    let gaps_before = |row: usize| (row / group) as u32 * GROUP_GAP;
+    let grid_width = cell_width * columns.min(panels.len()) as u32;
+    let grid_height = cell_height * rows as u32 + gaps_before(rows - 1);
     let mut grid = RgbImage::new(grid_width, grid_height);
-    let corner = |k: usize| ((k % columns) as u32 * cell_width, (k / columns) as u32 * cell_height);
+    let corner = |k: usize| {
+        let row = k / columns;
+        ((k % columns) as u32 * cell_width, row as u32 * cell_height + gaps_before(row))
+    };
+    for row in (group..rows).step_by(group) {
+        let y = row as u32 * cell_height + gaps_before(row) - GROUP_GAP;
+        grid.paste(&RgbImage::from_pixel(grid_width, GROUP_GAP, Rgb([255; 3])), 0, y);
+    }
     for (k, panel) in panels.iter().enumerate() {
         let (x, y) = corner(k);
         grid.paste(&panel.image, x, y);
@@ -285,7 +312,7 @@ fn grid_of_panels(file_name: &str, panels: &[Panel], columns: usize, place: Labe
             let at = match place {
                 LabelPlace::On => (x + 4, y + 4),
                 LabelPlace::Below => (x + 4, y + height + 2),
-                LabelPlace::Beside(label_width) => {
+                LabelPlace::Beside { label_width, .. } => {
                     let font = ("sans-serif", LABEL_PX).into_font().color(&WHITE);
                     for line in panel.label.lines() {
                         let (text_width, _) =

@@ -61,6 +61,16 @@ pub const LABEL_WIDTH: u32 = 148;
 /// ```
 pub const COLUMNS: usize = 2;
 
+/// Rows of the grid per effect: its four methods on two rows of [`COLUMNS`]; the grid leaves a
+/// white gap of [`plot::GROUP_GAP`] pixels after each effect's rows.
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::{effect_grid::{COLUMNS, ROWS_PER_EFFECT}, experiments::TABLE_METHODS};
+/// assert_eq!(ROWS_PER_EFFECT * COLUMNS, TABLE_METHODS.len());
+/// ```
+pub const ROWS_PER_EFFECT: usize = 2;
+
 /// A row of the grid: the effect's id (a row of [`EXPERIMENTS`]), its title, and the exposure its
 /// panels share (radiance is multiplied by it before the sRGB curve clips at 1).
 struct Row {
@@ -202,7 +212,8 @@ fn label(row: &Row, method: Measured, cost: &str, cell: &MeasuredCell) -> String
 /// // published one, its label in a column beside it.
 /// let (width, height) = Budget::TINY.image_size(PANEL_SIZE);
 /// let png = hw3::plot::decode_png(&grid.bytes).unwrap();
-/// assert_eq!(png.dimensions(), (COLUMNS as u32 * (width + LABEL_WIDTH), 12 * height));
+/// // Five white gaps of GROUP_GAP pixels between the six effects.
+/// assert_eq!(png.dimensions(), (COLUMNS as u32 * (width + LABEL_WIDTH), 12 * height + 5 * hw3::plot::GROUP_GAP));
 /// ```
 pub fn figure(budget: &Budget) -> Result<Figure, PlotError> {
     let draw_error = |e: &dyn std::fmt::Display| PlotError::Draw { figure: GRID_PNG.into(), message: e.to_string() };
@@ -227,8 +238,9 @@ pub fn figure(budget: &Budget) -> Result<Figure, PlotError> {
         }
     }
     // Beside the panels: on them the labels covered the box's ceiling light and the mirrored
-    // panel's top edge; below them, twelve strips made a tall figure taller.
-    plot::panel_grid_labels_beside(GRID_PNG, &panels, COLUMNS, LABEL_WIDTH)
+    // panel's top edge; below them, twelve strips made a tall figure taller. A gap after each
+    // effect's two rows: without it one effect's panels ran into the next's.
+    plot::panel_grid_labels_beside(GRID_PNG, &panels, COLUMNS, LABEL_WIDTH, ROWS_PER_EFFECT)
 }
 
 #[cfg(test)]
