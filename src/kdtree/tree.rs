@@ -370,26 +370,20 @@ impl KdTree {
                         prefetch(&self.coarse, first);
                     }
                     let pieces = split_pieces(axes[a], split, cell_min, cell_max);
-                    // No branch on the rule's outcome (random directions make it a coin toss):
-                    // every choice below is a select. The far entry is stored every step and kept
-                    // only when both pieces are live; an entry not kept is overwritten by the next
-                    // store. The store stays in bounds: at an interior node of tree depth d the
-                    // stack holds at most d entries (each the far child of a distinct ancestor),
-                    // and interior nodes lie above the build's depth bound (at most 60), so
-                    // `depth` ≤ 59 < STACK here.
-                    let lower = node + 1;
-                    let swap = u32::from(pieces.near == Side::Upper).wrapping_neg();
-                    let near = lower ^ ((lower ^ upper) & swap);
-                    let far = lower ^ upper ^ near;
-                    let both = pieces.near_live & pieces.far_live;
-                    stack[depth] = (far, pieces.t_plane, cell_max);
-                    depth += usize::from(both);
-                    // `cell_max` becomes `t_plane` only when both pieces are live; as a min of a
-                    // one-comparison select it compiles to a compare, masks and `minsd` (one
-                    // select on `both` became a branch). A parallel axis's NaN keeps it.
-                    let cut = if pieces.t_plane > cell_min { pieces.t_plane } else { f64::INFINITY };
-                    cell_max = if cut < cell_max { cut } else { cell_max };
-                    node = if pieces.near_live { near } else { far };
+                    let (near, far) = match pieces.near {
+                        Side::Lower => (node + 1, upper),
+                        Side::Upper => (upper, node + 1),
+                    };
+                    if pieces.near_live & pieces.far_live {
+                        stack[depth] = (far, pieces.t_plane, cell_max);
+                        depth += 1;
+                        cell_max = pieces.t_plane;
+                        node = near;
+                    } else if pieces.near_live {
+                        node = near;
+                    } else {
+                        node = far;
+                    }
                     continue;
                 }
                 NodeKind::Leaf { first, count } => {

@@ -114,8 +114,6 @@ impl KdTreeF32 {
         let o = origin.to_array();
         let d = dir.to_array();
         let inv = d.map(|x| 1.0 / x);
-        // All ones where the upper child is the near one: the walk picks near/far by masks.
-        let swap = inv.map(|x| u32::from(!(x > 0.0)).wrapping_neg());
         let (mut cell_min, mut cell_max) = clip(self.bounds, o, d, t_min, t_max)?;
         let ray = Ray { origin, dir };
         let a = dir.dot(dir);
@@ -134,18 +132,18 @@ impl KdTreeF32 {
                         continue;
                     }
                     let t_plane = (split - o[axis]) * inv[axis];
-                    let lower = node + 1;
-                    let near = lower ^ ((lower ^ upper) & swap[axis]);
-                    let far = lower ^ upper ^ near;
+                    let (near, far) = if inv[axis] > 0.0 { (node + 1, upper) } else { (upper, node + 1) };
                     let (near_live, far_live) = (t_plane > cell_min, t_plane < cell_max);
-                    // Selects, not branches, as in the `f64` walk (where the stack bound is
-                    // argued). `cut` tests `<=`, not `near_live`: sharing that comparison with
-                    // the node's select made LLVM branch on it.
-                    stack[depth] = (far, t_plane, cell_max);
-                    depth += usize::from(near_live & far_live);
-                    let cut = if t_plane <= cell_min { f32::INFINITY } else { t_plane };
-                    cell_max = if cut < cell_max { cut } else { cell_max };
-                    node = std::hint::select_unpredictable(near_live, near, far);
+                    if near_live & far_live {
+                        stack[depth] = (far, t_plane, cell_max);
+                        depth += 1;
+                        cell_max = t_plane;
+                        node = near;
+                    } else if near_live {
+                        node = near;
+                    } else {
+                        node = far;
+                    }
                     continue;
                 }
                 NodeKind::Leaf { first, count } => {
