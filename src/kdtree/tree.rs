@@ -3,7 +3,7 @@
 use super::build::{Builder, EXACT_MAX, Prim, SahCosts, Subtree, check_costs, max_depth, sphere_boxes};
 use super::coarse::{CoarseRay, CoarseSphere, Grid};
 use super::node::{Aabb, Node, NodeKind};
-use super::{AxisLine, BuildError, ReciprocalAxis, Side, split_pieces};
+use super::{BuildError, ReciprocalAxis, Side, split_pieces};
 use crate::geometry::sphere::roots_stable;
 use crate::geometry::{Ray, Sphere};
 use glam::DVec3;
@@ -358,10 +358,6 @@ impl KdTree {
         // A plain array: indexing a glam vector by a run-time axis is a three-way branch, which the
         // varying split axes make unpredictable.
         let axes = [0, 1, 2].map(|a| ReciprocalAxis::new(ray.origin[a], ray.dir[a]));
-        // Per axis, whether the upper child is the near one: the walk picks near/far by a
-        // conditional move instead of a branch on the direction's sign, which random directions
-        // made a coin toss (15 wrong guesses per random ray at N = 10⁵).
-        let swaps = axes.map(|axis| !axis.increasing());
         // The coarse copies are of the spheres at time 0: a moving tree tests every sphere exactly.
         let coarse = CoarseRay::new(ray, &self.grid);
         let filtered = self.motion.is_none() && self.fits;
@@ -374,11 +370,10 @@ impl KdTree {
                         prefetch(&self.coarse, first);
                     }
                     let pieces = split_pieces(axes[a], split, cell_min, cell_max);
-                    let swap = if axes[a].is_parallel() { pieces.near == Side::Upper } else { swaps[a] };
-                    let (near, far) = (
-                        std::hint::select_unpredictable(swap, upper, node + 1),
-                        std::hint::select_unpredictable(swap, node + 1, upper),
-                    );
+                    let (near, far) = match pieces.near {
+                        Side::Lower => (node + 1, upper),
+                        Side::Upper => (upper, node + 1),
+                    };
                     if pieces.near_live & pieces.far_live {
                         stack[depth] = (far, pieces.t_plane, cell_max);
                         depth += 1;
@@ -387,10 +382,6 @@ impl KdTree {
                     } else if pieces.near_live {
                         node = near;
                     } else {
-                        // SAFETY: an empty statement. As an opaque side effect it keeps this choice
-                        // a branch: LLVM made it a conditional move, and then every step waited for
-                        // the plane arithmetic before its next load (camera rays 10-35 % slower).
-                        unsafe { std::arch::asm!("", options(nomem, nostack, preserves_flags)) };
                         node = far;
                     }
                     continue;
