@@ -242,6 +242,45 @@ fn side_counts<const W: usize>(
     (both[0] as u32, both[1] as u32)
 }
 
+/// [`side_counts`] four compares per instruction.
+///
+/// # Safety
+/// The CPU must have AVX2.
+#[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+#[inline(always)]
+unsafe fn side_counts_avx2<const W: usize>(
+    starts: &[f64; EXACT_MAX_LIMIT],
+    ends: &[f64; EXACT_MAX_LIMIT],
+    split: f64,
+) -> (u32, u32) {
+    use std::arch::x86_64::{
+        _CMP_GE_OQ, _CMP_LE_OQ, _mm_add_epi64, _mm_cvtsi128_si64, _mm_unpackhi_epi64, _mm_unpacklo_epi64,
+        _mm256_castpd_si256, _mm256_castsi256_si128, _mm256_cmp_pd, _mm256_extracti128_si256, _mm256_set_pd,
+        _mm256_set1_pd, _mm256_setzero_si256, _mm256_sub_epi64,
+    };
+    const { assert!(W <= EXACT_MAX_LIMIT && W % 4 == 0) };
+    // SAFETY: the caller guarantees AVX2 (which includes AVX and SSE2); no intrinsic here touches
+    // memory.
+    let both = unsafe {
+        let plane = _mm256_set1_pd(split);
+        let (mut lower, mut upper) = (_mm256_setzero_si256(), _mm256_setzero_si256());
+        for i in 0..W / 4 {
+            let start = _mm256_set_pd(starts[4 * i + 3], starts[4 * i + 2], starts[4 * i + 1], starts[4 * i]);
+            let end = _mm256_set_pd(ends[4 * i + 3], ends[4 * i + 2], ends[4 * i + 1], ends[4 * i]);
+            // Ordered compares: `x <= split` and `x >= split` as in Rust.
+            lower = _mm256_sub_epi64(lower, _mm256_castpd_si256(_mm256_cmp_pd::<_CMP_LE_OQ>(start, plane)));
+            upper = _mm256_sub_epi64(upper, _mm256_castpd_si256(_mm256_cmp_pd::<_CMP_GE_OQ>(end, plane)));
+        }
+        let lower = _mm_add_epi64(_mm256_castsi256_si128(lower), _mm256_extracti128_si256::<1>(lower));
+        let upper = _mm_add_epi64(_mm256_castsi256_si128(upper), _mm256_extracti128_si256::<1>(upper));
+        // Lane 0 the lower count, lane 1 the upper.
+        let sums = _mm_add_epi64(_mm_unpacklo_epi64(lower, upper), _mm_unpackhi_epi64(lower, upper));
+        [_mm_cvtsi128_si64(sums), _mm_cvtsi128_si64(_mm_unpackhi_epi64(sums, sums))]
+    };
+    // At most `W` each.
+    (both[0] as u32, both[1] as u32)
+}
+
 /// `(#(start ≤ split), #(end ≥ split))` over the first `W` entries: the builder's closed tests
 /// for the two children, over the padded arrays of [`Builder::exact_axis`].
 #[cfg(not(all(target_arch = "x86_64", target_feature = "sse2")))]
@@ -399,6 +438,27 @@ impl Builder {
     /// cheap planes of an axis the lowest wins, as in a sweep in plane order.
     #[inline(never)] // one call per node: a profile names it, and its callers stay small
     fn best_exact_split(&self, cell: &Aabb, prims: &[Prim]) -> Option<Candidate> {
+        #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+        if std::arch::is_x86_feature_detected!("avx2") {
+            // SAFETY: the CPU has AVX2 (checked just above).
+            return unsafe { self.best_exact_split_avx2(cell, prims) };
+        }
+        self.exact_split::<false>(cell, prims)
+    }
+
+    /// [`Builder::best_exact_split`] with four compares per instruction (AVX2, checked at run
+    /// time: the crate is compiled for x86-64's SSE2 baseline). The same planes: a compare gives
+    /// the same answer in any width, and nothing else changes width.
+    #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+    #[target_feature(enable = "avx2")]
+    fn best_exact_split_avx2(&self, cell: &Aabb, prims: &[Prim]) -> Option<Candidate> {
+        self.exact_split::<true>(cell, prims)
+    }
+
+    /// [`Builder::best_exact_split`], counting with AVX2 if `AVX2` (only called so on a CPU that
+    /// has it).
+    #[inline(always)]
+    fn exact_split<const AVX2: bool>(&self, cell: &Aabb, prims: &[Prim]) -> Option<Candidate> {
         let area = cell.surface_area();
         let m = prims.len();
         assert!(m <= EXACT_MAX_LIMIT, "exact candidates for {m} spheres (at most {EXACT_MAX_LIMIT})");
@@ -417,9 +477,9 @@ impl Builder {
             // about six on average, and sixteen compares per count would triple the work.
             let faces = ExactAxis { cell, area, axis, starts: &starts, ends: &ends, m };
             match m {
-                0..=4 => self.exact_axis::<4>(&faces, &mut best),
-                5..=8 => self.exact_axis::<8>(&faces, &mut best),
-                _ => self.exact_axis::<EXACT_MAX_LIMIT>(&faces, &mut best),
+                0..=4 => self.exact_axis::<4, AVX2>(&faces, &mut best),
+                5..=8 => self.exact_axis::<8, AVX2>(&faces, &mut best),
+                _ => self.exact_axis::<EXACT_MAX_LIMIT, AVX2>(&faces, &mut best),
             }
         }
         best
@@ -428,7 +488,7 @@ impl Builder {
     /// Tries every face of one axis of [`Builder::best_exact_split`], counting over the first `W`
     /// entries of the padded arrays (`W ≥ m`, a constant so that the counts become vector code).
     #[inline(always)]
-    fn exact_axis<const W: usize>(&self, faces: &ExactAxis<'_>, best: &mut Option<Candidate>) {
+    fn exact_axis<const W: usize, const AVX2: bool>(&self, faces: &ExactAxis<'_>, best: &mut Option<Candidate>) {
         let ExactAxis { cell, area, axis, starts, ends, m } = *faces;
         let (lo, hi) = (cell.min[axis], cell.max[axis]);
         // The cost model (module docs) with the cell's constants taken once per axis; the binned
@@ -442,6 +502,14 @@ impl Builder {
                 if !(lo < split && split < hi) {
                     continue;
                 }
+                #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+                let (n_lower, n_upper) = if AVX2 {
+                    // SAFETY: `AVX2` is true only in `best_exact_split_avx2`, called on a CPU with AVX2.
+                    unsafe { side_counts_avx2::<W>(starts, ends, split) }
+                } else {
+                    side_counts::<W>(starts, ends, split)
+                };
+                #[cfg(not(all(target_arch = "x86_64", target_feature = "sse2")))]
                 let (n_lower, n_upper) = side_counts::<W>(starts, ends, split);
                 let (p_lower, p_upper) = if area > 0.0 {
                     ((cap + side * (split - lo)) / area, (cap + side * (hi - split)) / area)
