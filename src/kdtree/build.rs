@@ -534,6 +534,26 @@ impl Builder {
     /// costs a few flops.
     #[inline(never)] // one call per node: a profile names it, and its callers stay small
     fn best_split(&self, cell: &Aabb, prims: &[Prim]) -> Option<Candidate> {
+        #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+        if std::arch::is_x86_feature_detected!("avx2") {
+            // SAFETY: the CPU has AVX2 (checked just above).
+            return unsafe { self.best_split_avx2(cell, prims) };
+        }
+        self.binned_search(cell, prims)
+    }
+
+    /// [`Builder::best_split`] compiled for AVX2 (checked at run time), so that the candidates'
+    /// costs take four planes per instruction instead of two. The same planes and costs: each
+    /// lane does the same operations in the same order.
+    #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+    #[target_feature(enable = "avx2")]
+    fn best_split_avx2(&self, cell: &Aabb, prims: &[Prim]) -> Option<Candidate> {
+        self.binned_search(cell, prims)
+    }
+
+    /// [`Builder::best_split`]'s body.
+    #[inline(always)]
+    fn binned_search(&self, cell: &Aabb, prims: &[Prim]) -> Option<Candidate> {
         // On the stack for the default bin count, so that a node allocates nothing; rows of a
         // power-of-two width, so that a masked bin index needs no bounds check.
         if self.costs.bins <= INLINE_BINS {
@@ -572,6 +592,11 @@ impl Builder {
         // Dividing by a power of two is exact, so multiplying by its reciprocal gives the same
         // planes, one division per candidate fewer.
         let inv_bins = bins.is_power_of_two().then(|| 1.0 / bins as f64);
+        let (k_t, k_i, kept) = (self.costs.traversal, self.costs.intersection, 1.0 - self.costs.empty_bonus);
+        // Plane `k` (1 ≤ k < bins) at index `k`: its counts, `f32` plane and cost, in three loops so
+        // that the middle one, the costs, has no dependence between planes and compiles to vector
+        // code; only the choice of the best stays a scalar loop in plane order.
+        let (mut lowers, mut uppers, mut splits, mut costs) = ([0.0; W], [0.0; W], [0.0; W], [0.0; W]);
         let mut best: Option<Candidate> = None;
         for axis in 0..3 {
             if !(extent[axis] > 0.0) {
@@ -581,32 +606,43 @@ impl Builder {
             // A child's area is 2 (e_b e_c + e_axis (e_b + e_c)) with e_axis its extent on the axis.
             let (eb, ec) = (extent[(axis + 1) % 3], extent[(axis + 2) % 3]);
             let (cap, side) = (2.0 * eb * ec, 2.0 * (eb + ec));
+            let (lo, hi, e) = (lo[axis], hi[axis], extent[axis]);
             let (mut n_lower, mut n_ended) = (0.0, 0.0);
             for k in 1..bins {
                 n_lower += f64::from(starts[k - 1]);
                 n_ended += f64::from(ends[k - 1]);
-                let n_upper = n - n_ended;
-                // Only planes representable in `f32` (the node stores the split as `f32`), strictly
-                // inside the cell; rounding may push a plane of a tiny or far-away cell out.
-                let offset = extent[axis] * k as f64;
+                (lowers[k], uppers[k]) = (n_lower, n - n_ended);
+            }
+            // Through `u32` (bins ≤ 1024), whose conversion to `f64` vectorises.
+            let plane = |k: usize| {
+                let offset = e * f64::from(k as u32);
                 let offset = match inv_bins {
                     Some(inv) => offset * inv,
                     None => offset / bins as f64,
                 };
-                let split = f64::from((lo[axis] + offset) as f32);
-                if !(lo[axis] < split && split < hi[axis]) {
-                    continue;
+                // Only planes representable in `f32` (the node stores the split as `f32`).
+                f64::from((lo + offset) as f32)
+            };
+            let cost = |p_lower: f64, p_upper: f64, n_lower: f64, n_upper: f64| {
+                let bonus = if n_lower == 0.0 || n_upper == 0.0 { kept } else { 1.0 };
+                k_t + k_i * bonus * (p_lower * n_lower + p_upper * n_upper)
+            };
+            if area > 0.0 {
+                for k in 1..bins {
+                    let split = plane(k);
+                    let (p_lower, p_upper) = ((cap + side * (split - lo)) / area, (cap + side * (hi - split)) / area);
+                    (splits[k], costs[k]) = (split, cost(p_lower, p_upper, lowers[k], uppers[k]));
                 }
-                let (p_lower, p_upper) = if area > 0.0 {
-                    ((cap + side * (split - lo[axis])) / area, (cap + side * (hi[axis] - split)) / area)
-                } else {
-                    let f = k as f64 / bins as f64;
-                    (f, 1.0 - f)
-                };
-                let bonus = if n_lower == 0.0 || n_upper == 0.0 { 1.0 - self.costs.empty_bonus } else { 1.0 };
-                let cost =
-                    self.costs.traversal + self.costs.intersection * bonus * (p_lower * n_lower + p_upper * n_upper);
-                if best.as_ref().is_none_or(|b| cost < b.cost) {
+            } else {
+                for k in 1..bins {
+                    let f = f64::from(k as u32) / bins as f64;
+                    (splits[k], costs[k]) = (plane(k), cost(f, 1.0 - f, lowers[k], uppers[k]));
+                }
+            }
+            for k in 1..bins {
+                // Strictly inside the cell: rounding may push a plane of a tiny or far-away cell out.
+                let (split, cost) = (splits[k], costs[k]);
+                if lo < split && split < hi && best.as_ref().is_none_or(|b| cost < b.cost) {
                     best = Some(Candidate { axis, split, cost });
                 }
             }
@@ -688,6 +724,69 @@ impl Binner {
 mod tests {
     use super::*;
     use glam::DVec3;
+
+    /// Boxes from a fixed linear congruential sequence, some sticking out of `[0, 1]³`, some of
+    /// them flat on an axis.
+    fn boxes(count: usize, seed: u64) -> Vec<Prim> {
+        let mut state = seed;
+        let mut next = move || {
+            state = state.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1_442_695_040_888_963_407);
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        (0..count as u32)
+            .map(|index| {
+                let c = DVec3::new(next(), next(), next()) * 1.2 - 0.1;
+                let r = DVec3::new(next(), next(), next()) * 0.2 * f64::from(u8::from(index % 7 != 0));
+                Prim { index, bounds: Aabb { min: c - r, max: c + r } }
+            })
+            .collect()
+    }
+
+    fn same(a: Option<Candidate>, b: Option<Candidate>) -> bool {
+        match (a, b) {
+            (None, None) => true,
+            (Some(a), Some(b)) => a.axis == b.axis && a.split.to_bits() == b.split.to_bits() && a.cost == b.cost,
+            _ => false,
+        }
+    }
+
+    #[test]
+    fn vector_bins_equal_the_scalar_formula() {
+        let (lo, bins) = ([0.0, -1.0, 2.5], 32);
+        // The last axis has no extent: its scale is +∞ and a coordinate at its start gives NaN.
+        let scale = [bins as f64 / 1.0, bins as f64 / 3.0, f64::INFINITY];
+        let last = (bins - 1) as f64;
+        let binner = Binner::new(lo, scale, last);
+        for p in boxes(500, 7) {
+            let mut b = p.bounds;
+            b.min.z = if p.index % 2 == 0 { 2.5 } else { b.min.z };
+            let c = [b.min.x, b.min.y, b.min.z, b.max.x, b.max.y, b.max.z];
+            let scalar: [usize; 6] =
+                std::array::from_fn(|r| ((c[r] - lo[r % 3]) * scale[r % 3]).clamp(0.0, last) as i32 as usize);
+            assert_eq!(binner.bins(&b), scalar, "{b:?}");
+        }
+    }
+
+    #[test]
+    fn every_search_path_picks_the_same_plane() {
+        let cell = Aabb { min: DVec3::ZERO, max: DVec3::ONE };
+        let flat = Aabb { min: DVec3::ZERO, max: DVec3::new(1.0, 1.0, 0.0) };
+        for bins in [7, 32, 64] {
+            let builder =
+                Builder { costs: SahCosts { bins, ..SahCosts::default() }, max_depth: 30, exact_max: EXACT_MAX };
+            for (seed, n) in (0..40).zip([3, 5, 8, 11, 16, 17, 40, 300].into_iter().cycle()) {
+                let prims = boxes(n, seed);
+                for cell in [cell, flat] {
+                    if n <= EXACT_MAX {
+                        let plain = builder.exact_split::<false>(&cell, &prims);
+                        assert!(same(plain, builder.best_exact_split(&cell, &prims)), "exact, n = {n}, seed {seed}");
+                    }
+                    let plain = builder.binned_search(&cell, &prims);
+                    assert!(same(plain, builder.best_split(&cell, &prims)), "binned, n = {n}, seed {seed}");
+                }
+            }
+        }
+    }
 
     #[test]
     fn max_depth_follows_pbrt() {
