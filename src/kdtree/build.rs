@@ -220,7 +220,7 @@ fn side_counts<const W: usize>(
         _mm_add_epi64, _mm_castpd_si128, _mm_cmpge_pd, _mm_cmple_pd, _mm_cvtsi128_si64, _mm_set_pd, _mm_set1_pd,
         _mm_setzero_si128, _mm_sub_epi64, _mm_unpackhi_epi64, _mm_unpacklo_epi64,
     };
-    const { assert!(W <= EXACT_MAX_LIMIT && W % 2 == 0) };
+    const { assert!(W <= EXACT_MAX_LIMIT && W.is_multiple_of(2)) };
     // Two compares per instruction, each true lane −1 (all bits set) subtracted from a 64-bit
     // count: the scalar compares and flag additions were most of the small nodes' search.
     // SAFETY: SSE2 is part of every x86-64 CPU (the baseline the crate is compiled for), and these
@@ -258,7 +258,7 @@ unsafe fn side_counts_avx2<const W: usize>(
         _mm256_castpd_si256, _mm256_castsi256_si128, _mm256_cmp_pd, _mm256_extracti128_si256, _mm256_set_pd,
         _mm256_set1_pd, _mm256_setzero_si256, _mm256_sub_epi64,
     };
-    const { assert!(W <= EXACT_MAX_LIMIT && W % 4 == 0) };
+    const { assert!(W <= EXACT_MAX_LIMIT && W.is_multiple_of(4)) };
     // SAFETY: the caller guarantees AVX2 (which includes AVX and SSE2); no intrinsic here touches
     // memory.
     let both = unsafe {
