@@ -491,34 +491,54 @@ impl Builder {
         let (eb, ec) = (e[(axis + 1) % 3], e[(axis + 2) % 3]);
         let (cap, side) = (2.0 * eb * ec, 2.0 * (eb + ec));
         let (k_t, k_i, kept) = (self.costs.traversal, self.costs.intersection, 1.0 - self.costs.empty_bonus);
+        // Face `2k` just below box `k`'s start, `2k + 1` just above its end: the order of a sweep
+        // over the boxes, which the choice below keeps. The counts, the costs and the choice in
+        // loops of their own, so that the costs (no dependence between faces) compile to vector
+        // code, as in the binned search.
+        let n = 2 * m;
+        let mut splits = [0.0; 2 * EXACT_MAX_LIMIT];
         for k in 0..m {
-            for split in [f32_below(starts[k]), f32_above(ends[k])] {
-                if !(lo < split && split < hi) {
-                    continue;
-                }
-                #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
-                let (n_lower, n_upper) = if AVX2 {
-                    // SAFETY: `AVX2` is true only in `best_exact_split_avx2`, called on a CPU with AVX2.
-                    unsafe { side_counts_avx2::<W>(starts, ends, split) }
-                } else {
-                    side_counts::<W>(starts, ends, split)
-                };
-                #[cfg(not(all(target_arch = "x86_64", target_feature = "sse2")))]
-                let (n_lower, n_upper) = side_counts::<W>(starts, ends, split);
-                let (p_lower, p_upper) = if area > 0.0 {
-                    ((cap + side * (split - lo)) / area, (cap + side * (hi - split)) / area)
-                } else {
-                    let f = (split - lo) / (hi - lo);
-                    (f, 1.0 - f)
-                };
-                let bonus = if n_lower == 0 || n_upper == 0 { kept } else { 1.0 };
-                let cost = k_t + k_i * bonus * (p_lower * f64::from(n_lower) + p_upper * f64::from(n_upper));
-                let better = best.as_ref().is_none_or(|b| {
-                    cost < b.cost || (cost == b.cost && b.axis == axis && split.total_cmp(&b.split).is_lt())
-                });
-                if better {
-                    *best = Some(Candidate { axis, split, cost });
-                }
+            (splits[2 * k], splits[2 * k + 1]) = (f32_below(starts[k]), f32_above(ends[k]));
+        }
+        let (mut lowers, mut uppers) = ([0.0; 2 * EXACT_MAX_LIMIT], [0.0; 2 * EXACT_MAX_LIMIT]);
+        for ((&split, lower), upper) in splits[..n].iter().zip(&mut lowers[..n]).zip(&mut uppers[..n]) {
+            #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+            let (n_lower, n_upper) = if AVX2 {
+                // SAFETY: `AVX2` is true only in `best_exact_split_avx2`, called on a CPU with AVX2.
+                unsafe { side_counts_avx2::<W>(starts, ends, split) }
+            } else {
+                side_counts::<W>(starts, ends, split)
+            };
+            #[cfg(not(all(target_arch = "x86_64", target_feature = "sse2")))]
+            let (n_lower, n_upper) = side_counts::<W>(starts, ends, split);
+            (*lower, *upper) = (f64::from(n_lower), f64::from(n_upper));
+        }
+        let cost = |p_lower: f64, p_upper: f64, n_lower: f64, n_upper: f64| {
+            let bonus = if n_lower == 0.0 || n_upper == 0.0 { kept } else { 1.0 };
+            k_t + k_i * bonus * (p_lower * n_lower + p_upper * n_upper)
+        };
+        let mut costs = [0.0; 2 * EXACT_MAX_LIMIT];
+        let faces = splits[..n].iter().zip(&lowers[..n]).zip(&uppers[..n]).zip(&mut costs[..n]);
+        if area > 0.0 {
+            for (((&split, &n_lower), &n_upper), c) in faces {
+                let (p_lower, p_upper) = ((cap + side * (split - lo)) / area, (cap + side * (hi - split)) / area);
+                *c = cost(p_lower, p_upper, n_lower, n_upper);
+            }
+        } else {
+            for (((&split, &n_lower), &n_upper), c) in faces {
+                let f = (split - lo) / (hi - lo);
+                *c = cost(f, 1.0 - f, n_lower, n_upper);
+            }
+        }
+        for (&split, &cost) in splits[..n].iter().zip(&costs[..n]) {
+            if !(lo < split && split < hi) {
+                continue;
+            }
+            let better = best.as_ref().is_none_or(|b| {
+                cost < b.cost || (cost == b.cost && b.axis == axis && split.total_cmp(&b.split).is_lt())
+            });
+            if better {
+                *best = Some(Candidate { axis, split, cost });
             }
         }
     }
