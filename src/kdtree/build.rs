@@ -117,7 +117,7 @@ pub(super) fn check_costs(costs: &SahCosts) -> Result<(), BuildError> {
     if !(0.0..1.0).contains(&costs.empty_bonus) {
         return Err(BuildError::InvalidCosts("the empty bonus must lie in [0, 1)"));
     }
-    if !(2..=1024).contains(&costs.bins) {
+    if !(2..=MAX_BINS).contains(&costs.bins) {
         return Err(BuildError::InvalidCosts("bins must lie in 2..=1024"));
     }
     Ok(())
@@ -192,6 +192,9 @@ const PARALLEL_MIN: usize = 8_192;
 /// Bin counts up to which [`Builder::best_split`] keeps its counts on the stack.
 const INLINE_BINS: usize = 32;
 
+/// The largest bin count [`check_costs`] accepts (a power of two: the width of the heap rows).
+const MAX_BINS: usize = 1024;
+
 /// One axis of a small node for [`Builder::exact_axis`]: its boxes' starts and ends on the axis,
 /// the first `m` real and the rest padding.
 #[derive(Clone, Copy)]
@@ -202,6 +205,94 @@ struct ExactAxis<'a> {
     starts: &'a [f64; EXACT_MAX_LIMIT],
     ends: &'a [f64; EXACT_MAX_LIMIT],
     m: usize,
+}
+
+/// `(#(start ≤ split), #(end ≥ split))` over the first `W` entries: the builder's closed tests
+/// for the two children, over the padded arrays of [`Builder::exact_axis`].
+#[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+#[inline(always)]
+fn side_counts<const W: usize>(
+    starts: &[f64; EXACT_MAX_LIMIT],
+    ends: &[f64; EXACT_MAX_LIMIT],
+    split: f64,
+) -> (u32, u32) {
+    use std::arch::x86_64::{
+        _mm_add_epi64, _mm_castpd_si128, _mm_cmpge_pd, _mm_cmple_pd, _mm_cvtsi128_si64, _mm_set_pd, _mm_set1_pd,
+        _mm_setzero_si128, _mm_sub_epi64, _mm_unpackhi_epi64, _mm_unpacklo_epi64,
+    };
+    const { assert!(W <= EXACT_MAX_LIMIT && W.is_multiple_of(2)) };
+    // Two compares per instruction, each true lane −1 (all bits set) subtracted from a 64-bit
+    // count: the scalar compares and flag additions were most of the small nodes' search.
+    // SAFETY: SSE2 is part of every x86-64 CPU (the baseline the crate is compiled for), and these
+    // intrinsics touch no memory.
+    let both = unsafe {
+        let plane = _mm_set1_pd(split);
+        let (mut lower, mut upper) = (_mm_setzero_si128(), _mm_setzero_si128());
+        for i in 0..W / 2 {
+            let start = _mm_set_pd(starts[2 * i + 1], starts[2 * i]);
+            let end = _mm_set_pd(ends[2 * i + 1], ends[2 * i]);
+            lower = _mm_sub_epi64(lower, _mm_castpd_si128(_mm_cmple_pd(start, plane)));
+            upper = _mm_sub_epi64(upper, _mm_castpd_si128(_mm_cmpge_pd(end, plane)));
+        }
+        // Lane 0 the lower count, lane 1 the upper.
+        let sums = _mm_add_epi64(_mm_unpacklo_epi64(lower, upper), _mm_unpackhi_epi64(lower, upper));
+        [_mm_cvtsi128_si64(sums), _mm_cvtsi128_si64(_mm_unpackhi_epi64(sums, sums))]
+    };
+    // At most `W` each.
+    (both[0] as u32, both[1] as u32)
+}
+
+/// [`side_counts`] four compares per instruction.
+///
+/// # Safety
+/// The CPU must have AVX2.
+#[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+#[inline(always)]
+unsafe fn side_counts_avx2<const W: usize>(
+    starts: &[f64; EXACT_MAX_LIMIT],
+    ends: &[f64; EXACT_MAX_LIMIT],
+    split: f64,
+) -> (u32, u32) {
+    use std::arch::x86_64::{
+        _CMP_GE_OQ, _CMP_LE_OQ, _mm_add_epi64, _mm_cvtsi128_si64, _mm_unpackhi_epi64, _mm_unpacklo_epi64,
+        _mm256_castpd_si256, _mm256_castsi256_si128, _mm256_cmp_pd, _mm256_extracti128_si256, _mm256_set_pd,
+        _mm256_set1_pd, _mm256_setzero_si256, _mm256_sub_epi64,
+    };
+    const { assert!(W <= EXACT_MAX_LIMIT && W.is_multiple_of(4)) };
+    // SAFETY: the caller guarantees AVX2 (which includes AVX and SSE2); no intrinsic here touches
+    // memory.
+    let both = unsafe {
+        let plane = _mm256_set1_pd(split);
+        let (mut lower, mut upper) = (_mm256_setzero_si256(), _mm256_setzero_si256());
+        for i in 0..W / 4 {
+            let start = _mm256_set_pd(starts[4 * i + 3], starts[4 * i + 2], starts[4 * i + 1], starts[4 * i]);
+            let end = _mm256_set_pd(ends[4 * i + 3], ends[4 * i + 2], ends[4 * i + 1], ends[4 * i]);
+            // Ordered compares: `x <= split` and `x >= split` as in Rust.
+            lower = _mm256_sub_epi64(lower, _mm256_castpd_si256(_mm256_cmp_pd::<_CMP_LE_OQ>(start, plane)));
+            upper = _mm256_sub_epi64(upper, _mm256_castpd_si256(_mm256_cmp_pd::<_CMP_GE_OQ>(end, plane)));
+        }
+        let lower = _mm_add_epi64(_mm256_castsi256_si128(lower), _mm256_extracti128_si256::<1>(lower));
+        let upper = _mm_add_epi64(_mm256_castsi256_si128(upper), _mm256_extracti128_si256::<1>(upper));
+        // Lane 0 the lower count, lane 1 the upper.
+        let sums = _mm_add_epi64(_mm_unpacklo_epi64(lower, upper), _mm_unpackhi_epi64(lower, upper));
+        [_mm_cvtsi128_si64(sums), _mm_cvtsi128_si64(_mm_unpackhi_epi64(sums, sums))]
+    };
+    // At most `W` each.
+    (both[0] as u32, both[1] as u32)
+}
+
+/// `(#(start ≤ split), #(end ≥ split))` over the first `W` entries: the builder's closed tests
+/// for the two children, over the padded arrays of [`Builder::exact_axis`].
+#[cfg(not(all(target_arch = "x86_64", target_feature = "sse2")))]
+#[inline(always)]
+fn side_counts<const W: usize>(
+    starts: &[f64; EXACT_MAX_LIMIT],
+    ends: &[f64; EXACT_MAX_LIMIT],
+    split: f64,
+) -> (u32, u32) {
+    let n_lower: u32 = starts[..W].iter().map(|&x| u32::from(x <= split)).sum();
+    let n_upper: u32 = ends[..W].iter().map(|&x| u32::from(x >= split)).sum();
+    (n_lower, n_upper)
 }
 
 /// The best split found for one node.
@@ -232,7 +323,7 @@ impl Builder {
     /// child directly follows its parent). Nodes of at least [`PARALLEL_MIN`] spheres build their
     /// children in parallel, each child from a list of its own; smaller ones build serially in
     /// one scratch list ([`Builder::build_serial`]). The result is the same tree as a serial build.
-    pub fn build(&self, cell: Aabb, prims: Vec<Prim>, depth: usize, out: &mut Subtree) {
+    pub fn build(&self, cell: Aabb, mut prims: Vec<Prim>, depth: usize, out: &mut Subtree) {
         if prims.len() < PARALLEL_MIN {
             let count = prims.len();
             let mut scratch = prims;
@@ -243,17 +334,18 @@ impl Builder {
             push_leaf(&prims, out);
             return;
         };
-        // One pass, each box read once, in order, for both children.
-        let (mut lower, mut upper) = (Vec::with_capacity(prims.len()), Vec::with_capacity(prims.len()));
-        for p in &prims {
-            if p.bounds.min[axis] <= split {
-                lower.push(*p);
-            }
+        // One pass, each box read once, in order, for both children. The lower child keeps the
+        // parent's list (`retain`: an in-order compaction): a fresh list for it was written into
+        // fresh pages, and at N = 10⁶ the kernel's page faults and page clearing were a tenth of
+        // the build.
+        let mut upper = Vec::with_capacity(prims.len());
+        prims.retain(|p| {
             if p.bounds.max[axis] >= split {
                 upper.push(*p);
             }
-        }
-        drop(prims);
+            p.bounds.min[axis] <= split
+        });
+        let lower = prims;
         let here = out.nodes.len();
         out.nodes.push(Node::leaf(0, 0));
         let (lower_cell, upper_cell) = children(cell, axis, split);
@@ -340,6 +432,27 @@ impl Builder {
     /// cheap planes of an axis the lowest wins, as in a sweep in plane order.
     #[inline(never)] // one call per node: a profile names it, and its callers stay small
     fn best_exact_split(&self, cell: &Aabb, prims: &[Prim]) -> Option<Candidate> {
+        #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+        if std::arch::is_x86_feature_detected!("avx2") {
+            // SAFETY: the CPU has AVX2 (checked just above).
+            return unsafe { self.best_exact_split_avx2(cell, prims) };
+        }
+        self.exact_split::<false>(cell, prims)
+    }
+
+    /// [`Builder::best_exact_split`] with four compares per instruction (AVX2, checked at run
+    /// time: the crate is compiled for x86-64's SSE2 baseline). The same planes: a compare gives
+    /// the same answer in any width, and nothing else changes width.
+    #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+    #[target_feature(enable = "avx2")]
+    fn best_exact_split_avx2(&self, cell: &Aabb, prims: &[Prim]) -> Option<Candidate> {
+        self.exact_split::<true>(cell, prims)
+    }
+
+    /// [`Builder::best_exact_split`], counting with AVX2 if `AVX2` (only called so on a CPU that
+    /// has it).
+    #[inline(always)]
+    fn exact_split<const AVX2: bool>(&self, cell: &Aabb, prims: &[Prim]) -> Option<Candidate> {
         let area = cell.surface_area();
         let m = prims.len();
         assert!(m <= EXACT_MAX_LIMIT, "exact candidates for {m} spheres (at most {EXACT_MAX_LIMIT})");
@@ -358,9 +471,9 @@ impl Builder {
             // about six on average, and sixteen compares per count would triple the work.
             let faces = ExactAxis { cell, area, axis, starts: &starts, ends: &ends, m };
             match m {
-                0..=4 => self.exact_axis::<4>(&faces, &mut best),
-                5..=8 => self.exact_axis::<8>(&faces, &mut best),
-                _ => self.exact_axis::<EXACT_MAX_LIMIT>(&faces, &mut best),
+                0..=4 => self.exact_axis::<4, AVX2>(&faces, &mut best),
+                5..=8 => self.exact_axis::<8, AVX2>(&faces, &mut best),
+                _ => self.exact_axis::<EXACT_MAX_LIMIT, AVX2>(&faces, &mut best),
             }
         }
         best
@@ -369,38 +482,63 @@ impl Builder {
     /// Tries every face of one axis of [`Builder::best_exact_split`], counting over the first `W`
     /// entries of the padded arrays (`W ≥ m`, a constant so that the counts become vector code).
     #[inline(always)]
-    fn exact_axis<const W: usize>(&self, faces: &ExactAxis<'_>, best: &mut Option<Candidate>) {
+    fn exact_axis<const W: usize, const AVX2: bool>(&self, faces: &ExactAxis<'_>, best: &mut Option<Candidate>) {
         let ExactAxis { cell, area, axis, starts, ends, m } = *faces;
         let (lo, hi) = (cell.min[axis], cell.max[axis]);
-        let (starts_w, ends_w) = (&starts[..W], &ends[..W]);
         // The cost model (module docs) with the cell's constants taken once per axis; the binned
         // search computes it the same way.
         let e = cell.max - cell.min;
         let (eb, ec) = (e[(axis + 1) % 3], e[(axis + 2) % 3]);
         let (cap, side) = (2.0 * eb * ec, 2.0 * (eb + ec));
         let (k_t, k_i, kept) = (self.costs.traversal, self.costs.intersection, 1.0 - self.costs.empty_bonus);
+        // Face `2k` just below box `k`'s start, `2k + 1` just above its end: the order of a sweep
+        // over the boxes, which the choice below keeps. The counts, the costs and the choice in
+        // loops of their own, so that the costs (no dependence between faces) compile to vector
+        // code, as in the binned search.
+        let n = 2 * m;
+        let mut splits = [0.0; 2 * EXACT_MAX_LIMIT];
         for k in 0..m {
-            for split in [f32_below(starts[k]), f32_above(ends[k])] {
-                if !(lo < split && split < hi) {
-                    continue;
-                }
-                // n_lower = #(start ≤ split), n_upper = #(end ≥ split): the builder's closed tests.
-                let n_lower: u32 = starts_w.iter().map(|&x| u32::from(x <= split)).sum();
-                let n_upper: u32 = ends_w.iter().map(|&x| u32::from(x >= split)).sum();
-                let (p_lower, p_upper) = if area > 0.0 {
-                    ((cap + side * (split - lo)) / area, (cap + side * (hi - split)) / area)
-                } else {
-                    let f = (split - lo) / (hi - lo);
-                    (f, 1.0 - f)
-                };
-                let bonus = if n_lower == 0 || n_upper == 0 { kept } else { 1.0 };
-                let cost = k_t + k_i * bonus * (p_lower * f64::from(n_lower) + p_upper * f64::from(n_upper));
-                let better = best.as_ref().is_none_or(|b| {
-                    cost < b.cost || (cost == b.cost && b.axis == axis && split.total_cmp(&b.split).is_lt())
-                });
-                if better {
-                    *best = Some(Candidate { axis, split, cost });
-                }
+            (splits[2 * k], splits[2 * k + 1]) = (f32_below(starts[k]), f32_above(ends[k]));
+        }
+        let (mut lowers, mut uppers) = ([0.0; 2 * EXACT_MAX_LIMIT], [0.0; 2 * EXACT_MAX_LIMIT]);
+        for ((&split, lower), upper) in splits[..n].iter().zip(&mut lowers[..n]).zip(&mut uppers[..n]) {
+            #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+            let (n_lower, n_upper) = if AVX2 {
+                // SAFETY: `AVX2` is true only in `best_exact_split_avx2`, called on a CPU with AVX2.
+                unsafe { side_counts_avx2::<W>(starts, ends, split) }
+            } else {
+                side_counts::<W>(starts, ends, split)
+            };
+            #[cfg(not(all(target_arch = "x86_64", target_feature = "sse2")))]
+            let (n_lower, n_upper) = side_counts::<W>(starts, ends, split);
+            (*lower, *upper) = (f64::from(n_lower), f64::from(n_upper));
+        }
+        let cost = |p_lower: f64, p_upper: f64, n_lower: f64, n_upper: f64| {
+            let bonus = if n_lower == 0.0 || n_upper == 0.0 { kept } else { 1.0 };
+            k_t + k_i * bonus * (p_lower * n_lower + p_upper * n_upper)
+        };
+        let mut costs = [0.0; 2 * EXACT_MAX_LIMIT];
+        let faces = splits[..n].iter().zip(&lowers[..n]).zip(&uppers[..n]).zip(&mut costs[..n]);
+        if area > 0.0 {
+            for (((&split, &n_lower), &n_upper), c) in faces {
+                let (p_lower, p_upper) = ((cap + side * (split - lo)) / area, (cap + side * (hi - split)) / area);
+                *c = cost(p_lower, p_upper, n_lower, n_upper);
+            }
+        } else {
+            for (((&split, &n_lower), &n_upper), c) in faces {
+                let f = (split - lo) / (hi - lo);
+                *c = cost(f, 1.0 - f, n_lower, n_upper);
+            }
+        }
+        for (&split, &cost) in splits[..n].iter().zip(&costs[..n]) {
+            if !(lo < split && split < hi) {
+                continue;
+            }
+            let better = best.as_ref().is_none_or(|b| {
+                cost < b.cost || (cost == b.cost && b.axis == axis && split.total_cmp(&b.split).is_lt())
+            });
+            if better {
+                *best = Some(Candidate { axis, split, cost });
             }
         }
     }
@@ -410,65 +548,115 @@ impl Builder {
     /// costs a few flops.
     #[inline(never)] // one call per node: a profile names it, and its callers stay small
     fn best_split(&self, cell: &Aabb, prims: &[Prim]) -> Option<Candidate> {
+        #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+        if std::arch::is_x86_feature_detected!("avx2") {
+            // SAFETY: the CPU has AVX2 (checked just above).
+            return unsafe { self.best_split_avx2(cell, prims) };
+        }
+        self.binned_search(cell, prims)
+    }
+
+    /// [`Builder::best_split`] compiled for AVX2 (checked at run time), so that the candidates'
+    /// costs take four planes per instruction instead of two. The same planes and costs: each
+    /// lane does the same operations in the same order.
+    #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+    #[target_feature(enable = "avx2")]
+    fn best_split_avx2(&self, cell: &Aabb, prims: &[Prim]) -> Option<Candidate> {
+        self.binned_search(cell, prims)
+    }
+
+    /// [`Builder::best_split`]'s body.
+    #[inline(always)]
+    fn binned_search(&self, cell: &Aabb, prims: &[Prim]) -> Option<Candidate> {
+        // On the stack for the default bin count, so that a node allocates nothing; rows of a
+        // power-of-two width, so that a masked bin index needs no bounds check.
+        if self.costs.bins <= INLINE_BINS {
+            self.binned_split(cell, prims, &mut [[0u32; INLINE_BINS]; 6])
+        } else {
+            let mut heap = vec![[0u32; MAX_BINS]; 6];
+            let rows: &mut [[u32; MAX_BINS]; 6] = heap.as_mut_slice().try_into().expect("six rows");
+            self.binned_split(cell, prims, rows)
+        }
+    }
+
+    /// [`Builder::best_split`] with `counts` (zeroed, `W ≥ bins`): row `a` the starts on axis `a`,
+    /// row `3 + a` the ends.
+    #[inline(always)]
+    fn binned_split<const W: usize>(
+        &self,
+        cell: &Aabb,
+        prims: &[Prim],
+        counts: &mut [[u32; W]; 6],
+    ) -> Option<Candidate> {
         let bins = self.costs.bins;
+        debug_assert!(bins <= W && W.is_power_of_two());
         let area = cell.surface_area();
         let (lo, hi) = (cell.min.to_array(), cell.max.to_array());
         let extent = [hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]];
         let scale = extent.map(|e| bins as f64 / e);
-        // starts of axis a in [2a·bins, (2a+1)·bins), ends in the next `bins`.
-        // On the stack for the default bin count, so that a node allocates nothing.
-        let (mut inline, mut heap) = ([0u32; 6 * INLINE_BINS], Vec::new());
-        let counts: &mut [u32] = if bins <= INLINE_BINS {
-            &mut inline[..6 * bins]
-        } else {
-            heap.resize(6 * bins, 0);
-            &mut heap
-        };
-        // Clamping in floating point first (NaN included: it goes to bin 0, as `max(0.0)` sent it)
-        // leaves the conversion nothing to saturate.
-        let last = (bins - 1) as f64;
-        // Through `i32` (exact: at most 1023 after the clamp), whose saturating conversion is a few
-        // instructions shorter than `usize`'s; NaN still lands in bin 0.
-        let bin_of = |a: usize, x: f64| ((x - lo[a]) * scale[a]).clamp(0.0, last) as i32 as usize;
+        let binner = Binner::new(lo, scale, (bins - 1) as f64);
         for p in prims {
-            let b = &p.bounds;
-            let (min, max) = (b.min.to_array(), b.max.to_array());
-            for a in 0..3 {
-                counts[2 * a * bins + bin_of(a, min[a])] += 1;
-                counts[(2 * a + 1) * bins + bin_of(a, max[a])] += 1;
+            let bin = binner.bins(&p.bounds);
+            // `bin[r] ≤ bins − 1 < W`: the mask changes nothing but spares the bounds check.
+            for (row, &k) in counts.iter_mut().zip(&bin) {
+                row[k & (W - 1)] += 1;
             }
         }
         let n = prims.len() as f64;
+        // Dividing by a power of two is exact, so multiplying by its reciprocal gives the same
+        // planes, one division per candidate fewer.
+        let inv_bins = bins.is_power_of_two().then(|| 1.0 / bins as f64);
+        let (k_t, k_i, kept) = (self.costs.traversal, self.costs.intersection, 1.0 - self.costs.empty_bonus);
+        // Plane `k` (1 ≤ k < bins) at index `k`: its counts, `f32` plane and cost, in three loops so
+        // that the middle one, the costs, has no dependence between planes and compiles to vector
+        // code; only the choice of the best stays a scalar loop in plane order.
+        let (mut lowers, mut uppers, mut splits, mut costs) = ([0.0; W], [0.0; W], [0.0; W], [0.0; W]);
         let mut best: Option<Candidate> = None;
         for axis in 0..3 {
             if !(extent[axis] > 0.0) {
                 continue;
             }
-            let (starts, ends) = counts[2 * axis * bins..(2 * axis + 2) * bins].split_at(bins);
+            let (starts, ends) = (&counts[axis][..bins], &counts[3 + axis][..bins]);
             // A child's area is 2 (e_b e_c + e_axis (e_b + e_c)) with e_axis its extent on the axis.
             let (eb, ec) = (extent[(axis + 1) % 3], extent[(axis + 2) % 3]);
             let (cap, side) = (2.0 * eb * ec, 2.0 * (eb + ec));
+            let (lo, hi, e) = (lo[axis], hi[axis], extent[axis]);
             let (mut n_lower, mut n_ended) = (0.0, 0.0);
             for k in 1..bins {
                 n_lower += f64::from(starts[k - 1]);
                 n_ended += f64::from(ends[k - 1]);
-                let n_upper = n - n_ended;
-                // Only planes representable in `f32` (the node stores the split as `f32`), strictly
-                // inside the cell; rounding may push a plane of a tiny or far-away cell out.
-                let split = f64::from((lo[axis] + extent[axis] * k as f64 / bins as f64) as f32);
-                if !(lo[axis] < split && split < hi[axis]) {
-                    continue;
-                }
-                let (p_lower, p_upper) = if area > 0.0 {
-                    ((cap + side * (split - lo[axis])) / area, (cap + side * (hi[axis] - split)) / area)
-                } else {
-                    let f = k as f64 / bins as f64;
-                    (f, 1.0 - f)
+                (lowers[k], uppers[k]) = (n_lower, n - n_ended);
+            }
+            // Through `u32` (bins ≤ 1024), whose conversion to `f64` vectorises.
+            let plane = |k: usize| {
+                let offset = e * f64::from(k as u32);
+                let offset = match inv_bins {
+                    Some(inv) => offset * inv,
+                    None => offset / bins as f64,
                 };
-                let bonus = if n_lower == 0.0 || n_upper == 0.0 { 1.0 - self.costs.empty_bonus } else { 1.0 };
-                let cost =
-                    self.costs.traversal + self.costs.intersection * bonus * (p_lower * n_lower + p_upper * n_upper);
-                if best.as_ref().is_none_or(|b| cost < b.cost) {
+                // Only planes representable in `f32` (the node stores the split as `f32`).
+                f64::from((lo + offset) as f32)
+            };
+            let cost = |p_lower: f64, p_upper: f64, n_lower: f64, n_upper: f64| {
+                let bonus = if n_lower == 0.0 || n_upper == 0.0 { kept } else { 1.0 };
+                k_t + k_i * bonus * (p_lower * n_lower + p_upper * n_upper)
+            };
+            if area > 0.0 {
+                for k in 1..bins {
+                    let split = plane(k);
+                    let (p_lower, p_upper) = ((cap + side * (split - lo)) / area, (cap + side * (hi - split)) / area);
+                    (splits[k], costs[k]) = (split, cost(p_lower, p_upper, lowers[k], uppers[k]));
+                }
+            } else {
+                for k in 1..bins {
+                    let f = f64::from(k as u32) / bins as f64;
+                    (splits[k], costs[k]) = (plane(k), cost(f, 1.0 - f, lowers[k], uppers[k]));
+                }
+            }
+            for k in 1..bins {
+                // Strictly inside the cell: rounding may push a plane of a tiny or far-away cell out.
+                let (split, cost) = (splits[k], costs[k]);
+                if lo < split && split < hi && best.as_ref().is_none_or(|b| cost < b.cost) {
                     best = Some(Candidate { axis, split, cost });
                 }
             }
@@ -477,10 +665,142 @@ impl Builder {
     }
 }
 
+/// The bin of each of a box's six coordinates (min x, y, z, max x, y, z):
+/// `⌊clamp((x − lo) · scale, 0, bins − 1)⌋`, NaN (an axis without extent) in bin 0.
+struct Binner {
+    #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+    pairs: [(std::arch::x86_64::__m128d, std::arch::x86_64::__m128d); 3],
+    #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+    last: std::arch::x86_64::__m128d,
+    #[cfg(not(all(target_arch = "x86_64", target_feature = "sse2")))]
+    lo: [f64; 6],
+    #[cfg(not(all(target_arch = "x86_64", target_feature = "sse2")))]
+    scale: [f64; 6],
+    #[cfg(not(all(target_arch = "x86_64", target_feature = "sse2")))]
+    last: f64,
+}
+
+impl Binner {
+    fn new(lo: [f64; 3], scale: [f64; 3], last: f64) -> Self {
+        let lo = [lo[0], lo[1], lo[2], lo[0], lo[1], lo[2]];
+        let scale = [scale[0], scale[1], scale[2], scale[0], scale[1], scale[2]];
+        #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+        {
+            use std::arch::x86_64::_mm_set_pd;
+            // SAFETY: SSE2 is part of every x86-64 CPU (the baseline the crate is compiled for), and
+            // `_mm_set_pd` touches no memory.
+            let pair = |v: &[f64; 6], j: usize| unsafe { _mm_set_pd(v[2 * j + 1], v[2 * j]) };
+            Self { pairs: [0, 1, 2].map(|j| (pair(&lo, j), pair(&scale, j))), last: unsafe { _mm_set_pd(last, last) } }
+        }
+        #[cfg(not(all(target_arch = "x86_64", target_feature = "sse2")))]
+        Self { lo, scale, last }
+    }
+
+    /// Two coordinates per SSE2 instruction (x86-64's baseline): the scalar code spent about 100
+    /// instructions per box, most of them on the six saturating conversions' NaN and range fixes,
+    /// which the clamp already makes unnecessary. The same bins: `maxpd(v, 0)` sends NaN to 0 as
+    /// the scalar path does, and the truncation of a value in `[0, bins − 1]` is the same.
+    #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+    #[inline(always)]
+    fn bins(&self, b: &Aabb) -> [usize; 6] {
+        use std::arch::x86_64::{
+            _mm_cvtsi128_si64, _mm_cvttpd_epi32, _mm_max_pd, _mm_min_pd, _mm_mul_pd, _mm_set_pd, _mm_setzero_pd,
+            _mm_sub_pd,
+        };
+        let c = [b.min.x, b.min.y, b.min.z, b.max.x, b.max.y, b.max.z];
+        let mut out = [0; 6];
+        for (j, &(lo, scale)) in self.pairs.iter().enumerate() {
+            // SAFETY: SSE2 is part of every x86-64 CPU (the baseline the crate is compiled for), and
+            // these intrinsics touch no memory.
+            let two = unsafe {
+                let v = _mm_mul_pd(_mm_sub_pd(_mm_set_pd(c[2 * j + 1], c[2 * j]), lo), scale);
+                let v = _mm_min_pd(_mm_max_pd(v, _mm_setzero_pd()), self.last);
+                // Two `i32` lanes, each in [0, bins − 1].
+                _mm_cvtsi128_si64(_mm_cvttpd_epi32(v)) as u64
+            };
+            (out[2 * j], out[2 * j + 1]) = ((two & 0xFFFF_FFFF) as usize, (two >> 32) as usize);
+        }
+        out
+    }
+
+    #[cfg(not(all(target_arch = "x86_64", target_feature = "sse2")))]
+    #[inline(always)]
+    fn bins(&self, b: &Aabb) -> [usize; 6] {
+        let c = [b.min.x, b.min.y, b.min.z, b.max.x, b.max.y, b.max.z];
+        // Clamping in floating point first (NaN included: it goes to bin 0) leaves the conversion
+        // nothing to saturate; through `i32` (exact after the clamp), whose saturating conversion is
+        // a few instructions shorter than `usize`'s.
+        std::array::from_fn(|r| ((c[r] - self.lo[r]) * self.scale[r]).clamp(0.0, self.last) as i32 as usize)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use glam::DVec3;
+
+    /// Boxes from a fixed linear congruential sequence, some sticking out of `[0, 1]³`, some of
+    /// them flat on an axis.
+    fn boxes(count: usize, seed: u64) -> Vec<Prim> {
+        let mut state = seed;
+        let mut next = move || {
+            state = state.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1_442_695_040_888_963_407);
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        (0..count as u32)
+            .map(|index| {
+                let c = DVec3::new(next(), next(), next()) * 1.2 - 0.1;
+                let r = DVec3::new(next(), next(), next()) * 0.2 * f64::from(u8::from(index % 7 != 0));
+                Prim { index, bounds: Aabb { min: c - r, max: c + r } }
+            })
+            .collect()
+    }
+
+    fn same(a: Option<Candidate>, b: Option<Candidate>) -> bool {
+        match (a, b) {
+            (None, None) => true,
+            (Some(a), Some(b)) => a.axis == b.axis && a.split.to_bits() == b.split.to_bits() && a.cost == b.cost,
+            _ => false,
+        }
+    }
+
+    #[test]
+    fn vector_bins_equal_the_scalar_formula() {
+        let (lo, bins) = ([0.0, -1.0, 2.5], 32);
+        // The last axis has no extent: its scale is +∞ and a coordinate at its start gives NaN.
+        let scale = [bins as f64 / 1.0, bins as f64 / 3.0, f64::INFINITY];
+        let last = (bins - 1) as f64;
+        let binner = Binner::new(lo, scale, last);
+        for p in boxes(500, 7) {
+            let mut b = p.bounds;
+            b.min.z = if p.index % 2 == 0 { 2.5 } else { b.min.z };
+            let c = [b.min.x, b.min.y, b.min.z, b.max.x, b.max.y, b.max.z];
+            let scalar: [usize; 6] =
+                std::array::from_fn(|r| ((c[r] - lo[r % 3]) * scale[r % 3]).clamp(0.0, last) as i32 as usize);
+            assert_eq!(binner.bins(&b), scalar, "{b:?}");
+        }
+    }
+
+    #[test]
+    fn every_search_path_picks_the_same_plane() {
+        let cell = Aabb { min: DVec3::ZERO, max: DVec3::ONE };
+        let flat = Aabb { min: DVec3::ZERO, max: DVec3::new(1.0, 1.0, 0.0) };
+        for bins in [7, 32, 64] {
+            let builder =
+                Builder { costs: SahCosts { bins, ..SahCosts::default() }, max_depth: 30, exact_max: EXACT_MAX };
+            for (seed, n) in (0..40).zip([3, 5, 8, 11, 16, 17, 40, 300].into_iter().cycle()) {
+                let prims = boxes(n, seed);
+                for cell in [cell, flat] {
+                    if n <= EXACT_MAX {
+                        let plain = builder.exact_split::<false>(&cell, &prims);
+                        assert!(same(plain, builder.best_exact_split(&cell, &prims)), "exact, n = {n}, seed {seed}");
+                    }
+                    let plain = builder.binned_search(&cell, &prims);
+                    assert!(same(plain, builder.best_split(&cell, &prims)), "binned, n = {n}, seed {seed}");
+                }
+            }
+        }
+    }
 
     #[test]
     fn max_depth_follows_pbrt() {
