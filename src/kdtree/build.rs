@@ -14,8 +14,15 @@
 //! sweep. A node costs `O(n + bins)` per axis, so with depth `O(log N)` the whole build is
 //! `O(N log N)`; the price is that the chosen plane is only the best of `bins − 1` candidates.
 //! A node of at most [`EXACT_MAX`] spheres instead tries every box face (Wald & Havran's candidate
-//! set, sorted on the stack), fewer planes than the bins and the exact best among them. Nodes of at
-//! least [`PARALLEL_MIN`] spheres build their two children on two threads (`rayon::join`).
+//! set; each face's two side counts taken over padded fixed-width arrays on the stack, no sort),
+//! fewer planes than the bins and the exact best among them. Nodes of at least [`PARALLEL_MIN`]
+//! spheres build their two children on two threads (`rayon::join`).
+//!
+//! # Vector code
+//! On x86-64 the bins of a box and the small nodes' side counts are computed two lanes at a time
+//! (SSE2, the baseline), four with AVX2 when the CPU has it (checked at run time). Every lane does
+//! the scalar code's IEEE operations in the same order, so the tree is the same bit for bit on any
+//! CPU; the tests compare each vector path with the scalar one.
 //! Spheres whose box touches or crosses the plane go to both children (closed test on both
 //! sides), so every cell whose closure contains a sphere's point lists that sphere.
 
@@ -208,10 +215,38 @@ struct ExactAxis<'a> {
 }
 
 /// `(#(start ≤ split), #(end ≥ split))` over the first `W` entries: the builder's closed tests
-/// for the two children, over the padded arrays of [`Builder::exact_axis`].
-#[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+/// for the two children, over the padded arrays of [`Builder::exact_axis`]. Two compares per SSE2
+/// instruction on x86-64, [`side_counts_scalar`] elsewhere; the same counts either way.
 #[inline(always)]
 fn side_counts<const W: usize>(
+    starts: &[f64; EXACT_MAX_LIMIT],
+    ends: &[f64; EXACT_MAX_LIMIT],
+    split: f64,
+) -> (u32, u32) {
+    #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+    return side_counts_sse2::<W>(starts, ends, split);
+    #[cfg(not(all(target_arch = "x86_64", target_feature = "sse2")))]
+    return side_counts_scalar::<W>(starts, ends, split);
+}
+
+/// [`side_counts`] one compare at a time: the code other targets run, and the reference the
+/// vector versions are tested against on x86-64.
+#[cfg_attr(all(target_arch = "x86_64", target_feature = "sse2", not(test)), allow(dead_code))]
+#[inline(always)]
+fn side_counts_scalar<const W: usize>(
+    starts: &[f64; EXACT_MAX_LIMIT],
+    ends: &[f64; EXACT_MAX_LIMIT],
+    split: f64,
+) -> (u32, u32) {
+    let n_lower: u32 = starts[..W].iter().map(|&x| u32::from(x <= split)).sum();
+    let n_upper: u32 = ends[..W].iter().map(|&x| u32::from(x >= split)).sum();
+    (n_lower, n_upper)
+}
+
+/// [`side_counts`] two compares per instruction (SSE2, the x86-64 baseline).
+#[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+#[inline(always)]
+fn side_counts_sse2<const W: usize>(
     starts: &[f64; EXACT_MAX_LIMIT],
     ends: &[f64; EXACT_MAX_LIMIT],
     split: f64,
@@ -279,20 +314,6 @@ unsafe fn side_counts_avx2<const W: usize>(
     };
     // At most `W` each.
     (both[0] as u32, both[1] as u32)
-}
-
-/// `(#(start ≤ split), #(end ≥ split))` over the first `W` entries: the builder's closed tests
-/// for the two children, over the padded arrays of [`Builder::exact_axis`].
-#[cfg(not(all(target_arch = "x86_64", target_feature = "sse2")))]
-#[inline(always)]
-fn side_counts<const W: usize>(
-    starts: &[f64; EXACT_MAX_LIMIT],
-    ends: &[f64; EXACT_MAX_LIMIT],
-    split: f64,
-) -> (u32, u32) {
-    let n_lower: u32 = starts[..W].iter().map(|&x| u32::from(x <= split)).sum();
-    let n_upper: u32 = ends[..W].iter().map(|&x| u32::from(x >= split)).sum();
-    (n_lower, n_upper)
 }
 
 /// The best split found for one node.
@@ -778,6 +799,32 @@ mod tests {
             let scalar: [usize; 6] =
                 std::array::from_fn(|r| ((c[r] - lo[r % 3]) * scale[r % 3]).clamp(0.0, last) as i32 as usize);
             assert_eq!(binner.bins(&b), scalar, "{b:?}");
+        }
+    }
+
+    /// The vector side counts are the scalar ones, NaN, ±∞ and the split itself included (the
+    /// closed tests count a face on the plane on both sides; NaN on neither).
+    #[test]
+    fn vector_side_counts_equal_the_scalar_ones() {
+        let values = [f64::NEG_INFINITY, -1.0, 0.0, 0.25, 0.5, 0.75, 1.0, f64::INFINITY, f64::NAN, -0.0];
+        let mut state = 3u64;
+        for _ in 0..2_000 {
+            let mut pick = || {
+                state = state.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1_442_695_040_888_963_407);
+                values[(state >> 33) as usize % values.len()]
+            };
+            let starts: [f64; EXACT_MAX_LIMIT] = std::array::from_fn(|_| pick());
+            let ends: [f64; EXACT_MAX_LIMIT] = std::array::from_fn(|_| pick());
+            for split in [0.5, 0.0, -0.0, 1.0] {
+                let scalar = side_counts_scalar::<EXACT_MAX_LIMIT>(&starts, &ends, split);
+                assert_eq!(side_counts::<EXACT_MAX_LIMIT>(&starts, &ends, split), scalar);
+                assert_eq!(side_counts::<4>(&starts, &ends, split), side_counts_scalar::<4>(&starts, &ends, split));
+                #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+                if std::arch::is_x86_feature_detected!("avx2") {
+                    // SAFETY: the CPU has AVX2 (checked just above).
+                    assert_eq!(unsafe { side_counts_avx2::<EXACT_MAX_LIMIT>(&starts, &ends, split) }, scalar);
+                }
+            }
         }
     }
 
