@@ -190,7 +190,85 @@ impl CoarseRay {
         let s = f32::from(q[3]) + self.widening;
         p[0] * p[0] + p[1] * p[1] + p[2] * p[2] <= s * s * self.scaled_a
     }
+
+    /// [`CoarseRay::may_hit`] for the first [`LANES`] spheres of `spheres` at once, as a bit mask
+    /// (bit `k` set when `may_hit(&spheres[k])`): every bit is exactly the scalar test's answer,
+    /// because each lane does the scalar test's `f32` operations in the same order (no fused
+    /// multiply-add; a `u16` count converts to `f32` exactly either way). A leaf's copies sit side
+    /// by side, so four of them are one 32-byte load, and a leaf of up to four spheres is tested
+    /// without a loop whose end a random ray would mispredict.
+    ///
+    /// # Panics
+    /// If `spheres` holds fewer than [`LANES`] copies (the tree pads its list so that every
+    /// leaf's last group is whole).
+    #[inline]
+    pub fn survivors(&self, spheres: &[CoarseSphere]) -> u32 {
+        let four: &[CoarseSphere; LANES] = spheres[..LANES].try_into().expect("a group of four copies");
+        if !self.enabled {
+            return ALL_LANES;
+        }
+        #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+        return self.survivors_sse2(four);
+        #[cfg(not(all(target_arch = "x86_64", target_feature = "sse2")))]
+        return self.survivors_scalar(four);
+    }
+
+    /// [`CoarseRay::survivors`] one sphere at a time: the reference the vector code is tested
+    /// against, and the code of other targets.
+    #[cfg_attr(all(target_arch = "x86_64", target_feature = "sse2", not(test)), allow(dead_code))]
+    fn survivors_scalar(&self, four: &[CoarseSphere; LANES]) -> u32 {
+        four.iter().enumerate().fold(0, |mask, (k, sphere)| mask | (u32::from(self.may_hit(sphere)) << k))
+    }
+
+    /// [`CoarseRay::survivors`] in SSE2, x86-64's baseline: no run-time check.
+    #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+    #[inline]
+    fn survivors_sse2(&self, four: &[CoarseSphere; LANES]) -> u32 {
+        use std::arch::x86_64::{
+            _mm_add_ps, _mm_cmple_ps, _mm_cvtepi32_ps, _mm_loadu_si128, _mm_movehl_ps, _mm_movelh_ps, _mm_movemask_ps,
+            _mm_mul_ps, _mm_set1_ps, _mm_setzero_si128, _mm_sub_ps, _mm_unpackhi_epi16, _mm_unpackhi_ps,
+            _mm_unpacklo_epi16, _mm_unpacklo_ps,
+        };
+        // SAFETY: SSE and SSE2 are part of every x86-64 CPU (the baseline the crate is compiled
+        // for); the only memory touched is two unaligned 16-byte loads of `four`'s halves: four
+        // `#[repr(C)]` copies of four `u16`s, 32 bytes without padding.
+        unsafe {
+            let at = four.as_ptr().cast::<std::arch::x86_64::__m128i>();
+            let (front, back) = (_mm_loadu_si128(at), _mm_loadu_si128(at.add(1)));
+            let zero = _mm_setzero_si128();
+            // Each sphere's four counts, zero-extended to 32 bits and converted exactly: rows
+            // (x, y, z, r) of spheres 0..3 ...
+            let rows = [
+                _mm_cvtepi32_ps(_mm_unpacklo_epi16(front, zero)),
+                _mm_cvtepi32_ps(_mm_unpackhi_epi16(front, zero)),
+                _mm_cvtepi32_ps(_mm_unpacklo_epi16(back, zero)),
+                _mm_cvtepi32_ps(_mm_unpackhi_epi16(back, zero)),
+            ];
+            // ... transposed into one vector per coordinate (lane k: sphere k).
+            let (xy01, xy23) = (_mm_unpacklo_ps(rows[0], rows[1]), _mm_unpacklo_ps(rows[2], rows[3]));
+            let (zr01, zr23) = (_mm_unpackhi_ps(rows[0], rows[1]), _mm_unpackhi_ps(rows[2], rows[3]));
+            let q = [_mm_movelh_ps(xy01, xy23), _mm_movehl_ps(xy23, xy01), _mm_movelh_ps(zr01, zr23)];
+            let radius = _mm_movehl_ps(zr23, zr01);
+            let (o, d) = (self.origin.map(|x| _mm_set1_ps(x)), self.dir.map(|x| _mm_set1_ps(x)));
+            let f = [_mm_sub_ps(o[0], q[0]), _mm_sub_ps(o[1], q[1]), _mm_sub_ps(o[2], q[2])];
+            let p = [
+                _mm_sub_ps(_mm_mul_ps(f[1], d[2]), _mm_mul_ps(f[2], d[1])),
+                _mm_sub_ps(_mm_mul_ps(f[2], d[0]), _mm_mul_ps(f[0], d[2])),
+                _mm_sub_ps(_mm_mul_ps(f[0], d[1]), _mm_mul_ps(f[1], d[0])),
+            ];
+            let lhs = _mm_add_ps(_mm_add_ps(_mm_mul_ps(p[0], p[0]), _mm_mul_ps(p[1], p[1])), _mm_mul_ps(p[2], p[2]));
+            let s = _mm_add_ps(radius, _mm_set1_ps(self.widening));
+            let rhs = _mm_mul_ps(_mm_mul_ps(s, s), _mm_set1_ps(self.scaled_a));
+            _mm_movemask_ps(_mm_cmple_ps(lhs, rhs)) as u32
+        }
+    }
 }
+
+/// How many coarse copies [`CoarseRay::survivors`] tests at once.
+pub(super) const LANES: usize = 4;
+
+/// The mask of all [`LANES`] lanes.
+const ALL_LANES: u32 = (1 << LANES) - 1;
 
 #[cfg(test)]
 mod tests {
@@ -261,6 +339,51 @@ mod tests {
         if widen == 1.0 {
             assert!(coarse_kept < kept + cases / 5, "coarse keeps {coarse_kept}, exact {kept} of {cases}");
         }
+    }
+
+    /// The four-at-once test gives every copy the scalar test's answer, bit for bit: random and
+    /// grazing rays (about half of the grazing copies kept), copies at the grid's extremes
+    /// (counts 0 and 65 535), and disabled rays, which keep all four.
+    #[test]
+    fn survivors_equal_the_scalar_test_lane_by_lane() {
+        let mut rng = seeded(0x5EED, 4);
+        let grid = Grid::new(&Aabb { min: DVec3::splat(-1.0), max: DVec3::splat(1.0) });
+        let (mut groups, mut kept, mut lanes) = (0, 0, 0);
+        for round in 0..20_000 {
+            let spheres: Vec<Sphere<f64>> = (0..LANES)
+                .map(|_| {
+                    let c = DVec3::new(
+                        uniform(&mut rng, -1.0, 1.0),
+                        uniform(&mut rng, -1.0, 1.0),
+                        uniform(&mut rng, -1.0, 1.0),
+                    );
+                    Sphere::new(c * 0.9, uniform(&mut rng, 1e-4, 0.1)).unwrap()
+                })
+                .collect();
+            let mut four: Vec<CoarseSphere> = spheres.iter().map(|s| grid.pack(s).unwrap()).collect();
+            if round % 7 == 0 {
+                four[round % LANES] = CoarseSphere { steps: [0, u16::MAX, 0, u16::MAX] };
+            }
+            let o =
+                DVec3::new(uniform(&mut rng, -2.0, 2.0), uniform(&mut rng, -2.0, 2.0), uniform(&mut rng, -2.0, 2.0));
+            // Every other ray is aimed at the first sphere's rim: grazing, kept or not by a hair.
+            let target = spheres[0].center + DVec3::X * spheres[0].radius * (1.0 + uniform(&mut rng, -1e-6, 1e-6));
+            let random =
+                DVec3::new(uniform(&mut rng, -1.0, 1.0), uniform(&mut rng, -1.0, 1.0), uniform(&mut rng, -1.0, 1.0));
+            let dir = if round % 2 == 0 { target - o } else { random };
+            let scale = [1.0, 1e-30, 1e3][round % 3];
+            let Ok(ray) = Ray::new(o, dir * scale) else { continue };
+            let coarse = CoarseRay::new(&ray, &grid);
+            let mask = coarse.survivors(&four);
+            assert_eq!(mask, coarse.survivors_scalar(four[..].try_into().unwrap()), "{ray:?} {four:?}");
+            if !coarse.enabled {
+                assert_eq!(mask, ALL_LANES);
+            }
+            groups += 1;
+            kept += mask.count_ones();
+            lanes += LANES as u32;
+        }
+        assert!(groups > 19_000 && kept > lanes / 20 && kept < lanes / 2, "{kept} of {lanes} lanes kept");
     }
 
     #[test]

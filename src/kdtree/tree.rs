@@ -1,7 +1,7 @@
 //! The 3-D kd-tree over spheres: flat node array, closest-hit traversal with early exit.
 
 use super::build::{Builder, EXACT_MAX, Prim, SahCosts, Subtree, check_costs, max_depth, sphere_boxes};
-use super::coarse::{CoarseRay, CoarseSphere, Grid};
+use super::coarse::{CoarseRay, CoarseSphere, Grid, LANES};
 use super::node::{Aabb, Node, NodeKind};
 use super::{BuildError, ReciprocalAxis, Side, split_pieces};
 use crate::geometry::sphere::roots_stable;
@@ -187,7 +187,9 @@ impl KdTree {
         let grid = Grid::new(&bounds);
         let packed: Option<Vec<CoarseSphere>> = exact.iter().map(|leaf| grid.pack(&leaf.sphere)).collect();
         let fits = packed.is_some();
-        let coarse = packed.unwrap_or_else(|| vec![CoarseSphere::KEEP; exact.len()]);
+        let mut coarse = packed.unwrap_or_else(|| vec![CoarseSphere::KEEP; exact.len()]);
+        // The leaf test reads whole groups of `LANES` copies: the last leaf's group ends inside.
+        coarse.extend([CoarseSphere::KEEP; LANES - 1]);
         Self { nodes: built.nodes, coarse, grid, fits, exact, bounds, motion: None }
     }
 
@@ -388,20 +390,25 @@ impl KdTree {
                 }
                 NodeKind::Leaf { first, count } => {
                     counter.sphere_tests(count);
-                    let range = first as usize..(first + count) as usize;
-                    for (k, sphere) in self.coarse[range.clone()].iter().enumerate() {
-                        if filtered && !coarse.may_hit(sphere) {
-                            continue;
-                        }
-                        let leaf = &self.exact[range.start + k];
-                        let Some(t) = roots_stable(ray, &self.sphere_at(leaf, time))
-                            .and_then(|roots| roots.first_in(t_min, t_max))
-                        else {
-                            continue;
-                        };
-                        let i = leaf.index as usize;
-                        if best.is_none_or(|(j, u)| t < u || (t == u && i < j)) {
-                            best = Some((i, t));
+                    let (first, count) = (first as usize, count as usize);
+                    // Groups of `LANES` copies tested at once; a mask of the survivors, in list
+                    // order, instead of a branch per copy.
+                    for group in (0..count).step_by(LANES) {
+                        let lanes = (1u32 << (count - group).min(LANES)) - 1;
+                        let mut kept =
+                            if filtered { coarse.survivors(&self.coarse[first + group..]) & lanes } else { lanes };
+                        while kept != 0 {
+                            let leaf = &self.exact[first + group + kept.trailing_zeros() as usize];
+                            kept &= kept - 1;
+                            let Some(t) = roots_stable(ray, &self.sphere_at(leaf, time))
+                                .and_then(|roots| roots.first_in(t_min, t_max))
+                            else {
+                                continue;
+                            };
+                            let i = leaf.index as usize;
+                            if best.is_none_or(|(j, u)| t < u || (t == u && i < j)) {
+                                best = Some((i, t));
+                            }
                         }
                     }
                 }
