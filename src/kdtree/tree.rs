@@ -570,6 +570,39 @@ mod tests {
         }
     }
 
+    /// A build on one thread and one on four give the same tree: the same nodes, the same leaf
+    /// lists (index and sphere), the same quantised copies and box. 60 000 small spheres, a
+    /// quarter of them snapped to a grid (shared faces, planes on them), so that several levels
+    /// lie above the parallel threshold and their planes see ties.
+    #[test]
+    fn builds_on_one_and_on_four_threads_are_identical() {
+        let mut rng = seeded(0x5eed, 6);
+        let n = 60_000;
+        let r = (3.0 / (std::f64::consts::PI * n as f64)).sqrt();
+        let spheres: Vec<_> = (0..n)
+            .map(|_| {
+                let mut c =
+                    DVec3::new(uniform(&mut rng, 0.0, 1.0), uniform(&mut rng, 0.0, 1.0), uniform(&mut rng, 0.0, 1.0));
+                if rng.next_u64().is_multiple_of(4) {
+                    c = (c * 64.0).round() / 64.0;
+                }
+                Sphere::new(c, r * uniform(&mut rng, 0.5, 1.5)).unwrap()
+            })
+            .collect();
+        let on = |threads: usize| {
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+            pool.install(|| KdTree::build(&spheres).unwrap())
+        };
+        let (one, four) = (on(1), on(4));
+        assert!(one.node_count() > 10_000, "{} nodes", one.node_count());
+        assert_eq!(one.nodes, four.nodes);
+        assert_eq!(one.bounds, four.bounds);
+        assert_eq!((one.fits, one.grid), (four.fits, four.grid));
+        assert_eq!(one.coarse, four.coarse);
+        let leaves = |tree: &KdTree| tree.exact.iter().map(|leaf| (leaf.index, leaf.sphere)).collect::<Vec<_>>();
+        assert_eq!(leaves(&one), leaves(&four));
+    }
+
     #[test]
     fn tree_prunes_work_on_a_large_scene() {
         let mut rng = seeded(7, 0);
