@@ -28,6 +28,7 @@
 
 use super::node::{Aabb, MAX_PACKED, Node};
 use crate::geometry::{InputError, Sphere};
+use std::sync::atomic::{AtomicBool, Ordering};
 
 /// Constants of the SAH cost model and the binning.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -90,30 +91,51 @@ pub enum BuildError {
     },
 }
 
-/// Validated bounding boxes of the input spheres.
+/// Validated bounding boxes of the input spheres. From [`PARALLEL_MIN`] spheres on, on the rayon
+/// pool (each box depends on its sphere alone, so the boxes are the same); the error is always the
+/// one of the lowest invalid index, as in a serial pass.
 pub(super) fn sphere_boxes(spheres: &[Sphere<f64>]) -> Result<Vec<Aabb>, BuildError> {
+    use rayon::prelude::*;
     if spheres.len() >= MAX_PACKED as usize {
         return Err(BuildError::TooManySpheres { count: spheres.len() });
     }
-    spheres
-        .iter()
+    let serial = || spheres.iter().enumerate().map(sphere_box).collect();
+    if spheres.len() < PARALLEL_MIN {
+        return serial();
+    }
+    // An indexed collect writes each box in place (collecting `Result`s would gather pieces and
+    // copy them); an invalid sphere leaves a placeholder and a flag, and the serial pass then names
+    // the lowest invalid index.
+    let invalid = AtomicBool::new(false);
+    let boxes = spheres
+        .par_iter()
         .enumerate()
-        .map(|(index, s)| {
-            let invalid = |source| BuildError::InvalidSphere { index, source };
-            let valid = Sphere::new(s.center, s.radius).map_err(invalid)?;
-            let r = glam::DVec3::splat(valid.radius);
-            let bounds = Aabb { min: valid.center - r, max: valid.center + r };
-            if bounds.min.is_finite() && bounds.max.is_finite() {
-                Ok(bounds)
-            } else {
-                Err(invalid(InputError::OutOfRange {
-                    name: "sphere bounds",
-                    value: format!("{bounds:?}"),
-                    expected: "finite (centre ± radius must not overflow)",
-                }))
-            }
+        .with_min_len(PARALLEL_CHUNK)
+        .map(|item| {
+            sphere_box(item).unwrap_or_else(|_| {
+                invalid.store(true, Ordering::Relaxed);
+                Aabb { min: glam::DVec3::ZERO, max: glam::DVec3::ZERO }
+            })
         })
-        .collect()
+        .collect();
+    if invalid.into_inner() { serial() } else { Ok(boxes) }
+}
+
+/// The validated bounding box of sphere `index`.
+fn sphere_box((index, s): (usize, &Sphere<f64>)) -> Result<Aabb, BuildError> {
+    let invalid = |source| BuildError::InvalidSphere { index, source };
+    let valid = Sphere::new(s.center, s.radius).map_err(invalid)?;
+    let r = glam::DVec3::splat(valid.radius);
+    let bounds = Aabb { min: valid.center - r, max: valid.center + r };
+    if bounds.min.is_finite() && bounds.max.is_finite() {
+        Ok(bounds)
+    } else {
+        Err(invalid(InputError::OutOfRange {
+            name: "sphere bounds",
+            value: format!("{bounds:?}"),
+            expected: "finite (centre ± radius must not overflow)",
+        }))
+    }
 }
 
 pub(super) fn check_costs(costs: &SahCosts) -> Result<(), BuildError> {
@@ -193,8 +215,13 @@ fn f32_above(x: f64) -> f64 {
 }
 
 /// Spheres from which a node builds its two subtrees on two threads (`rayon::join`): below it the
-/// per-subtree bookkeeping costs more than the second thread saves.
-const PARALLEL_MIN: usize = 8_192;
+/// per-subtree bookkeeping costs more than the second thread saves. The per-sphere passes around
+/// the build (boxes, quantised copies, leaf arrays) run on the pool from this many items on too.
+pub(super) const PARALLEL_MIN: usize = 8_192;
+
+/// The fewest items a rayon task of the per-sphere passes takes: fewer tasks than items by far, so
+/// that splitting and stealing cost nothing next to the work.
+pub(super) const PARALLEL_CHUNK: usize = 4_096;
 
 /// Bin counts up to which [`Builder::best_split`] keeps its counts on the stack.
 const INLINE_BINS: usize = 32;

@@ -1,12 +1,15 @@
 //! The 3-D kd-tree over spheres: flat node array, closest-hit traversal with early exit.
 
-use super::build::{Builder, EXACT_MAX, Prim, SahCosts, Subtree, check_costs, max_depth, sphere_boxes};
+use super::build::{
+    Builder, EXACT_MAX, PARALLEL_CHUNK, PARALLEL_MIN, Prim, SahCosts, Subtree, check_costs, max_depth, sphere_boxes,
+};
 use super::coarse::{CoarseRay, CoarseSphere, Grid};
 use super::node::{Aabb, Node, NodeKind};
 use super::{BuildError, ReciprocalAxis, Side, split_pieces};
 use crate::geometry::sphere::roots_stable;
 use crate::geometry::{Ray, Sphere};
 use glam::DVec3;
+use std::sync::atomic::{AtomicBool, Ordering};
 
 /// Work counters of one or more closest-hit queries.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
@@ -171,23 +174,62 @@ impl KdTree {
     }
 
     /// [`KdTree::from_boxes`] with nodes of at most `exact_max` spheres trying every box face.
+    ///
+    /// From [`PARALLEL_MIN`] spheres on, the per-sphere passes run on the rayon pool: the quantised
+    /// copy of each sphere (it depends on the sphere and the grid alone, so it is made once per
+    /// sphere, not once per reference) beside the build, then the leaf arrays, gathered by index.
+    /// Every element is computed as in the serial passes and collected in order, so the tree is
+    /// the same on any number of threads.
     fn from_boxes_with(spheres: &[Sphere<f64>], boxes: &[Aabb], costs: SahCosts, exact_max: usize) -> Self {
+        use rayon::prelude::*;
         let empty = Aabb { min: DVec3::INFINITY, max: DVec3::NEG_INFINITY };
         let bounds = boxes.iter().copied().fold(empty, Aabb::union);
         let builder = Builder { costs, max_depth: max_depth(spheres.len()), exact_max };
-        let all: Vec<Prim> = (0u32..).zip(boxes).map(|(index, &bounds)| Prim { index, bounds }).collect();
-        let mut built = Subtree::default();
-        if spheres.is_empty() {
-            built.nodes.push(Node::leaf(0, 0));
-        } else {
-            builder.build(bounds, all, 0, &mut built);
-        }
-        let exact: Vec<LeafSphere> =
-            built.indices.iter().map(|&index| LeafSphere { sphere: spheres[index as usize], index }).collect();
         let grid = Grid::new(&bounds);
-        let packed: Option<Vec<CoarseSphere>> = exact.iter().map(|leaf| grid.pack(&leaf.sphere)).collect();
-        let fits = packed.is_some();
-        let coarse = packed.unwrap_or_else(|| vec![CoarseSphere::KEEP; exact.len()]);
+        let parallel = spheres.len() >= PARALLEL_MIN;
+        let prim = |(index, &bounds): (u32, &Aabb)| Prim { index, bounds };
+        let build = || {
+            let mut built = Subtree::default();
+            if spheres.is_empty() {
+                built.nodes.push(Node::leaf(0, 0));
+            } else if parallel {
+                let all = (0..u32::try_from(boxes.len()).expect("checked by sphere_boxes"))
+                    .into_par_iter()
+                    .zip(boxes)
+                    .with_min_len(PARALLEL_CHUNK)
+                    .map(prim)
+                    .collect();
+                builder.build(bounds, all, 0, &mut built);
+            } else {
+                builder.build(bounds, (0u32..).zip(boxes).map(prim).collect(), 0, &mut built);
+            }
+            built
+        };
+        let pack = |sphere: &Sphere<f64>| grid.pack(sphere);
+        let (built, packed): (Subtree, Vec<Option<CoarseSphere>>) = if parallel {
+            rayon::join(build, || spheres.par_iter().with_min_len(PARALLEL_CHUNK).map(pack).collect())
+        } else {
+            (build(), spheres.iter().map(pack).collect())
+        };
+        let leaf = |&index: &u32| LeafSphere { sphere: spheres[index as usize], index };
+        // A sphere off the grid leaves a placeholder and clears `fits` (indexed collects write in
+        // place; collecting `Option`s would gather pieces and copy them).
+        let fits = AtomicBool::new(true);
+        let coarse = |&index: &u32| {
+            packed[index as usize].unwrap_or_else(|| {
+                fits.store(false, Ordering::Relaxed);
+                CoarseSphere::KEEP
+            })
+        };
+        let (exact, coarse): (Vec<LeafSphere>, Vec<CoarseSphere>) = if parallel {
+            let indices = || built.indices.par_iter().with_min_len(PARALLEL_CHUNK);
+            rayon::join(|| indices().map(leaf).collect(), || indices().map(coarse).collect())
+        } else {
+            (built.indices.iter().map(leaf).collect(), built.indices.iter().map(coarse).collect())
+        };
+        let fits = fits.into_inner();
+        // The traversal never reads the copies then; all placeholders, as they always were.
+        let coarse = if fits { coarse } else { vec![CoarseSphere::KEEP; exact.len()] };
         Self { nodes: built.nodes, coarse, grid, fits, exact, bounds, motion: None }
     }
 
