@@ -91,10 +91,12 @@ pub enum BuildError {
     },
 }
 
-/// Validated bounding boxes of the input spheres. From [`PARALLEL_MIN`] spheres on, on the rayon
-/// pool (each box depends on its sphere alone, so the boxes are the same); the error is always the
-/// one of the lowest invalid index, as in a serial pass.
-pub(super) fn sphere_boxes(spheres: &[Sphere<f64>]) -> Result<Vec<Aabb>, BuildError> {
+/// The input spheres as the builder reads them: each one's index and validated bounding box, in
+/// input order (made here in one pass, not as a list of boxes copied into a list of `Prim`s: one
+/// pass and one array of fresh pages fewer). From [`PARALLEL_MIN`] spheres on, on the rayon pool
+/// (each box depends on its sphere alone, so the list is the same); the error is always the one
+/// of the lowest invalid index, as in a serial pass.
+pub(super) fn sphere_prims(spheres: &[Sphere<f64>]) -> Result<Vec<Prim>, BuildError> {
     use rayon::prelude::*;
     if spheres.len() >= MAX_PACKED as usize {
         return Err(BuildError::TooManySpheres { count: spheres.len() });
@@ -114,21 +116,22 @@ pub(super) fn sphere_boxes(spheres: &[Sphere<f64>]) -> Result<Vec<Aabb>, BuildEr
         .map(|item| {
             sphere_box(item).unwrap_or_else(|_| {
                 invalid.store(true, Ordering::Relaxed);
-                Aabb { min: glam::DVec3::ZERO, max: glam::DVec3::ZERO }
+                Prim { index: 0, bounds: Aabb { min: glam::DVec3::ZERO, max: glam::DVec3::ZERO } }
             })
         })
         .collect();
     if invalid.into_inner() { serial() } else { Ok(boxes) }
 }
 
-/// The validated bounding box of sphere `index`.
-fn sphere_box((index, s): (usize, &Sphere<f64>)) -> Result<Aabb, BuildError> {
+/// Sphere `index` with its validated bounding box.
+fn sphere_box((index, s): (usize, &Sphere<f64>)) -> Result<Prim, BuildError> {
     let invalid = |source| BuildError::InvalidSphere { index, source };
     let valid = Sphere::new(s.center, s.radius).map_err(invalid)?;
     let r = glam::DVec3::splat(valid.radius);
     let bounds = Aabb { min: valid.center - r, max: valid.center + r };
     if bounds.min.is_finite() && bounds.max.is_finite() {
-        Ok(bounds)
+        // Below 2³⁰ (checked by the caller).
+        Ok(Prim { index: index as u32, bounds })
     } else {
         Err(invalid(InputError::OutOfRange {
             name: "sphere bounds",
@@ -369,8 +372,9 @@ fn children(cell: Aabb, axis: usize, split: f64) -> (Aabb, Aabb) {
 impl Builder {
     /// Builds the subtree of `cell` holding `prims`, appending it to `out` (pre-order: the lower
     /// child directly follows its parent). Nodes of at least [`PARALLEL_MIN`] spheres build their
-    /// children in parallel, each child from a list of its own; smaller ones build serially in
-    /// one scratch list ([`Builder::build_serial`]). The result is the same tree as a serial build.
+    /// children in parallel, each child from a list of its own, the lower child into `out`, the
+    /// upper into a [`Subtree`] of its own appended after it; smaller ones build serially in one
+    /// scratch list ([`Builder::build_serial`]). The result is the same tree as a serial build.
     pub fn build(&self, cell: Aabb, mut prims: Vec<Prim>, depth: usize, out: &mut Subtree) {
         if prims.len() < PARALLEL_MIN {
             let count = prims.len();
@@ -397,13 +401,18 @@ impl Builder {
         let here = out.nodes.len();
         out.nodes.push(Node::leaf(0, 0));
         let (lower_cell, upper_cell) = children(cell, axis, split);
-        let subtree = |cell, prims| {
-            let mut part = Subtree::default();
-            self.build(cell, prims, depth + 1, &mut part);
-            part
-        };
-        let (lower_part, upper_part) = rayon::join(|| subtree(lower_cell, lower), || subtree(upper_cell, upper));
-        out.append(lower_part);
+        // The lower child builds straight into `out`, where it belongs (pre-order), and only the
+        // upper child's arrays are copied, once: appending both had copied every node and index
+        // twice per parallel level (the second append's growth copying the first's) into fresh
+        // pages.
+        let ((), upper_part) = rayon::join(
+            || self.build(lower_cell, lower, depth + 1, out),
+            || {
+                let mut part = Subtree::default();
+                self.build(upper_cell, upper, depth + 1, &mut part);
+                part
+            },
+        );
         let upper_index = u32::try_from(out.nodes.len()).expect("node count fits u32");
         out.append(upper_part);
         out.nodes[here] = Node::interior(split as f32, axis, upper_index);
@@ -888,8 +897,8 @@ mod tests {
         let ok = Sphere { center: DVec3::ZERO, radius: 1.0 };
         let nan = Sphere { center: DVec3::new(f64::NAN, 0.0, 0.0), radius: 1.0 };
         let overflow = Sphere { center: DVec3::splat(f64::MAX), radius: f64::MAX };
-        assert!(matches!(sphere_boxes(&[ok, nan]), Err(BuildError::InvalidSphere { index: 1, .. })));
-        assert!(matches!(sphere_boxes(&[overflow]), Err(BuildError::InvalidSphere { index: 0, .. })));
+        assert!(matches!(sphere_prims(&[ok, nan]), Err(BuildError::InvalidSphere { index: 1, .. })));
+        assert!(matches!(sphere_prims(&[overflow]), Err(BuildError::InvalidSphere { index: 0, .. })));
     }
 
     #[test]

@@ -1,7 +1,7 @@
 //! The 3-D kd-tree over spheres: flat node array, closest-hit traversal with early exit.
 
 use super::build::{
-    Builder, EXACT_MAX, PARALLEL_CHUNK, PARALLEL_MIN, Prim, SahCosts, Subtree, check_costs, max_depth, sphere_boxes,
+    Builder, EXACT_MAX, PARALLEL_CHUNK, PARALLEL_MIN, Prim, SahCosts, Subtree, check_costs, max_depth, sphere_prims,
 };
 use super::coarse::{CoarseRay, CoarseSphere, Grid};
 use super::node::{Aabb, Node, NodeKind};
@@ -123,8 +123,8 @@ impl KdTree {
     /// As [`KdTree::build`], plus [`BuildError::InvalidCosts`].
     pub fn build_with(spheres: &[Sphere<f64>], costs: SahCosts) -> Result<Self, BuildError> {
         check_costs(&costs)?;
-        let boxes = sphere_boxes(spheres)?;
-        Ok(Self::from_boxes(spheres, &boxes, costs))
+        let prims = sphere_prims(spheres)?;
+        Ok(Self::from_prims(spheres, prims, costs))
     }
 
     /// Builds the tree over spheres moving with constant `velocities` (one per sphere; a zero
@@ -161,47 +161,42 @@ impl KdTree {
         let at = |time: f64| -> Vec<Sphere<f64>> {
             spheres.iter().zip(velocities).map(|(&sphere, &velocity)| moved(sphere, velocity, time)).collect()
         };
-        let (open, close) = (sphere_boxes(&at(interval.0))?, sphere_boxes(&at(interval.1))?);
-        let boxes: Vec<Aabb> = open.into_iter().zip(close).map(|(a, b)| a.union(b)).collect();
-        let mut tree = Self::from_boxes(spheres, &boxes, SahCosts::default());
+        let (open, close) = (sphere_prims(&at(interval.0))?, sphere_prims(&at(interval.1))?);
+        let swept: Vec<Prim> = open
+            .into_iter()
+            .zip(close)
+            .map(|(a, b)| Prim { index: a.index, bounds: a.bounds.union(b.bounds) })
+            .collect();
+        let mut tree = Self::from_prims(spheres, swept, SahCosts::default());
         tree.motion = Some(Motion { spheres: spheres.to_vec(), velocities: velocities.to_vec(), interval });
         Ok(tree)
     }
 
-    /// The tree over `spheres` bounded by `boxes` (validated, one per sphere).
-    fn from_boxes(spheres: &[Sphere<f64>], boxes: &[Aabb], costs: SahCosts) -> Self {
-        Self::from_boxes_with(spheres, boxes, costs, EXACT_MAX)
+    /// The tree over `spheres` bounded by `prims` (validated boxes, one per sphere, in input order).
+    fn from_prims(spheres: &[Sphere<f64>], prims: Vec<Prim>, costs: SahCosts) -> Self {
+        Self::from_prims_with(spheres, prims, costs, EXACT_MAX)
     }
 
-    /// [`KdTree::from_boxes`] with nodes of at most `exact_max` spheres trying every box face.
+    /// [`KdTree::from_prims`] with nodes of at most `exact_max` spheres trying every box face.
     ///
     /// From [`PARALLEL_MIN`] spheres on, the per-sphere passes run on the rayon pool: the quantised
     /// copy of each sphere (it depends on the sphere and the grid alone, so it is made once per
     /// sphere, not once per reference) beside the build, then the leaf arrays, gathered by index.
     /// Every element is computed as in the serial passes and collected in order, so the tree is
     /// the same on any number of threads.
-    fn from_boxes_with(spheres: &[Sphere<f64>], boxes: &[Aabb], costs: SahCosts, exact_max: usize) -> Self {
+    fn from_prims_with(spheres: &[Sphere<f64>], prims: Vec<Prim>, costs: SahCosts, exact_max: usize) -> Self {
         use rayon::prelude::*;
         let empty = Aabb { min: DVec3::INFINITY, max: DVec3::NEG_INFINITY };
-        let bounds = boxes.iter().copied().fold(empty, Aabb::union);
+        let bounds = prims.iter().fold(empty, |b, p| b.union(p.bounds));
         let builder = Builder { costs, max_depth: max_depth(spheres.len()), exact_max };
         let grid = Grid::new(&bounds);
         let parallel = spheres.len() >= PARALLEL_MIN;
-        let prim = |(index, &bounds): (u32, &Aabb)| Prim { index, bounds };
         let build = || {
             let mut built = Subtree::default();
             if spheres.is_empty() {
                 built.nodes.push(Node::leaf(0, 0));
-            } else if parallel {
-                let all = (0..u32::try_from(boxes.len()).expect("checked by sphere_boxes"))
-                    .into_par_iter()
-                    .zip(boxes)
-                    .with_min_len(PARALLEL_CHUNK)
-                    .map(prim)
-                    .collect();
-                builder.build(bounds, all, 0, &mut built);
             } else {
-                builder.build(bounds, (0u32..).zip(boxes).map(prim).collect(), 0, &mut built);
+                builder.build(bounds, prims, 0, &mut built);
             }
             built
         };
@@ -604,10 +599,10 @@ mod tests {
                     Sphere::new(c, r * uniform(&mut rng, 0.5, 1.5)).unwrap()
                 })
                 .collect();
-            let boxes = sphere_boxes(&spheres).unwrap();
+            let prims = sphere_prims(&spheres).unwrap();
             let costs = SahCosts::default();
-            let binned = KdTree::from_boxes_with(&spheres, &boxes, costs, 0).sah_cost(&costs);
-            let exact = KdTree::from_boxes_with(&spheres, &boxes, costs, EXACT_MAX).sah_cost(&costs);
+            let binned = KdTree::from_prims_with(&spheres, prims.clone(), costs, 0).sah_cost(&costs);
+            let exact = KdTree::from_prims_with(&spheres, prims, costs, EXACT_MAX).sah_cost(&costs);
             assert!(exact < binned, "N = {n}: SAH cost {exact} with exact small nodes, {binned} binned");
         }
     }
