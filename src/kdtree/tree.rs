@@ -503,8 +503,8 @@ impl KdTree {
         // ray, or leaves the list when the batch is used up.
         let mut live = [0usize; W];
         let mut count = 0;
-        for slot in 0..W {
-            if self.launch(&mut flights[slot], rays, &mut next, t_min, t_max, out) {
+        for (slot, flight) in flights.iter_mut().enumerate() {
+            if self.launch(flight, rays, &mut next, t_min, t_max, out) {
                 live[count] = slot;
                 count += 1;
             }
