@@ -451,8 +451,8 @@ impl KdTree {
     ///
     /// For scattered rays (random origins and directions) this is faster than calling
     /// [`KdTree::closest_hit`] ray by ray (15–25 % less time in the Q3 benchmark at N = 10⁵,
-    /// 30–40 % at 10⁶); for coherent rays in order (a camera's) it is slower (1.2–1.6× the time):
-    /// their branches are well guessed ray after ray, which interleaving undoes. The Q3
+    /// 30–40 % at 10⁶); for coherent rays in order (a camera's), which find their nodes in the
+    /// cache and whose branches are well guessed, it is slower (1.2–1.6× the time). The Q3
     /// engineering notes (step 14) have the measurements.
     ///
     /// Preconditions: as [`KdTree::closest_hit`] (a ray or range it answers `None` for gets
