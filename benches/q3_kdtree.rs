@@ -11,6 +11,10 @@
 //! ray (a mismatch is a different sphere, or hit versus miss), and the benchmark's ray #839 669 with
 //! direction (−0, −0, −1) is a named probe in every configuration.
 //!
+//! Batch rounds of their own (`batch_rounds`) time the tree's batch query [`KdTree::closest_hits`]
+//! (asserted equal to the single-ray answers, bit for bit) beside the tree ray by ray and Embree's
+//! single-ray, stream (`rtcIntersect1M`) and 8-wide packet (`rtcIntersect8`) calls.
+//!
 //! Beside the crate's `f64` tree runs its `f32` copy ([`KdTreeF32`], on the `f32` rays); its
 //! accuracy cost is counted twice per scene: rays where it names another sphere than the `f64`
 //! tree, and, on those rays, which of the two answers a double-double evaluation of both
