@@ -11,6 +11,10 @@
 //! ray (a mismatch is a different sphere, or hit versus miss), and the benchmark's ray #839 669 with
 //! direction (−0, −0, −1) is a named probe in every configuration.
 //!
+//! Batch rounds of their own (`batch_rounds`) time the tree's batch query [`KdTree::closest_hits`]
+//! (asserted equal to the single-ray answers, bit for bit) beside the tree ray by ray and Embree's
+//! single-ray, stream (`rtcIntersect1M`) and 8-wide packet (`rtcIntersect8`) calls.
+//!
 //! Beside the crate's `f64` tree runs its `f32` copy ([`KdTreeF32`], on the `f32` rays); its
 //! accuracy cost is counted twice per scene: rays where it names another sphere than the `f64`
 //! tree, and, on those rays, which of the two answers a double-double evaluation of both
@@ -58,6 +62,13 @@ fn best_of<R>(repeats: usize, mut work: impl FnMut() -> R) -> (f64, R) {
 
 fn trace_all(tree: &KdTree, rays: &[Ray<f64>]) -> Vec<Hit> {
     rays.iter().map(|r| tree.closest_hit(black_box(r), T_MIN, f64::INFINITY)).collect()
+}
+
+/// The batch query over the same rays (the rays passed through `black_box` as one slice).
+fn trace_batch(tree: &KdTree, rays: &[Ray<f64>]) -> Vec<Hit> {
+    let mut out = vec![None; rays.len()];
+    tree.closest_hits(black_box(rays), T_MIN, f64::INFINITY, &mut out);
+    out
 }
 
 fn brute_all(spheres: &[Sphere<f64>], rays: &[Ray<f64>]) -> Vec<Hit> {
@@ -172,6 +183,8 @@ struct Run {
     /// differ from the double-double verdict; its speed ÷ Embree's, camera and random; camera and
     /// random rays compared; its speed ÷ the `f64` tree's, camera and random.
     f32_fields: String,
+    /// The batch rounds' CSV fields ([`batch_rounds`]).
+    batch_fields: String,
     probe: Vec<String>,
 }
 
@@ -294,6 +307,7 @@ fn run_all(
         peer_fields: String::new(),
         embree_fields: ",-,-,-,-,-,-".into(),
         f32_fields: String::new(),
+        batch_fields: batch_rounds(tree, &built, rays, repeats.1),
         probe: Vec::new(),
     };
     let kd32 = 1 + peers::NAMES.len();
@@ -345,12 +359,100 @@ fn run_all(
     run
 }
 
+/// The batch rounds: the kd-tree ray by ray and through its batch query
+/// [`KdTree::closest_hits`], and (with the `embree` feature) Embree ray by ray (`rtcIntersect1`),
+/// by its stream call (`rtcIntersect1M`) and by 8-wide packets (`rtcIntersect8`), interleaved in
+/// the same rounds on the same rays, camera (with Embree's coherent hint) and random. Asserts that
+/// the batch query answers every ray exactly as the single-ray query does, and counts Embree's
+/// batch answers that name another sphere than its single-ray answers. Returns the CSV fields:
+/// kd batch camera and random Mrays/s, kd batch ÷ kd speed (camera, random), Embree stream and
+/// packet Mrays/s (camera, random each), Embree batch mismatches, kd ÷ Embree single-ray speed in
+/// these rounds (camera, random), and kd batch ÷ Embree's faster batch form per round (camera,
+/// random); medians of per-round ratios, `-` without Embree.
+fn batch_rounds(
+    tree: &KdTree,
+    built: &[(Vec<peers::SphereF32>, peers::Peer, f64)],
+    rays: &Rays<'_>,
+    rounds: usize,
+) -> String {
+    let embree = built.iter().find_map(|(_, peer, _)| peer.embree());
+    let mut fields = String::new();
+    let mut embree_fields = String::new();
+    let mut mismatched = 0;
+    for (kd_rays, peer_rays, coherent, rounds) in
+        [(rays.camera, rays.camera32, true, rounds), (rays.random, rays.random32, false, rounds.min(3))]
+    {
+        let plain: Vec<([f32; 3], [f32; 3])> = peer_rays.iter().map(|r| (r.origin.into(), r.dir.into())).collect();
+        let t_min = T_MIN as f32;
+        let mut kd = || trace_all(tree, kd_rays);
+        let mut batch = || trace_batch(tree, kd_rays);
+        let mut contenders: Vec<&mut dyn FnMut() -> Vec<Hit>> = vec![&mut kd, &mut batch];
+        let widen = |hits: Vec<Option<(usize, f32)>>| -> Vec<Hit> {
+            hits.into_iter().map(|h| h.map(|(i, t)| (i, f64::from(t)))).collect()
+        };
+        let mut single = embree.map(|e| {
+            move || -> Vec<Hit> {
+                widen(plain.iter().map(|&(o, d)| e.closest_hit(black_box(o), d, t_min, coherent)).collect())
+            }
+        });
+        let plain: Vec<([f32; 3], [f32; 3])> = peer_rays.iter().map(|r| (r.origin.into(), r.dir.into())).collect();
+        let mut stream = embree.map(|e| {
+            let plain = &plain;
+            move || widen(e.closest_hits_stream(black_box(plain), t_min, coherent))
+        });
+        let mut packet = embree.map(|e| {
+            let plain = &plain;
+            move || widen(e.closest_hits_packet8(black_box(plain), t_min, coherent))
+        });
+        if let (Some(single), Some(stream), Some(packet)) = (single.as_mut(), stream.as_mut(), packet.as_mut()) {
+            contenders.push(single);
+            contenders.push(stream);
+            contenders.push(packet);
+        }
+        let timed = interleaved(rounds, &mut contenders);
+        assert_eq!(
+            timed.answers[1].iter().map(|h| h.map(|(i, t)| (i, t.to_bits()))).collect::<Vec<_>>(),
+            timed.answers[0].iter().map(|h| h.map(|(i, t)| (i, t.to_bits()))).collect::<Vec<_>>(),
+            "the batch query answers as the single-ray query, bit for bit"
+        );
+        let count = kd_rays.len();
+        let _ = write!(fields, ",{:.3}", mrays(count, timed.best_secs[1]));
+        let _ = write!(embree_fields, "{:.3}", timed.speedup(1, 0));
+        embree_fields.push('|');
+        if timed.secs.len() == 5 {
+            mismatched +=
+                mismatches(&timed.answers[3], &timed.answers[2]) + mismatches(&timed.answers[4], &timed.answers[2]);
+            let best_batch: Vec<f64> = timed.secs[3].iter().zip(&timed.secs[4]).map(|(a, b)| a.min(*b)).collect();
+            let versus = median(best_batch.iter().zip(&timed.secs[1]).map(|(e, k)| e / k).collect());
+            let _ = write!(
+                embree_fields,
+                "{:.3}|{:.3}|{:.3}|{:.3}|",
+                mrays(count, timed.best_secs[3]),
+                mrays(count, timed.best_secs[4]),
+                timed.speedup(0, 2),
+                versus
+            );
+        } else {
+            embree_fields.push_str("-|-|-|-|");
+        }
+    }
+    // Reordered into the header's order: kd batch camera, random; kd batch ÷ kd camera, random;
+    // stream camera, random; packet camera, random; mismatches; kd ÷ Embree single camera,
+    // random; kd batch ÷ Embree batch camera, random.
+    let e: Vec<&str> = embree_fields.split('|').collect();
+    let mismatched = if embree.is_some() { mismatched.to_string() } else { "-".into() };
+    format!(
+        "{fields},{},{},{},{},{},{},{mismatched},{},{},{},{}",
+        e[0], e[5], e[1], e[6], e[2], e[7], e[3], e[8], e[4], e[9]
+    )
+}
+
 /// A setting read from the environment variable `name`, if set and parseable.
 fn env_override<T: std::str::FromStr>(name: &str) -> Option<T> {
     std::env::var(name).ok().and_then(|v| v.parse().ok())
 }
 
-/// `HW3_Q3_PROFILE=kd|kd32|build` (with `HW3_Q3_PROFILE_N`, default 10⁵, fixed k unless
+/// `HW3_Q3_PROFILE=kd|kdbatch|kd32|build` (`kdbatch`: the batch query [`KdTree::closest_hits`]) (with `HW3_Q3_PROFILE_N`, default 10⁵, fixed k unless
 /// `HW3_Q3_PROFILE_DENSITY=volume`, and
 /// `HW3_Q3_PROFILE_RAYS`, default 10⁵ random rays, and `HW3_Q3_KI` for the tree's `K_I`): one contender alone, for a profiler
 /// (`valgrind --tool=callgrind`, whose counts do not depend on the machine's load). Prints the
@@ -376,6 +478,7 @@ fn profile(what: &str) {
     let build_secs = start.elapsed().as_secs_f64();
     let answers: Vec<Hit> = match what {
         "kd" => trace_all(&tree, &rays),
+        "kdbatch" => trace_batch(&tree, &rays),
         "kd32" => {
             let tree32 = KdTreeF32::from_tree(&tree);
             rays.iter()
@@ -452,7 +555,11 @@ fn main() {
          {e}_build_ms,{e}_camera_mrays,{e}_random_mrays,{e}_mismatches,kd_over_{e}_camera,kd_over_{e}_random,\
          kd32_build_ms,sah_cost,kd32_camera_mrays,kd32_random_mrays,kd32_camera_mismatches,kd32_random_mismatches,\
          kd_wrong_vs_double_double,kd32_wrong_vs_double_double,kd32_over_{e}_camera,kd32_over_{e}_random,\
-         camera_rays,random_rays,kd32_over_kd_camera,kd32_over_kd_random"
+         camera_rays,random_rays,kd32_over_kd_camera,kd32_over_kd_random,\
+         kdbatch_camera_mrays,kdbatch_random_mrays,kdbatch_over_kd_camera,kdbatch_over_kd_random,\
+         {e}_stream_camera_mrays,{e}_stream_random_mrays,{e}_packet8_camera_mrays,{e}_packet8_random_mrays,\
+         {e}_batch_mismatches,kd_over_{e}_batch_rounds_camera,kd_over_{e}_batch_rounds_random,\
+         kdbatch_over_{e}_batch_camera,kdbatch_over_{e}_batch_random"
     );
     for density in [Density::FixedMeanFreePath, Density::FixedVolumeFraction] {
         let label = match density {
@@ -503,7 +610,7 @@ fn main() {
             let note = if measuring { versus_note(n, density, (ch, ct), (rh, rt)) } else { "-".into() };
             let line = format!(
                 "{label},{n},{:.3},{},{},{:.3},{:.2},{:.2},{ch},{ct:.2},{:.3},{:.2},{:.2},{rh},{rt:.2},\
-                 {brute_camera},{brute_random},{mismatches},{note}{},{probe},{:.3},{:.3}{},{:.3},{:.3}{}\n",
+                 {brute_camera},{brute_random},{mismatches},{note}{},{probe},{:.3},{:.3}{},{:.3},{:.3}{}{}\n",
                 build_secs * 1e3,
                 tree.node_count(),
                 tree.reference_count(),
@@ -520,6 +627,7 @@ fn main() {
                 (build_secs + narrow_secs) * 1e3,
                 tree.sah_cost(&costs),
                 run.f32_fields,
+                run.batch_fields,
             );
             eprint!("{line}");
             csv.push_str(&line);
@@ -605,6 +713,25 @@ fn markdown(csv: &str) -> String {
     for line in csv.lines().skip(1) {
         let f: Vec<&str> = line.split(',').collect();
         let columns: [&[usize]; 11] = [&[0], &[1], &[2], &[34], &[5], &[35], &[38], &[10], &[36], &[39], &[37]];
+        let _ = writeln!(md, "| {} |", cells(&f, &columns).join(" | "));
+    }
+    md.push_str(
+        "\nBatch queries, same run, same rays, in rounds of their own: the kd-tree's `closest_hits` (8 rays in \
+         flight, interleaved, branch-free step; the same answers as ray by ray, asserted) and Embree's stream \
+         (`rtcIntersect1M`) and 8-wide packet (`rtcIntersect8`) calls (coherent hint on camera rays); ratios are \
+         medians of per-round speed ratios, Embree's batch is the faster of its two forms in each round:\n\n\
+         | density | N | kd batch camera | kd batch random | kd batch ÷ kd camera / random | Embree stream camera / random | \
+         Embree packet8 camera / random | kd ÷ Embree ray by ray, camera / random | kd batch ÷ Embree batch, camera / random | \
+         mismatches Embree batch |\n\
+         |---|---|---|---|---|---|---|---|---|---|\n",
+    );
+    for line in csv.lines().skip(1) {
+        let f: Vec<&str> = line.split(',').collect();
+        if f.len() < 67 {
+            continue;
+        }
+        let columns: [&[usize]; 10] =
+            [&[0], &[1], &[54], &[55], &[56, 57], &[58, 59], &[60, 61], &[63, 64], &[65, 66], &[62]];
         let _ = writeln!(md, "| {} |", cells(&f, &columns).join(" | "));
     }
     md.push_str(

@@ -101,6 +101,28 @@ pub const NAMES: &[&str] = &["bvh", "obvhs_bvh2", "obvhs_cwbvh"];
 #[cfg(feature = "embree")]
 pub const NAMES: &[&str] = &["bvh", "obvhs_bvh2", "obvhs_cwbvh", EMBREE];
 
+/// Embree's scene, for the batch calls.
+#[cfg(feature = "embree")]
+pub use crate::embree::Embree;
+
+/// Without the `embree` feature there is no Embree scene: an uninhabited stand-in with the same
+/// calls, so that the batch rounds compile either way.
+#[cfg(not(feature = "embree"))]
+pub enum Embree {}
+
+#[cfg(not(feature = "embree"))]
+impl Embree {
+    pub fn closest_hit(&self, _: [f32; 3], _: [f32; 3], _: f32, _: bool) -> HitF32 {
+        match *self {}
+    }
+    pub fn closest_hits_stream(&self, _: &[([f32; 3], [f32; 3])], _: f32, _: bool) -> Vec<HitF32> {
+        match *self {}
+    }
+    pub fn closest_hits_packet8(&self, _: &[([f32; 3], [f32; 3])], _: f32, _: bool) -> Vec<HitF32> {
+        match *self {}
+    }
+}
+
 /// The name (and CSV column prefix) of the Embree peer.
 pub const EMBREE: &str = "embree3";
 
@@ -119,6 +141,15 @@ impl Peer {
                 &spheres.iter().map(|s| [s.center.x, s.center.y, s.center.z, s.radius]).collect::<Vec<_>>(),
             )),
             _ => unreachable!("peer index {index} out of range"),
+        }
+    }
+
+    /// The Embree scene, if this peer is Embree.
+    pub fn embree(&self) -> Option<&Embree> {
+        match self {
+            #[cfg(feature = "embree")]
+            Self::Embree(scene) => Some(scene),
+            _ => None,
         }
     }
 
