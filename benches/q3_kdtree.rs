@@ -376,14 +376,16 @@ fn batch_rounds(
     rounds: usize,
 ) -> String {
     let embree = built.iter().find_map(|(_, peer, _)| peer.embree());
-    let mut fields = String::new();
-    let mut embree_fields = String::new();
+    let absent = || "-".to_string();
+    // Per ray set (camera, random): kd batch Mrays/s, kd batch ÷ kd, Embree stream and packet
+    // Mrays/s, kd ÷ Embree single-ray, kd batch ÷ Embree's faster batch form.
+    let mut sets: Vec<[String; 6]> = Vec::new();
     let mut mismatched = 0;
     for (kd_rays, peer_rays, coherent, rounds) in
         [(rays.camera, rays.camera32, true, rounds), (rays.random, rays.random32, false, rounds.min(3))]
     {
         let plain: Vec<([f32; 3], [f32; 3])> = peer_rays.iter().map(|r| (r.origin.into(), r.dir.into())).collect();
-        let t_min = T_MIN as f32;
+        let (plain, t_min) = (&plain, T_MIN as f32);
         let mut kd = || trace_all(tree, kd_rays);
         let mut batch = || trace_batch(tree, kd_rays);
         let mut contenders: Vec<&mut dyn FnMut() -> Vec<Hit>> = vec![&mut kd, &mut batch];
@@ -395,15 +397,8 @@ fn batch_rounds(
                 widen(plain.iter().map(|&(o, d)| e.closest_hit(black_box(o), d, t_min, coherent)).collect())
             }
         });
-        let plain: Vec<([f32; 3], [f32; 3])> = peer_rays.iter().map(|r| (r.origin.into(), r.dir.into())).collect();
-        let mut stream = embree.map(|e| {
-            let plain = &plain;
-            move || widen(e.closest_hits_stream(black_box(plain), t_min, coherent))
-        });
-        let mut packet = embree.map(|e| {
-            let plain = &plain;
-            move || widen(e.closest_hits_packet8(black_box(plain), t_min, coherent))
-        });
+        let mut stream = embree.map(|e| move || widen(e.closest_hits_stream(black_box(plain), t_min, coherent)));
+        let mut packet = embree.map(|e| move || widen(e.closest_hits_packet8(black_box(plain), t_min, coherent)));
         if let (Some(single), Some(stream), Some(packet)) = (single.as_mut(), stream.as_mut(), packet.as_mut()) {
             contenders.push(single);
             contenders.push(stream);
@@ -416,35 +411,24 @@ fn batch_rounds(
             "the batch query answers as the single-ray query, bit for bit"
         );
         let count = kd_rays.len();
-        let _ = write!(fields, ",{:.3}", mrays(count, timed.best_secs[1]));
-        let _ = write!(embree_fields, "{:.3}", timed.speedup(1, 0));
-        embree_fields.push('|');
+        let mut set = [(); 6].map(|()| absent());
+        set[0] = format!("{:.3}", mrays(count, timed.best_secs[1]));
+        set[1] = format!("{:.3}", timed.speedup(1, 0));
         if timed.secs.len() == 5 {
             mismatched +=
                 mismatches(&timed.answers[3], &timed.answers[2]) + mismatches(&timed.answers[4], &timed.answers[2]);
             let best_batch: Vec<f64> = timed.secs[3].iter().zip(&timed.secs[4]).map(|(a, b)| a.min(*b)).collect();
-            let versus = median(best_batch.iter().zip(&timed.secs[1]).map(|(e, k)| e / k).collect());
-            let _ = write!(
-                embree_fields,
-                "{:.3}|{:.3}|{:.3}|{:.3}|",
-                mrays(count, timed.best_secs[3]),
-                mrays(count, timed.best_secs[4]),
-                timed.speedup(0, 2),
-                versus
-            );
-        } else {
-            embree_fields.push_str("-|-|-|-|");
+            set[2] = format!("{:.3}", mrays(count, timed.best_secs[3]));
+            set[3] = format!("{:.3}", mrays(count, timed.best_secs[4]));
+            set[4] = format!("{:.3}", timed.speedup(0, 2));
+            set[5] = format!("{:.3}", median(best_batch.iter().zip(&timed.secs[1]).map(|(e, k)| e / k).collect()));
         }
+        sets.push(set);
     }
-    // Reordered into the header's order: kd batch camera, random; kd batch ÷ kd camera, random;
-    // stream camera, random; packet camera, random; mismatches; kd ÷ Embree single camera,
-    // random; kd batch ÷ Embree batch camera, random.
-    let e: Vec<&str> = embree_fields.split('|').collect();
-    let mismatched = if embree.is_some() { mismatched.to_string() } else { "-".into() };
-    format!(
-        "{fields},{},{},{},{},{},{},{mismatched},{},{},{},{}",
-        e[0], e[5], e[1], e[6], e[2], e[7], e[3], e[8], e[4], e[9]
-    )
+    let mismatched = if embree.is_some() { mismatched.to_string() } else { absent() };
+    // The header's order: each quantity for camera, then random; the mismatches after the packets.
+    let pair = |k: usize| format!(",{},{}", sets[0][k], sets[1][k]);
+    format!("{}{}{}{},{mismatched}{}{}", pair(0), pair(1), pair(2), pair(3), pair(4), pair(5))
 }
 
 /// A setting read from the environment variable `name`, if set and parseable.

@@ -879,6 +879,26 @@ mod tests {
         }
     }
 
+    /// From the parallel threshold on, the boxes are made on the pool; an invalid sphere is still
+    /// reported by the lowest invalid index, and valid input gives the serial pass's list.
+    #[test]
+    fn parallel_sphere_pass_names_the_lowest_invalid_index() {
+        let n = PARALLEL_MIN + 3 * PARALLEL_CHUNK;
+        let mut spheres: Vec<Sphere<f64>> =
+            (0..n).map(|i| Sphere { center: DVec3::new(i as f64 * 1e-3, 0.5, -0.25), radius: 1e-4 }).collect();
+        let serial: Vec<Prim> = spheres.iter().enumerate().map(|item| sphere_box(item).unwrap()).collect();
+        let parallel = sphere_prims(&spheres).unwrap();
+        assert_eq!(parallel.len(), n);
+        assert!(parallel.iter().zip(&serial).all(|(a, b)| a.index == b.index && a.bounds == b.bounds));
+        spheres[n - 5].radius = f64::NAN;
+        spheres[PARALLEL_MIN + 7].center.x = f64::INFINITY;
+        spheres[n - 1].radius = -1.0;
+        assert!(matches!(
+            sphere_prims(&spheres),
+            Err(BuildError::InvalidSphere { index, .. }) if index == PARALLEL_MIN + 7
+        ));
+    }
+
     #[test]
     fn every_search_path_picks_the_same_plane() {
         let cell = Aabb { min: DVec3::ZERO, max: DVec3::ONE };

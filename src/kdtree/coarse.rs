@@ -14,6 +14,11 @@
 //! the misses by about a third instead (23.9 → 16.5 → 11.0 per random ray; the Q3 engineering
 //! page has the table).
 //!
+//! A leaf's copies lie side by side, so the walk tests four at a time
+//! ([`CoarseRay::survivors`], SSE2 on x86-64, one sphere at a time elsewhere), each lane with the
+//! scalar test's operations in the same order: the same answers, a bit mask of survivors instead
+//! of a branch per copy.
+//!
 //! # The grid
 //! Each tree has one [`Grid`]: a corner `g` (an `f32` at or below its box) and a power-of-two step
 //! `h` with 65 535 steps covering the box. A sphere `(c, r)` is stored as the counts `q` of its

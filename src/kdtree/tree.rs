@@ -1,4 +1,6 @@
-//! The 3-D kd-tree over spheres: flat node array, closest-hit traversal with early exit.
+//! The 3-D kd-tree over spheres: flat node array, closest-hit traversal with early exit, one ray
+//! at a time ([`KdTree::closest_hit`]) or several in flight ([`KdTree::closest_hits`]); both walks
+//! share the leaf step (`KdTree::test_leaf`: four quantised copies per test, then the exact test).
 
 use super::build::{
     Builder, EXACT_MAX, PARALLEL_CHUNK, PARALLEL_MIN, Prim, SahCosts, Subtree, check_costs, max_depth, sphere_prims,
@@ -488,8 +490,6 @@ impl KdTree {
 
 /// Rays [`KdTree::closest_hits`] keeps in flight at once.
 const IN_FLIGHT: usize = 8;
-/// Whether [`KdTree::closest_hits`]'s interior step selects instead of branching.
-const BRANCH_FREE: bool = true;
 
 /// One ray in flight in [`KdTree::closest_hits`]: the single-ray walk's state between two steps.
 #[derive(Clone, Copy)]
@@ -548,18 +548,12 @@ impl KdTree {
             }
             return;
         }
-        self.in_flight::<IN_FLIGHT, BRANCH_FREE>(rays, t_min, t_max, out);
+        self.in_flight::<IN_FLIGHT>(rays, t_min, t_max, out);
     }
 
     /// The interleaved walk of [`KdTree::closest_hits`] with `W` rays in flight, for a tree of
     /// static spheres.
-    fn in_flight<const W: usize, const BRANCH_FREE: bool>(
-        &self,
-        rays: &[Ray<f64>],
-        t_min: f64,
-        t_max: f64,
-        out: &mut [Option<(usize, f64)>],
-    ) {
+    fn in_flight<const W: usize>(&self, rays: &[Ray<f64>], t_min: f64, t_max: f64, out: &mut [Option<(usize, f64)>]) {
         let idle = Flight {
             index: 0,
             ray: Ray { origin: DVec3::ZERO, dir: DVec3::Z },
@@ -588,7 +582,7 @@ impl KdTree {
             let mut k = 0;
             while k < count {
                 let flight = &mut flights[live[k]];
-                if self.step::<BRANCH_FREE>(flight, t_min, t_max) {
+                if self.step(flight, t_min, t_max) {
                     out[flight.index] = flight.best;
                     if !self.launch(flight, rays, &mut next, t_min, t_max, out) {
                         count -= 1;
@@ -643,7 +637,7 @@ impl KdTree {
     /// answer in `flight.best`). The same operations in the same order as `traverse`, so the same
     /// answers.
     #[inline(always)]
-    fn step<const BRANCH_FREE: bool>(&self, flight: &mut Flight, t_min: f64, t_max: f64) -> bool {
+    fn step(&self, flight: &mut Flight, t_min: f64, t_max: f64) -> bool {
         let node = flight.node;
         match self.nodes[node as usize].kind() {
             NodeKind::Interior { split, upper, axis: a } => {
@@ -652,41 +646,24 @@ impl KdTree {
                     prefetch(&self.coarse, first);
                 }
                 let pieces = split_pieces(flight.axes[a], split, flight.cell_min, flight.cell_max);
-                if BRANCH_FREE {
-                    // No branch on the rule's outcome: every choice a select (see "What did not
-                    // help" in the Q3 engineering notes for the single-ray version). The far entry
-                    // is stored every step and kept only when both pieces are live; at an interior
-                    // node of tree depth d the stack holds at most d ≤ 59 entries (the build's
-                    // depth bound), so the store stays inside the STACK = 64.
-                    let lower = node + 1;
-                    let swap = u32::from(pieces.near == Side::Upper).wrapping_neg();
-                    let near = lower ^ ((lower ^ upper) & swap);
-                    let far = lower ^ upper ^ near;
-                    let both = pieces.near_live & pieces.far_live;
-                    flight.stack[flight.depth] = (far, pieces.t_plane, flight.cell_max);
-                    flight.depth += usize::from(both);
-                    // `t_plane` when both pieces are live, else `cell_max` unchanged (a parallel
-                    // axis's NaN keeps it too).
-                    let cut = if pieces.t_plane > flight.cell_min { pieces.t_plane } else { f64::INFINITY };
-                    flight.cell_max = if cut < flight.cell_max { cut } else { flight.cell_max };
-                    flight.node = std::hint::select_unpredictable(pieces.near_live, near, far);
-                    prefetch(&self.nodes, flight.node);
-                    return false;
-                }
-                let (near, far) = match pieces.near {
-                    Side::Lower => (node + 1, upper),
-                    Side::Upper => (upper, node + 1),
-                };
-                if pieces.near_live & pieces.far_live {
-                    flight.stack[flight.depth] = (far, pieces.t_plane, flight.cell_max);
-                    flight.depth += 1;
-                    flight.cell_max = pieces.t_plane;
-                    flight.node = near;
-                } else if pieces.near_live {
-                    flight.node = near;
-                } else {
-                    flight.node = far;
-                }
+                // No branch on the rule's outcome: every choice a select (see "What did not
+                // help" in the Q3 engineering notes for the single-ray version). The far entry
+                // is stored every step and kept only when both pieces are live; at an interior
+                // node of tree depth d the stack holds at most d ≤ 59 entries (the build's
+                // depth bound), so the store stays inside the STACK = 64.
+                let lower = node + 1;
+                let swap = u32::from(pieces.near == Side::Upper).wrapping_neg();
+                let near = lower ^ ((lower ^ upper) & swap);
+                let far = lower ^ upper ^ near;
+                let both = pieces.near_live & pieces.far_live;
+                flight.stack[flight.depth] = (far, pieces.t_plane, flight.cell_max);
+                flight.depth += usize::from(both);
+                // `t_plane` when both pieces are live, else `cell_max` unchanged (a parallel
+                // axis's NaN keeps it too).
+                let cut = if pieces.t_plane > flight.cell_min { pieces.t_plane } else { f64::INFINITY };
+                flight.cell_max = if cut < flight.cell_max { cut } else { flight.cell_max };
+                flight.node = std::hint::select_unpredictable(pieces.near_live, near, far);
+                prefetch(&self.nodes, flight.node);
                 return false;
             }
             NodeKind::Leaf { first, count } => {
@@ -912,20 +889,13 @@ mod tests {
         let rays: Vec<Ray<f64>> = (0..2_000).map(|_| random_ray(&mut rng)).collect();
         let expected: Vec<_> = rays.iter().map(|r| tree.closest_hit(r, 0.0, f64::INFINITY)).collect();
         let mut out = vec![None; rays.len()];
-        tree.in_flight::<1, false>(&rays, 0.0, f64::INFINITY, &mut out);
-        assert_eq!(out, expected);
-        tree.in_flight::<4, false>(&rays, 0.0, f64::INFINITY, &mut out);
-        assert_eq!(out, expected);
-        tree.in_flight::<16, false>(&rays, 0.0, f64::INFINITY, &mut out);
+        tree.in_flight::<1>(&rays, 0.0, f64::INFINITY, &mut out);
         assert_eq!(out, expected);
         out.fill(None);
-        tree.in_flight::<1, true>(&rays, 0.0, f64::INFINITY, &mut out);
+        tree.in_flight::<4>(&rays, 0.0, f64::INFINITY, &mut out);
         assert_eq!(out, expected);
         out.fill(None);
-        tree.in_flight::<4, true>(&rays, 0.0, f64::INFINITY, &mut out);
-        assert_eq!(out, expected);
-        out.fill(None);
-        tree.in_flight::<16, true>(&rays, 0.0, f64::INFINITY, &mut out);
+        tree.in_flight::<16>(&rays, 0.0, f64::INFINITY, &mut out);
         assert_eq!(out, expected);
         assert!(expected.iter().filter(|h| h.is_some()).count() > 200);
     }
