@@ -19,10 +19,17 @@
 //! spheres build their two children on two threads (`rayon::join`).
 //!
 //! # Vector code
-//! On x86-64 the bins of a box and the small nodes' side counts are computed two lanes at a time
-//! (SSE2, the baseline), four with AVX2 when the CPU has it (checked at run time). Every lane does
-//! the scalar code's IEEE operations in the same order, so the tree is the same bit for bit on any
-//! CPU; the tests compare each vector path with the scalar one.
+//! On x86-64 the bins of a box are computed two lanes at a time (SSE2 intrinsics, the baseline).
+//! The small nodes' side counts are plain loops written so that the compiler vectorises them
+//! (box by box, each box compared with every face at once), and both searches are compiled a
+//! second time for AVX2, used when the CPU has it (checked at run time): four lanes instead of
+//! two. Every lane does the scalar code's IEEE operations in the same order, so the tree is the
+//! same bit for bit on any CPU; the tests compare each vector path with the scalar one.
+//!
+//! # Branches
+//! Which child a box goes to is as good as random, so the split passes ([`partition`] and the
+//! parallel levels' pass) write every box to both places and advance each end by its test, with
+//! no branch per box.
 //! Spheres whose box touches or crosses the plane go to both children (closed test on both
 //! sides), so every cell whose closure contains a sphere's point lists that sphere.
 
@@ -252,106 +259,29 @@ struct ExactAxis<'a> {
     m: usize,
 }
 
-/// `(#(start ≤ split), #(end ≥ split))` over the first `W` entries: the builder's closed tests
-/// for the two children, over the padded arrays of [`Builder::exact_axis`]. Two compares per SSE2
-/// instruction on x86-64, [`side_counts_scalar`] elsewhere; the same counts either way.
+/// `(#(start ≤ split), #(end ≥ split))` for each of the first `2W` faces in `splits`, over the
+/// first `m` boxes (`m ≤ W`): the builder's closed tests for the two children, as `f64` counts
+/// for the cost. Box by box, each box's start and end compared with every face at once: the
+/// inner loop has a constant length and no dependence between faces, so it compiles to vector
+/// compares and adds (four faces per instruction where the caller is compiled for AVX2), with no
+/// per-face sum across lanes. The counts are exact either way (integers below 2⁵³).
 #[inline(always)]
-fn side_counts<const W: usize>(
+fn face_counts<const W: usize>(
+    splits: &[f64; 2 * EXACT_MAX_LIMIT],
     starts: &[f64; EXACT_MAX_LIMIT],
     ends: &[f64; EXACT_MAX_LIMIT],
-    split: f64,
-) -> (u32, u32) {
-    #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
-    return side_counts_sse2::<W>(starts, ends, split);
-    #[cfg(not(all(target_arch = "x86_64", target_feature = "sse2")))]
-    return side_counts_scalar::<W>(starts, ends, split);
-}
-
-/// [`side_counts`] one compare at a time: the code other targets run, and the reference the
-/// vector versions are tested against on x86-64.
-#[cfg_attr(all(target_arch = "x86_64", target_feature = "sse2", not(test)), allow(dead_code))]
-#[inline(always)]
-fn side_counts_scalar<const W: usize>(
-    starts: &[f64; EXACT_MAX_LIMIT],
-    ends: &[f64; EXACT_MAX_LIMIT],
-    split: f64,
-) -> (u32, u32) {
-    let n_lower: u32 = starts[..W].iter().map(|&x| u32::from(x <= split)).sum();
-    let n_upper: u32 = ends[..W].iter().map(|&x| u32::from(x >= split)).sum();
-    (n_lower, n_upper)
-}
-
-/// [`side_counts`] two compares per instruction (SSE2, the x86-64 baseline).
-#[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
-#[inline(always)]
-fn side_counts_sse2<const W: usize>(
-    starts: &[f64; EXACT_MAX_LIMIT],
-    ends: &[f64; EXACT_MAX_LIMIT],
-    split: f64,
-) -> (u32, u32) {
-    use std::arch::x86_64::{
-        _mm_add_epi64, _mm_castpd_si128, _mm_cmpge_pd, _mm_cmple_pd, _mm_cvtsi128_si64, _mm_set_pd, _mm_set1_pd,
-        _mm_setzero_si128, _mm_sub_epi64, _mm_unpackhi_epi64, _mm_unpacklo_epi64,
-    };
-    const { assert!(W <= EXACT_MAX_LIMIT && W.is_multiple_of(2)) };
-    // Two compares per instruction, each true lane −1 (all bits set) subtracted from a 64-bit
-    // count: the scalar compares and flag additions were most of the small nodes' search.
-    // SAFETY: SSE2 is part of every x86-64 CPU (the baseline the crate is compiled for), and these
-    // intrinsics touch no memory.
-    let both = unsafe {
-        let plane = _mm_set1_pd(split);
-        let (mut lower, mut upper) = (_mm_setzero_si128(), _mm_setzero_si128());
-        for i in 0..W / 2 {
-            let start = _mm_set_pd(starts[2 * i + 1], starts[2 * i]);
-            let end = _mm_set_pd(ends[2 * i + 1], ends[2 * i]);
-            lower = _mm_sub_epi64(lower, _mm_castpd_si128(_mm_cmple_pd(start, plane)));
-            upper = _mm_sub_epi64(upper, _mm_castpd_si128(_mm_cmpge_pd(end, plane)));
+    m: usize,
+) -> ([f64; 2 * EXACT_MAX_LIMIT], [f64; 2 * EXACT_MAX_LIMIT]) {
+    const { assert!(W <= EXACT_MAX_LIMIT) };
+    let (mut lowers, mut uppers) = ([0.0; 2 * EXACT_MAX_LIMIT], [0.0; 2 * EXACT_MAX_LIMIT]);
+    for (&start, &end) in starts[..m.min(W)].iter().zip(&ends[..m.min(W)]) {
+        let faces = splits[..2 * W].iter().zip(&mut lowers[..2 * W]).zip(&mut uppers[..2 * W]);
+        for ((&split, lower), upper) in faces {
+            *lower += if start <= split { 1.0 } else { 0.0 };
+            *upper += if end >= split { 1.0 } else { 0.0 };
         }
-        // Lane 0 the lower count, lane 1 the upper.
-        let sums = _mm_add_epi64(_mm_unpacklo_epi64(lower, upper), _mm_unpackhi_epi64(lower, upper));
-        [_mm_cvtsi128_si64(sums), _mm_cvtsi128_si64(_mm_unpackhi_epi64(sums, sums))]
-    };
-    // At most `W` each.
-    (both[0] as u32, both[1] as u32)
-}
-
-/// [`side_counts`] four compares per instruction.
-///
-/// # Safety
-/// The CPU must have AVX2.
-#[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
-#[inline(always)]
-unsafe fn side_counts_avx2<const W: usize>(
-    starts: &[f64; EXACT_MAX_LIMIT],
-    ends: &[f64; EXACT_MAX_LIMIT],
-    split: f64,
-) -> (u32, u32) {
-    use std::arch::x86_64::{
-        _CMP_GE_OQ, _CMP_LE_OQ, _mm_add_epi64, _mm_cvtsi128_si64, _mm_unpackhi_epi64, _mm_unpacklo_epi64,
-        _mm256_castpd_si256, _mm256_castsi256_si128, _mm256_cmp_pd, _mm256_extracti128_si256, _mm256_set_pd,
-        _mm256_set1_pd, _mm256_setzero_si256, _mm256_sub_epi64,
-    };
-    const { assert!(W <= EXACT_MAX_LIMIT && W.is_multiple_of(4)) };
-    // SAFETY: the caller guarantees AVX2 (which includes AVX and SSE2); no intrinsic here touches
-    // memory.
-    let both = unsafe {
-        let plane = _mm256_set1_pd(split);
-        let (mut lower, mut upper) = (_mm256_setzero_si256(), _mm256_setzero_si256());
-        for i in 0..W / 4 {
-            let start = _mm256_set_pd(starts[4 * i + 3], starts[4 * i + 2], starts[4 * i + 1], starts[4 * i]);
-            let end = _mm256_set_pd(ends[4 * i + 3], ends[4 * i + 2], ends[4 * i + 1], ends[4 * i]);
-            // Ordered compares: `x <= split` and `x >= split` as in Rust.
-            lower = _mm256_sub_epi64(lower, _mm256_castpd_si256(_mm256_cmp_pd::<_CMP_LE_OQ>(start, plane)));
-            upper = _mm256_sub_epi64(upper, _mm256_castpd_si256(_mm256_cmp_pd::<_CMP_GE_OQ>(end, plane)));
-        }
-        let lower = _mm_add_epi64(_mm256_castsi256_si128(lower), _mm256_extracti128_si256::<1>(lower));
-        let upper = _mm_add_epi64(_mm256_castsi256_si128(upper), _mm256_extracti128_si256::<1>(upper));
-        // Lane 0 the lower count, lane 1 the upper.
-        let sums = _mm_add_epi64(_mm_unpacklo_epi64(lower, upper), _mm_unpackhi_epi64(lower, upper));
-        [_mm_cvtsi128_si64(sums), _mm_cvtsi128_si64(_mm_unpackhi_epi64(sums, sums))]
-    };
-    // At most `W` each.
-    (both[0] as u32, both[1] as u32)
+    }
+    (lowers, uppers)
 }
 
 /// The best split found for one node.
@@ -367,6 +297,40 @@ fn push_leaf(prims: &[Prim], out: &mut Subtree) {
     let count = u32::try_from(prims.len()).expect("sphere count fits u32");
     out.indices.extend(prims.iter().map(|p| p.index));
     out.nodes.push(Node::leaf(first, count));
+}
+
+/// Splits the boxes `list[start..end]` at `split` on `axis` in one pass, each box read once, in
+/// order: the boxes reaching below the plane (`min ≤ split`) are compacted in place to the front
+/// of the range, and those reaching above it (`max ≥ split`; a box on the plane goes to both) are
+/// appended to `list`. Returns the end of the compacted lower part; `list[end..]` is left as it
+/// was, then the upper part. Every box is written to both places and each place's end advanced
+/// by its test, without a branch: which side a box falls on is as good as random, and the
+/// mispredicted branches were the pass's largest cost. (`kept ≤ i`, so the compaction never
+/// overwrites a box not yet read.)
+fn partition(list: &mut Vec<Prim>, start: usize, end: usize, axis: usize, split: f64) -> usize {
+    let top = list.len();
+    // Room for every box going up, filled with copies that are then overwritten.
+    list.extend_from_within(start..end);
+    let (mut kept, mut upper) = (start, top);
+    for i in start..end {
+        let p = list[i];
+        let (goes_down, goes_up) = sides(&p, axis, split);
+        list[upper] = p;
+        upper += usize::from(goes_up);
+        list[kept] = p;
+        kept += usize::from(goes_down);
+    }
+    list.truncate(upper);
+    kept
+}
+
+/// Whether the box of `p` reaches the lower child of a split at `split` on `axis`
+/// (`min ≤ split`) and the upper one (`max ≥ split`): closed tests, so a box on the plane goes to
+/// both, and a NaN to neither (the builder never makes one).
+#[inline(always)]
+fn sides(p: &Prim, axis: usize, split: f64) -> (bool, bool) {
+    // As arrays: indexing a glam vector by a run-time axis is a three-way branch.
+    (p.bounds.min.to_array()[axis] <= split, p.bounds.max.to_array()[axis] >= split)
 }
 
 /// The two cells of `cell` split on `axis` at `split` (lower, upper).
@@ -400,17 +364,29 @@ impl Builder {
             push_leaf(&prims, out);
             return;
         };
-        // One pass, each box read once, in order, for both children. The lower child keeps the
-        // parent's list (`retain`: an in-order compaction): a fresh list for it was written into
+        // One pass, each box read once, in order, for both children ([`partition`]). The lower
+        // child keeps the parent's list, compacted in place: a fresh list for it was written into
         // fresh pages, and at N = 10⁶ the kernel's page faults and page clearing were a tenth of
         // the build.
-        let mut upper = Vec::with_capacity(prims.len());
-        prims.retain(|p| {
-            if p.bounds.max[axis] >= split {
-                upper.push(*p);
-            }
-            p.bounds.min[axis] <= split
-        });
+        // The upper child's boxes are written into fresh capacity, each box written and the
+        // end advanced by its test as in [`partition`] (whose appending to the same list would
+        // double the parent's list here: a copy and fresh pages at every parallel level).
+        let count = prims.len();
+        let mut upper = Vec::with_capacity(count);
+        let spare = upper.spare_capacity_mut();
+        let (mut kept, mut above) = (0, 0);
+        for i in 0..count {
+            let p = prims[i];
+            let (goes_down, goes_up) = sides(&p, axis, split);
+            // `above ≤ i < count`: inside the spare capacity.
+            spare[above].write(p);
+            above += usize::from(goes_up);
+            prims[kept] = p;
+            kept += usize::from(goes_down);
+        }
+        // SAFETY: the first `above` elements of the spare capacity were written in the loop.
+        unsafe { upper.set_len(above) };
+        prims.truncate(kept);
         let lower = prims;
         let here = out.nodes.len();
         out.nodes.push(Node::leaf(0, 0));
@@ -452,20 +428,7 @@ impl Builder {
             return;
         };
         let top = scratch.len();
-        scratch.reserve(end - start);
-        // One pass, each box read once, in order; `kept ≤ i`, so the compaction never overwrites a
-        // box not yet read.
-        let mut kept = start;
-        for i in start..end {
-            let p = scratch[i];
-            if p.bounds.max[axis] >= split {
-                scratch.push(p);
-            }
-            if p.bounds.min[axis] <= split {
-                scratch[kept] = p;
-                kept += 1;
-            }
-        }
+        let kept = partition(scratch, start, end, axis, split);
         let upper_end = scratch.len();
         let here = out.nodes.len();
         out.nodes.push(Node::leaf(0, 0));
@@ -509,22 +472,22 @@ impl Builder {
             // SAFETY: the CPU has AVX2 (checked just above).
             return unsafe { self.best_exact_split_avx2(cell, prims) };
         }
-        self.exact_split::<false>(cell, prims)
+        self.exact_split(cell, prims)
     }
 
-    /// [`Builder::best_exact_split`] with four compares per instruction (AVX2, checked at run
-    /// time: the crate is compiled for x86-64's SSE2 baseline). The same planes: a compare gives
-    /// the same answer in any width, and nothing else changes width.
+    /// [`Builder::best_exact_split`] compiled for AVX2 (checked at run time: the crate is compiled
+    /// for x86-64's SSE2 baseline), so that the side counts take four faces per instruction instead
+    /// of two. The same planes: a compare gives the same answer in any width, and nothing else
+    /// changes width.
     #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
     #[target_feature(enable = "avx2")]
     fn best_exact_split_avx2(&self, cell: &Aabb, prims: &[Prim]) -> Option<Candidate> {
-        self.exact_split::<true>(cell, prims)
+        self.exact_split(cell, prims)
     }
 
-    /// [`Builder::best_exact_split`], counting with AVX2 if `AVX2` (only called so on a CPU that
-    /// has it).
+    /// [`Builder::best_exact_split`]'s body.
     #[inline(always)]
-    fn exact_split<const AVX2: bool>(&self, cell: &Aabb, prims: &[Prim]) -> Option<Candidate> {
+    fn exact_split(&self, cell: &Aabb, prims: &[Prim]) -> Option<Candidate> {
         let area = cell.surface_area();
         let m = prims.len();
         assert!(m <= EXACT_MAX_LIMIT, "exact candidates for {m} spheres (at most {EXACT_MAX_LIMIT})");
@@ -543,9 +506,9 @@ impl Builder {
             // about six on average, and sixteen compares per count would triple the work.
             let faces = ExactAxis { cell, area, axis, starts: &starts, ends: &ends, m };
             match m {
-                0..=4 => self.exact_axis::<4, AVX2>(&faces, &mut best),
-                5..=8 => self.exact_axis::<8, AVX2>(&faces, &mut best),
-                _ => self.exact_axis::<EXACT_MAX_LIMIT, AVX2>(&faces, &mut best),
+                0..=4 => self.exact_axis::<4>(&faces, &mut best),
+                5..=8 => self.exact_axis::<8>(&faces, &mut best),
+                _ => self.exact_axis::<EXACT_MAX_LIMIT>(&faces, &mut best),
             }
         }
         best
@@ -554,7 +517,7 @@ impl Builder {
     /// Tries every face of one axis of [`Builder::best_exact_split`], counting over the first `W`
     /// entries of the padded arrays (`W ≥ m`, a constant so that the counts become vector code).
     #[inline(always)]
-    fn exact_axis<const W: usize, const AVX2: bool>(&self, faces: &ExactAxis<'_>, best: &mut Option<Candidate>) {
+    fn exact_axis<const W: usize>(&self, faces: &ExactAxis<'_>, best: &mut Option<Candidate>) {
         let ExactAxis { cell, area, axis, starts, ends, m } = *faces;
         let (lo, hi) = (cell.min[axis], cell.max[axis]);
         // The cost model (module docs) with the cell's constants taken once per axis; the binned
@@ -568,23 +531,12 @@ impl Builder {
         // loops of their own, so that the costs (no dependence between faces) compile to vector
         // code, as in the binned search.
         let n = 2 * m;
-        let mut splits = [0.0; 2 * EXACT_MAX_LIMIT];
+        // The faces past `n` are NaN, on neither side of any box: their counts stay 0 and are never read.
+        let mut splits = [f64::NAN; 2 * EXACT_MAX_LIMIT];
         for k in 0..m {
             (splits[2 * k], splits[2 * k + 1]) = (f32_below(starts[k]), f32_above(ends[k]));
         }
-        let (mut lowers, mut uppers) = ([0.0; 2 * EXACT_MAX_LIMIT], [0.0; 2 * EXACT_MAX_LIMIT]);
-        for ((&split, lower), upper) in splits[..n].iter().zip(&mut lowers[..n]).zip(&mut uppers[..n]) {
-            #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
-            let (n_lower, n_upper) = if AVX2 {
-                // SAFETY: `AVX2` is true only in `best_exact_split_avx2`, called on a CPU with AVX2.
-                unsafe { side_counts_avx2::<W>(starts, ends, split) }
-            } else {
-                side_counts::<W>(starts, ends, split)
-            };
-            #[cfg(not(all(target_arch = "x86_64", target_feature = "sse2")))]
-            let (n_lower, n_upper) = side_counts::<W>(starts, ends, split);
-            (*lower, *upper) = (f64::from(n_lower), f64::from(n_upper));
-        }
+        let (lowers, uppers) = face_counts::<W>(&splits, starts, ends, m);
         let cost = |p_lower: f64, p_upper: f64, n_lower: f64, n_upper: f64| {
             let bonus = if n_lower == 0.0 || n_upper == 0.0 { kept } else { 1.0 };
             k_t + k_i * bonus * (p_lower * n_lower + p_upper * n_upper)
@@ -853,29 +805,101 @@ mod tests {
         }
     }
 
-    /// The vector side counts are the scalar ones, NaN, ±∞ and the split itself included (the
-    /// closed tests count a face on the plane on both sides; NaN on neither).
+    /// The face counts are the closed tests counted one by one, NaN, ±∞, ±0 and faces on a box's
+    /// start or end included (the closed tests count a face on the plane on both sides; NaN on
+    /// neither), for every width and box count, in the baseline build and compiled for AVX2.
     #[test]
-    fn vector_side_counts_equal_the_scalar_ones() {
+    fn face_counts_equal_the_closed_tests_counted_one_by_one() {
         let values = [f64::NEG_INFINITY, -1.0, 0.0, 0.25, 0.5, 0.75, 1.0, f64::INFINITY, f64::NAN, -0.0];
         let mut state = 3u64;
-        for _ in 0..2_000 {
-            let mut pick = || {
-                state = state.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1_442_695_040_888_963_407);
-                values[(state >> 33) as usize % values.len()]
-            };
-            let starts: [f64; EXACT_MAX_LIMIT] = std::array::from_fn(|_| pick());
-            let ends: [f64; EXACT_MAX_LIMIT] = std::array::from_fn(|_| pick());
-            for split in [0.5, 0.0, -0.0, 1.0] {
-                let scalar = side_counts_scalar::<EXACT_MAX_LIMIT>(&starts, &ends, split);
-                assert_eq!(side_counts::<EXACT_MAX_LIMIT>(&starts, &ends, split), scalar);
-                assert_eq!(side_counts::<4>(&starts, &ends, split), side_counts_scalar::<4>(&starts, &ends, split));
+        let mut pick = || {
+            state = state.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1_442_695_040_888_963_407);
+            values[(state >> 33) as usize % values.len()]
+        };
+        #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+        #[target_feature(enable = "avx2")]
+        fn counts_avx2<const W: usize>(
+            splits: &[f64; 2 * EXACT_MAX_LIMIT],
+            starts: &[f64; EXACT_MAX_LIMIT],
+            ends: &[f64; EXACT_MAX_LIMIT],
+            m: usize,
+        ) -> ([f64; 2 * EXACT_MAX_LIMIT], [f64; 2 * EXACT_MAX_LIMIT]) {
+            face_counts::<W>(splits, starts, ends, m)
+        }
+        fn check<const W: usize>(pick: &mut impl FnMut() -> f64) {
+            for m in 0..=W {
+                let starts: [f64; EXACT_MAX_LIMIT] = std::array::from_fn(|_| pick());
+                let ends: [f64; EXACT_MAX_LIMIT] = std::array::from_fn(|_| pick());
+                let splits: [f64; 2 * EXACT_MAX_LIMIT] = std::array::from_fn(|_| pick());
+                let (lowers, uppers) = face_counts::<W>(&splits, &starts, &ends, m);
+                for f in 0..2 * W {
+                    let lower = starts[..m].iter().filter(|&&x| x <= splits[f]).count();
+                    let upper = ends[..m].iter().filter(|&&x| x >= splits[f]).count();
+                    assert_eq!((lowers[f], uppers[f]), (lower as f64, upper as f64), "W = {W}, m = {m}, face {f}");
+                }
                 #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
                 if std::arch::is_x86_feature_detected!("avx2") {
                     // SAFETY: the CPU has AVX2 (checked just above).
-                    assert_eq!(unsafe { side_counts_avx2::<EXACT_MAX_LIMIT>(&starts, &ends, split) }, scalar);
+                    let wide = unsafe { counts_avx2::<W>(&splits, &starts, &ends, m) };
+                    assert_eq!(wide, (lowers, uppers), "AVX2, W = {W}, m = {m}");
                 }
             }
+        }
+        for _ in 0..200 {
+            check::<4>(&mut pick);
+            check::<8>(&mut pick);
+            check::<EXACT_MAX_LIMIT>(&mut pick);
+        }
+    }
+
+    /// The branch-free pass gives each child the boxes the closed tests send it, in order, and
+    /// leaves the rest of the list as it was: boxes on the plane go to both sides, NaN to neither.
+    #[test]
+    fn partition_sends_each_box_where_the_closed_tests_say_in_order() {
+        for (seed, split) in (0..30).zip([0.5, 0.0, 1.0, 0.25].into_iter().cycle()) {
+            let mut list = boxes(300, seed);
+            for (k, p) in list.iter_mut().enumerate() {
+                match k % 11 {
+                    0 => p.bounds.min.x = split,
+                    1 => p.bounds.max.y = split,
+                    2 => p.bounds.max.z = f64::NAN,
+                    _ => {}
+                }
+            }
+            let before = list.clone();
+            let (start, end) = (40, 260);
+            for axis in 0..3 {
+                let mut list = before.clone();
+                let kept = partition(&mut list, start, end, axis, split);
+                let range = &before[start..end];
+                let lower: Vec<u32> =
+                    range.iter().filter(|p| p.bounds.min.to_array()[axis] <= split).map(|p| p.index).collect();
+                let upper: Vec<u32> =
+                    range.iter().filter(|p| p.bounds.max.to_array()[axis] >= split).map(|p| p.index).collect();
+                let indices = |prims: &[Prim]| prims.iter().map(|p| p.index).collect::<Vec<_>>();
+                assert_eq!(indices(&list[start..kept]), lower, "seed {seed}, axis {axis}");
+                assert_eq!(indices(&list[before.len()..]), upper, "seed {seed}, axis {axis}");
+                assert_eq!(indices(&list[..start]), indices(&before[..start]));
+                assert_eq!(indices(&list[end..before.len()]), indices(&before[end..]));
+            }
+        }
+    }
+
+    /// The parallel levels' pass (fresh upper lists) and the serial one (one scratch list) build
+    /// the same subtree.
+    #[test]
+    fn parallel_and_serial_levels_build_the_same_subtree() {
+        let builder = Builder { costs: SahCosts::default(), max_depth: max_depth(40_000), exact_max: EXACT_MAX };
+        for seed in 0..2 {
+            let prims = boxes(4 * PARALLEL_MIN, seed);
+            let cell = prims.iter().fold(prims[0].bounds, |b, p| b.union(p.bounds));
+            let mut parallel = Subtree::default();
+            builder.build(cell, prims.clone(), 0, &mut parallel);
+            let (mut scratch, mut serial) = (prims.clone(), Subtree::default());
+            builder.build_serial(cell, &mut scratch, 0, prims.len(), 0, &mut serial);
+            assert!(parallel.nodes.len() > 1000, "a deep tree");
+            assert_eq!(parallel.nodes, serial.nodes, "seed {seed}");
+            assert_eq!(parallel.indices, serial.indices, "seed {seed}");
         }
     }
 
@@ -910,7 +934,7 @@ mod tests {
                 let prims = boxes(n, seed);
                 for cell in [cell, flat] {
                     if n <= EXACT_MAX {
-                        let plain = builder.exact_split::<false>(&cell, &prims);
+                        let plain = builder.exact_split(&cell, &prims);
                         assert!(same(plain, builder.best_exact_split(&cell, &prims)), "exact, n = {n}, seed {seed}");
                     }
                     let plain = builder.binned_search(&cell, &prims);
