@@ -563,7 +563,11 @@ fn main() {
         };
         for &n in &sizes {
             let spheres = scene(n, density);
-            let build_repeats = if n >= 1_000_000 { 3 } else if n >= 100_000 { 5 } else { repeats };
+            let build_repeats = match n {
+                1_000_000.. => 3,
+                100_000.. => 5,
+                _ => repeats,
+            };
             let (build_secs, tree) = best_of(build_repeats, || KdTree::build_with(&spheres, costs).unwrap());
             let (narrow_secs, tree32) = best_of(build_repeats, || KdTreeF32::from_tree(&tree));
             let tree_probe = tree.closest_hit(&probe_ray, T_MIN, f64::INFINITY);
