@@ -15,9 +15,10 @@
 //! page has the table).
 //!
 //! A leaf's copies lie side by side, so the walk tests four at a time
-//! ([`CoarseRay::survivors`], SSE2 on x86-64, one sphere at a time elsewhere), each lane with the
-//! scalar test's operations in the same order: the same answers, a bit mask of survivors instead
-//! of a branch per copy.
+//! ([`CoarseRay::survivors`], SSE2 on x86-64, one sphere at a time elsewhere), or eight at a time
+//! on a CPU with AVX2 ([`CoarseRay::survivors_wide`], in a walk compiled for it), each lane with
+//! the scalar test's operations in the same order: the same answers, a bit mask of survivors
+//! instead of a branch per copy.
 //!
 //! # The grid
 //! Each tree has one [`Grid`]: a corner `g` (an `f32` at or below its box) and a power-of-two step
@@ -295,6 +296,97 @@ impl CoarseRay {
     }
 }
 
+impl CoarseRay {
+    /// [`CoarseRay::survivors`] for the first [`WIDE_LANES`] spheres of `spheres` at once, eight
+    /// `f32` lanes per instruction: every bit is again exactly the scalar test's answer (the same
+    /// operations in the same order in every lane, no fused multiply-add). A leaf of five to eight
+    /// spheres is then one test instead of two.
+    ///
+    /// # Safety
+    /// The CPU must have AVX2 (the caller checks once, and calls this from code compiled for it).
+    ///
+    /// # Panics
+    /// If `spheres` holds fewer than [`WIDE_LANES`] copies.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    #[inline]
+    pub unsafe fn survivors_wide(&self, spheres: &[CoarseSphere]) -> u32 {
+        use std::arch::x86_64::{
+            __m128i, _CMP_LE_OQ, _mm_loadu_si128, _mm_unpackhi_epi64, _mm_unpacklo_epi64, _mm256_add_ps,
+            _mm256_castpd_ps, _mm256_castps_pd, _mm256_cmp_ps, _mm256_cvtepi32_ps, _mm256_cvtepu16_epi32,
+            _mm256_movemask_ps, _mm256_mul_ps, _mm256_set1_ps, _mm256_sub_ps, _mm256_unpackhi_pd, _mm256_unpackhi_ps,
+            _mm256_unpacklo_pd, _mm256_unpacklo_ps,
+        };
+        let eight: &[CoarseSphere; WIDE_LANES] = spheres[..WIDE_LANES].try_into().expect("a group of eight copies");
+        if !self.enabled {
+            return (1 << WIDE_LANES) - 1;
+        }
+        // SAFETY: the caller guarantees AVX2; the only memory touched is four unaligned 16-byte
+        // loads of `eight`: eight `#[repr(C)]` copies of four `u16`s, 64 bytes without padding.
+        unsafe {
+            let at = eight.as_ptr().cast::<__m128i>();
+            // Spheres (0, 1), (2, 3), (4, 5), (6, 7), then paired k with k + 4, so that after the
+            // transposition within each 128-bit half lane k holds sphere k.
+            let pairs = [0, 1, 2, 3].map(|k| _mm_loadu_si128(at.add(k)));
+            let halves = [
+                _mm_unpacklo_epi64(pairs[0], pairs[2]),
+                _mm_unpackhi_epi64(pairs[0], pairs[2]),
+                _mm_unpacklo_epi64(pairs[1], pairs[3]),
+                _mm_unpackhi_epi64(pairs[1], pairs[3]),
+            ];
+            // Row j: (x, y, z, r) of sphere j in the low half and of sphere j + 4 in the high one.
+            let rows = halves.map(|h| _mm256_cvtepi32_ps(_mm256_cvtepu16_epi32(h)));
+            let (xy01, xy23) = (_mm256_unpacklo_ps(rows[0], rows[1]), _mm256_unpacklo_ps(rows[2], rows[3]));
+            let (zr01, zr23) = (_mm256_unpackhi_ps(rows[0], rows[1]), _mm256_unpackhi_ps(rows[2], rows[3]));
+            // Within each half, 64-bit pieces of two rows side by side (SSE's `movelh` and `movehl`).
+            let (xy01, xy23, zr01, zr23) =
+                (_mm256_castps_pd(xy01), _mm256_castps_pd(xy23), _mm256_castps_pd(zr01), _mm256_castps_pd(zr23));
+            let q = [
+                _mm256_castpd_ps(_mm256_unpacklo_pd(xy01, xy23)),
+                _mm256_castpd_ps(_mm256_unpackhi_pd(xy01, xy23)),
+                _mm256_castpd_ps(_mm256_unpacklo_pd(zr01, zr23)),
+            ];
+            let radius = _mm256_castpd_ps(_mm256_unpackhi_pd(zr01, zr23));
+            let (o, d) = (self.origin.map(|x| _mm256_set1_ps(x)), self.dir.map(|x| _mm256_set1_ps(x)));
+            let f = [_mm256_sub_ps(o[0], q[0]), _mm256_sub_ps(o[1], q[1]), _mm256_sub_ps(o[2], q[2])];
+            let p = [
+                _mm256_sub_ps(_mm256_mul_ps(f[1], d[2]), _mm256_mul_ps(f[2], d[1])),
+                _mm256_sub_ps(_mm256_mul_ps(f[2], d[0]), _mm256_mul_ps(f[0], d[2])),
+                _mm256_sub_ps(_mm256_mul_ps(f[0], d[1]), _mm256_mul_ps(f[1], d[0])),
+            ];
+            let lhs = _mm256_add_ps(
+                _mm256_add_ps(_mm256_mul_ps(p[0], p[0]), _mm256_mul_ps(p[1], p[1])),
+                _mm256_mul_ps(p[2], p[2]),
+            );
+            let s = _mm256_add_ps(radius, _mm256_set1_ps(self.widening));
+            let rhs = _mm256_mul_ps(_mm256_mul_ps(s, s), _mm256_set1_ps(self.scaled_a));
+            _mm256_movemask_ps(_mm256_cmp_ps::<_CMP_LE_OQ>(lhs, rhs)) as u32
+        }
+    }
+}
+
+impl CoarseRay {
+    /// [`CoarseRay::survivors_wide`] if `WIDE` (on x86-64), else [`CoarseRay::survivors`]: the
+    /// test of one group of a leaf's copies, for a walk compiled either way.
+    ///
+    /// # Safety
+    /// With `WIDE`, the CPU must have AVX2.
+    #[inline(always)]
+    pub unsafe fn survivors_of<const WIDE: bool>(&self, spheres: &[CoarseSphere]) -> u32 {
+        #[cfg(target_arch = "x86_64")]
+        if WIDE {
+            // SAFETY: the caller guarantees AVX2 when `WIDE`.
+            return unsafe { self.survivors_wide(spheres) };
+        }
+        #[cfg(not(target_arch = "x86_64"))]
+        assert!(!WIDE, "the eight-wide test exists on x86-64 only");
+        self.survivors(spheres)
+    }
+}
+
+/// How many coarse copies [`CoarseRay::survivors_wide`] tests at once.
+pub(super) const WIDE_LANES: usize = 8;
+
 /// How many coarse copies [`CoarseRay::survivors`] tests at once.
 pub(super) const LANES: usize = 4;
 
@@ -381,7 +473,7 @@ mod tests {
         let grid = Grid::new(&Aabb { min: DVec3::splat(-1.0), max: DVec3::splat(1.0) });
         let (mut groups, mut kept, mut lanes) = (0, 0, 0);
         for round in 0..20_000 {
-            let spheres: Vec<Sphere<f64>> = (0..LANES)
+            let spheres: Vec<Sphere<f64>> = (0..WIDE_LANES)
                 .map(|_| {
                     let c = DVec3::new(
                         uniform(&mut rng, -1.0, 1.0),
@@ -393,7 +485,7 @@ mod tests {
                 .collect();
             let mut four: Vec<CoarseSphere> = spheres.iter().map(|s| grid.pack(s).unwrap()).collect();
             if round % 7 == 0 {
-                four[round % LANES] = CoarseSphere { steps: [0, u16::MAX, 0, u16::MAX] };
+                four[round % WIDE_LANES] = CoarseSphere { steps: [0, u16::MAX, 0, u16::MAX] };
             }
             let o =
                 DVec3::new(uniform(&mut rng, -2.0, 2.0), uniform(&mut rng, -2.0, 2.0), uniform(&mut rng, -2.0, 2.0));
@@ -406,7 +498,13 @@ mod tests {
             let Ok(ray) = Ray::new(o, dir * scale) else { continue };
             let coarse = CoarseRay::new(&ray, &grid);
             let mask = coarse.survivors(&four);
-            assert_eq!(mask, coarse.survivors_scalar(four[..].try_into().unwrap()), "{ray:?} {four:?}");
+            assert_eq!(mask, coarse.survivors_scalar(four[..LANES].try_into().unwrap()), "{ray:?} {four:?}");
+            #[cfg(target_arch = "x86_64")]
+            if std::arch::is_x86_feature_detected!("avx2") {
+                let scalar = four.iter().enumerate().fold(0, |m, (k, c)| m | (u32::from(coarse.may_hit(c)) << k));
+                // SAFETY: the CPU has AVX2 (checked just above).
+                assert_eq!(unsafe { coarse.survivors_wide(&four) }, scalar, "eight at once: {ray:?} {four:?}");
+            }
             if !coarse.enabled {
                 assert_eq!(mask, ALL_LANES);
             }

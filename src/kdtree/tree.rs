@@ -1,11 +1,12 @@
 //! The 3-D kd-tree over spheres: flat node array, closest-hit traversal with early exit, one ray
 //! at a time ([`KdTree::closest_hit`]) or several in flight ([`KdTree::closest_hits`]); both walks
-//! share the leaf step (`KdTree::test_leaf`: four quantised copies per test, then the exact test).
+//! share the leaf step (`KdTree::test_leaf`: four quantised copies per test, eight in the
+//! single-ray walk on a CPU with AVX2, then the exact test).
 
 use super::build::{
     Builder, EXACT_MAX, PARALLEL_CHUNK, PARALLEL_MIN, Prim, SahCosts, Subtree, check_costs, max_depth, sphere_prims,
 };
-use super::coarse::{CoarseRay, CoarseSphere, Grid, LANES};
+use super::coarse::{CoarseRay, CoarseSphere, Grid, LANES, WIDE_LANES};
 use super::node::{Aabb, Node, NodeKind};
 use super::{BuildError, ReciprocalAxis, Side, split_pieces};
 use crate::geometry::sphere::roots_stable;
@@ -218,9 +219,9 @@ impl KdTree {
                 CoarseSphere::KEEP
             })
         };
-        // The leaf test reads whole groups of `LANES` copies: placeholders after the last leaf's
+        // The leaf test reads whole groups of up to `WIDE_LANES` copies: placeholders after the last leaf's
         // copies keep its group inside the list (chained, so the list is written once).
-        let padding = LANES - 1;
+        let padding = WIDE_LANES - 1;
         let (exact, coarse): (Vec<LeafSphere>, Vec<CoarseSphere>) = if parallel {
             let indices = || built.indices.par_iter().with_min_len(PARALLEL_CHUNK);
             rayon::join(
@@ -364,12 +365,13 @@ impl KdTree {
     /// Tests the spheres of the leaf `(first, count)` against `ray` over `(t_min, t_max)` at
     /// `time`, keeping in `best` the closest hit (ties to the lower index): the leaf step of both
     /// walks. With `filtered`, groups of [`LANES`] quantised copies are tested at once first
-    /// ([`CoarseRay::survivors`]), and only the copies that may be hit reach the exact test, in
+    /// ([`CoarseRay::survivors`]; with `WIDE`, only in a walk compiled for AVX2, groups of
+    /// [`WIDE_LANES`], [`CoarseRay::survivors_wide`]), and only the copies that may be hit reach the exact test, in
     /// list order; without it (a moving tree, or a sphere off the grid) every sphere is tested
     /// exactly.
     #[inline(always)]
     #[allow(clippy::too_many_arguments)]
-    fn test_leaf(
+    fn test_leaf<const WIDE: bool>(
         &self,
         ray: &Ray<f64>,
         coarse: &CoarseRay,
@@ -381,9 +383,13 @@ impl KdTree {
     ) {
         let (first, count) = (first as usize, count as usize);
         // A mask of the survivors per group, instead of a branch per copy.
-        for group in (0..count).step_by(LANES) {
-            let lanes = (1u32 << (count - group).min(LANES)) - 1;
-            let mut kept = if filtered { coarse.survivors(&self.coarse[first + group..]) & lanes } else { lanes };
+        let width = if WIDE { WIDE_LANES } else { LANES };
+        for group in (0..count).step_by(width) {
+            let lanes = (1u32 << (count - group).min(width)) - 1;
+            let copies = &self.coarse[first + group..];
+            // SAFETY: `WIDE` is true only in `traverse_avx2`, called on a CPU with AVX2.
+            let mask = if filtered { unsafe { coarse.survivors_of::<WIDE>(copies) } } else { lanes };
+            let mut kept = mask & lanes;
             while kept != 0 {
                 let leaf = &self.exact[first + group + kept.trailing_zeros() as usize];
                 kept &= kept - 1;
@@ -424,7 +430,45 @@ impl KdTree {
         self.traverse(ray, t_min, t_max, self.default_time(), stats)
     }
 
+    /// The walk of one ray: [`KdTree::traverse_with::<false>`] (four copies per coarse test), or
+    /// on a CPU with AVX2 the same walk compiled for it, with eight copies per coarse test. The
+    /// same answer either way: every lane of either test is the scalar test's.
+    #[inline]
     fn traverse<C: Counter>(
+        &self,
+        ray: &Ray<f64>,
+        t_min: f64,
+        t_max: f64,
+        time: f64,
+        counter: &mut C,
+    ) -> Option<(usize, f64)> {
+        #[cfg(target_arch = "x86_64")]
+        if std::arch::is_x86_feature_detected!("avx2") {
+            // SAFETY: the CPU has AVX2 (checked just above).
+            return unsafe { self.traverse_avx2(ray, t_min, t_max, time, counter) };
+        }
+        self.traverse_with::<C, false>(ray, t_min, t_max, time, counter)
+    }
+
+    /// [`KdTree::traverse_with::<true>`] compiled for AVX2.
+    ///
+    /// # Safety
+    /// The CPU must have AVX2.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    unsafe fn traverse_avx2<C: Counter>(
+        &self,
+        ray: &Ray<f64>,
+        t_min: f64,
+        t_max: f64,
+        time: f64,
+        counter: &mut C,
+    ) -> Option<(usize, f64)> {
+        self.traverse_with::<C, true>(ray, t_min, t_max, time, counter)
+    }
+
+    #[inline(always)]
+    fn traverse_with<C: Counter, const WIDE: bool>(
         &self,
         ray: &Ray<f64>,
         t_min: f64,
@@ -473,7 +517,7 @@ impl KdTree {
                 }
                 NodeKind::Leaf { first, count } => {
                     counter.sphere_tests(count);
-                    self.test_leaf(ray, &coarse, filtered, (first, count), (t_min, t_max), time, &mut best);
+                    self.test_leaf::<WIDE>(ray, &coarse, filtered, (first, count), (t_min, t_max), time, &mut best);
                 }
             }
             // Early exit: the cells still on the stack begin at or after this one ends; one that
@@ -668,7 +712,7 @@ impl KdTree {
             }
             NodeKind::Leaf { first, count } => {
                 let time = self.default_time();
-                self.test_leaf(
+                self.test_leaf::<false>(
                     &flight.ray,
                     &flight.coarse,
                     self.fits,
