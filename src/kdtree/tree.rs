@@ -861,6 +861,28 @@ mod tests {
         assert!(hits > 20_000, "the test exercises hits, got {hits}");
     }
 
+    /// The four-wide walk (every CPU without AVX2) answers as brute force does, whichever walk
+    /// `closest_hit` picks on this CPU: random scenes and rays, with the scenes large enough for
+    /// leaves of five to eight spheres, where the two walks' groups differ.
+    #[test]
+    fn the_four_wide_walk_equals_brute_force() {
+        let mut rng = seeded(0x4b45, 0);
+        let mut hits = 0;
+        for scene_index in 0..40 {
+            let n = 50 + (scene_index * 97) % 600;
+            let spheres = scene(&mut rng, n);
+            let tree = KdTree::build(&spheres).unwrap();
+            for _ in 0..1_000 {
+                let ray = random_ray(&mut rng);
+                let expected = brute_force_closest_hit(&spheres, &ray, 1e-4, f64::INFINITY);
+                let narrow = tree.traverse_with::<(), false>(&ray, 1e-4, f64::INFINITY, 0.0, &mut ());
+                assert_eq!(narrow, expected, "{ray:?}");
+                hits += usize::from(expected.is_some());
+            }
+        }
+        assert!(hits > 5_000, "the test exercises hits, got {hits}");
+    }
+
     /// The batch query answers every ray as the single-ray query does, bit for bit: random scenes
     /// and rays (zero and −0 direction components, origins on the grid's planes), batches of 0 to
     /// 300 rays (fewer and more than the rays in flight), ranges that are empty, reversed, NaN or
