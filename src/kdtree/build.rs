@@ -364,13 +364,12 @@ impl Builder {
             push_leaf(&prims, out);
             return;
         };
-        // One pass, each box read once, in order, for both children ([`partition`]). The lower
-        // child keeps the parent's list, compacted in place: a fresh list for it was written into
-        // fresh pages, and at N = 10⁶ the kernel's page faults and page clearing were a tenth of
-        // the build.
-        // The upper child's boxes are written into fresh capacity, each box written and the
-        // end advanced by its test as in [`partition`] (whose appending to the same list would
-        // double the parent's list here: a copy and fresh pages at every parallel level).
+        // One pass, each box read once, in order, written to both children and each end advanced
+        // by its test, as in [`partition`]. The lower child keeps the parent's list, compacted in
+        // place (a fresh list for it was written into fresh pages, and at N = 10⁶ the kernel's
+        // page faults and page clearing were a tenth of the build); the upper child's boxes go to
+        // a fresh list's spare capacity (appending them to the parent's list, as `partition`
+        // does, doubled that list here: a copy and fresh pages at every parallel level).
         let count = prims.len();
         let mut upper = Vec::with_capacity(count);
         let spare = upper.spare_capacity_mut();

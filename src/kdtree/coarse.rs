@@ -294,9 +294,7 @@ impl CoarseRay {
             _mm_movemask_ps(_mm_cmple_ps(lhs, rhs)) as u32
         }
     }
-}
 
-impl CoarseRay {
     /// [`CoarseRay::survivors`] for the first [`WIDE_LANES`] spheres of `spheres` at once, eight
     /// `f32` lanes per instruction: every bit is again exactly the scalar test's answer (the same
     /// operations in the same order in every lane, no fused multiply-add). A leaf of five to eight
@@ -363,9 +361,7 @@ impl CoarseRay {
             _mm256_movemask_ps(_mm256_cmp_ps::<_CMP_LE_OQ>(lhs, rhs)) as u32
         }
     }
-}
 
-impl CoarseRay {
     /// [`CoarseRay::survivors_wide`] if `WIDE` (on x86-64), else [`CoarseRay::survivors`]: the
     /// test of one group of a leaf's copies, for a walk compiled either way.
     ///
@@ -483,9 +479,9 @@ mod tests {
                     Sphere::new(c * 0.9, uniform(&mut rng, 1e-4, 0.1)).unwrap()
                 })
                 .collect();
-            let mut four: Vec<CoarseSphere> = spheres.iter().map(|s| grid.pack(s).unwrap()).collect();
+            let mut group: Vec<CoarseSphere> = spheres.iter().map(|s| grid.pack(s).unwrap()).collect();
             if round % 7 == 0 {
-                four[round % WIDE_LANES] = CoarseSphere { steps: [0, u16::MAX, 0, u16::MAX] };
+                group[round % WIDE_LANES] = CoarseSphere { steps: [0, u16::MAX, 0, u16::MAX] };
             }
             let o =
                 DVec3::new(uniform(&mut rng, -2.0, 2.0), uniform(&mut rng, -2.0, 2.0), uniform(&mut rng, -2.0, 2.0));
@@ -497,13 +493,13 @@ mod tests {
             let scale = [1.0, 1e-30, 1e3][round % 3];
             let Ok(ray) = Ray::new(o, dir * scale) else { continue };
             let coarse = CoarseRay::new(&ray, &grid);
-            let mask = coarse.survivors(&four);
-            assert_eq!(mask, coarse.survivors_scalar(four[..LANES].try_into().unwrap()), "{ray:?} {four:?}");
+            let mask = coarse.survivors(&group);
+            assert_eq!(mask, coarse.survivors_scalar(group[..LANES].try_into().unwrap()), "{ray:?} {group:?}");
             #[cfg(target_arch = "x86_64")]
             if std::arch::is_x86_feature_detected!("avx2") {
-                let scalar = four.iter().enumerate().fold(0, |m, (k, c)| m | (u32::from(coarse.may_hit(c)) << k));
+                let scalar = group.iter().enumerate().fold(0, |m, (k, c)| m | (u32::from(coarse.may_hit(c)) << k));
                 // SAFETY: the CPU has AVX2 (checked just above).
-                assert_eq!(unsafe { coarse.survivors_wide(&four) }, scalar, "eight at once: {ray:?} {four:?}");
+                assert_eq!(unsafe { coarse.survivors_wide(&group) }, scalar, "eight at once: {ray:?} {group:?}");
             }
             if !coarse.enabled {
                 assert_eq!(mask, ALL_LANES);

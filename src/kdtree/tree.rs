@@ -219,8 +219,8 @@ impl KdTree {
                 CoarseSphere::KEEP
             })
         };
-        // The leaf test reads whole groups of up to `WIDE_LANES` copies: placeholders after the last leaf's
-        // copies keep its group inside the list (chained, so the list is written once).
+        // The leaf test reads whole groups of up to `WIDE_LANES` copies: placeholders after the
+        // last leaf's copies keep its group inside the list (chained, so the list is written once).
         let padding = WIDE_LANES - 1;
         let (exact, coarse): (Vec<LeafSphere>, Vec<CoarseSphere>) = if parallel {
             let indices = || built.indices.par_iter().with_min_len(PARALLEL_CHUNK);
@@ -366,9 +366,9 @@ impl KdTree {
     /// `time`, keeping in `best` the closest hit (ties to the lower index): the leaf step of both
     /// walks. With `filtered`, groups of [`LANES`] quantised copies are tested at once first
     /// ([`CoarseRay::survivors`]; with `WIDE`, only in a walk compiled for AVX2, groups of
-    /// [`WIDE_LANES`], [`CoarseRay::survivors_wide`]), and only the copies that may be hit reach the exact test, in
-    /// list order; without it (a moving tree, or a sphere off the grid) every sphere is tested
-    /// exactly.
+    /// [`WIDE_LANES`], [`CoarseRay::survivors_wide`]), and only the copies that may be hit reach
+    /// the exact test, in list order; without it (a moving tree, or a sphere off the grid) every
+    /// sphere is tested exactly.
     #[inline(always)]
     #[allow(clippy::too_many_arguments)]
     fn test_leaf<const WIDE: bool>(
@@ -686,15 +686,16 @@ impl KdTree {
         false
     }
 
-    /// The interior step of the walk without a branch on the interval rule's outcome: every
-    /// choice a select; the step of the batch query, and of the single-ray walk for rays that
-    /// start inside the tree's box. At the interior node `node` (split `split` on `axis`, upper child `upper`)
-    /// with the cell `[cell_min, cell_max]`, returns the child to visit next, stores the far child
-    /// on the stack when both pieces are live, and shortens `cell_max` to the plane then; the same
-    /// decisions as the branching step. The far entry is stored every step and kept only when both
-    /// pieces are live; at an interior node of tree depth d the stack holds at most d ≤ 59
-    /// entries (the build's depth bound), so the store stays inside the [`STACK`] = 64. Prefetches
-    /// the upper child, the copies of a leaf lower child, and the chosen child.
+    /// The interior step of the walk without a branch on the interval rule's outcome, every
+    /// choice a select: the step of the batch query, and of the single-ray walk for rays that
+    /// start inside the tree's box. At the interior node `node` (split `split` on `axis`, upper
+    /// child `upper`) with the cell `[cell_min, cell_max]`, returns the child to visit next,
+    /// stores the far child on the stack when both pieces are live, and shortens `cell_max` to
+    /// the plane then: the same decisions as the branching step. The far entry is stored every
+    /// step and kept only when both pieces are live; at an interior node of tree depth d the stack
+    /// holds at most d ≤ 59 entries (the build's depth bound), so the store stays inside the
+    /// [`STACK`] = 64. Prefetches the upper child and the copies of a leaf lower child, as the
+    /// branching step does.
     #[inline(always)]
     fn select_child(
         &self,
@@ -719,9 +720,7 @@ impl KdTree {
         // keeps it too).
         let cut = if pieces.t_plane > cell_min { pieces.t_plane } else { f64::INFINITY };
         *cell_max = if cut < *cell_max { cut } else { *cell_max };
-        let next = std::hint::select_unpredictable(pieces.near_live, near, far);
-        prefetch(&self.nodes, next);
-        next
+        std::hint::select_unpredictable(pieces.near_live, near, far)
     }
 
     /// One step of `traverse` (static spheres, no counter) on `flight`: an interior node's
@@ -739,6 +738,9 @@ impl KdTree {
                     (&mut flight.stack, &mut flight.depth),
                     (flight.cell_min, &mut flight.cell_max),
                 );
+                // The other rays in flight run before this one's next step: its node can be on
+                // the way meanwhile (a single ray reads it at once, so its walk does not ask).
+                prefetch(&self.nodes, flight.node);
                 return false;
             }
             NodeKind::Leaf { first, count } => {
