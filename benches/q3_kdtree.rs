@@ -436,7 +436,8 @@ fn env_override<T: std::str::FromStr>(name: &str) -> Option<T> {
     std::env::var(name).ok().and_then(|v| v.parse().ok())
 }
 
-/// `HW3_Q3_PROFILE=kd|kdbatch|kd32|build` (`kdbatch`: the batch query [`KdTree::closest_hits`]) (with `HW3_Q3_PROFILE_N`, default 10⁵, fixed k unless
+/// `HW3_Q3_PROFILE=kd|kdbatch|kd32|build|ab` (`kdbatch`: the batch query [`KdTree::closest_hits`];
+/// `ab`: two values of `K_I` timed in turns, [`compare_costs`]) (with `HW3_Q3_PROFILE_N`, default 10⁵, fixed k unless
 /// `HW3_Q3_PROFILE_DENSITY=volume`, and
 /// `HW3_Q3_PROFILE_RAYS`, default 10⁵ random rays, `HW3_Q3_KI` for the tree's `K_I`, and
 /// `HW3_Q3_PROFILE_BUILDS` builds, default 1, of which the median time is printed): one contender alone, for a profiler
@@ -471,6 +472,10 @@ fn profile(what: &str) {
     let tree = built.expect("at least one build");
     times.sort_by(f64::total_cmp);
     let build_secs = times[times.len() / 2];
+    if what == "ab" {
+        compare_costs(&spheres, &rays, costs);
+        return;
+    }
     let answers: Vec<Hit> = match what {
         "kd" => trace_all(&tree, &rays),
         "kdbatch" => trace_batch(&tree, &rays),
@@ -494,6 +499,42 @@ fn profile(what: &str) {
         tree.sah_cost(&SahCosts::default()),
         build_secs * 1e3,
         checksum(&answers)
+    );
+}
+
+/// `HW3_Q3_PROFILE=ab`: two trees over the same spheres, A with `HW3_Q3_KI` (or the default
+/// `K_I`) and B with `HW3_Q3_KI_B`, timed over the same rays in 15 alternating rounds in one
+/// process (B first in every other round), so that a change of load or clock hits both alike;
+/// prints each round's B ÷ A time ratio and their median, and asserts that both answer the same.
+fn compare_costs(spheres: &[Sphere<f64>], rays: &[Ray<f64>], costs: SahCosts) {
+    let costs_b = SahCosts { intersection: env_override("HW3_Q3_KI_B").unwrap_or(costs.intersection), ..costs };
+    let (a, b) = (KdTree::build_with(spheres, costs).unwrap(), KdTree::build_with(spheres, costs_b).unwrap());
+    let time = |tree: &KdTree| {
+        let start = Instant::now();
+        let answers = trace_all(tree, rays);
+        (start.elapsed().as_secs_f64(), answers)
+    };
+    let mut ratios = Vec::new();
+    for round in 0..15 {
+        let ((time_a, answers_a), (time_b, answers_b)) = if round % 2 == 0 {
+            let first = time(&a);
+            (first, time(&b))
+        } else {
+            let first = time(&b);
+            (time(&a), first)
+        };
+        assert!(answers_a == answers_b, "the two trees answer alike");
+        ratios.push(time_b / time_a);
+        eprint!("{:.3} ", time_b / time_a);
+    }
+    ratios.sort_by(f64::total_cmp);
+    eprintln!(
+        "\nK_I {} ({} nodes) against {} ({} nodes): median time ratio B / A {:.3}",
+        costs_b.intersection,
+        b.node_count(),
+        costs.intersection,
+        a.node_count(),
+        ratios[ratios.len() / 2]
     );
 }
 

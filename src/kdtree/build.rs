@@ -51,19 +51,20 @@ pub struct SahCosts {
 }
 
 impl Default for SahCosts {
-    /// `K_T = 1`, `K_I = 0.3`, `b = 0.2`, 32 bins. The constants are *measured* costs, not
+    /// `K_T = 1`, `K_I = 0.15`, `b = 0.2`, 32 bins. The constants are *measured* costs, not
     /// textbook ones: on the Q3 benchmark workload a node step costs several times a
     /// ray/sphere test (a node step is a dependent load from a tree that outgrows the cache, a
-    /// sphere test mostly an 8-byte conservative reject on data that sits next to its leaf's other
-    /// spheres), so a ray should rather test a few more spheres than walk many small cells. A first
-    /// sweep of `K_I` over 0.2, 0.3, 0.5 and 1.5 found 0.2–0.5 alike and all far ahead of 1.5;
-    /// once the leaves' quantised copies and the prefetches had made tests and waits cheaper, a
-    /// second (the Q3 engineering notes, What made it fast) found 0.3 faster than 0.5 in CPU time by about
-    /// 12 % on random rays and 9 % on fixed-k camera rays at N = 10⁵, 16 % on random rays at 10⁶ (at
-    /// 10⁵, fixed k, a tree of 44 k nodes instead of 84 k). Textbook defaults for comparison: pbrt
-    /// `(1, 80)` for expensive shapes, Mitsuba `(15, 20)`.
+    /// sphere test mostly an 8-byte conservative reject, eight at a time, on data that sits next
+    /// to its leaf's other spheres), so a ray should rather test a few more spheres than walk many
+    /// small cells. A first sweep of `K_I` over 0.2, 0.3, 0.5 and 1.5 found 0.2–0.5 alike and all
+    /// far ahead of 1.5; once the leaves' quantised copies and the prefetches had made tests and
+    /// waits cheaper, a second found 0.3 faster than 0.5 by about 12 % on random rays at N = 10⁵;
+    /// on a machine with half the second-level cache per core (512 KB), a third, timing two trees
+    /// in turns in one process, found 0.15 faster than 0.3 on every ray set from N = 10³ to 10⁶,
+    /// by 0.5–3 % at 10³ and 5–13 % at 10⁶ (the Q3 engineering notes, What made it fast, steps 1, 12 and 20). Textbook
+    /// defaults for comparison: pbrt `(1, 80)` for expensive shapes, Mitsuba `(15, 20)`.
     fn default() -> Self {
-        Self { traversal: 1.0, intersection: 0.3, empty_bonus: 0.2, bins: 32 }
+        Self { traversal: 1.0, intersection: 0.15, empty_bonus: 0.2, bins: 32 }
     }
 }
 
@@ -213,8 +214,11 @@ impl Subtree {
 
 /// Spheres up to which a node tries every box face as its plane instead of binned planes: `2n`
 /// faces are then fewer than the binned planes, and sorting them is cheap. On random sphere scenes
-/// of 200 to 20 000 spheres this lowers the SAH cost by 0.3–0.9 % (8 lowered it less; 32, with
-/// the face lists on the heap, cost about 30 % more build instructions under callgrind).
+/// of 200 to 20 000 spheres this lowered the SAH cost by 0.3–0.9 % with `K_I = 0.3` (8 lowered it
+/// less; 32, with the face lists on the heap, cost about 30 % more build instructions under
+/// callgrind). With the default `K_I = 0.15` nodes of up to six spheres are leaves without a search
+/// and few small nodes split: the two candidate sets then build trees of the same SAH cost at 200
+/// and 2 000 spheres and differ by 5·10⁻⁶ of it at 20 000 (a test pins both).
 pub(super) const EXACT_MAX: usize = 16;
 
 /// The largest `exact_max` a [`Builder`] accepts (its face arrays live on the stack).
@@ -444,7 +448,7 @@ impl Builder {
     fn choose(&self, cell: &Aabb, prims: &[Prim], depth: usize) -> Option<Candidate> {
         let leaf_cost = self.costs.intersection * prims.len() as f64;
         // A split costs at least K_T (its other terms are products of non-negative factors), so a
-        // leaf that costs no more (two spheres, with the default constants) needs no search.
+        // leaf that costs no more (six spheres, with the default constants) needs no search.
         if prims.len() <= 1 || depth >= self.max_depth || leaf_cost <= self.costs.traversal {
             return None;
         }

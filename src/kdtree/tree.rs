@@ -1011,10 +1011,19 @@ mod tests {
                 })
                 .collect();
             let prims = sphere_prims(&spheres).unwrap();
-            let costs = SahCosts::default();
-            let binned = KdTree::from_prims_with(&spheres, prims.clone(), costs, 0).sah_cost(&costs);
-            let exact = KdTree::from_prims_with(&spheres, prims, costs, EXACT_MAX).sah_cost(&costs);
-            assert!(exact < binned, "N = {n}: SAH cost {exact} with exact small nodes, {binned} binned");
+            // The default costs, and the K_I = 0.3 under which the gain was first measured: with
+            // K_I = 0.15 nodes of up to six spheres are leaves without a search and fewer small
+            // nodes split, so at N = 200 the two candidate sets can build equally good trees.
+            for costs in [SahCosts::default(), SahCosts { intersection: 0.3, ..SahCosts::default() }] {
+                let binned = KdTree::from_prims_with(&spheres, prims.clone(), costs, 0).sah_cost(&costs);
+                let exact = KdTree::from_prims_with(&spheres, prims.clone(), costs, EXACT_MAX).sah_cost(&costs);
+                let strictly = costs.intersection == 0.3;
+                assert!(
+                    exact < binned || (!strictly && exact == binned),
+                    "N = {n}, K_I = {}: SAH cost {exact} with exact small nodes, {binned} binned",
+                    costs.intersection
+                );
+            }
         }
     }
 
