@@ -40,6 +40,7 @@
 mod build;
 mod coarse;
 mod node;
+mod start;
 mod tree;
 mod tree_f32;
 
