@@ -40,7 +40,6 @@
 mod build;
 mod coarse;
 mod node;
-mod start;
 mod tree;
 mod tree_f32;
 

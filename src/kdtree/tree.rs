@@ -8,7 +8,6 @@ use super::build::{
 };
 use super::coarse::{CoarseRay, CoarseSphere, Grid, LANES, WIDE_LANES};
 use super::node::{Aabb, Node, NodeKind};
-use super::start::StartGrid;
 use super::{BuildError, ReciprocalAxis, Side, split_pieces};
 use crate::geometry::sphere::roots_stable;
 use crate::geometry::{Ray, Sphere};
@@ -73,8 +72,6 @@ pub struct KdTree {
     /// coarse test keeps.
     exact: Vec<LeafSphere>,
     pub(super) bounds: Aabb,
-    /// Where a ray that starts inside the box begins its walk (see `kdtree/start.rs`).
-    starts: StartGrid,
 }
 
 /// Spheres moving with constant velocities, and the time interval their swept boxes bound.
@@ -94,11 +91,6 @@ struct LeafSphere {
     sphere: Sphere<f64>,
     index: u32,
 }
-
-/// About how many nodes per cell of the start grid: at N = 10⁵ a grid of a few hundred cells
-/// (under 30 KB, in the nearest cache). Finer grids start deeper but their look-ups miss the
-/// cache; the Q3 engineering notes (What made it fast, step 21) have the measurements.
-const NODES_PER_START: usize = 64;
 
 /// Fixed traversal stack size; the build's depth bound (at most 60) keeps pushes below it.
 pub(super) const STACK: usize = 64;
@@ -243,8 +235,7 @@ impl KdTree {
         let fits = fits.into_inner();
         // The traversal never reads the copies then; all placeholders, as they always were.
         let coarse = if fits { coarse } else { vec![CoarseSphere::KEEP; exact.len() + padding] };
-        let starts = StartGrid::new(&built.nodes, &bounds, NODES_PER_START);
-        Self { nodes: built.nodes, coarse, grid, fits, exact, bounds, motion: None, starts }
+        Self { nodes: built.nodes, coarse, grid, fits, exact, bounds, motion: None }
     }
 
     /// The spheres of the leaf `(first, count)` with their input indices, in list order.
@@ -474,6 +465,7 @@ impl KdTree {
         let mut best: Option<(usize, f64)> = None;
         let mut stack = [(0u32, 0.0f64, 0.0f64); STACK];
         let mut depth = 0;
+        let mut node = 0u32;
         // A plain array: indexing a glam vector by a run-time axis is a three-way branch, which the
         // varying split axes make unpredictable.
         let axes = [0, 1, 2].map(|a| ReciprocalAxis::new(ray.origin[a], ray.dir[a]));
@@ -489,8 +481,6 @@ impl KdTree {
         // The same nodes either way (the Q3 engineering notes, What made it fast, step 19, give
         // the measured costs, and the price for coherent rays that start inside).
         let scattered = cell_min == t_min;
-        let mut node;
-        (node, cell_max) = self.enter(ray, &axes, (cell_min, cell_max), (&mut stack, &mut depth));
         loop {
             counter.node();
             match self.nodes[node as usize].kind() {
@@ -691,35 +681,9 @@ impl KdTree {
             (flight.node, flight.cell_min, flight.cell_max) = (0, cell_min, cell_max);
             flight.best = None;
             flight.depth = 0;
-            (flight.node, flight.cell_max) =
-                self.enter(ray, &flight.axes, (cell_min, cell_max), (&mut flight.stack, &mut flight.depth));
             return true;
         }
         false
-    }
-
-    /// Where the walk over `[cell_min, cell_max]` begins: the start grid's node for the point at
-    /// `cell_min` with the interval's new end and, when the ray leaves that node's cell before
-    /// `cell_max`, the root over the rest pushed on the (empty) stack; or the root with the
-    /// interval unchanged when the grid has no node for it. The same leaves in the same order as
-    /// from the root (`kdtree/start.rs` says why).
-    #[inline(always)]
-    fn enter(
-        &self,
-        ray: &Ray<f64>,
-        axes: &[ReciprocalAxis; 3],
-        (cell_min, cell_max): (f64, f64),
-        (stack, depth): (&mut [(u32, f64, f64); STACK], &mut usize),
-    ) -> (u32, f64) {
-        match self.starts.find(ray, axes, cell_min) {
-            Some((node, t_exit)) if t_exit < cell_max => {
-                stack[*depth] = (0, t_exit, cell_max);
-                *depth += 1;
-                (node, t_exit)
-            }
-            Some((node, _)) => (node, cell_max),
-            None => (0, cell_max),
-        }
     }
 
     /// The interior step of the walk without a branch on the interval rule's outcome, every
@@ -1195,65 +1159,5 @@ mod tests {
             KdTree::build_moving(&spheres, &velocities[..2], (0.0, 1.0)),
             Err(BuildError::VelocityCount { spheres: 300, velocities: 2 })
         ));
-    }
-
-    /// The start grid moves where a walk begins, not what it finds. On random scenes and rays
-    /// (origins inside and outside the box, on a split plane of the tree in every fourth ray, on
-    /// grid lines; zero and −0 direction components; `t_min` of 0, 10⁻⁴ and −0.5; bounded
-    /// ranges), the walk with the tree's own grid, and with the finest grid (about a cell per
-    /// node, the most starts below the root and the most exact checks), answers as the walk from
-    /// the root, bit for bit, makes exactly the same sphere tests (the same leaves) and never more
-    /// node steps; over all rays each grid takes fewer.
-    #[test]
-    fn start_grid_saves_node_steps_and_changes_nothing_else() {
-        let mut rng = seeded(0x5747, 0);
-        // Node steps from the root, with the tree's grid, with the finest grid; rays that walk
-        // below the root, and those of them that take fewer steps with the finest grid.
-        let (mut from_root, mut own, mut finest, mut walked, mut fewer) = (0u64, 0u64, 0u64, 0usize, 0usize);
-        for scene_index in 0..40 {
-            let spheres = scene(&mut rng, 20 + scene_index * 60);
-            let tree = KdTree::build(&spheres).unwrap();
-            let (mut root_only, mut fine) = (tree.clone(), tree.clone());
-            root_only.starts = StartGrid::new(&tree.nodes, &tree.bounds, usize::MAX);
-            fine.starts = StartGrid::new(&tree.nodes, &tree.bounds, 1);
-            let planes: Vec<(usize, f64)> = tree
-                .nodes
-                .iter()
-                .filter_map(|node| match node.kind() {
-                    NodeKind::Interior { split, axis, .. } => Some((axis, split)),
-                    NodeKind::Leaf { .. } => None,
-                })
-                .collect();
-            for i in 0..2_500 {
-                let mut ray = random_ray(&mut rng);
-                if i % 4 == 0 && !planes.is_empty() {
-                    let (axis, split) = planes[rng.next_u64() as usize % planes.len()];
-                    ray.origin[axis] = split;
-                }
-                let (t_min, t_max) = ([0.0, 1e-4, -0.5][i % 3], if i % 5 == 0 { 0.3 } else { f64::INFINITY });
-                let query = Query { ray: &ray, t_min, t_max, time: 0.0 };
-                let bits = |hit: Option<(usize, f64)>| hit.map(|(i, t)| (i, t.to_bits()));
-                let mut root_stats = HitStats::default();
-                let expected = bits(root_only.traverse(query, &mut root_stats));
-                for (grid, steps) in [(&tree, &mut own), (&fine, &mut finest)] {
-                    let mut stats = HitStats::default();
-                    let answer = bits(grid.traverse(query, &mut stats));
-                    let case = format!("{ray:?} over ({t_min}, {t_max})");
-                    assert_eq!(answer, expected, "{case}");
-                    assert_eq!(stats.sphere_tests, root_stats.sphere_tests, "the same leaves: {case}");
-                    assert!(stats.nodes_visited <= root_stats.nodes_visited, "{stats:?} > {root_stats:?}: {case}");
-                    *steps += stats.nodes_visited;
-                    if std::ptr::eq(grid, &fine) {
-                        fewer += usize::from(stats.nodes_visited < root_stats.nodes_visited);
-                    }
-                }
-                from_root += root_stats.nodes_visited;
-                walked += usize::from(root_stats.nodes_visited > 1);
-            }
-        }
-        assert!(walked > 20_000, "{walked} rays walk below the root");
-        assert!(own < from_root, "{own} node steps with the tree's grid, {from_root} without");
-        assert!(fewer * 2 > walked, "{fewer} of {walked} rays take fewer steps with the finest grid");
-        assert!(finest * 10 < from_root * 9, "{finest} node steps with the finest grid, {from_root} without");
     }
 }
