@@ -61,7 +61,7 @@ impl Default for SahCosts {
     /// waits cheaper, a second found 0.3 faster than 0.5 by about 12 % on random rays at N = 10⁵;
     /// on a machine with half the second-level cache per core (512 KB), a third, timing two trees
     /// in turns in one process, found 0.15 faster than 0.3 on every ray set from N = 10³ to 10⁶,
-    /// by 0.5–3 % at 10³ and 5–13 % at 10⁶ (the Q3 engineering notes, What made it fast, steps 1, 12 and 20). Textbook
+    /// by 0.5–3 % at 10³ and 5–13 % at 10⁶ (and up to 9 % slower at 10², a tree of a few dozen nodes) (the Q3 engineering notes, What made it fast, steps 1, 12 and 20). Textbook
     /// defaults for comparison: pbrt `(1, 80)` for expensive shapes, Mitsuba `(15, 20)`.
     fn default() -> Self {
         Self { traversal: 1.0, intersection: 0.15, empty_bonus: 0.2, bins: 32 }
