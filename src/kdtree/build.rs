@@ -59,10 +59,11 @@ impl Default for SahCosts {
     /// small cells. A first sweep of `K_I` over 0.2, 0.3, 0.5 and 1.5 found 0.2–0.5 alike and all
     /// far ahead of 1.5; once the leaves' quantised copies and the prefetches had made tests and
     /// waits cheaper, a second found 0.3 faster than 0.5 by about 12 % on random rays at N = 10⁵;
-    /// on a machine with half the second-level cache per core (512 KB), a third, timing two trees
-    /// in turns in one process, found 0.15 faster than 0.3 on every ray set from N = 10³ to 10⁶,
-    /// by 0.5–3 % at 10³ and 5–13 % at 10⁶ (and up to 9 % slower at 10², a tree of a few dozen nodes) (the Q3 engineering notes, What made it fast, steps 1, 12 and 20). Textbook
-    /// defaults for comparison: pbrt `(1, 80)` for expensive shapes, Mitsuba `(15, 20)`.
+    /// on a machine with half that machine's second-level cache per core (512 KB), a
+    /// third, timing two trees in turns in one process, found 0.15 faster than 0.3 on every ray
+    /// set from N = 10³ to 10⁶, by 0.5–3 % at 10³ and 5–13 % at 10⁶, and up to 9 % slower at 10²
+    /// (a tree of a dozen nodes); the Q3 engineering notes, What made it fast, steps 1, 12 and 20.
+    /// Textbook defaults for comparison: pbrt `(1, 80)` for expensive shapes, Mitsuba `(15, 20)`.
     fn default() -> Self {
         Self { traversal: 1.0, intersection: 0.15, empty_bonus: 0.2, bins: 32 }
     }
@@ -217,8 +218,9 @@ impl Subtree {
 /// of 200 to 20 000 spheres this lowered the SAH cost by 0.3–0.9 % with `K_I = 0.3` (8 lowered it
 /// less; 32, with the face lists on the heap, cost about 30 % more build instructions under
 /// callgrind). With the default `K_I = 0.15` nodes of up to six spheres are leaves without a search
-/// and few small nodes split: the two candidate sets then build trees of the same SAH cost at 200
-/// and 2 000 spheres and differ by 5·10⁻⁶ of it at 20 000 (a test pins both).
+/// and few small nodes split: the two candidate sets then built trees of the same SAH cost at 200
+/// and 2 000 spheres and differed by 5·10⁻⁶ of it at 20 000. A test pins that the exact set is
+/// never worse at the default and strictly better at `K_I = 0.3`.
 pub(super) const EXACT_MAX: usize = 16;
 
 /// The largest `exact_max` a [`Builder`] accepts (its face arrays live on the stack).
