@@ -38,7 +38,7 @@ fn main() {
 }
 
 fn furnace_map(photons: usize) -> PhotonMap {
-    trace_photons(&furnace_sphere(0.5, 1.0).expect("valid scene"), photons, 1).expect("photons").all
+    trace_photons(&furnace_sphere(0.5, 1.0).expect("valid scene"), photons, 1).expect("photons").into_all()
 }
 
 fn brute_force_nearest(points: &[[f64; 3]], query: DVec3, k: usize) -> f64 {
@@ -118,8 +118,9 @@ fn write_cornell_table() {
     let mut rows = Vec::new();
     for photons in CORNELL_PHOTONS {
         let start = Instant::now();
-        let maps: Vec<PhotonMap> =
-            (1..=CORNELL_TRACES).map(|seed| trace_photons(&scene, photons, seed).expect("photons").all).collect();
+        let maps: Vec<PhotonMap> = (1..=CORNELL_TRACES)
+            .map(|seed| trace_photons(&scene, photons, seed).expect("photons").into_all())
+            .collect();
         let trace_seconds = start.elapsed().as_secs_f64() / CORNELL_TRACES as f64;
         for k in CORNELL_NEIGHBOURS {
             let start = Instant::now();

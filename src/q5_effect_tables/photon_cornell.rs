@@ -177,7 +177,7 @@ pub fn reference_seeded(scene: &Scene, probes: &[Ray<f64>], spp: u64, seed: u64)
 /// use hw3::q5_effect_tables::photon_cornell::{estimates, scene_and_probes};
 /// use hw3::render::photon::trace_photons;
 /// let (scene, probes) = scene_and_probes().unwrap();
-/// let map = trace_photons(&scene, 5000, 1).unwrap().all;
+/// let map = trace_photons(&scene, 5000, 1).unwrap().into_all();
 /// assert!(estimates(&scene, &map, &probes, 16).unwrap().iter().all(|&l| l > 0.0));
 /// assert!(estimates(&scene, &map, &probes, 1).is_err()); // k < 2
 /// ```
@@ -418,7 +418,7 @@ mod tests {
         let truth = reference(&scene, &probes, 256);
         assert!(truth.radiance.iter().all(|&l| l > 0.0));
         let traces: Vec<Vec<f64>> = (1..=2)
-            .map(|seed| estimates(&scene, &trace_photons(&scene, 20_000, seed).unwrap().all, &probes, 32).unwrap())
+            .map(|seed| estimates(&scene, trace_photons(&scene, 20_000, seed).unwrap().all(), &probes, 32).unwrap())
             .collect();
         let split = error_split(&traces, &truth.radiance);
         assert!(split.rms < 0.4, "{split:?}");

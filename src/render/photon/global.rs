@@ -9,12 +9,19 @@ use crate::render::bsdf::{diffuse_part, facing_normal, reflected_ray, specular_b
 use crate::render::color::luminance;
 use crate::render::sampling::{Sampler, cosine_direction, phong_direction, pick_index, uniform_sphere};
 use crate::render::scene::{Material, Scene};
+use std::sync::OnceLock;
 
 /// The three photon maps of one trace (see the module docs for what each keeps).
+///
+/// The map of every stored photon, [`PhotonMaps::all`], is built on its first use: the
+/// renderer's eye pass reads only the indirect and caustic maps, and building a kd-tree over
+/// every photon was a third of what `hw3 effect-tables` spent (its twelve traces never read it).
 #[derive(Debug)]
 pub struct PhotonMaps {
-    /// Every photon at every diffuse or glossy hit.
-    pub all: PhotonMap,
+    /// Every photon at every diffuse or glossy hit, in tracing order.
+    stored: Vec<Photon>,
+    /// The map over `stored`, built by [`PhotonMaps::all`].
+    all: OnceLock<PhotonMap>,
     /// Photons after at least one diffuse or glossy bounce.
     pub indirect: PhotonMap,
     /// Photons after specular bounces only (at least one).
@@ -41,7 +48,7 @@ pub struct PhotonMaps {
 /// ```
 /// use hw3::render::{photon::trace_photons, catalogue};
 /// let maps = trace_photons(&catalogue::cornell_mirror().unwrap(), 2000, 1).unwrap();
-/// assert!(maps.all.len() >= maps.indirect.len() && maps.all.len() > 1000);
+/// assert!(maps.all().len() >= maps.indirect.len() && maps.all().len() > 1000);
 /// assert!(trace_photons(&catalogue::cornell_mirror().unwrap(), 0, 1).is_err());
 /// ```
 pub fn trace_photons(scene: &Scene, count: usize, seed: u64) -> Result<PhotonMaps, PhotonError> {
@@ -61,11 +68,42 @@ pub fn trace_photons(scene: &Scene, count: usize, seed: u64) -> Result<PhotonMap
         PhotonMap::new(stored.iter().filter(|(_, path)| wanted(*path)).map(|(photon, _)| *photon).collect())
     };
     Ok(PhotonMaps {
-        all: keep(|_| true),
         indirect: keep(|path| path == Path::AfterDiffuse),
         caustic: keep(|path| path == Path::SpecularOnly),
+        stored: stored.into_iter().map(|(photon, _)| photon).collect(),
+        all: OnceLock::new(),
         emitted: count,
     })
+}
+
+impl PhotonMaps {
+    /// The map of every photon at every diffuse or glossy hit, built on the first call (on a
+    /// copy of the stored photons) and kept.
+    ///
+    /// # Examples
+    /// ```
+    /// use hw3::render::{photon::trace_photons, catalogue};
+    /// let maps = trace_photons(&catalogue::cornell_mirror().unwrap(), 2000, 1).unwrap();
+    /// let direct = maps.all().len() - maps.indirect.len() - maps.caustic.len();
+    /// assert!(direct > 0 && std::ptr::eq(maps.all(), maps.all()));
+    /// ```
+    #[must_use]
+    pub fn all(&self) -> &PhotonMap {
+        self.all.get_or_init(|| PhotonMap::new(self.stored.clone()))
+    }
+
+    /// The map of every stored photon, taken out of the trace (no copy when it was not built yet).
+    ///
+    /// # Examples
+    /// ```
+    /// use hw3::render::{photon::trace_photons, catalogue};
+    /// let map = trace_photons(&catalogue::cornell_mirror().unwrap(), 2000, 1).unwrap().into_all();
+    /// assert!(map.len() > 1000);
+    /// ```
+    #[must_use]
+    pub fn into_all(self) -> PhotonMap {
+        self.all.into_inner().unwrap_or_else(|| PhotonMap::new(self.stored))
+    }
 }
 
 /// What a photon's path did before the hit where it is stored.

@@ -162,7 +162,7 @@ impl PhotonMap {
     /// let maps = trace_photons(&furnace_sphere(0.5, 1.0).unwrap(), 20_000, 1).unwrap();
     /// let white = Material::Diffuse { albedo: DVec3::splat(0.5) };
     /// let points = fibonacci_sphere(200);
-    /// let mean = points.iter().map(|&p| maps.all.radiance(&white, p, -p, -p, 50).unwrap().x).sum::<f64>() / 200.0;
+    /// let mean = points.iter().map(|&p| maps.all().radiance(&white, p, -p, -p, 50).unwrap().x).sum::<f64>() / 200.0;
     /// assert!((mean / (1.0 / std::f64::consts::PI) - 1.0).abs() < 0.05);
     /// ```
     pub fn radiance(

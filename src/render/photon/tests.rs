@@ -30,7 +30,7 @@ fn photon_map_furnace_gives_the_analytic_irradiance_within_one_percent() {
         let intensity = 2.0;
         let maps = trace_photons(&closed_sphere(albedo, intensity), 200_000, 5).unwrap();
         let points = fibonacci_sphere(1000);
-        let mean = points.iter().map(|&p| maps.all.irradiance(p, 100).unwrap().x).sum::<f64>() / 1000.0;
+        let mean = points.iter().map(|&p| maps.all().irradiance(p, 100).unwrap().x).sum::<f64>() / 1000.0;
         let exact = intensity / (1.0 - albedo);
         assert!((mean / exact - 1.0).abs() < 0.01, "ρ = {albedo}: {mean} vs {exact}");
         // The indirect map alone carries the interreflected part ρ/(1 − ρ) · I.
@@ -63,9 +63,9 @@ fn first_hit_powers_sum_to_the_light_flux() {
         let scene = Scene::new(camera, objects, lights, None, DVec3::ZERO).unwrap();
         let maps = trace_photons(&scene, 5000, 3).unwrap();
         let power = |map: &PhotonMap| map.photons().iter().map(|p| p.power).sum::<DVec3>();
-        let direct = power(&maps.all) - power(&maps.indirect);
+        let direct = power(maps.all()) - power(&maps.indirect);
         assert!(((direct - flux) / flux).abs().max_element() < 1e-9, "{direct} vs {flux}");
-        assert_eq!(maps.all.len() - maps.indirect.len(), 5000, "one first hit per photon");
+        assert_eq!(maps.all().len() - maps.indirect.len(), 5000, "one first hit per photon");
     }
 }
 
@@ -80,7 +80,7 @@ fn traces_are_identical_for_one_and_two_threads() {
             .install(|| trace_photons(&scene, 10_000, 9).unwrap())
     };
     let (one, two) = (run(1), run(2));
-    assert_eq!(one.all.photons(), two.all.photons());
+    assert_eq!(one.all().photons(), two.all().photons());
     assert_eq!(one.caustic.photons(), two.caustic.photons());
     assert!(!one.caustic.is_empty(), "the mirror makes caustic photons");
 }
@@ -93,15 +93,15 @@ fn bad_counts_and_neighbour_numbers_are_typed_errors() {
     let dark = closed_sphere(0.5, 0.0);
     assert_eq!(trace_photons(&dark, 10, 1).unwrap_err(), PhotonError::NoLight);
     let maps = trace_photons(&scene, 100, 1).unwrap();
-    let stored = maps.all.len();
+    let stored = maps.all().len();
     for k in [0, 1] {
-        assert_eq!(maps.all.irradiance(DVec3::Z, k).unwrap_err(), PhotonError::NeighbourCount(k));
+        assert_eq!(maps.all().irradiance(DVec3::Z, k).unwrap_err(), PhotonError::NeighbourCount(k));
     }
     assert_eq!(
-        maps.all.irradiance(DVec3::Z, stored + 1).unwrap_err(),
+        maps.all().irradiance(DVec3::Z, stored + 1).unwrap_err(),
         PhotonError::TooFewPhotons { requested: stored + 1, stored }
     );
-    assert!(maps.all.irradiance(DVec3::Z, stored).is_ok());
+    assert!(maps.all().irradiance(DVec3::Z, stored).is_ok());
     let empty = PhotonMap::new(vec![]);
     assert_eq!(empty.irradiance(DVec3::Z, 2).unwrap_err(), PhotonError::TooFewPhotons { requested: 2, stored: 0 });
 }
