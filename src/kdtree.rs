@@ -40,6 +40,7 @@
 mod build;
 mod coarse;
 mod node;
+mod stack;
 mod tree;
 mod tree_f32;
 

@@ -8,6 +8,7 @@ use super::build::{
 };
 use super::coarse::{CoarseRay, CoarseSphere, Grid, LANES, WIDE_LANES};
 use super::node::{Aabb, Node, NodeKind};
+use super::stack::FarStack;
 use super::{BuildError, ReciprocalAxis, Side, split_pieces};
 use crate::geometry::sphere::roots_stable;
 use crate::geometry::{Ray, Sphere};
@@ -91,9 +92,6 @@ struct LeafSphere {
     sphere: Sphere<f64>,
     index: u32,
 }
-
-/// Fixed traversal stack size; the build's depth bound (at most 60) keeps pushes below it.
-pub(super) const STACK: usize = 64;
 
 impl KdTree {
     /// Builds the tree with the default [`SahCosts`].
@@ -463,8 +461,7 @@ impl KdTree {
         }
         let (mut cell_min, mut cell_max) = self.bounds.clip(ray, t_min, t_max)?;
         let mut best: Option<(usize, f64)> = None;
-        let mut stack = [(0u32, 0.0f64, 0.0f64); STACK];
-        let mut depth = 0;
+        let mut stack = FarStack::new();
         let mut node = 0u32;
         // A plain array: indexing a glam vector by a run-time axis is a three-way branch, which the
         // varying split axes make unpredictable.
@@ -478,34 +475,26 @@ impl KdTree {
         // and go varies from ray to ray and the processor's guesses at those branches fail about
         // every other time; a ray from outside (a camera's) takes the branching step, whose
         // guesses consecutive rays make right and which lets the next node's load start early.
-        // The same nodes either way (the Q3 engineering notes, What made it fast, step 19, give
-        // the measured costs, and the price for coherent rays that start inside).
+        // That step asks for no lines ahead: its rays find their nodes in the cache, and the
+        // prefetches cost them 4-5 % of their time (step 21). The same nodes either way (the Q3
+        // engineering notes, What made it fast, steps 19 and 21, give the measured costs, and the
+        // price for coherent rays that start inside).
         let scattered = cell_min == t_min;
         loop {
             counter.node();
             match self.nodes[node as usize].kind() {
                 NodeKind::Interior { split, upper, axis } if scattered => {
-                    node = self.select_child(
-                        (node, split, upper, axis),
-                        &axes,
-                        (&mut stack, &mut depth),
-                        (cell_min, &mut cell_max),
-                    );
+                    node = self.select_child((node, split, upper, axis), &axes, &mut stack, (cell_min, &mut cell_max));
                     continue;
                 }
                 NodeKind::Interior { split, upper, axis: a } => {
-                    prefetch(&self.nodes, upper);
-                    if let NodeKind::Leaf { first, .. } = self.nodes[node as usize + 1].kind() {
-                        prefetch(&self.coarse, first);
-                    }
                     let pieces = split_pieces(axes[a], split, cell_min, cell_max);
                     let (near, far) = match pieces.near {
                         Side::Lower => (node + 1, upper),
                         Side::Upper => (upper, node + 1),
                     };
                     if pieces.near_live & pieces.far_live {
-                        stack[depth] = (far, pieces.t_plane, cell_max);
-                        depth += 1;
+                        stack.push((far, pieces.t_plane, cell_max));
                         cell_max = pieces.t_plane;
                         node = near;
                     } else if pieces.near_live {
@@ -523,11 +512,10 @@ impl KdTree {
             // Early exit: the cells still on the stack begin at or after this one ends; one that
             // begins beyond the best hit cannot hold a closer (or equally close) hit.
             let best_t = best.map_or(f64::INFINITY, |(_, t)| t);
-            if depth == 0 || stack[depth - 1].1 > best_t {
-                return best;
+            match stack.pop() {
+                Some(far) if !(far.1 > best_t) => (node, cell_min, cell_max) = far,
+                _ => return best,
             }
-            depth -= 1;
-            (node, cell_min, cell_max) = stack[depth];
         }
     }
 }
@@ -557,8 +545,7 @@ struct Flight {
     cell_min: f64,
     cell_max: f64,
     best: Option<(usize, f64)>,
-    depth: usize,
-    stack: [(u32, f64, f64); STACK],
+    stack: FarStack<f64>,
 }
 
 impl KdTree {
@@ -617,8 +604,7 @@ impl KdTree {
             cell_min: 0.0,
             cell_max: 0.0,
             best: None,
-            depth: 0,
-            stack: [(0, 0.0, 0.0); STACK],
+            stack: FarStack::new(),
         };
         let mut flights = [idle; W];
         let mut next = 0;
@@ -680,7 +666,7 @@ impl KdTree {
             flight.coarse = CoarseRay::new(ray, &self.grid);
             (flight.node, flight.cell_min, flight.cell_max) = (0, cell_min, cell_max);
             flight.best = None;
-            flight.depth = 0;
+            flight.stack.clear();
             return true;
         }
         false
@@ -694,14 +680,14 @@ impl KdTree {
     /// the plane then: the same decisions as the branching step. The far entry is stored every
     /// step and kept only when both pieces are live; at an interior node of tree depth d the stack
     /// holds at most d ≤ 59 entries (the build's depth bound), so the store stays inside the
-    /// [`STACK`] = 64. Prefetches the upper child and the copies of a leaf lower child, as the
-    /// branching step does.
+    /// 64 entries of [`FarStack`]. Prefetches the upper child and the copies of a leaf lower
+    /// child: the rays that take this step rarely find them in the cache.
     #[inline(always)]
     fn select_child(
         &self,
         (node, split, upper, axis): (u32, f64, u32, usize),
         axes: &[ReciprocalAxis; 3],
-        (stack, depth): (&mut [(u32, f64, f64); STACK], &mut usize),
+        stack: &mut FarStack<f64>,
         (cell_min, cell_max): (f64, &mut f64),
     ) -> u32 {
         prefetch(&self.nodes, upper);
@@ -714,8 +700,7 @@ impl KdTree {
         let near = lower ^ ((lower ^ upper) & swap);
         let far = lower ^ upper ^ near;
         let both = pieces.near_live & pieces.far_live;
-        stack[*depth] = (far, pieces.t_plane, *cell_max);
-        *depth += usize::from(both);
+        stack.push_if((far, pieces.t_plane, *cell_max), both);
         // `t_plane` when both pieces are live, else `cell_max` unchanged (a parallel axis's NaN
         // keeps it too).
         let cut = if pieces.t_plane > cell_min { pieces.t_plane } else { f64::INFINITY };
@@ -735,7 +720,7 @@ impl KdTree {
                 flight.node = self.select_child(
                     (node, split, upper, axis),
                     &flight.axes,
-                    (&mut flight.stack, &mut flight.depth),
+                    &mut flight.stack,
                     (flight.cell_min, &mut flight.cell_max),
                 );
                 // The other rays in flight run before this one's next step: its node can be on
@@ -757,11 +742,10 @@ impl KdTree {
             }
         }
         let best_t = flight.best.map_or(f64::INFINITY, |(_, t)| t);
-        if flight.depth == 0 || flight.stack[flight.depth - 1].1 > best_t {
-            return true;
+        match flight.stack.pop() {
+            Some(far) if !(far.1 > best_t) => (flight.node, flight.cell_min, flight.cell_max) = far,
+            _ => return true,
         }
-        flight.depth -= 1;
-        (flight.node, flight.cell_min, flight.cell_max) = flight.stack[flight.depth];
         prefetch(&self.nodes, flight.node);
         false
     }

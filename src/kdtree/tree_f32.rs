@@ -5,7 +5,8 @@
 
 use super::KdTree;
 use super::node::{Aabb, Node, NodeKind};
-use super::tree::{STACK, prefetch};
+use super::stack::FarStack;
+use super::tree::prefetch;
 use crate::geometry::sphere::roots_stable;
 use crate::geometry::{Ray, Sphere};
 use glam::Vec3;
@@ -118,8 +119,7 @@ impl KdTreeF32 {
         let ray = Ray { origin, dir };
         let a = dir.dot(dir);
         let mut best: Option<(usize, f32)> = None;
-        let mut stack = [(0u32, 0.0f32, 0.0f32); STACK];
-        let mut depth = 0;
+        let mut stack = FarStack::new();
         let mut node = 0u32;
         loop {
             match self.nodes[node as usize].kind() {
@@ -135,8 +135,7 @@ impl KdTreeF32 {
                     let (near, far) = if inv[axis] > 0.0 { (node + 1, upper) } else { (upper, node + 1) };
                     let (near_live, far_live) = (t_plane > cell_min, t_plane < cell_max);
                     if near_live & far_live {
-                        stack[depth] = (far, t_plane, cell_max);
-                        depth += 1;
+                        stack.push((far, t_plane, cell_max));
                         cell_max = t_plane;
                         node = near;
                     } else if near_live {
@@ -173,11 +172,10 @@ impl KdTreeF32 {
                 }
             }
             let best_t = best.map_or(f32::INFINITY, |(_, t)| t);
-            if depth == 0 || stack[depth - 1].1 > best_t {
-                return best;
+            match stack.pop() {
+                Some(far) if !(far.1 > best_t) => (node, cell_min, cell_max) = far,
+                _ => return best,
             }
-            depth -= 1;
-            (node, cell_min, cell_max) = stack[depth];
         }
     }
 }
