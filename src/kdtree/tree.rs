@@ -476,8 +476,8 @@ impl KdTree {
         // every other time; a ray from outside (a camera's) takes the branching step, whose
         // guesses consecutive rays make right and which lets the next node's load start early.
         // That step asks for no lines ahead: its rays find their nodes in the cache, and the
-        // prefetches cost them 4-5 % of their time (step 21). The same nodes either way (the Q3
-        // engineering notes, What made it fast, steps 19 and 21, give the measured costs, and the
+        // prefetches cost them 4-5 % of their time (step 22). The same nodes either way (the Q3
+        // engineering notes, What made it fast, steps 19 and 22, give the measured costs, and the
         // price for coherent rays that start inside).
         let scattered = cell_min == t_min;
         loop {
@@ -558,11 +558,12 @@ impl KdTree {
     /// of branching (a wrong guess would flush the other rays' work too), the next node is
     /// prefetched when it is chosen, and a ray that ends is replaced by the next one of the batch.
     ///
-    /// For scattered rays (random origins and directions) this is faster than calling
-    /// [`KdTree::closest_hit`] ray by ray (15–25 % less time in the Q3 benchmark at N = 10⁵,
-    /// 30–40 % at 10⁶); for coherent rays in order (a camera's), which find their nodes in the
-    /// cache and whose branches are well guessed, it is slower (1.2–1.6× the time). The Q3
-    /// engineering notes (step 16) have the measurements.
+    /// For scattered rays (random origins and directions) at N = 10⁶ this is faster than calling
+    /// [`KdTree::closest_hit`] ray by ray (15–20 % less time in the Q3 benchmark); at
+    /// N = 10⁵, since the single-ray walk stopped zeroing its stack per ray, it is no faster
+    /// (1.04–1.17× the time); for coherent rays in order (a camera's), which find their nodes in
+    /// the cache and whose branches are well guessed, it is slower (1.2–1.6× the time). The Q3
+    /// engineering notes (steps 16 and 21) have the measurements.
     ///
     /// Preconditions: as [`KdTree::closest_hit`] (a ray or range it answers `None` for gets
     /// `None` here). A tree of moving spheres answers ray by ray.
