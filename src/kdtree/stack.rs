@@ -2,7 +2,7 @@
 //!
 //! Every closest-hit walk keeps the far children it has still to visit on a fixed stack of
 //! [`STACK`] entries (node, where its cell begins, where it ends). Declared as a plain array, it
-//! is zeroed at the start of every ray: 64 entries of 24 bytes, 1.5 KB of stores per query. On
+//! was zeroed at the start of every ray: 64 entries of 24 bytes, 1.5 KB of stores per query. On
 //! camera rays at N = 10⁵ (about 30 nodes and 75 sphere tests a ray) a profile put a sixth of the
 //! walk's samples on those stores, for entries most rays never reach. Here the entries are
 //! [`MaybeUninit`]: a slot is written when a cell is pushed, and only written slots are read.

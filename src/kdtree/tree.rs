@@ -475,8 +475,8 @@ impl KdTree {
         // and go varies from ray to ray and the processor's guesses at those branches fail about
         // every other time; a ray from outside (a camera's) takes the branching step, whose
         // guesses consecutive rays make right and which lets the next node's load start early.
-        // That step asks for no lines ahead: its rays find their nodes in the cache, and the
-        // prefetches cost them 4-5 % of their time (step 22). The same nodes either way (the Q3
+        // That step asks for no lines ahead: its rays find their nodes in the cache, so the
+        // prefetches were work for nothing (step 22; the gain is below this machine's noise). The same nodes either way (the Q3
         // engineering notes, What made it fast, steps 19 and 22, give the measured costs, and the
         // price for coherent rays that start inside).
         let scattered = cell_min == t_min;
@@ -562,8 +562,8 @@ impl KdTree {
     /// [`KdTree::closest_hit`] ray by ray (15–20 % less time in the Q3 benchmark); at
     /// N = 10⁵, since the single-ray walk stopped zeroing its stack per ray, it is no faster
     /// (1.04–1.17× the time); for coherent rays in order (a camera's), which find their nodes in
-    /// the cache and whose branches are well guessed, it is slower (1.2–1.6× the time). The Q3
-    /// engineering notes (steps 16 and 21) have the measurements.
+    /// the cache and whose branches are well guessed, it is slower (1.3–1.7× the time). The Q3
+    /// engineering notes (step 16, and the Results for the latest run) have the measurements.
     ///
     /// Preconditions: as [`KdTree::closest_hit`] (a ray or range it answers `None` for gets
     /// `None` here). A tree of moving spheres answers ray by ray.

@@ -464,9 +464,9 @@ pub fn verdict(fraction: f64) -> Verdict {
 /// with the sample and photon counts of `budget`.
 ///
 /// At [`Budget::PUBLISHED`] (the committed `q5_measured_table.md`, pinned by
-/// `experiments::tests`) it is computed once per process (about 4 s in the test build on two cores) and
-/// then cloned: the test, the figures and `hw3 effect-tables` share it. Any other budget is
-/// measured afresh on every call.
+/// `experiments::tests`) it is computed once per process and then cloned: the test, the figures
+/// and `hw3 effect-tables` share it (that command, which prints little more than the table, takes
+/// about 4 s in the test build on two cores). Any other budget is measured afresh on every call.
 ///
 /// # Errors
 /// [`ExperimentError`] if an experiment fails (never for the built-in scenes).
@@ -491,20 +491,25 @@ pub fn measured_table(budget: &Budget) -> Result<Vec<MeasuredCell>, ExperimentEr
 
 /// Every measurement of the table (each effect's reference, then its methods) is independent of
 /// the others and seeded by its own probes and photon seed, so they run on the rayon pool and are
-/// gathered in table order: the same cells on any number of threads.
+/// gathered in table order: the same cells on any number of threads. The results are then read in
+/// the order the one-thread loop took them, so a failing table returns the error that loop would
+/// have met first (a parallel `collect` into `Result` keeps whichever failed first in time).
 fn measure_table(budget: &Budget) -> Result<Vec<MeasuredCell>, ExperimentError> {
     use rayon::prelude::*;
     let methods = table_methods(budget);
     let runs: Vec<(usize, Measured)> = (0..EXPERIMENTS.len())
         .flat_map(|e| std::iter::once(Measured::PathTracing).chain(methods).map(move |m| (e, m)))
         .collect();
-    let values =
-        runs.par_iter().map(|&(e, method)| (EXPERIMENTS[e].1)(method, budget)).collect::<Result<Vec<f64>, _>>()?;
+    let results: Vec<Result<f64, ExperimentError>> =
+        runs.par_iter().map(|&(e, method)| (EXPERIMENTS[e].1)(method, budget)).collect();
+    let mut results = results.into_iter();
     let mut cells = Vec::new();
-    for (&(effect, _), values) in EXPERIMENTS.iter().zip(values.chunks(1 + methods.len())) {
-        let reference = values[0];
+    for &(effect, _) in &EXPERIMENTS {
+        let mut next = || results.next().expect("one result per run");
+        let reference = next()?;
         let row = EFFECTS.iter().find(|e| e.id == effect).ok_or(ExperimentError::UnknownId(effect))?;
-        for (&method, &value) in methods.iter().zip(&values[1..]) {
+        for method in methods {
+            let value = next()?;
             let fraction = value / reference;
             let column =
                 ALGORITHMS.iter().find(|m| m.id == method.id()).ok_or(ExperimentError::UnknownId(method.id()))?;

@@ -418,7 +418,9 @@ mod tests {
         let truth = reference(&scene, &probes, 256);
         assert!(truth.radiance.iter().all(|&l| l > 0.0));
         let traces: Vec<Vec<f64>> = (1..=2)
-            .map(|seed| estimates(&scene, trace_photons(&scene, 20_000, seed).unwrap().all(), &probes, 32).unwrap())
+            .map(|seed| {
+                estimates(&scene, &trace_photons(&scene, 20_000, seed).unwrap().into_all(), &probes, 32).unwrap()
+            })
             .collect();
         let split = error_split(&traces, &truth.radiance);
         assert!(split.rms < 0.4, "{split:?}");

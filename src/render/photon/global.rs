@@ -78,7 +78,7 @@ pub fn trace_photons(scene: &Scene, count: usize, seed: u64) -> Result<PhotonMap
 
 impl PhotonMaps {
     /// The map of every photon at every diffuse or glossy hit, built on the first call (on a
-    /// copy of the stored photons) and kept.
+    /// copy of the stored photons) and kept: from then on the trace holds its photons twice.
     ///
     /// # Examples
     /// ```
