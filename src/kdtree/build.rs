@@ -164,10 +164,13 @@ pub(super) fn check_costs(costs: &SahCosts) -> Result<(), BuildError> {
     Ok(())
 }
 
-/// The maximum depth for `n` spheres: `round(8 + 1.3 log₂ n)`, at most 60.
+/// The largest tree depth the builder makes, whatever the scene; the traversal stack is sized by it.
+pub(super) const MAX_DEPTH: usize = 60;
+
+/// The maximum depth for `n` spheres: `round(8 + 1.3 log₂ n)`, at most [`MAX_DEPTH`].
 pub(super) fn max_depth(n: usize) -> usize {
     let n = n.max(1) as f64;
-    ((8.0 + 1.3 * n.log2()).round() as usize).min(60)
+    ((8.0 + 1.3 * n.log2()).round() as usize).min(MAX_DEPTH)
 }
 
 /// The recursive builder's inputs.
@@ -953,7 +956,7 @@ mod tests {
     fn max_depth_follows_pbrt() {
         assert_eq!(max_depth(1), 8);
         assert_eq!(max_depth(1 << 10), 21);
-        assert_eq!(max_depth(usize::MAX), 60);
+        assert_eq!(max_depth(usize::MAX), MAX_DEPTH);
     }
 
     #[test]

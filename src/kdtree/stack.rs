@@ -7,10 +7,13 @@
 //! walk's samples on those stores, for entries most rays never reach. Here the entries are
 //! [`MaybeUninit`]: a slot is written when a cell is pushed, and only written slots are read.
 
+use super::build::MAX_DEPTH;
 use std::mem::MaybeUninit;
 
-/// Entries a traversal stack holds; the build's depth bound (at most 60) keeps pushes below it.
+/// Entries a traversal stack holds. A walk pushes at most one cell per level it descends, so the
+/// build's depth bound keeps pushes below it (checked when compiling, just below).
 pub(super) const STACK: usize = 64;
+const _: () = assert!(MAX_DEPTH < STACK, "the traversal stack must outgrow the deepest tree");
 
 /// A far cell: its node and the ray interval `[cell_min, cell_max]` inside it, in the tree's
 /// float type `T` (`f64` or `f32`).

@@ -476,9 +476,9 @@ impl KdTree {
         // every other time; a ray from outside (a camera's) takes the branching step, whose
         // guesses consecutive rays make right and which lets the next node's load start early.
         // That step asks for no lines ahead: its rays find their nodes in the cache, so the
-        // prefetches were work for nothing (step 22; the gain is below this machine's noise). The same nodes either way (the Q3
-        // engineering notes, What made it fast, steps 19 and 22, give the measured costs, and the
-        // price for coherent rays that start inside).
+        // prefetches were work for nothing (step 22; the gain is below this machine's noise).
+        // The same nodes either way (the Q3 engineering notes, What made it fast, steps 19 and
+        // 22, give the measured costs, and the price for coherent rays that start inside).
         let scattered = cell_min == t_min;
         loop {
             counter.node();

@@ -48,7 +48,7 @@ pub struct PhotonMaps {
 /// ```
 /// use hw3::render::{photon::trace_photons, catalogue};
 /// let maps = trace_photons(&catalogue::cornell_mirror().unwrap(), 2000, 1).unwrap();
-/// assert!(maps.all().len() >= maps.indirect.len() && maps.all().len() > 1000);
+/// assert!(maps.photons().len() >= maps.indirect.len() && maps.photons().len() > 1000);
 /// assert!(trace_photons(&catalogue::cornell_mirror().unwrap(), 0, 1).is_err());
 /// ```
 pub fn trace_photons(scene: &Scene, count: usize, seed: u64) -> Result<PhotonMaps, PhotonError> {
@@ -77,6 +77,19 @@ pub fn trace_photons(scene: &Scene, count: usize, seed: u64) -> Result<PhotonMap
 }
 
 impl PhotonMaps {
+    /// Every photon at every diffuse or glossy hit, in tracing order, without building a map.
+    ///
+    /// # Examples
+    /// ```
+    /// use hw3::render::{photon::trace_photons, catalogue};
+    /// let maps = trace_photons(&catalogue::cornell_mirror().unwrap(), 2000, 1).unwrap();
+    /// assert_eq!(maps.photons().len(), maps.all().len());
+    /// ```
+    #[must_use]
+    pub fn photons(&self) -> &[Photon] {
+        &self.stored
+    }
+
     /// The map of every photon at every diffuse or glossy hit, built on the first call (on a
     /// copy of the stored photons) and kept: from then on the trace holds its photons twice.
     ///
