@@ -289,7 +289,7 @@ fn run_all(
                     let r = black_box(r);
                     trees
                         .f32
-                        .closest_hit(r.origin.into(), r.dir.into(), t_min, f32::INFINITY)
+                        .closest_hit(r.origin.to_array().into(), r.dir.to_array().into(), t_min, f32::INFINITY)
                         .map(|(i, t)| (i, f64::from(t)))
                 })
                 .collect()

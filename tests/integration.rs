@@ -26,3 +26,5 @@ mod layering;
 mod q4_cli;
 #[path = "solution_cli.rs"]
 mod solution_cli;
+#[path = "threads.rs"]
+mod threads;

@@ -14,7 +14,9 @@
 use bvh::aabb::{Aabb as BvhAabb, Bounded};
 use bvh::bounding_hierarchy::BHShape;
 use bvh::bvh::{Bvh, BvhNode};
-use glam::Vec3A;
+// obvhs's glam (0.33; benches/Cargo.toml says why it is not hw3's 0.34): every `f32` vector here
+// is its `Vec3A`, so the peers' hot loops convert nothing; only the `f32` kd-tree's calls do.
+use glam_obvhs::Vec3A;
 use hw3::geometry::{Ray, Sphere};
 use nalgebra::Point3;
 use obvhs::BvhBuildParams;
@@ -43,17 +45,22 @@ pub struct RayF32 {
 
 /// The narrowing is exact for the benchmark's workload (generated in `f32`, widened to `f64`).
 pub fn spheres_f32(spheres: &[Sphere<f64>]) -> Vec<SphereF32> {
-    spheres.iter().map(|s| SphereF32 { center: s.center.as_vec3a(), radius: s.radius as f32, bvh_node: 0 }).collect()
+    spheres.iter().map(|s| SphereF32 { center: narrow(s.center), radius: s.radius as f32, bvh_node: 0 }).collect()
 }
 
 /// As [`spheres_f32`], for rays. `1/±0 = ±∞` keeps the sign of a zero component.
 pub fn rays_f32(rays: &[Ray<f64>]) -> Vec<RayF32> {
     rays.iter()
         .map(|r| {
-            let dir = r.dir.as_vec3a();
-            RayF32 { origin: r.origin.as_vec3a(), dir, inv_dir: dir.recip() }
+            let dir = narrow(r.dir);
+            RayF32 { origin: narrow(r.origin), dir, inv_dir: dir.recip() }
         })
         .collect()
+}
+
+/// A `glam` 0.34 `DVec3` as obvhs's `Vec3A`, each component rounded to `f32`.
+fn narrow(v: glam::DVec3) -> Vec3A {
+    Vec3A::from_array(v.as_vec3().to_array())
 }
 
 /// The smallest root of the unit-direction ray/sphere equation in `(t_min, t_max)`, else `+∞`.
