@@ -15,7 +15,8 @@ use bvh::aabb::{Aabb as BvhAabb, Bounded};
 use bvh::bounding_hierarchy::BHShape;
 use bvh::bvh::{Bvh, BvhNode};
 // obvhs's glam (0.33; benches/Cargo.toml says why it is not hw3's 0.34): every `f32` vector here
-// is its `Vec3A`, so the peers' hot loops convert nothing; only the `f32` kd-tree's calls do.
+// is its `Vec3A`, so the peers' hot loops convert nothing; the `f32` kd-tree's and Embree's calls
+// convert once per ray, as before.
 use glam_obvhs::Vec3A;
 use hw3::geometry::{Ray, Sphere};
 use nalgebra::Point3;
