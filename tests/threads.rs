@@ -3,10 +3,10 @@
 //! time, so a field that would break it (an `Rc`, a `Cell`) fails the build here, with the type
 //! named, instead of in some caller's closure.
 //!
-//! (static_assertions is also why this file's checks use a crate rather than a hand-written
-//! `fn is_send_sync<T: Send + Sync>()`: as a dev-dependency it is linked into the tests the way the
-//! benchmarks' obvhs links it, so `cargo test` and the benchmarks build it, and the docs' math
-//! renderer above it, once; `Cargo.toml` says more.)
+//! The checks use static_assertions rather than a hand-written `fn is_send_sync<T: Send + Sync>()`
+//! for a build reason: linked into the tests as the benchmarks' obvhs links it, it is built the
+//! same way for both, so the benchmarks reuse the test build's math renderer and `hw3` instead of
+//! compiling them again (`Cargo.toml`, at the dev-dependency, says more).
 
 use static_assertions::assert_impl_all;
 

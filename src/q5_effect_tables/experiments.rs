@@ -503,9 +503,9 @@ fn measure_table(budget: &Budget) -> Result<Vec<MeasuredCell>, ExperimentError> 
     let results: Vec<Result<f64, ExperimentError>> =
         runs.par_iter().map(|&(e, method)| (EXPERIMENTS[e].1)(method, budget)).collect();
     let mut results = results.into_iter();
+    let mut next = || results.next().expect("one result per run");
     let mut cells = Vec::new();
     for &(effect, _) in &EXPERIMENTS {
-        let mut next = || results.next().expect("one result per run");
         let reference = next()?;
         let row = EFFECTS.iter().find(|e| e.id == effect).ok_or(ExperimentError::UnknownId(effect))?;
         for method in methods {
