@@ -72,11 +72,11 @@ pub fn csv(text: &str) -> Csv<'_> {
     Csv { comments, header, records: lines.collect() }
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
 
-    #[test]
+    #[unit_test]
     fn committed_files_have_a_header_and_records() {
         for (text, first) in [
             (Q1_ACCURACY, "scene"),

@@ -117,11 +117,44 @@ pub fn figure_jobs() -> Vec<plot::FigureJob> {
     jobs
 }
 
-#[cfg(test)]
-pub(crate) mod test_support {
+// `#[unit_test]`, for every unit test of the crate (`testing` says why it is not `#[test]`).
+#[cfg(feature = "unit-tests")]
+#[macro_use]
+extern crate hw3_macros;
+
+/// The unit tests' registry and shared settings; only with the `unit-tests` feature, which
+/// `cargo test` turns on.
+///
+/// A `#[test]` function exists only when its crate is compiled by `rustc --test`: unit tests
+/// written that way would cost a second compilation of the whole library (Cargo's "lib test"
+/// build) beside the one that the binary, the integration tests and the doctests link. So hw3's
+/// unit tests are compiled into the library under the feature, each carries `#[unit_test]` (the
+/// `hw3-macros` crate), which adds it to [`UNIT_TESTS`], and `tests/unit.rs` runs that list with
+/// libtest's command line (`cargo test --test unit -- --list`, a filter, `--ignored`).
+#[cfg(feature = "unit-tests")]
+#[doc(hidden)]
+pub mod testing {
+    /// One unit test, as `#[unit_test]` registers it.
+    #[derive(Debug)]
+    pub struct UnitTest {
+        /// The test function's path in the crate, `hw3::module::tests::name`.
+        pub name: &'static str,
+        /// The test: passes if it returns (or, with `should_panic`, if it panics).
+        pub run: fn(),
+        /// `#[ignore = "reason"]`: run only with `--ignored`.
+        pub ignore: Option<&'static str>,
+        /// `#[should_panic(expected = "text")]`: passes only if it panics with `text` in its
+        /// message (`""` for any panic).
+        pub should_panic: Option<&'static str>,
+    }
+
+    /// Every unit test of the crate, in no particular order (the runner sorts them by name).
+    #[linkme::distributed_slice]
+    pub static UNIT_TESTS: [UnitTest];
+
     /// insta settings shared by every snapshot test in the crate: snapshots live in the top-level
     /// `snapshots/` folder, named by the snapshot name alone.
-    pub fn insta_settings() -> insta::Settings {
+    pub(crate) fn insta_settings() -> insta::Settings {
         let mut settings = insta::Settings::clone_current();
         settings.set_snapshot_path(concat!(env!("CARGO_MANIFEST_DIR"), "/snapshots"));
         settings.set_prepend_module_to_snapshot(false);

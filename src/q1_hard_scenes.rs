@@ -74,11 +74,11 @@ pub fn answers() -> Answers {
     Answers { question: "q1", title: "Four scenes that are hard to render, and why (measured)", text }
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
 
-    #[test]
+    #[unit_test]
     fn chapter_includes_every_generated_table() {
         let chapter = include_str!("../docs/q1_hard_scenes.md");
         for table in [
@@ -94,7 +94,7 @@ mod tests {
     }
 
     /// The numbers [`answers`] prints from measurements are what the measurements give today.
-    #[test]
+    #[unit_test]
     fn printed_measurements_are_what_the_code_measures() {
         let divergence = mirror_divergence(DIVERGENCE_TRIALS).unwrap();
         assert_eq!(format!("{:.2}", divergence.median_factor), MIRROR_GROWTH);

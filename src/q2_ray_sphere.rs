@@ -252,20 +252,20 @@ pub fn parse_sphere_args(
     Ok((ray, sphere))
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
 
-    #[test]
+    #[unit_test]
     fn worked_traces_snapshot() {
         let text: String = trace_cases()
             .into_iter()
             .map(|(name, ray, sphere)| format!("## {name}\n{}\n", worked_trace(&ray, &sphere)))
             .collect();
-        crate::test_support::insta_settings().bind(|| insta::assert_snapshot!("q2_worked_traces", text));
+        crate::testing::insta_settings().bind(|| insta::assert_snapshot!("q2_worked_traces", text));
     }
 
-    #[test]
+    #[unit_test]
     fn worked_example_by_hand() {
         let (ray, sphere) = worked_example();
         let answer = solve(&ray, &sphere, Solver::Naive, Precision::F64).unwrap();
@@ -280,7 +280,7 @@ mod tests {
         );
     }
 
-    #[test]
+    #[unit_test]
     fn all_four_variants_agree_on_easy_rays() {
         let (ray, sphere) = worked_example();
         let answers: Vec<f64> =
@@ -290,7 +290,7 @@ mod tests {
         }
     }
 
-    #[test]
+    #[unit_test]
     fn zero_radius_is_refused() {
         let ray = Ray { origin: DVec3::ZERO, dir: DVec3::Z };
         let point = Sphere { center: DVec3::new(0.0, 0.0, 5.0), radius: 0.0 };

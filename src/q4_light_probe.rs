@@ -6,7 +6,7 @@ pub mod irradiance;
 pub mod maps;
 mod normals;
 pub mod study;
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests;
 
 pub use figures::{figure_jobs, figures};

@@ -250,11 +250,11 @@ pub fn command(question: Option<&str>, seed: u64, format: Format) -> Result<Stri
     Ok(texts.join("\n").trim_end().to_owned())
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
 
-    #[test]
+    #[unit_test]
     fn every_question_has_a_solution() {
         for question in QUESTIONS {
             let s = solution(question, 0).unwrap();
@@ -262,7 +262,7 @@ mod tests {
         }
     }
 
-    #[test]
+    #[unit_test]
     fn unknown_question_is_an_error_naming_it() {
         assert_eq!(solution("q9", 0), Err(SolutionError::UnknownQuestion("q9".into())));
         assert!(command(Some("Q2"), 0, Format::Text).unwrap_err().to_string().contains("`Q2`"));
@@ -270,11 +270,11 @@ mod tests {
 
     /// Seed 0 of every question, as text and as markdown, pinned (a change here changes the
     /// printed key).
-    #[test]
+    #[unit_test]
     fn seed_zero_solutions_are_pinned() {
         let text = command(None, 0, Format::Text).unwrap();
         let markdown = command(None, 0, Format::Markdown).unwrap();
-        crate::test_support::insta_settings().bind(|| {
+        crate::testing::insta_settings().bind(|| {
             insta::assert_snapshot!("solution_seed0_text", text);
             insta::assert_snapshot!("solution_seed0_markdown", markdown);
         });

@@ -11,8 +11,8 @@
 //! every `crate::…`, `super::…` and `self::…` path (in `use` lines and in expressions), resolves it to
 //! the module file it names (through the parent's `pub use` re-exports when the path names an item
 //! of the parent), and fails naming the file and line of every forbidden edge. Rules (a) and (b)
-//! cover test code too; rule (c) leaves out `#[cfg(test)]` modules, because a test sits above the
-//! file it tests and may build its fixtures from any sibling.
+//! cover test code too; rule (c) leaves out test modules (`#[cfg(feature = "unit-tests")]`),
+//! because a test sits above the file it tests and may build its fixtures from any sibling.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
@@ -29,8 +29,9 @@ const ALLOWED_CYCLES: &[(&str, &[&str], &str)] = &[];
 const CORE: &[&str] =
     &["real", "rng", "plot", "stats", "data", "answers", "fsio", "cli", "geometry", "kdtree", "envmap", "render"];
 
-/// `lib.rs` items any module may use: the `#[cfg(test)]` insta settings, which import nothing.
-const ROOT_ITEMS_ALLOWED: &[&str] = &["test_support"];
+/// `lib.rs` items any module may use: the unit tests' registry and insta settings (test code only),
+/// which import nothing.
+const ROOT_ITEMS_ALLOWED: &[&str] = &["testing"];
 
 fn is_question(module: &str) -> bool {
     let b = module.as_bytes();
@@ -243,8 +244,13 @@ fn module_of(rel: &Path) -> Vec<String> {
     parts
 }
 
+/// The attribute of test-only code in `src/`: the unit tests are compiled into the library under
+/// this feature (`hw3::testing` says why).
+const TEST_CFG: &str = "#[cfg(feature = \"unit-tests\")]";
+
 fn parse(root: &Path, rel: &Path) -> SourceFile {
-    let text = std::fs::read_to_string(root.join(rel)).unwrap();
+    // Read as `#[cfg(test)]`, which the tokens below match (`strip` blanks the feature's name).
+    let text = std::fs::read_to_string(root.join(rel)).unwrap().replace(TEST_CFG, "#[cfg(test)]");
     let module = module_of(rel);
     let toks = tokens(&strip(&text));
     let mut imports = Vec::new();
@@ -646,11 +652,14 @@ fn the_scanner_finds_each_kind_of_breach() {
     };
     write("src/lib.rs", "pub mod plot;\npub mod q1_a;\npub mod q2_b;\npub struct Answers;\n");
     write("src/plot.rs", "// use crate::q1_a; (a comment)\nconst S: &str = \"crate::q1_a\";\nuse crate::Answers;\n");
-    write("src/q1_a.rs", "mod x;\nmod y;\n#[cfg(test)]\nmod tests;\nuse crate::{plot, q2_b::Thing};\n");
+    write(
+        "src/q1_a.rs",
+        "mod x;\nmod y;\n#[cfg(feature = \"unit-tests\")]\nmod tests;\nuse crate::{plot, q2_b::Thing};\n",
+    );
     write("src/q1_a/x.rs", "use super::y::Y;\npub struct X;\n");
     write("src/q1_a/y.rs", "pub struct Y;\nfn f() { let _ = crate::q1_a::x::X; }\n");
     write("src/q1_a/tests.rs", "use super::x::X;\n");
-    write("src/q2_b.rs", "pub struct Thing;\n#[cfg(test)]\nmod tests {\n    use super::*;\n}\n");
+    write("src/q2_b.rs", "pub struct Thing;\n#[cfg(feature = \"unit-tests\")]\nmod tests {\n    use super::*;\n}\n");
     let files: Vec<SourceFile> = [
         "src/lib.rs",
         "src/plot.rs",

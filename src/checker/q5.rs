@@ -144,7 +144,7 @@ pub(super) fn variant(seed: u64) -> Variant {
     Variant { question: "q5", seed, statement, parts, follows: vec![] }
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
     use crate::q5_effect_tables::ALGORITHMS;
@@ -152,7 +152,7 @@ mod tests {
 
     /// [`MEASURED_NO`] is exactly the cells of the committed measured table (the chapter's
     /// experiment) whose measured verdict is No where the grammar says Impractical.
-    #[test]
+    #[unit_test]
     fn measured_no_cells_are_the_measured_tables() {
         let table =
             std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/figures/q5_measured_table.md")).unwrap();
@@ -172,7 +172,7 @@ mod tests {
     /// The reason key is the effect's paths outside the method's language (Impractical: outside
     /// its efficient language), decided by the grammar: for the built-in effects that is all of
     /// the effect or none of it.
-    #[test]
+    #[unit_test]
     fn reason_keys_are_the_grammars_difference() {
         let v = variant(0);
         for (table, method) in [("q5a", "radiosity"), ("q5b", "two_pass")] {

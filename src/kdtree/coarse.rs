@@ -389,7 +389,7 @@ pub(super) const LANES: usize = 4;
 /// The mask of all [`LANES`] lanes.
 const ALL_LANES: u32 = (1 << LANES) - 1;
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
     use crate::geometry::sphere::roots_stable;
@@ -405,7 +405,7 @@ mod tests {
     /// scales and offsets, in tree boxes from the sphere's own box (the finest grid) to one 3 000
     /// times wider (a step of a tenth of the radius): whenever the exact test keeps a sphere, the
     /// coarse test keeps it.
-    #[test]
+    #[unit_test]
     fn coarse_test_never_rejects_a_sphere_the_exact_test_keeps() {
         let mut rng = seeded(0xC0A5, 0);
         for &widen in &[1.0, 30.0, 3_000.0] {
@@ -463,7 +463,7 @@ mod tests {
     /// The four-at-once test gives every copy the scalar test's answer, bit for bit: random and
     /// grazing rays (about half of the grazing copies kept), copies at the grid's extremes
     /// (counts 0 and 65 535), and disabled rays, which keep all four.
-    #[test]
+    #[unit_test]
     fn survivors_equal_the_scalar_test_lane_by_lane() {
         let mut rng = seeded(0x5EED, 4);
         let grid = Grid::new(&Aabb { min: DVec3::splat(-1.0), max: DVec3::splat(1.0) });
@@ -511,7 +511,7 @@ mod tests {
         assert!(groups > 19_000 && kept > lanes / 20 && kept < lanes / 2, "{kept} of {lanes} lanes kept");
     }
 
-    #[test]
+    #[unit_test]
     fn out_of_range_rays_keep_every_sphere() {
         let grid = Grid::new(&Aabb { min: DVec3::splat(-1.0), max: DVec3::splat(1.0) });
         let sphere = grid.pack(&Sphere::new(DVec3::ZERO, 1.0).unwrap()).unwrap();
@@ -553,7 +553,7 @@ mod tests {
     /// The inline rounding packs every sphere as the library's `round` and `ceil` did: random
     /// spheres in and around boxes of several scales (some off the grid, some of radius 10⁻³⁰⁰), and
     /// centres exactly on grid points, on half steps and half a step outside either end.
-    #[test]
+    #[unit_test]
     fn inline_rounding_packs_as_round_and_ceil() {
         let mut rng = seeded(0x9ac4, 0);
         for (lo, size) in [(0.0, 1.0), (-3.0, 8.0), (1e4, 0.01), (-1e-3, 2e-3), (-0.0, 1e6)] {
@@ -585,7 +585,7 @@ mod tests {
         }
     }
 
-    #[test]
+    #[unit_test]
     fn spheres_in_the_box_fit_and_others_do_not() {
         let grid = Grid::new(&Aabb { min: DVec3::new(-3.0, 0.0, 1e4), max: DVec3::new(5.0, 8.0, 1e4 + 8.0) });
         let whole = grid.pack(&Sphere::new(DVec3::new(1.0, 4.0, 1e4 + 4.0), 4.0).unwrap()).unwrap();

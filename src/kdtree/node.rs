@@ -112,12 +112,12 @@ impl Node {
     }
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
 
     /// The chapter's memory figures assume 8-byte nodes.
-    #[test]
+    #[unit_test]
     fn nodes_are_8_bytes_and_round_trip() {
         assert_eq!(std::mem::size_of::<Node>(), 8);
         let interior = Node::interior(0.375, 2, MAX_PACKED - 1);

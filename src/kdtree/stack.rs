@@ -81,11 +81,11 @@ impl<T: Copy> FarStack<T> {
     }
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
 
-    #[test]
+    #[unit_test]
     fn pushes_pop_in_reverse_and_a_kept_slot_only_when_asked() {
         let mut stack = FarStack::<f64>::new();
         assert!(stack.top().is_none() && stack.pop().is_none());
@@ -101,7 +101,7 @@ mod tests {
         assert!(stack.top().is_none());
     }
 
-    #[test]
+    #[unit_test]
     #[should_panic(expected = "index out of bounds")]
     fn a_push_past_the_capacity_panics_instead_of_writing_beyond() {
         let mut stack = FarStack::<f32>::new();

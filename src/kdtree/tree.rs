@@ -808,7 +808,7 @@ pub fn brute_force_closest_hit(
     best
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
     use crate::rng::{Generator, seeded, uniform_in as uniform};
@@ -855,7 +855,7 @@ mod tests {
     /// ≥ 10⁵ random rays over 100 random scenes (sizes 1 … 300): the tree's closest hit equals
     /// brute force exactly (same sphere, same t), in both walks (rays from inside and outside the
     /// tree's box) and with four and eight copies per coarse test.
-    #[test]
+    #[unit_test]
     fn closest_hit_equals_brute_force_on_random_rays() {
         let mut rng = seeded(0x4b44, 0);
         let mut inside = 0;
@@ -892,7 +892,7 @@ mod tests {
     /// and rays (zero and −0 direction components, origins on the grid's planes), batches of 0 to
     /// 300 rays (fewer and more than the rays in flight), ranges that are empty, reversed, NaN or
     /// bounded, unvalidated rays with NaN or infinite components, and a tree of moving spheres.
-    #[test]
+    #[unit_test]
     fn closest_hits_equal_closest_hit_ray_by_ray() {
         let mut rng = seeded(0xBA7C, 0);
         let (mut rays_checked, mut hits) = (0, 0);
@@ -952,7 +952,7 @@ mod tests {
     }
 
     /// Every width of the interleaved walk gives the single-ray answers (the public query uses one).
-    #[test]
+    #[unit_test]
     fn every_flight_width_answers_alike() {
         let mut rng = seeded(0xBA7D, 0);
         let spheres = scene(&mut rng, 500);
@@ -971,7 +971,7 @@ mod tests {
         assert!(expected.iter().filter(|h| h.is_some()).count() > 200);
     }
 
-    #[test]
+    #[unit_test]
     #[should_panic(expected = "one answer slot per ray")]
     fn closest_hits_refuses_a_short_output() {
         let tree = KdTree::build(&[Sphere::new(DVec3::ZERO, 1.0).unwrap()]).unwrap();
@@ -980,7 +980,7 @@ mod tests {
 
     /// Trying every box face in small nodes (instead of only the binned planes) lowers the tree's
     /// SAH cost on random scenes of the benchmark's kind, and the tree still answers exactly.
-    #[test]
+    #[unit_test]
     fn exact_candidates_in_small_nodes_lower_the_sah_cost() {
         let mut rng = seeded(11, 0);
         for n in [200, 2_000, 20_000] {
@@ -1016,7 +1016,7 @@ mod tests {
     /// lists (index and sphere), the same quantised copies and box. 60 000 small spheres, a
     /// quarter of them snapped to a grid (shared faces, planes on them), so that several levels
     /// lie above the parallel threshold and their planes see ties.
-    #[test]
+    #[unit_test]
     fn builds_on_one_and_on_four_threads_are_identical() {
         let mut rng = seeded(0x5eed, 6);
         let n = 60_000;
@@ -1045,7 +1045,7 @@ mod tests {
         assert_eq!(leaves(&one), leaves(&four));
     }
 
-    #[test]
+    #[unit_test]
     fn tree_prunes_work_on_a_large_scene() {
         let mut rng = seeded(7, 0);
         let spheres: Vec<_> = (0..2_000)
@@ -1066,7 +1066,7 @@ mod tests {
         assert!(stats.nodes_visited > 0);
     }
 
-    #[test]
+    #[unit_test]
     fn negative_zero_direction_hits_like_positive_zero() {
         let spheres: Vec<_> = (0..64)
             .map(|i| {
@@ -1084,7 +1084,7 @@ mod tests {
         }
     }
 
-    #[test]
+    #[unit_test]
     fn degenerate_scenes_build_and_answer() {
         let empty = KdTree::build(&[]).unwrap();
         let ray = Ray::new(DVec3::ZERO, DVec3::X).unwrap();
@@ -1103,7 +1103,7 @@ mod tests {
         );
     }
 
-    #[test]
+    #[unit_test]
     fn empty_or_nan_parameter_range_is_a_miss() {
         let tree = KdTree::build(&[Sphere::new(DVec3::ZERO, 1.0).unwrap()]).unwrap();
         let ray = Ray::new(DVec3::new(0.0, 0.0, -5.0), DVec3::Z).unwrap();
@@ -1115,7 +1115,7 @@ mod tests {
     /// moving fast, queried by 2000 random rays at times inside the build interval (through the
     /// tree) and outside it (every sphere tested): the same answers as testing every moved
     /// sphere, bit for bit. Mismatched velocity counts are a typed error.
-    #[test]
+    #[unit_test]
     fn moving_spheres_are_found_at_every_time() {
         let mut rng = crate::rng::seeded(5, 0);
         let mut uniform = |lo: f64, hi: f64| crate::rng::uniform_in(&mut rng, lo, hi);

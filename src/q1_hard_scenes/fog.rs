@@ -275,7 +275,7 @@ pub(super) fn fog_rows() -> Result<Vec<FogRow>, InputError> {
     FOG_SIGMAS.iter().flat_map(|&s| FOG_DISTANCES.iter().map(move |&d| fog_row(s, d))).collect()
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
     use crate::q1_hard_scenes::metric::snapshot;
@@ -284,7 +284,7 @@ mod tests {
 
     /// The laws against the numbers they have always given (the checker's seeds 0 and 1, as
     /// worked by `tests/answers/fixtures/keys.py`), and against the traced fog.
-    #[test]
+    #[unit_test]
     fn transmittance_and_visual_range_are_the_numbers_they_were() {
         assert!((transmittance(0.08, 10.0) - 0.449_328_964_117_221_56).abs() < 1e-15);
         assert!((transmittance(0.2, 2.0) - 0.670_320_046_035_639_3).abs() < 1e-15);
@@ -295,7 +295,7 @@ mod tests {
         assert!((row.transmittance / transmittance(0.1, path) - 1.0).abs() < 1e-12, "{row:?}");
     }
 
-    #[test]
+    #[unit_test]
     fn fog_transmittance_is_beer_lambert_and_the_airlight_is_sun_et_al() {
         let rows = fog_rows().unwrap();
         for r in &rows {
@@ -311,7 +311,7 @@ mod tests {
         snapshot("q1_airlight_metrics", &airlight_table(&airlight));
     }
 
-    #[test]
+    #[unit_test]
     fn zero_density_fog_renders_exactly_like_no_fog() {
         let clear = catalogue::fog_street(0.0).unwrap();
         let zero = Scene::new(
@@ -326,7 +326,7 @@ mod tests {
         assert_eq!(render(&zero, &settings, &|_| {}).unwrap(), render(&clear, &settings, &|_| {}).unwrap());
     }
 
-    #[test]
+    #[unit_test]
     fn extreme_fog_hides_everything_but_stays_finite() {
         let scene = catalogue::fog_street(1e6).unwrap();
         let image = render(&scene, &Settings::whitted(16, 12, 1, analyze(&scene).plan), &|_| {}).unwrap();

@@ -23,18 +23,18 @@ pub(super) fn render_metric(scene: &Scene, spp: u32, seed: u64) -> Result<Image,
 }
 
 /// Pins `text` as the snapshot `name` in the crate's `snapshots/` folder.
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 pub(super) fn snapshot(name: &str, text: &str) {
-    crate::test_support::insta_settings().bind(|| insta::assert_snapshot!(name, text));
+    crate::testing::insta_settings().bind(|| insta::assert_snapshot!(name, text));
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
     use crate::render::catalogue;
     use std::fmt::Write as _;
 
-    #[test]
+    #[unit_test]
     fn render_thumbnails() {
         let mut text = String::new();
         for (name, scene) in [

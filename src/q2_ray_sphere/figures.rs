@@ -356,13 +356,13 @@ impl CostTable {
     }
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
 
-    #[test]
+    #[unit_test]
     fn diagrams_snapshot() {
-        let settings = crate::test_support::insta_settings();
+        let settings = crate::testing::insta_settings();
         for name in ["q2_reflection.svg", "q2_closest_approach.svg"] {
             let figure = figures().unwrap().into_iter().find(|f| f.file_name == name).unwrap();
             let svg = String::from_utf8(figure.bytes).unwrap();

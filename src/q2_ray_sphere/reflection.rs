@@ -234,12 +234,12 @@ pub fn self_hit_rate<T: Real>(scenario: Scenario, policy: SpawnPolicy, rays: u64
     count
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
 
     /// The robustness bar: 0 self-intersections over 10⁶ random hits per scenario, in both precisions.
-    #[test]
+    #[unit_test]
     fn robust_spawn_never_self_intersects_in_a_million_hits_per_scenario() {
         for scenario in Scenario::ALL {
             let f32_count = self_hit_rate::<f32>(scenario, SpawnPolicy::ReprojectAndOffset, 1_000_000, 7);
@@ -250,7 +250,7 @@ mod tests {
         }
     }
 
-    #[test]
+    #[unit_test]
     fn homework_spawn_self_intersects_about_half_the_time_in_every_precision() {
         for scenario in [Scenario::Near, Scenario::Far] {
             for count in [
@@ -263,7 +263,7 @@ mod tests {
         }
     }
 
-    #[test]
+    #[unit_test]
     fn fixed_epsilon_fails_once_the_scene_is_translated() {
         let near = self_hit_rate::<f32>(Scenario::Near, SpawnPolicy::FixedEpsilon, 20_000, 5);
         let moved = self_hit_rate::<f32>(Scenario::Translated, SpawnPolicy::FixedEpsilon, 20_000, 5);

@@ -83,7 +83,7 @@ pub fn camera_half_angle(camera_radius: f64, distance_over_radius: f64) -> Resul
     Ok((camera_radius / d).atan())
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
     use crate::geometry::sphere::{first_hit_stable, reflect, surface_hit};
@@ -100,7 +100,7 @@ mod tests {
         Some(reflect::<f64>(ray.dir, hit.normal))
     }
 
-    #[test]
+    #[unit_test]
     fn the_perspective_mapping_matches_traced_reflections() {
         for d in [1.5, 3.0, 10.0] {
             let format = ProbeFormat::perspective_ball(d).unwrap();
@@ -115,7 +115,7 @@ mod tests {
         }
     }
 
-    #[test]
+    #[unit_test]
     fn no_traced_ray_reaches_into_the_blind_cone() {
         // The student's claim: what is missing is the light that would pass through the ball.
         for d in [3.0, 5.0, 10.0, 20.0] {
@@ -134,7 +134,7 @@ mod tests {
         }
     }
 
-    #[test]
+    #[unit_test]
     fn the_reference_table_is_reproduced() {
         // The chapter's table: D/R, half-angle (deg), solid angle (sr), loss at n = away.
         for (d, degrees, sr, loss) in [
@@ -149,7 +149,7 @@ mod tests {
         }
     }
 
-    #[test]
+    #[unit_test]
     fn the_blind_cone_is_the_gap_in_the_texel_solid_angles() {
         use crate::envmap::Probe;
         for d in [3.0, 10.0] {
@@ -160,7 +160,7 @@ mod tests {
         }
     }
 
-    #[test]
+    #[unit_test]
     fn invalid_distances_are_typed_errors() {
         for d in [1.0, 0.5, -3.0, f64::NAN, f64::INFINITY] {
             assert!(half_angle(d).is_err(), "{d}");

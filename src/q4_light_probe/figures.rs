@@ -524,11 +524,11 @@ fn method_name(method: &str) -> String {
     }
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
 
-    #[test]
+    #[unit_test]
     fn figures_are_deterministic() {
         let drawn: Vec<_> = figure_jobs().into_iter().filter(|job| !job.rendered).collect();
         assert_eq!(crate::plot::run_jobs(&drawn).unwrap(), crate::plot::run_jobs(&drawn).unwrap());
@@ -538,7 +538,7 @@ mod tests {
     /// is uniform in both panels (every seen pixel equals the map), while the splatting
     /// resampler leaves the texel noise that drew a grid over the ball and lines through the
     /// blind cone.
-    #[test]
+    #[unit_test]
     fn a_uniform_map_unwraps_to_a_uniform_picture_with_no_seam() {
         let flat = Probe::from_fn(ProbeFormat::LatLong, 256, 128, DMat3::IDENTITY, |_| DVec3::ONE).unwrap();
         let pixels = unwrap_pixels(&flat).unwrap();
@@ -565,7 +565,7 @@ mod tests {
 
     /// The lat-long panel of a map that varies with longitude is continuous across the φ = 0
     /// meridian: its first and last columns differ by no more than neighbouring columns do.
-    #[test]
+    #[unit_test]
     fn the_unwrap_is_continuous_across_the_meridian() {
         let source = Probe::from_fn(ProbeFormat::LatLong, 256, 128, DMat3::IDENTITY, |w| {
             DVec3::new(1.0 + w.y, 1.0 + w.x, 1.0 + w.z)
@@ -582,7 +582,7 @@ mod tests {
         }
     }
 
-    #[test]
+    #[unit_test]
     fn error_map_labels_state_the_mean_and_largest_error_over_the_sphere() {
         let row = RenderRow {
             title: "t",
@@ -595,7 +595,7 @@ mod tests {
         assert_eq!(row.error_of(&row.mis), (0.25, 0.5));
     }
 
-    #[test]
+    #[unit_test]
     fn the_committed_csv_parses() {
         let rows = parse_csv(ACCURACY_CSV);
         assert!(!rows.is_empty(), "run cargo bench -p hw3-benches --bench q4_irradiance");

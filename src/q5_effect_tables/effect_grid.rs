@@ -243,13 +243,13 @@ pub fn figure(budget: &Budget) -> Result<Figure, PlotError> {
     plot::panel_grid_labels_beside(GRID_PNG, &panels, COLUMNS, LABEL_WIDTH, ROWS_PER_EFFECT)
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
 
     /// The reuse in [`render_methods`] is exact: in a scene with nothing specular, photon
     /// mapping's eye pass renders the two-pass image bit for bit (a small photon pass here).
-    #[test]
+    #[unit_test]
     fn photon_mapping_is_the_two_pass_image_where_nothing_is_specular() {
         let scene = cornell_box(true, CornellContents::Block).unwrap();
         assert!(!has_specular(&scene));
@@ -264,7 +264,7 @@ mod tests {
         assert!(has_specular(&lit_floor(WHITE_FLOOR, true).unwrap()) && has_specular(&mirror_room().unwrap()));
     }
 
-    #[test]
+    #[unit_test]
     fn labels_name_the_cost_and_the_measured_cell() {
         assert_eq!(
             (power_of_ten(200_000), power_of_ten(250_000), power_of_ten(10)),

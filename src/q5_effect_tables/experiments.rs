@@ -591,7 +591,7 @@ pub fn cornell_system(n: usize, samples: usize) -> Result<(Scene, System), Exper
     Ok((scene, system))
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
     use crate::render::{camera::Camera, scene::Object};
@@ -602,7 +602,7 @@ mod tests {
     /// that make a caustic never reach the map it reads (measured 0, No), while the grammar's
     /// two-pass language lets photons bounce off mirrors before landing (Impractical). Photon
     /// mapping, which reads the caustic map at the same first hit, captures it.
-    #[test]
+    #[unit_test]
     fn measured_cells_agree_with_the_grammar_and_are_pinned() {
         let cells = measured_table(&Budget::PUBLISHED).unwrap();
         assert_eq!(cells.len(), EXPERIMENTS.len() * TABLE_METHODS.len());
@@ -616,7 +616,7 @@ mod tests {
                 assert_eq!(c.verdict, c.grammar, "{c:?}");
             }
         }
-        crate::test_support::insta_settings().bind(|| {
+        crate::testing::insta_settings().bind(|| {
             insta::assert_snapshot!("q5_measured_table", measured_table_markdown(&cells));
         });
     }
@@ -629,7 +629,7 @@ mod tests {
     /// `L = ρ/π · (I cosθ/r² + ρI/(1 − ρ))`. Unlike the centred light (pbrt's test, exact to
     /// rounding in `render::integrator::tests`), the bounces now vary; 2·10⁴ paths per probe put
     /// the standard error near 0.2 %: within 1 % and within 4 standard errors at five probes.
-    #[test]
+    #[unit_test]
     fn path_tracer_furnace_with_an_off_centre_light_is_within_one_percent() {
         let albedo = 0.5;
         let shell = Object::sphere(
@@ -663,7 +663,7 @@ mod tests {
         }
     }
 
-    #[test]
+    #[unit_test]
     fn the_glow_region_gets_no_direct_light() {
         // Direct light only (Whitted) sees nothing on the ceiling: the region is lit indirectly.
         assert_eq!(glow(Measured::Whitted, &Budget::PUBLISHED).unwrap(), 0.0);

@@ -240,7 +240,7 @@ fn effect_scenes_figure(budget: &Budget) -> Result<Figure, PlotError> {
     plot::panel_grid_labels_below(EFFECT_SCENES_PNG, &panels, 2)
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
     use crate::render::noise::noise_level;
@@ -257,12 +257,12 @@ mod tests {
     }
 
     /// The numbers the pictures' samples were chosen by (not a check: slow, run by hand with
-    /// `RAYON_NUM_THREADS=1 cargo test --release --lib q5_picture_noise -- --ignored --nocapture`,
+    /// `RAYON_NUM_THREADS=1 cargo test --release --test unit q5_picture_noise -- --ignored --nocapture`,
     /// `HW3_NOISE_SPP=32,128` for other counts, `HW3_NOISE_ONLY=Cornell` for the pictures whose
     /// name contains a word): each path-traced picture's noise ([`noise_level`]) at its figure's
     /// size and the CPU seconds of one render; the published box also without Russian roulette, and
     /// its radiosity panel's seconds.
-    #[test]
+    #[unit_test]
     #[ignore = "slow: prints the pictures' noise for choosing their samples"]
     fn q5_picture_noise() {
         let spps: Vec<u32> = std::env::var("HW3_NOISE_SPP")
@@ -301,7 +301,7 @@ mod tests {
     /// 256-sample panel agree, the mean of each face (over a rectangle well inside it, in the
     /// figure's own display levels) within 1 level in every channel. Reads the committed PNG, which
     /// CI's release run regenerates and compares byte for byte.
-    #[test]
+    #[unit_test]
     fn published_figure_faces_agree_between_radiosity_and_256_spp() {
         let bytes =
             std::fs::read(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/figures/q5_cornell_published.png")).unwrap();

@@ -156,11 +156,11 @@ pub(crate) fn specular_bounce(
     }
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
 
-    #[test]
+    #[unit_test]
     fn refraction_obeys_snell_and_total_internal_reflection() {
         let hit = Hit { t: 1.0, point: DVec3::ZERO, normal: DVec3::Z, object: 0 };
         let incoming = |angle: f64, from_inside: bool| {

@@ -268,5 +268,5 @@ impl Environment {
     }
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests;

@@ -150,5 +150,5 @@ pub fn airlight_closed_form(
     Ok(a0 * (f(a1, v_end) - f(a1, gamma / 2.0)))
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests;

@@ -44,16 +44,16 @@ pub fn noise_between(a: &crate::plot::RgbImage, b: &crate::plot::RgbImage) -> f6
     crate::plot::rms_difference(a, b) / std::f64::consts::SQRT_2
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
     use crate::render::{analysis::analyze, catalogue};
 
     /// The numbers the figures' samples were chosen by (not a check: slow, run by hand with
-    /// `cargo test --release --lib figure_scene_noise -- --ignored --nocapture`): each figure
+    /// `cargo test --release --test unit figure_scene_noise -- --ignored --nocapture`): each figure
     /// scene's noise at half its figure's width and height (the noise per pixel does not depend
     /// on the image size) for the given samples per pixel, Whitted with the scene's plan.
-    #[test]
+    #[unit_test]
     #[ignore = "slow: prints the figures' noise for choosing their samples"]
     fn figure_scene_noise() {
         let sizes = [

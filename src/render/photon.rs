@@ -28,5 +28,5 @@ pub use caustic::{CAUSTIC_PHOTONS, trace_caustic_photons};
 pub use global::{PhotonMaps, trace_photons};
 pub use map::{CAUSTIC_GATHER, Gather, MAX_BOUNCES, MAX_PHOTONS, Photon, PhotonError, PhotonMap};
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests;

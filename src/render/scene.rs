@@ -658,5 +658,5 @@ fn require_unit_interval(name: &'static str, v: DVec3) -> Result<(), InputError>
     Ok(())
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests;

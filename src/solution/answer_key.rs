@@ -160,11 +160,11 @@ pub fn figures() -> Result<Vec<Figure>, PlotError> {
     Ok(vec![Figure { file_name, bytes: table.into_bytes() }])
 }
 
-#[cfg(test)]
+#[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
 
-    #[test]
+    #[unit_test]
     fn every_linked_section_is_a_heading_of_its_chapter() {
         for question in QUESTIONS {
             for part in checker::variant(question, 0).unwrap().parts {
@@ -178,13 +178,13 @@ mod tests {
         }
     }
 
-    #[test]
+    #[unit_test]
     fn anchors_are_rustdocs() {
         assert_eq!(anchor("(c) The closest approach, two ways"), "c-the-closest-approach-two-ways");
         assert_eq!(anchor("The student's answer, checked"), "the-students-answer-checked");
     }
 
-    #[test]
+    #[unit_test]
     fn the_key_carries_the_students_grade_for_every_part() {
         let table = answer_key_table().unwrap();
         let report = checker::check(STUDENT_ANSWERS, Some(0)).unwrap();

@@ -1,0 +1,127 @@
+//! The runner of hw3's unit tests: the functions in `src/` marked `#[unit_test]`.
+//!
+//! They are compiled into the library under the `unit-tests` feature, which `cargo test` turns on,
+//! so that the library is compiled once for `cargo test` and not a second time as Cargo's
+//! "lib test" build (`hw3::testing` says why); `#[unit_test]` registers each one in
+//! `hw3::testing::UNIT_TESTS`. This runner gives them libtest's command line and report
+//! (libtest-mimic): `cargo test --test unit -- FILTER`, `--exact`, `--ignored`, `--list`,
+//! `--test-threads N`, names as libtest would print them (`kdtree::stack::tests::…`).
+//!
+//! Two things libtest does that are done here: a `should_panic` test passes only if it panics with
+//! the expected text in its message, and a panic's message is kept for the report instead of being
+//! printed while the tests run (libtest captures it the same way), so a passing test that panics
+//! on purpose prints nothing. Standard output is not captured: only the ignored, on-demand
+//! measurements print.
+
+use std::cell::RefCell;
+use std::panic::{self, AssertUnwindSafe};
+use std::path::Path;
+
+use hw3::testing::{UNIT_TESTS, UnitTest};
+use libtest_mimic::{Arguments, Failed, Trial};
+
+thread_local! {
+    /// The last panic on this thread, as the default hook would have printed it.
+    static LAST_PANIC: RefCell<Option<String>> = const { RefCell::new(None) };
+}
+
+fn main() {
+    let args = Arguments::from_args();
+    panic::set_hook(Box::new(|info| LAST_PANIC.with(|last| *last.borrow_mut() = Some(info.to_string()))));
+    let mut tests: Vec<&'static UnitTest> = UNIT_TESTS.iter().collect();
+    tests.sort_by_key(|test| test.name);
+    let mut trials: Vec<Trial> = tests
+        .into_iter()
+        .map(|test| {
+            Trial::test(test.name.strip_prefix("hw3::").unwrap_or(test.name), move || run(test))
+                .with_ignored_flag(test.ignore.is_some())
+        })
+        .collect();
+    trials.push(Trial::test("runner::every_unit_test_in_src_is_registered_once", every_unit_test_is_registered));
+    trials.push(Trial::test("runner::judges_like_libtest", judges_like_libtest));
+    libtest_mimic::run(&args, trials).exit();
+}
+
+/// Runs one test and judges it, `should_panic` included.
+fn run(test: &UnitTest) -> Result<(), Failed> {
+    LAST_PANIC.with(|last| last.borrow_mut().take());
+    let outcome = panic::catch_unwind(AssertUnwindSafe(test.run));
+    let report = |payload: &(dyn std::any::Any + Send)| {
+        LAST_PANIC.with(|last| last.borrow_mut().take()).unwrap_or_else(|| format!("panicked: {}", message(payload)))
+    };
+    match (outcome, test.should_panic) {
+        (Ok(()), None) => Ok(()),
+        (Err(payload), None) => Err(report(&*payload).into()),
+        (Ok(()), Some(_)) => Err("test did not panic as expected".into()),
+        (Err(payload), Some(expected)) if message(&*payload).contains(expected) => Ok(()),
+        (Err(payload), Some(expected)) => {
+            Err(format!("panic did not contain expected string\n  expected: {expected:?}\n  {}", report(&*payload))
+                .into())
+        }
+    }
+}
+
+/// A panic payload's message: `panic!` makes a `&str` or a `String`.
+fn message(payload: &(dyn std::any::Any + Send)) -> String {
+    payload
+        .downcast_ref::<&str>()
+        .map(|s| (*s).to_string())
+        .or_else(|| payload.downcast_ref::<String>().cloned())
+        .unwrap_or_else(|| "a panic without a message".into())
+}
+
+/// Registration is by the linker (a `linkme` distributed slice), so a test it dropped would be
+/// missing without a word: every `#[unit_test]` line in `src/` must be one registered test, and no
+/// name may be registered twice.
+fn every_unit_test_is_registered() -> Result<(), Failed> {
+    fn count(dir: &Path) -> usize {
+        std::fs::read_dir(dir)
+            .unwrap()
+            .map(|entry| entry.unwrap().path())
+            .map(|path| match path.extension() {
+                _ if path.is_dir() => count(&path),
+                Some(ext) if ext == "rs" => {
+                    std::fs::read_to_string(&path).unwrap().lines().filter(|line| line.trim() == "#[unit_test]").count()
+                }
+                _ => 0,
+            })
+            .sum()
+    }
+    let written = count(&Path::new(env!("CARGO_MANIFEST_DIR")).join("src"));
+    let mut names: Vec<&str> = UNIT_TESTS.iter().map(|test| test.name).collect();
+    names.sort_unstable();
+    names.dedup();
+    if written == UNIT_TESTS.len() && names.len() == UNIT_TESTS.len() {
+        Ok(())
+    } else {
+        Err(format!(
+            "{written} `#[unit_test]` lines in src/, {} tests registered, {} distinct names",
+            UNIT_TESTS.len(),
+            names.len()
+        )
+        .into())
+    }
+}
+
+/// The judging above on made-up tests: a pass, a failure that reports where it panicked, and the
+/// three ways a `should_panic` test can end.
+fn judges_like_libtest() -> Result<(), Failed> {
+    let test = |run: fn(), should_panic| UnitTest { name: "made_up", run, ignore: None, should_panic };
+    let failure = |test: &UnitTest| run(test).err().map(|failed| failed.message().unwrap_or_default().to_string());
+    let checks = [
+        ("a test that returns passes", failure(&test(|| {}, None)).is_none()),
+        (
+            "a panic fails, reported with its place and message",
+            failure(&test(|| panic!("boom"), None)).is_some_and(|m| m.contains("tests/unit.rs") && m.contains("boom")),
+        ),
+        ("should_panic: no panic fails", failure(&test(|| {}, Some("boom"))).is_some()),
+        ("should_panic: the expected text passes", failure(&test(|| panic!("a boom here"), Some("boom"))).is_none()),
+        (
+            "should_panic: another message fails",
+            failure(&test(|| panic!("bang"), Some("boom"))).is_some_and(|m| m.contains("bang")),
+        ),
+        ("should_panic: any panic passes without a text", failure(&test(|| panic!("bang"), Some(""))).is_none()),
+    ];
+    let wrong: Vec<&str> = checks.iter().filter(|(_, ok)| !ok).map(|(what, _)| *what).collect();
+    if wrong.is_empty() { Ok(()) } else { Err(format!("misjudged: {wrong:?}").into()) }
+}
