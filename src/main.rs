@@ -399,9 +399,18 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         }
         Some(Command::Irradiance(args)) => irradiance(args),
         Some(Command::EffectTables { json }) => {
-            let measured =
-                hw3::q5_effect_tables::experiments::measured_table(&hw3::q5_effect_tables::Budget::PUBLISHED)?;
-            emit_line(&hw3::q5_effect_tables::effect_tables_command(json, &measured).map_err(anyhow::Error::msg)?)
+            use hw3::q5_effect_tables::{Budget, effect_tables_command, experiments, grammar_table_markdown};
+            // The grammar's tables need no measurement: printed first, they show while the cells
+            // are measured (seconds), and a closed or full output ends the command before that.
+            if !json {
+                emit(&grammar_table_markdown()?)?;
+            }
+            let measured = experiments::measured_table(&Budget::PUBLISHED)?;
+            if json {
+                emit_line(&effect_tables_command(true, &measured).map_err(anyhow::Error::msg)?)
+            } else {
+                emit_line(&hw3::q5_effect_tables::measured_tables_markdown(&measured).map_err(anyhow::Error::msg)?)
+            }
         }
     }
 }

@@ -106,11 +106,30 @@ pub fn effect_tables_command(json: bool, measured: &[experiments::MeasuredCell])
         serde_json::to_string_pretty(&value).map_err(|e| e.to_string())
     } else {
         let mut out = grammar_table_markdown().map_err(|e| e.to_string())?;
-        out.push_str(&student_comparison_markdown(measured)?);
-        out.push('\n');
-        out.push_str(&experiments::measured_table_markdown(measured));
+        out.push_str(&measured_tables_markdown(measured)?);
         Ok(out)
     }
+}
+
+/// The second half of `hw3 effect-tables` as text, the part that needs the measured cells: the
+/// comparison with the student's answers and the measured table. The first half,
+/// [`grammar_table_markdown`], needs no measurement, so the CLI prints it before measuring (and
+/// ends at once if its standard output is closed or full).
+///
+/// # Errors
+/// A message when the grammar table cannot be built (a grammar overflow).
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::{effect_tables_command, grammar_table_markdown, measured_tables_markdown};
+/// let both = grammar_table_markdown().unwrap() + &measured_tables_markdown(&[]).unwrap();
+/// assert_eq!(both, effect_tables_command(false, &[]).unwrap());
+/// ```
+pub fn measured_tables_markdown(measured: &[experiments::MeasuredCell]) -> Result<String, String> {
+    let mut out = student_comparison_markdown(measured)?;
+    out.push('\n');
+    out.push_str(&experiments::measured_table_markdown(measured));
+    Ok(out)
 }
 
 /// Percentage of the path-traced caustic that the student's two-pass method captures (two
