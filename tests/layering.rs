@@ -44,7 +44,7 @@ struct Import {
     line: usize,
     /// Absolute path from the crate root (`["render", "scene", "Camera"]`).
     path: Vec<String>,
-    /// Inside a `#[cfg(test)]` module.
+    /// Inside a test module (`#[cfg(feature = "unit-tests")]`, [`TEST_CFG`]).
     test: bool,
 }
 
@@ -56,7 +56,7 @@ struct SourceFile {
     /// `["render", "scene"]`; `[]` for `lib.rs`.
     module: Vec<String>,
     imports: Vec<Import>,
-    /// Child modules declared `#[cfg(test)] mod x;`.
+    /// Child modules declared test-only ([`TEST_CFG`] `mod x;`).
     test_children: BTreeSet<String>,
     /// `pub use child::{A, B}` re-exports: item name → child module.
     reexports: BTreeMap<String, String>,
@@ -383,7 +383,7 @@ fn crate_files(root: &Path) -> Vec<SourceFile> {
     files
 }
 
-/// Marks every import of a test-only file (declared `#[cfg(test)] mod x;`, or inside one) as test
+/// Marks every import of a test-only file (declared [`TEST_CFG`] `mod x;`, or inside one) as test
 /// code. Parents come before their children in module-path order.
 fn mark_test_files(files: &mut [SourceFile]) {
     files.sort_by(|a, b| a.module.cmp(&b.module));

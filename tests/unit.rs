@@ -72,30 +72,33 @@ fn message(payload: &(dyn std::any::Any + Send)) -> String {
 
 /// Registration is by the linker (a `linkme` distributed slice), so a test it dropped would be
 /// missing without a word: every `#[unit_test]` line in `src/` must be one registered test, and no
-/// name may be registered twice.
+/// name may be registered twice. And a `#[test]` in `src/` would never run (the library is not
+/// compiled by `rustc --test`), so there must be none.
 fn every_unit_test_is_registered() -> Result<(), Failed> {
-    fn count(dir: &Path) -> usize {
+    fn count(dir: &Path, attribute: &str) -> usize {
         std::fs::read_dir(dir)
             .unwrap()
             .map(|entry| entry.unwrap().path())
             .map(|path| match path.extension() {
-                _ if path.is_dir() => count(&path),
+                _ if path.is_dir() => count(&path, attribute),
                 Some(ext) if ext == "rs" => {
-                    std::fs::read_to_string(&path).unwrap().lines().filter(|line| line.trim() == "#[unit_test]").count()
+                    std::fs::read_to_string(&path).unwrap().lines().filter(|line| line.trim() == attribute).count()
                 }
                 _ => 0,
             })
             .sum()
     }
-    let written = count(&Path::new(env!("CARGO_MANIFEST_DIR")).join("src"));
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let (written, plain) = (count(&src, "#[unit_test]"), count(&src, "#[test]"));
     let mut names: Vec<&str> = UNIT_TESTS.iter().map(|test| test.name).collect();
     names.sort_unstable();
     names.dedup();
-    if written == UNIT_TESTS.len() && names.len() == UNIT_TESTS.len() {
+    if written == UNIT_TESTS.len() && names.len() == UNIT_TESTS.len() && plain == 0 {
         Ok(())
     } else {
         Err(format!(
-            "{written} `#[unit_test]` lines in src/, {} tests registered, {} distinct names",
+            "{written} `#[unit_test]` lines in src/, {} tests registered, {} distinct names; \
+             {plain} `#[test]` lines in src/ (never run there: write `#[unit_test]`)",
             UNIT_TESTS.len(),
             names.len()
         )
