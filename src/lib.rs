@@ -117,6 +117,13 @@ pub fn figure_jobs() -> Vec<plot::FigureJob> {
     jobs
 }
 
+/// `cargo test --lib` compiles the library with `rustc --test`, where the unit tests do not exist
+/// (`testing` says why); this one ignored test tells whoever runs it where they are.
+#[cfg(test)]
+#[test]
+#[ignore = "hw3's unit tests run with `cargo test --test unit` (or a plain `cargo test`)"]
+fn unit_tests_run_with_cargo_test_test_unit() {}
+
 // `#[unit_test]`, for every unit test of the crate (`testing` says why it is not `#[test]`).
 #[cfg(feature = "unit-tests")]
 #[macro_use]
@@ -129,8 +136,9 @@ extern crate hw3_macros;
 /// written that way would cost a second compilation of the whole library (Cargo's "lib test"
 /// build) beside the one that the binary, the integration tests and the doctests link. So hw3's
 /// unit tests are compiled into the library under the feature, each carries `#[unit_test]` (the
-/// `hw3-macros` crate), which adds it to [`UNIT_TESTS`], and `tests/unit.rs` runs that list with
-/// libtest's command line (`cargo test --test unit -- --list`, a filter, `--ignored`).
+/// `hw3-macros` crate), which adds it to the registry [`UNIT_TESTS`], and `tests/unit.rs` runs the
+/// registry with libtest's command line (`cargo test --test unit -- --list`, a filter,
+/// `--ignored`).
 #[cfg(feature = "unit-tests")]
 #[doc(hidden)]
 pub mod testing {
@@ -148,7 +156,8 @@ pub mod testing {
         pub should_panic: Option<&'static str>,
     }
 
-    /// Every unit test of the crate, in no particular order (the runner sorts them by name).
+    /// The registry: every unit test of the crate, in no particular order (the runner sorts them by
+    /// name). A linkme distributed slice, filled by the linker from `#[unit_test]`'s entries.
     #[linkme::distributed_slice]
     pub static UNIT_TESTS: [UnitTest];
 

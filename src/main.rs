@@ -399,9 +399,13 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         }
         Some(Command::Irradiance(args)) => irradiance(args),
         Some(Command::EffectTables { json }) => {
-            use hw3::q5_effect_tables::{Budget, effect_tables_command, experiments, grammar_table_markdown};
+            use hw3::q5_effect_tables::{
+                Budget, effect_tables_command, experiments, grammar_table_markdown, measured_tables_markdown,
+            };
             // The grammar's tables need no measurement: printed first, they show while the cells
-            // are measured (seconds), and a closed or full output ends the command before that.
+            // are measured (seconds), and an output that cannot take them (a full device, a reader
+            // already gone) ends the command before the measuring. If the measuring then fails,
+            // they stay printed above the error.
             if !json {
                 emit(&grammar_table_markdown()?)?;
             }
@@ -409,7 +413,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             if json {
                 emit_line(&effect_tables_command(true, &measured).map_err(anyhow::Error::msg)?)
             } else {
-                emit_line(&hw3::q5_effect_tables::measured_tables_markdown(&measured).map_err(anyhow::Error::msg)?)
+                emit_line(&measured_tables_markdown(&measured).map_err(anyhow::Error::msg)?)
             }
         }
     }

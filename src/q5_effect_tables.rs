@@ -114,7 +114,7 @@ pub fn effect_tables_command(json: bool, measured: &[experiments::MeasuredCell])
 /// The second half of `hw3 effect-tables` as text, the part that needs the measured cells: the
 /// comparison with the student's answers and the measured table. The first half,
 /// [`grammar_table_markdown`], needs no measurement, so the CLI prints it before measuring (and
-/// ends at once if its standard output is closed or full).
+/// ends there if its standard output cannot take it).
 ///
 /// # Errors
 /// A message when the grammar table cannot be built (a grammar overflow).

@@ -1,8 +1,9 @@
 //! The integration tests, in one test binary: each file in `tests/` is a module here, so the
 //! dependencies are linked once instead of once per file (`Cargo.toml`, `autotests = false`).
 //! Run one file's tests with its module name as the filter, e.g.
-//! `cargo test --test integration hostile_fuzz::`. The browser test (`tests/browser.rs`) stays a
-//! binary of its own: it is ignored by default and run alone.
+//! `cargo test --test integration hostile_fuzz::`. Two binaries of their own: the browser test
+//! (`tests/browser.rs`), ignored by default and run alone, and the runner of the unit tests in
+//! `src/` (`tests/unit.rs`, a harness of its own).
 
 mod common;
 

@@ -264,7 +264,13 @@ fn parse(root: &Path, rel: &Path) -> SourceFile {
     while i < toks.len() {
         let (tok, line) = &toks[i];
         match tok {
-            Tok::Punct('{') => depth += 1,
+            // An item other than a module (a test-only `fn`, `extern crate`, ...) ends the test
+            // cfg's reach at its body or its `;`.
+            Tok::Punct('{') => {
+                depth += 1;
+                cfg_test_pending = false;
+            }
+            Tok::Punct(';') => cfg_test_pending = false,
             Tok::Punct('}') => {
                 depth -= 1;
                 if inline.last().is_some_and(|m| m.1 == depth) {

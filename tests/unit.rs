@@ -7,13 +7,17 @@
 //! (libtest-mimic): `cargo test --test unit -- FILTER`, `--exact`, `--ignored`, `--list`,
 //! `--test-threads N`, names as libtest would print them (`kdtree::stack::tests::…`).
 //!
-//! Two things libtest does that are done here: a `should_panic` test passes only if it panics with
-//! the expected text in its message, and a panic's message is kept for the report instead of being
-//! printed while the tests run (libtest captures it the same way), so a passing test that panics
-//! on purpose prints nothing. Standard output is not captured: only the ignored, on-demand
-//! measurements print.
+//! What libtest does and is done here: a `should_panic` test passes only if it panics with the
+//! expected text in its message; a panic in a test's body is kept for the report (with a backtrace
+//! under `RUST_BACKTRACE`) instead of being printed while the tests run, so a passing test that
+//! panics on purpose prints nothing; `RUST_TEST_THREADS` is read. Not done: standard output is not
+//! captured (only the ignored, on-demand measurements print), an ignored test's reason is not
+//! printed, and the runner's threads run one test after another, so a test must leave its
+//! thread-local state as it found it, even when it fails.
 
-use std::cell::RefCell;
+use std::any::Any;
+use std::backtrace::{Backtrace, BacktraceStatus};
+use std::cell::{Cell, RefCell};
 use std::panic::{self, AssertUnwindSafe};
 use std::path::Path;
 
@@ -21,13 +25,34 @@ use hw3::testing::{UNIT_TESTS, UnitTest};
 use libtest_mimic::{Arguments, Failed, Trial};
 
 thread_local! {
-    /// The last panic on this thread, as the default hook would have printed it.
+    /// Whether this thread is running a test's body ([`run`]).
+    static IN_TEST: Cell<bool> = const { Cell::new(false) };
+    /// The last panic of a test's body on this thread, as the default hook would have printed it.
     static LAST_PANIC: RefCell<Option<String>> = const { RefCell::new(None) };
 }
 
 fn main() {
-    let args = Arguments::from_args();
-    panic::set_hook(Box::new(|info| LAST_PANIC.with(|last| *last.borrow_mut() = Some(info.to_string()))));
+    let mut args = Arguments::from_args();
+    // libtest reads `RUST_TEST_THREADS` when `--test-threads` is not given; libtest-mimic does not.
+    if args.test_threads.is_none() {
+        args.test_threads = std::env::var("RUST_TEST_THREADS").ok().and_then(|n| n.parse().ok()).filter(|&n| n > 0);
+    }
+    // A panic in a test's body is kept for its report, as libtest keeps the test thread's output;
+    // any other (a rayon worker's, the runner's own) is printed by the default hook, as under
+    // libtest.
+    let default_hook = panic::take_hook();
+    panic::set_hook(Box::new(move |info| {
+        if IN_TEST.get() {
+            let backtrace = Backtrace::capture();
+            let text = match backtrace.status() {
+                BacktraceStatus::Captured => format!("{info}\n{backtrace}"),
+                _ => info.to_string(),
+            };
+            LAST_PANIC.set(Some(text));
+        } else {
+            default_hook(info);
+        }
+    }));
     let mut tests: Vec<&'static UnitTest> = UNIT_TESTS.iter().collect();
     tests.sort_by_key(|test| test.name);
     let mut trials: Vec<Trial> = tests
@@ -44,11 +69,12 @@ fn main() {
 
 /// Runs one test and judges it, `should_panic` included.
 fn run(test: &UnitTest) -> Result<(), Failed> {
-    LAST_PANIC.with(|last| last.borrow_mut().take());
+    LAST_PANIC.take();
+    IN_TEST.set(true);
     let outcome = panic::catch_unwind(AssertUnwindSafe(test.run));
-    let report = |payload: &(dyn std::any::Any + Send)| {
-        LAST_PANIC.with(|last| last.borrow_mut().take()).unwrap_or_else(|| format!("panicked: {}", message(payload)))
-    };
+    IN_TEST.set(false);
+    let report =
+        |payload: &(dyn Any + Send)| LAST_PANIC.take().unwrap_or_else(|| format!("panicked: {}", message(payload)));
     match (outcome, test.should_panic) {
         (Ok(()), None) => Ok(()),
         (Err(payload), None) => Err(report(&*payload).into()),
@@ -62,7 +88,7 @@ fn run(test: &UnitTest) -> Result<(), Failed> {
 }
 
 /// A panic payload's message: `panic!` makes a `&str` or a `String`.
-fn message(payload: &(dyn std::any::Any + Send)) -> String {
+fn message(payload: &(dyn Any + Send)) -> String {
     payload
         .downcast_ref::<&str>()
         .map(|s| (*s).to_string())
@@ -73,7 +99,8 @@ fn message(payload: &(dyn std::any::Any + Send)) -> String {
 /// Registration is by the linker (a `linkme` distributed slice), so a test it dropped would be
 /// missing without a word: every `#[unit_test]` line in `src/` must be one registered test, and no
 /// name may be registered twice. And a `#[test]` in `src/` would never run (the library is not
-/// compiled by `rustc --test`), so there must be none.
+/// compiled by `rustc --test`), so there must be none but the signpost in `lib.rs` that
+/// `cargo test --lib` finds.
 fn every_unit_test_is_registered() -> Result<(), Failed> {
     fn count(dir: &Path, attribute: &str) -> usize {
         std::fs::read_dir(dir)
@@ -93,12 +120,13 @@ fn every_unit_test_is_registered() -> Result<(), Failed> {
     let mut names: Vec<&str> = UNIT_TESTS.iter().map(|test| test.name).collect();
     names.sort_unstable();
     names.dedup();
-    if written == UNIT_TESTS.len() && names.len() == UNIT_TESTS.len() && plain == 0 {
+    if written == UNIT_TESTS.len() && names.len() == UNIT_TESTS.len() && plain == 1 {
         Ok(())
     } else {
         Err(format!(
             "{written} `#[unit_test]` lines in src/, {} tests registered, {} distinct names; \
-             {plain} `#[test]` lines in src/ (never run there: write `#[unit_test]`)",
+             {plain} `#[test]` lines in src/, where only lib.rs's signpost may be one (a `#[test]` \
+             there never runs: write `#[unit_test]`)",
             UNIT_TESTS.len(),
             names.len()
         )
@@ -109,7 +137,7 @@ fn every_unit_test_is_registered() -> Result<(), Failed> {
 /// The judging above on made-up tests: a pass, a failure that reports where it panicked, and the
 /// three ways a `should_panic` test can end.
 fn judges_like_libtest() -> Result<(), Failed> {
-    let test = |run: fn(), should_panic| UnitTest { name: "made_up", run, ignore: None, should_panic };
+    let test = |body: fn(), should_panic| UnitTest { name: "made_up", run: body, ignore: None, should_panic };
     let failure = |test: &UnitTest| run(test).err().map(|failed| failed.message().unwrap_or_default().to_string());
     let checks = [
         ("a test that returns passes", failure(&test(|| {}, None)).is_none()),

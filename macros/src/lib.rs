@@ -12,8 +12,11 @@
 //! The attribute reads the two test attributes hw3 uses after it, and removes them (on a plain
 //! function the compiler would warn that they do nothing):
 //! - `#[ignore = "reason"]` (or bare `#[ignore]`): registered as ignored, run by `--ignored`;
-//! - `#[should_panic(expected = "text")]` (or bare `#[should_panic]`): passes only if the function
-//!   panics, with a message containing `text`.
+//! - `#[should_panic(expected = "text")]`, `#[should_panic = "text"]` (or bare `#[should_panic]`):
+//!   passes only if the function panics, with a message containing `text`.
+//!
+//! The function takes no arguments and returns `()` (the registry holds `fn()`); a test that
+//! returns a `Result` does not compile here, where libtest would accept it.
 //!
 //! Written on the `proc_macro` token trees alone (no `syn`): the input is a function item, and the
 //! attribute needs only its name and those two attributes.
@@ -64,15 +67,17 @@ pub fn unit_test(args: TokenStream, item: TokenStream) -> TokenStream {
     let Some(name) = name else {
         return compile_error("#[unit_test] applies to a function");
     };
+    // `r#type` is a function named `type`: the registration's static takes the bare name.
+    let bare = name.strip_prefix("r#").unwrap_or(&name);
     let registration = format!(
         "#[::linkme::distributed_slice(crate::testing::UNIT_TESTS)]
          static __UNIT_TEST_{upper}: crate::testing::UnitTest = crate::testing::UnitTest {{
-             name: ::core::concat!(::core::module_path!(), \"::{name}\"),
+             name: ::core::concat!(::core::module_path!(), \"::{bare}\"),
              run: {name},
              ignore: {ignore},
              should_panic: {should_panic},
          }};",
-        upper = name.to_uppercase(),
+        upper = bare.to_uppercase(),
     );
     let mut out: TokenStream = kept.into_iter().collect();
     out.extend(registration.parse::<TokenStream>().expect("the registration is valid Rust"));
@@ -85,6 +90,9 @@ enum TestAttribute {
     /// The expected text as a string literal's source text, or `""` for a bare `#[should_panic]`.
     ShouldPanic(String),
 }
+
+const SHOULD_PANIC_FORMS: &str =
+    "write #[should_panic], #[should_panic = \"text\"] or #[should_panic(expected = \"text\")]";
 
 /// `#[ignore ...]` or `#[should_panic ...]`, given the attribute's bracketed group; `Ok(None)` for
 /// any other attribute, and an error for a form libtest would not accept either.
@@ -102,6 +110,9 @@ fn test_attribute(group: &Group) -> Result<Option<TestAttribute>, &'static str> 
             .map(|reason| Some(TestAttribute::Ignore(reason)))
             .ok_or("write #[ignore] or #[ignore = \"reason\"]"),
         ("should_panic", []) => Ok(Some(TestAttribute::ShouldPanic(bare()))),
+        ("should_panic", [TokenTree::Punct(_), ..]) => literal_after_equals(&inner[1..])
+            .map(|expected| Some(TestAttribute::ShouldPanic(expected)))
+            .ok_or(SHOULD_PANIC_FORMS),
         ("should_panic", [TokenTree::Group(args)]) if args.delimiter() == Delimiter::Parenthesis => {
             let args: Vec<TokenTree> = args.stream().into_iter().collect();
             match args.as_slice() {
@@ -109,9 +120,9 @@ fn test_attribute(group: &Group) -> Result<Option<TestAttribute>, &'static str> 
                 _ => None,
             }
             .map(|expected| Some(TestAttribute::ShouldPanic(expected)))
-            .ok_or("write #[should_panic] or #[should_panic(expected = \"text\")]")
+            .ok_or(SHOULD_PANIC_FORMS)
         }
-        ("should_panic", _) => Err("write #[should_panic] or #[should_panic(expected = \"text\")]"),
+        ("should_panic", _) => Err(SHOULD_PANIC_FORMS),
         _ => Ok(None),
     }
 }

@@ -84,10 +84,15 @@ pub fn variant(question: &str, seed: u64) -> Result<Variant, CheckError> {
 /// Runs `f` with the cache of [`variant`] bypassed on this thread (every variant built afresh).
 #[cfg(feature = "unit-tests")]
 pub(crate) fn uncached<T>(f: impl FnOnce() -> T) -> T {
-    let before = BYPASS.replace(true);
-    let result = f();
-    BYPASS.set(before);
-    result
+    /// Restores the bypass flag even when `f` panics: the unit tests' runner reuses its threads.
+    struct Restore(bool);
+    impl Drop for Restore {
+        fn drop(&mut self) {
+            BYPASS.set(self.0);
+        }
+    }
+    let _restore = Restore(BYPASS.replace(true));
+    f()
 }
 
 /// Builds the variant of question `QUESTIONS[index]` for `seed`.

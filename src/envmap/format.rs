@@ -395,8 +395,9 @@ impl ProbeFormat {
     }
 }
 
-/// Bisection steps of the perspective ball's `ρ(θ)` on `[0, 1]`: after 53 the bracket is as narrow
-/// as doubles near 1 allow, and the last steps settle the final bit.
+/// Bisection steps of the perspective ball's `ρ(θ)` on `[0, 1]`: after 53 the bracket is one unit
+/// in the last place wide for `ρ` near 1, and the last seven narrow it for smaller `ρ` (down to
+/// `2⁻⁸`, where a bracket of `2⁻⁶⁰` is one unit in the last place).
 const BISECTION_STEPS: u32 = 60;
 
 /// Steps of that bisection a verified guess skips ([`perspective_bracket`]).
