@@ -117,8 +117,9 @@ pub fn figure_jobs() -> Vec<plot::FigureJob> {
     jobs
 }
 
-/// `cargo test --lib` compiles the library with `rustc --test`, where the unit tests do not exist
-/// (`testing` says why); this one ignored test tells whoever runs it where they are.
+/// `cargo test --lib` compiles the library with `rustc --test`, whose harness sees no unit test:
+/// they carry `#[unit_test]`, not `#[test]`, and only `tests/unit.rs` runs them (`testing` says
+/// why). This one ignored test tells whoever runs it where they are.
 #[cfg(test)]
 #[test]
 #[ignore = "hw3's unit tests run with `cargo test --test unit` (or a plain `cargo test`)"]
@@ -151,8 +152,8 @@ pub mod testing {
         pub run: fn(),
         /// `#[ignore = "reason"]`: run only with `--ignored`.
         pub ignore: Option<&'static str>,
-        /// `#[should_panic(expected = "text")]`: passes only if it panics with `text` in its
-        /// message (`""` for any panic).
+        /// `#[should_panic(expected = "text")]` or `#[should_panic = "text"]`: passes only if it
+        /// panics with `text` in its message (`""`, a bare `#[should_panic]`: any panic).
         pub should_panic: Option<&'static str>,
     }
 

@@ -16,7 +16,7 @@
 //! thread-local state as it found it, even when it fails.
 
 use std::any::Any;
-use std::backtrace::{Backtrace, BacktraceStatus};
+use std::backtrace::Backtrace;
 use std::cell::{Cell, RefCell};
 use std::panic::{self, AssertUnwindSafe};
 use std::path::Path;
@@ -33,20 +33,30 @@ thread_local! {
 
 fn main() {
     let mut args = Arguments::from_args();
-    // libtest reads `RUST_TEST_THREADS` when `--test-threads` is not given; libtest-mimic does not.
-    if args.test_threads.is_none() {
-        args.test_threads = std::env::var("RUST_TEST_THREADS").ok().and_then(|n| n.parse().ok()).filter(|&n| n > 0);
+    // libtest reads `RUST_TEST_THREADS` when `--test-threads` is not given; libtest-mimic does not,
+    // and with 0 threads it would wait forever: refused, as libtest refuses it.
+    if args.test_threads.is_none()
+        && let Ok(text) = std::env::var("RUST_TEST_THREADS")
+    {
+        args.test_threads = Some(text.parse().unwrap_or(0));
     }
-    // A panic in a test's body is kept for its report, as libtest keeps the test thread's output;
-    // any other (a rayon worker's, the runner's own) is printed by the default hook, as under
-    // libtest.
+    if args.test_threads == Some(0) {
+        eprintln!("error: the number of test threads (--test-threads or RUST_TEST_THREADS) must be a positive integer");
+        std::process::exit(101);
+    }
+    // A panic in a test's body is kept for its report, as libtest keeps the test thread's output,
+    // with a backtrace when `RUST_BACKTRACE` asks for one (`full`: every frame). Any other panic
+    // (a rayon worker's, the runner's own) is printed by the default hook as it happens; libtest
+    // would capture a worker's message too when the test started the thread, and here a test that
+    // fails through a worker's panic reports its message without the place.
+    let backtrace = std::env::var("RUST_BACKTRACE").ok().filter(|value| value != "0");
     let default_hook = panic::take_hook();
     panic::set_hook(Box::new(move |info| {
         if IN_TEST.get() {
-            let backtrace = Backtrace::capture();
-            let text = match backtrace.status() {
-                BacktraceStatus::Captured => format!("{info}\n{backtrace}"),
-                _ => info.to_string(),
+            let text = match backtrace.as_deref() {
+                Some("full") => format!("{info}\n{:#}", Backtrace::force_capture()),
+                Some(_) => format!("{info}\n{}", Backtrace::force_capture()),
+                None => info.to_string(),
             };
             LAST_PANIC.set(Some(text));
         } else {
@@ -73,13 +83,15 @@ fn run(test: &UnitTest) -> Result<(), Failed> {
     IN_TEST.set(true);
     let outcome = panic::catch_unwind(AssertUnwindSafe(test.run));
     IN_TEST.set(false);
-    let report =
-        |payload: &(dyn Any + Send)| LAST_PANIC.take().unwrap_or_else(|| format!("panicked: {}", message(payload)));
+    let report = |payload: &(dyn Any + Send)| {
+        LAST_PANIC.take().unwrap_or_else(|| format!("panicked: {}", message(payload).unwrap_or("(no message)")))
+    };
     match (outcome, test.should_panic) {
         (Ok(()), None) => Ok(()),
         (Err(payload), None) => Err(report(&*payload).into()),
         (Ok(()), Some(_)) => Err("test did not panic as expected".into()),
-        (Err(payload), Some(expected)) if message(&*payload).contains(expected) => Ok(()),
+        (Err(_), Some("")) => Ok(()),
+        (Err(payload), Some(expected)) if message(&*payload).is_some_and(|m| m.contains(expected)) => Ok(()),
         (Err(payload), Some(expected)) => {
             Err(format!("panic did not contain expected string\n  expected: {expected:?}\n  {}", report(&*payload))
                 .into())
@@ -87,19 +99,16 @@ fn run(test: &UnitTest) -> Result<(), Failed> {
     }
 }
 
-/// A panic payload's message: `panic!` makes a `&str` or a `String`.
-fn message(payload: &(dyn Any + Send)) -> String {
-    payload
-        .downcast_ref::<&str>()
-        .map(|s| (*s).to_string())
-        .or_else(|| payload.downcast_ref::<String>().cloned())
-        .unwrap_or_else(|| "a panic without a message".into())
+/// A panic payload's message: `panic!` makes a `&str` or a `String`; `None` for any other payload
+/// (`panic_any`), which an expected text never matches, as under libtest.
+fn message(payload: &(dyn Any + Send)) -> Option<&str> {
+    payload.downcast_ref::<&str>().copied().or_else(|| payload.downcast_ref::<String>().map(String::as_str))
 }
 
 /// Registration is by the linker (a `linkme` distributed slice), so a test it dropped would be
 /// missing without a word: every `#[unit_test]` line in `src/` must be one registered test, and no
 /// name may be registered twice. And a `#[test]` in `src/` would never run (the library is not
-/// compiled by `rustc --test`), so there must be none but the signpost in `lib.rs` that
+/// compiled by `rustc --test`), so there must be none but the one signpost in `lib.rs` that
 /// `cargo test --lib` finds.
 fn every_unit_test_is_registered() -> Result<(), Failed> {
     fn count(dir: &Path, attribute: &str) -> usize {
@@ -116,26 +125,31 @@ fn every_unit_test_is_registered() -> Result<(), Failed> {
             .sum()
     }
     let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
-    let (written, plain) = (count(&src, "#[unit_test]"), count(&src, "#[test]"));
+    let lib = std::fs::read_to_string(src.join("lib.rs")).unwrap();
+    let signposts = lib.lines().filter(|line| line.trim() == "#[test]").count();
+    let signpost_kept = signposts == 1 && lib.contains("fn unit_tests_run_with_cargo_test_test_unit()");
+    // Whole lines only: the crate writes each attribute on a line of its own (rustfmt's layout).
+    let (written, plain) = (count(&src, "#[unit_test]"), count(&src, "#[test]") - signposts);
     let mut names: Vec<&str> = UNIT_TESTS.iter().map(|test| test.name).collect();
     names.sort_unstable();
     names.dedup();
-    if written == UNIT_TESTS.len() && names.len() == UNIT_TESTS.len() && plain == 1 {
+    if written == UNIT_TESTS.len() && names.len() == UNIT_TESTS.len() && plain == 0 && signpost_kept {
         Ok(())
     } else {
         Err(format!(
             "{written} `#[unit_test]` lines in src/, {} tests registered, {} distinct names; \
-             {plain} `#[test]` lines in src/, where only lib.rs's signpost may be one (a `#[test]` \
-             there never runs: write `#[unit_test]`)",
+             {plain} `#[test]` lines outside lib.rs's signpost (a `#[test]` in src/ never runs: write \
+             `#[unit_test]`); the signpost {}",
             UNIT_TESTS.len(),
-            names.len()
+            names.len(),
+            if signpost_kept { "kept" } else { "missing or doubled" }
         )
         .into())
     }
 }
 
 /// The judging above on made-up tests: a pass, a failure that reports where it panicked, and the
-/// three ways a `should_panic` test can end.
+/// ways a `should_panic` test can end.
 fn judges_like_libtest() -> Result<(), Failed> {
     let test = |body: fn(), should_panic| UnitTest { name: "made_up", run: body, ignore: None, should_panic };
     let failure = |test: &UnitTest| run(test).err().map(|failed| failed.message().unwrap_or_default().to_string());
@@ -152,6 +166,10 @@ fn judges_like_libtest() -> Result<(), Failed> {
             failure(&test(|| panic!("bang"), Some("boom"))).is_some_and(|m| m.contains("bang")),
         ),
         ("should_panic: any panic passes without a text", failure(&test(|| panic!("bang"), Some(""))).is_none()),
+        (
+            "should_panic: a panic without a message fails a text",
+            failure(&test(|| std::panic::panic_any(5_u32), Some("panic"))).is_some(),
+        ),
     ];
     let wrong: Vec<&str> = checks.iter().filter(|(_, ok)| !ok).map(|(what, _)| *what).collect();
     if wrong.is_empty() { Ok(()) } else { Err(format!("misjudged: {wrong:?}").into()) }

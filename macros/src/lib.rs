@@ -67,12 +67,13 @@ pub fn unit_test(args: TokenStream, item: TokenStream) -> TokenStream {
     let Some(name) = name else {
         return compile_error("#[unit_test] applies to a function");
     };
-    // `r#type` is a function named `type`: the registration's static takes the bare name.
+    // `r#type` is a function named `type`: the registration's static takes the bare name, the
+    // registered name keeps the `r#`, as libtest prints it.
     let bare = name.strip_prefix("r#").unwrap_or(&name);
     let registration = format!(
         "#[::linkme::distributed_slice(crate::testing::UNIT_TESTS)]
          static __UNIT_TEST_{upper}: crate::testing::UnitTest = crate::testing::UnitTest {{
-             name: ::core::concat!(::core::module_path!(), \"::{bare}\"),
+             name: ::core::concat!(::core::module_path!(), \"::{name}\"),
              run: {name},
              ignore: {ignore},
              should_panic: {should_panic},
@@ -99,8 +100,12 @@ const SHOULD_PANIC_FORMS: &str =
 fn test_attribute(group: &Group) -> Result<Option<TestAttribute>, &'static str> {
     let inner: Vec<TokenTree> = group.stream().into_iter().collect();
     let Some(TokenTree::Ident(ident)) = inner.first() else { return Ok(None) };
+    // `= "text"`: a string literal (plain or raw), as libtest asks.
     let literal_after_equals = |tokens: &[TokenTree]| match tokens {
-        [TokenTree::Punct(eq), TokenTree::Literal(literal)] if eq.as_char() == '=' => Some(literal.to_string()),
+        [TokenTree::Punct(eq), TokenTree::Literal(literal)] if eq.as_char() == '=' => {
+            let text = literal.to_string();
+            (text.starts_with('"') || text.starts_with("r\"") || text.starts_with("r#")).then_some(text)
+        }
         _ => None,
     };
     let bare = || "\"\"".to_string();
