@@ -1,13 +1,9 @@
 //! `#[unit_test]`: hw3's unit tests without a second build of the library.
 //!
-//! A `#[test]` function exists only when its crate is compiled by `rustc --test`, so the unit tests
-//! of a library normally cost a second compilation of the whole library (its "lib test" build),
-//! beside the plain one that the binary, the integration tests and the doctests link. hw3's unit
-//! tests instead sit behind the `unit-tests` feature (which `cargo test` turns on) and carry this
-//! attribute, which keeps the function and adds a registration of it to the distributed slice
-//! `hw3::testing::UNIT_TESTS` ([linkme](https://docs.rs/linkme/0.3)); the runner `tests/unit.rs`
-//! runs that slice with [libtest-mimic](https://docs.rs/libtest-mimic/0.8). So the library is
-//! compiled once for `cargo test`, its unit tests still at the bottom of the file they test.
+//! The attribute keeps the function and adds a registration of it to the registry
+//! `hw3::testing::UNIT_TESTS` (a [linkme](https://docs.rs/linkme/0.3) distributed slice), which
+//! the runner `tests/unit.rs` runs; why hw3's unit tests are not `#[test]` is told once, in the
+//! documentation of `hw3::testing`.
 //!
 //! The attribute reads the two test attributes hw3 uses after it, and removes them (on a plain
 //! function the compiler would warn that they do nothing):
@@ -108,13 +104,13 @@ fn test_attribute(group: &Group) -> Result<Option<TestAttribute>, &'static str> 
         }
         _ => None,
     };
-    let bare = || "\"\"".to_string();
+    let any_text = || "\"\"".to_string();
     match (ident.to_string().as_str(), &inner[1..]) {
-        ("ignore", []) => Ok(Some(TestAttribute::Ignore(bare()))),
+        ("ignore", []) => Ok(Some(TestAttribute::Ignore(any_text()))),
         ("ignore", rest) => literal_after_equals(rest)
             .map(|reason| Some(TestAttribute::Ignore(reason)))
             .ok_or("write #[ignore] or #[ignore = \"reason\"]"),
-        ("should_panic", []) => Ok(Some(TestAttribute::ShouldPanic(bare()))),
+        ("should_panic", []) => Ok(Some(TestAttribute::ShouldPanic(any_text()))),
         ("should_panic", [TokenTree::Punct(_), ..]) => literal_after_equals(&inner[1..])
             .map(|expected| Some(TestAttribute::ShouldPanic(expected)))
             .ok_or(SHOULD_PANIC_FORMS),

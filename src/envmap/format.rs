@@ -224,19 +224,10 @@ impl ProbeFormat {
                 // θ(ρ) increases monotonically on [0, 1]: bisection is robust up to the rim, where
                 // dθ/dρ is infinite and Newton on ρ would stall. A guess may skip its first steps.
                 let below = |rho: f64| self.theta_of_rho(rho) < theta;
-                let ((mut lo, mut hi), steps) = match perspective_bracket(k, theta, below) {
-                    Some(bracket) => (bracket, BISECTION_STEPS - SKIPPED_STEPS),
-                    None => ((0.0, 1.0), BISECTION_STEPS),
-                };
-                for _ in 0..steps {
-                    let mid = 0.5 * (lo + hi);
-                    if below(mid) {
-                        lo = mid;
-                    } else {
-                        hi = mid;
-                    }
-                }
-                Some(0.5 * (lo + hi))
+                Some(match perspective_bracket(k, theta, below) {
+                    Some(bracket) => bisect(bracket, BISECTION_STEPS - SKIPPED_STEPS, below),
+                    None => bisect((0.0, 1.0), BISECTION_STEPS, below),
+                })
             }
             Self::LatLong => unreachable!("lat-long is not a disk format"),
         }
@@ -399,6 +390,20 @@ impl ProbeFormat {
 /// in the last place wide for `ρ` near 1, and the last seven narrow it for smaller `ρ` (down to
 /// `2⁻⁸`, where a bracket of `2⁻⁶⁰` is one unit in the last place).
 const BISECTION_STEPS: u32 = 60;
+
+/// The midpoint of `bracket` after `steps` halvings, each keeping the half whose ends `below`
+/// separates (`below(lo)` true, `below(hi)` false).
+fn bisect((mut lo, mut hi): (f64, f64), steps: u32, below: impl Fn(f64) -> bool) -> f64 {
+    for _ in 0..steps {
+        let mid = 0.5 * (lo + hi);
+        if below(mid) {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    0.5 * (lo + hi)
+}
 
 /// Steps of that bisection a verified guess skips ([`perspective_bracket`]).
 const SKIPPED_STEPS: u32 = 40;
@@ -617,21 +622,6 @@ mod tests {
         }
     }
 
-    /// `ρ(θ)` of the perspective ball by the full bisection from `[0, 1]`, which
-    /// [`perspective_bracket`] shortens.
-    fn rho_by_full_bisection(format: ProbeFormat, theta: f64) -> f64 {
-        let (mut lo, mut hi) = (0.0_f64, 1.0_f64);
-        for _ in 0..BISECTION_STEPS {
-            let mid = 0.5 * (lo + hi);
-            if format.theta_of_rho(mid) < theta {
-                lo = mid;
-            } else {
-                hi = mid;
-            }
-        }
-        0.5 * (lo + hi)
-    }
-
     /// The skipped bisection steps change no bit: on the hard angles (zero, the smallest, the blind
     /// cone's edge and the last doubles before it, and the `θ` of bracket ends of the skipped steps
     /// and their neighbours, where a guess lands on a cell's edge) and on a low-discrepancy sweep,
@@ -654,7 +644,8 @@ mod tests {
             let sweep: Vec<f64> = (0..2000).map(|n| (n as f64 * golden).fract() * max).collect();
             for &theta in hard.iter().chain(&sweep).filter(|t| **t <= max) {
                 let fast = format.rho_of_theta(theta).unwrap();
-                let full = rho_by_full_bisection(format, theta);
+                // The full bisection from [0, 1], which `perspective_bracket` shortens.
+                let full = bisect((0.0, 1.0), BISECTION_STEPS, |r| format.theta_of_rho(r) < theta);
                 assert_eq!(fast.to_bits(), full.to_bits(), "D/R = {k}, θ = {theta:e}: {fast:e} vs {full:e}");
             }
             let skipped =
