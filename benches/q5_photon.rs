@@ -1,10 +1,10 @@
 //! Photon-map benchmarks.
 //!
-//! - divan: 1000 k-nearest queries (k = 50) in a map of 10⁵ photons, with `kiddo`'s
-//!   `ImmutableKdTree` (what [`hw3::render::photon::PhotonMap`] uses) and with a brute-force scan
-//!   (`select_nth_unstable` over all squared distances). The crate's own kd-tree
-//!   ([`hw3::kdtree`]) indexes spheres for ray traversal and has no k-nearest query, so it is not
-//!   a candidate without a second traversal.
+//! - divan: 1000 k-nearest queries (k = 50) in a map of 10⁵ photons with the photon map's own
+//!   kd-tree ([`hw3::render::photon::PointTree`], what [`hw3::render::photon::PhotonMap`] uses),
+//!   with a brute-force scan (`select_nth_unstable` over all squared distances), and, with
+//!   `--features kiddo`, with `kiddo`'s `ImmutableKdTree` (6.3, the crate the photon map used
+//!   before), each answer checked against the tree's; and the trees' builds over the same photons.
 //! - `cargo bench -p hw3-benches --bench q5_photon` also measures the photon map's accuracy against time in the
 //!   white furnace (closed unit sphere, ρ = 0.5, point light I = 1 at the centre, exact irradiance
 //!   E = I/(1 − ρ) = 2 everywhere, which the path tracer reproduces to 1e-9 in
@@ -23,7 +23,7 @@ use glam::DVec3;
 use hw3::q5_effect_tables::photon_cornell::{self, ErrorSplit};
 use hw3::render::{
     catalogue::furnace_sphere,
-    photon::{PhotonMap, trace_photons},
+    photon::{PhotonMap, PointTree, trace_photons},
     sampling::fibonacci_sphere,
 };
 use std::fmt::Write as _;
@@ -47,11 +47,80 @@ fn brute_force_nearest(points: &[[f64; 3]], query: DVec3, k: usize) -> f64 {
     *kth
 }
 
+fn furnace_positions() -> Vec<DVec3> {
+    furnace_map(50_000).photons().iter().map(|p| p.position).collect()
+}
+
 #[divan::bench]
-fn knn_kiddo(bencher: divan::Bencher) {
-    let map = furnace_map(50_000);
+fn knn_point_tree(bencher: divan::Bencher) {
+    let tree = PointTree::new(&furnace_positions());
     let queries = fibonacci_sphere(1000);
-    bencher.bench_local(|| queries.iter().map(|&q| map.nearest(q, 50).expect("enough photons").1).sum::<f64>());
+    bencher.bench_local(|| {
+        queries
+            .iter()
+            .map(|&q| tree.nearest(q, 50, f64::INFINITY).last().expect("50 found").distance_squared)
+            .sum::<f64>()
+    });
+}
+
+#[divan::bench]
+fn build_point_tree(bencher: divan::Bencher) {
+    let positions = furnace_positions();
+    bencher.bench_local(|| PointTree::new(&positions));
+}
+
+/// `kiddo`'s tree as a peer: the same photons and queries; its 50 nearest must be the point
+/// tree's (the same squared distances, nearest first; indices may differ only between photons
+/// at equal distance).
+#[cfg(feature = "kiddo")]
+mod kiddo_peer {
+    use super::*;
+    use kiddo::{ImmutableKdTree, SquaredEuclidean};
+    use std::num::NonZero;
+
+    fn tree(positions: &[DVec3]) -> ImmutableKdTree<f64, 3> {
+        let points: Vec<[f64; 3]> = positions.iter().map(|p| p.to_array()).collect();
+        ImmutableKdTree::new_from_slice(&points).expect("fewer than 2³² photons")
+    }
+
+    #[divan::bench]
+    fn knn_kiddo(bencher: divan::Bencher) {
+        let positions = furnace_positions();
+        let (kiddo, ours) = (tree(&positions), PointTree::new(&positions));
+        let queries = fibonacci_sphere(1000);
+        let fifty = NonZero::new(50).expect("50 > 0");
+        for &q in &queries {
+            let theirs: Vec<f64> = kiddo
+                .query(&q.to_array())
+                .nearest_n::<SquaredEuclidean<f64>>(fifty)
+                .execute()
+                .iter()
+                .map(|n| n.distance)
+                .collect();
+            let mine: Vec<f64> = ours.nearest(q, 50, f64::INFINITY).iter().map(|n| n.distance_squared).collect();
+            assert_eq!(theirs, mine, "kiddo and the point tree disagree at {q}");
+        }
+        bencher.bench_local(|| {
+            queries
+                .iter()
+                .map(|&q| {
+                    kiddo
+                        .query(&q.to_array())
+                        .nearest_n::<SquaredEuclidean<f64>>(fifty)
+                        .execute()
+                        .last()
+                        .expect("50 found")
+                        .distance
+                })
+                .sum::<f64>()
+        });
+    }
+
+    #[divan::bench]
+    fn build_kiddo(bencher: divan::Bencher) {
+        let positions = furnace_positions();
+        bencher.bench_local(|| tree(&positions));
+    }
 }
 
 #[divan::bench(sample_count = 3)]

@@ -23,10 +23,12 @@ mod caustic;
 mod emission;
 mod global;
 mod map;
+mod point_tree;
 
 pub use caustic::{CAUSTIC_PHOTONS, trace_caustic_photons};
 pub use global::{PhotonMaps, trace_photons};
 pub use map::{CAUSTIC_GATHER, Gather, MAX_BOUNCES, MAX_PHOTONS, Photon, PhotonError, PhotonMap};
+pub use point_tree::{LEAF_SIZE, Neighbour, PointTree};
 
 #[cfg(feature = "unit-tests")]
 mod tests;

@@ -1,11 +1,10 @@
 //! The photon map: stored photons, their kd-tree, and the density estimates read from it.
 
+use super::point_tree::PointTree;
 use crate::render::bsdf::brdf;
 use crate::render::scene::Material;
 use glam::DVec3;
-use kiddo::{ImmutableKdTree, SquaredEuclidean};
 use std::f64::consts::PI;
-use std::num::NonZero;
 
 /// Largest number of photons one trace may emit (the kd-tree indexes photons by `u32`, and each
 /// emitted photon may be stored several times).
@@ -42,6 +41,9 @@ pub enum PhotonError {
     /// A gather radius that is not finite and positive.
     #[error("the maximum gather radius must be finite and > 0")]
     MaxRadius,
+    /// A density asked for at a point with an infinite or NaN coordinate.
+    #[error("the query point must be finite")]
+    QueryPoint,
 }
 
 /// One stored photon: where it landed, the direction it travelled, and the power it carries.
@@ -57,26 +59,27 @@ pub struct Photon {
     pub power: DVec3,
 }
 
-/// A set of photons with a kd-tree (`kiddo`'s [`ImmutableKdTree`]) for k-nearest queries.
+/// A set of photons with a kd-tree over their positions ([`PointTree`]) for k-nearest queries.
 #[derive(Debug)]
 pub struct PhotonMap {
     photons: Vec<Photon>,
-    tree: ImmutableKdTree<f64, 3>,
+    tree: PointTree,
 }
 
 impl PhotonMap {
     /// A map of `photons` (possibly empty; queries on an empty map are typed errors).
     ///
-    /// Photons at identical coordinates are accepted (kiddo issue #158 concerned the older
-    /// immutable tree; the rewritten one splits ties, which a unit test pins).
+    /// Photons at identical coordinates are accepted: among photons at equal distance from a
+    /// query the earlier-stored one counts first.
     ///
     /// # Panics
-    /// If kiddo refuses to build the tree, which it does only for more than `u32::MAX` items
-    /// (impossible below [`MAX_PHOTONS`] emitted × [`MAX_BOUNCES`] stores each).
+    /// For more than `u32::MAX` photons (impossible below [`MAX_PHOTONS`] emitted ×
+    /// [`MAX_BOUNCES`] stores each) or a photon at a NaN position (the tracer stores only finite
+    /// hit points); see [`PointTree::new`].
     #[must_use]
     pub fn new(photons: Vec<Photon>) -> Self {
-        let points: Vec<[f64; 3]> = photons.iter().map(|p| p.position.to_array()).collect();
-        let tree = ImmutableKdTree::new_from_slice(&points).expect("fewer than 2³² photons");
+        let points: Vec<DVec3> = photons.iter().map(|p| p.position).collect();
+        let tree = PointTree::new(&points);
         Self { photons, tree }
     }
 
@@ -102,7 +105,8 @@ impl PhotonMap {
     ///
     /// # Errors
     /// [`PhotonError::NeighbourCount`] for `k < 2`, [`PhotonError::TooFewPhotons`] when the map
-    /// holds fewer than `k`, [`PhotonError::CoincidentPhotons`] when the `k`-th is at distance 0.
+    /// holds fewer than `k`, [`PhotonError::QueryPoint`] for a point that is not finite,
+    /// [`PhotonError::CoincidentPhotons`] when the `k`-th is at distance 0.
     pub fn nearest(&self, point: DVec3, k: usize) -> Result<(Vec<&Photon>, f64), PhotonError> {
         if k < 2 {
             return Err(PhotonError::NeighbourCount(k));
@@ -110,13 +114,15 @@ impl PhotonMap {
         if k > self.photons.len() {
             return Err(PhotonError::TooFewPhotons { requested: k, stored: self.photons.len() });
         }
-        let count = NonZero::new(k).ok_or(PhotonError::NeighbourCount(k))?;
-        let found = self.tree.query(&point.to_array()).nearest_n::<SquaredEuclidean<f64>>(count).execute();
-        let radius_squared = found.last().map_or(0.0, |item| item.distance);
+        if !point.is_finite() {
+            return Err(PhotonError::QueryPoint);
+        }
+        let found = self.tree.nearest(point, k, f64::INFINITY);
+        let radius_squared = found.last().map_or(0.0, |n| n.distance_squared);
         if !(radius_squared > 0.0) {
             return Err(PhotonError::CoincidentPhotons(k));
         }
-        Ok((found.iter().map(|item| &self.photons[item.item as usize]).collect(), radius_squared))
+        Ok((found.iter().map(|n| &self.photons[n.index as usize]).collect(), radius_squared))
     }
 
     /// Irradiance at `point` (W/m² per channel): the power of the `k − 1` nearest photons over
@@ -185,7 +191,8 @@ impl PhotonMap {
     /// a caustic pass with nothing to gather adds nothing, bit for bit.
     ///
     /// Should the `k` nearest photons all coincide with `point` (radius 0, a measure-zero
-    /// event), the fixed-disc form is used over those `k`.
+    /// event), the fixed-disc form is used over those `k`. A `point` that is not finite gathers
+    /// nothing (zero).
     ///
     /// # Examples
     /// ```
@@ -215,13 +222,11 @@ impl PhotonMap {
         }
         let k = gather.neighbours;
         let max_squared = gather.max_radius * gather.max_radius;
-        let count = NonZero::new(k).expect("Gather::new keeps k ≥ 2");
-        let found =
-            self.tree.query(&point.to_array()).nearest_n::<SquaredEuclidean<f64>>(count).within(max_squared).execute();
-        let photons = found.iter().map(|item| &self.photons[item.item as usize]);
+        let found = self.tree.nearest(point, k, max_squared);
+        let photons = found.iter().map(|n| &self.photons[n.index as usize]);
         match found.last() {
-            Some(kth) if found.len() == k && kth.distance > 0.0 => {
-                reflected_power(photons.take(k - 1), material, to_eye, normal) / (PI * kth.distance)
+            Some(kth) if found.len() == k && kth.distance_squared > 0.0 => {
+                reflected_power(photons.take(k - 1), material, to_eye, normal) / (PI * kth.distance_squared)
             }
             _ => reflected_power(photons, material, to_eye, normal) / (PI * max_squared),
         }

@@ -106,9 +106,10 @@ fn bad_counts_and_neighbour_numbers_are_typed_errors() {
     assert_eq!(empty.irradiance(DVec3::Z, 2).unwrap_err(), PhotonError::TooFewPhotons { requested: 2, stored: 0 });
 }
 
-/// kiddo issue #158: trees over many points sharing coordinates. 5000 photons at one point
-/// plus a ring around it: the k nearest are found, and a query whose k nearest all coincide
-/// with it is a typed error, not an infinite irradiance.
+/// Many photons sharing coordinates (a median split cannot separate them): 5000 photons at one
+/// point plus a ring around it: the k nearest are found, and a query whose k nearest all
+/// coincide with it is a typed error, not an infinite irradiance; a query point that is not
+/// finite is refused.
 #[unit_test]
 fn duplicate_photon_positions_are_handled() {
     let photon = |position| Photon { position, direction: DVec3::NEG_Z, normal: DVec3::Z, power: DVec3::ONE };
@@ -123,6 +124,9 @@ fn duplicate_photon_positions_are_handled() {
     let (nearest, r2) = map.nearest(DVec3::new(0.0, 0.0, 2.0), 5001).unwrap();
     assert_eq!(nearest.iter().filter(|p| p.position == DVec3::ZERO).count(), 5000);
     assert!((r2 - 5.0).abs() < 1e-12);
+    for point in [DVec3::NAN, DVec3::new(0.0, f64::INFINITY, 0.0)] {
+        assert_eq!(map.irradiance(point, 10).unwrap_err(), PhotonError::QueryPoint);
+    }
 }
 
 /// The (k−1)/(πr²) estimate is unbiased for uniformly scattered photons; k/(πr²) is high by
