@@ -73,9 +73,10 @@ impl PhotonMap {
     /// query the earlier-stored one counts first.
     ///
     /// # Panics
-    /// For more than `u32::MAX` photons (impossible below [`MAX_PHOTONS`] emitted ×
-    /// [`MAX_BOUNCES`] stores each) or a photon at a NaN position (the tracer stores only finite
-    /// hit points); see [`PointTree::new`].
+    /// For more than `u32::MAX` photons (one trace reaches that only if nearly every one of
+    /// [`MAX_PHOTONS`] emitted photons were stored at all [`MAX_BOUNCES`] bounces: 2³² photons,
+    /// hundreds of GB) or a photon at a NaN position (the tracer stores only finite hit points);
+    /// see [`PointTree::new`].
     #[must_use]
     pub fn new(photons: Vec<Photon>) -> Self {
         let points: Vec<DVec3> = photons.iter().map(|p| p.position).collect();

@@ -23,8 +23,9 @@ use glam::DVec3;
 use std::cmp::Ordering;
 
 /// Most points in a leaf: smaller leaves mean more nodes to walk, larger ones more distances to
-/// compute. 4, 8, 16 and 32 timed within the machine's noise of each other (1000 queries for the
-/// 50 nearest of 10⁵ points on a sphere: 6.2–7.7 ms each, alternating runs on 2026-12-05).
+/// compute. 4, 8, 16 and 32 timed within the machine's noise of each other: 6.2–7.7 ms per 1000
+/// queries for the 50 nearest of 10⁵ points on a sphere (release, alternating runs on this
+/// crate's 2-core test machine, 2026-12-05).
 pub const LEAF_SIZE: usize = 8;
 
 /// Ranges larger than this build their two halves on two threads (`rayon::join`); the split is
@@ -98,7 +99,8 @@ impl PointTree {
     /// Ties in distance are ordered by index, so the answer is the first `k` of all points
     /// sorted by (squared distance, index), cut at the limit.
     ///
-    /// A query with a NaN coordinate, or a NaN limit, finds nothing.
+    /// A query with a NaN coordinate, or a NaN limit, finds nothing; a point whose squared distance
+    /// is NaN (∞ − ∞: the point and the query infinite on the same axis) is never found.
     ///
     /// # Examples
     /// ```
@@ -115,13 +117,18 @@ impl PointTree {
         if k == 0 || self.points.is_empty() || query.is_nan() || max_distance_squared.is_nan() {
             return Vec::new();
         }
-        let mut found = Candidates::new(k, max_distance_squared, self.points.len());
-        self.search(0, self.points.len(), &query.to_array(), [0.0; 3], &mut found);
-        found
+        self.candidates(query, k, max_distance_squared)
             .into_sorted()
             .into_iter()
             .map(|c| Neighbour { index: c.index, distance_squared: c.distance_squared })
             .collect()
+    }
+
+    /// The search itself; `k ≥ 1`, a query and limit without NaN, a tree with points.
+    fn candidates(&self, query: DVec3, k: usize, max_distance_squared: f64) -> Candidates {
+        let mut found = Candidates::new(k, max_distance_squared, self.points.len());
+        self.search(0, self.points.len(), &query.to_array(), [0.0; 3], &mut found);
+        found
     }
 
     /// Offers the points of `lo..hi` whose cell may hold a winner. `gap[a]` is the query's offset
@@ -190,10 +197,12 @@ fn distance_squared(a: &[f64; 3], b: &[f64; 3]) -> f64 {
 /// back to its best `k` (`select_nth_unstable`, linear) whenever it fills, so each offer costs
 /// O(1) amortised instead of a heap's O(log k). The `k`-th distance of the last cut bounds what
 /// may still enter: looser than the exact `k`-th between cuts, never wrong. (A `BinaryHeap` of
-/// `k` was 1.1× slower at k = 50 and 1.9× at k = 2048, 10⁵ photons on a sphere; a sorted array
-/// slower still.)
+/// `k` was 1.1× slower at k = 50 and 1.9× at k = 2048, and a sorted array slower than the heap:
+/// 1000 queries among 10⁵ points on a sphere, release, on the 2-core test machine, 2026-12-05.)
 struct Candidates {
     buffer: Vec<Candidate>,
+    /// Squared distances computed (offers made), for the test that the walk prunes.
+    offers: usize,
     k: usize,
     /// The limit until the first cut, then the `k`-th squared distance at the last cut.
     bound: f64,
@@ -203,7 +212,7 @@ impl Candidates {
     /// `k ≥ 1` best of `points ≥ 1`; a `k` above `points` is cut to it (so `2k` cannot overflow).
     fn new(k: usize, limit: f64, points: usize) -> Self {
         let k = k.min(points);
-        Self { buffer: Vec::with_capacity(2 * k), k, bound: limit }
+        Self { buffer: Vec::with_capacity(2 * k), offers: 0, k, bound: limit }
     }
 
     /// The squared distance beyond which no point can enter.
@@ -212,6 +221,7 @@ impl Candidates {
     }
 
     fn offer(&mut self, distance_squared: f64, index: u32) {
+        self.offers += 1;
         // Also refuses NaN: ∞ − ∞ when a point and the query are infinite on the same axis.
         if !(distance_squared <= self.bound) {
             return;
@@ -263,7 +273,7 @@ impl PartialOrd for Candidate {
 #[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
-    use crate::render::sampling::Sampler;
+    use crate::render::sampling::{Sampler, fibonacci_sphere};
 
     /// All points sorted by (squared distance, index), cut at the limit and at `k`: what
     /// [`PointTree::nearest`] promises.
@@ -331,17 +341,19 @@ mod tests {
         }
     }
 
-    /// The tree's split, the leaf size and the thread count do not change an answer: the same
-    /// points shuffled give the same neighbours (by position), and building on one thread gives
-    /// the same arrays as on the pool.
+    /// The input order and the thread count do not change an answer: the same points reversed
+    /// give the same neighbours (by position: no two of these random points lie at equal distance
+    /// from a query, so index order never decides), and building on one thread gives the same
+    /// arrays as on two (50 000 points: the build splits its top ranges in parallel).
     #[unit_test]
     fn the_tree_does_not_depend_on_input_order_or_threads() {
         let mut sampler = Sampler::new(3, 0, 0);
         let points: Vec<DVec3> =
             (0..50_000).map(|_| DVec3::new(sampler.uniform(), sampler.uniform(), sampler.uniform())).collect();
-        let tree = PointTree::new(&points);
-        let serial =
-            rayon::ThreadPoolBuilder::new().num_threads(1).build().unwrap().install(|| PointTree::new(&points));
+        let on_threads = |threads| {
+            rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap().install(|| PointTree::new(&points))
+        };
+        let (tree, serial) = (on_threads(2), on_threads(1));
         assert_eq!((&tree.points, &tree.indices, &tree.axes), (&serial.points, &serial.indices, &serial.axes));
         let reversed: Vec<DVec3> = points.iter().rev().copied().collect();
         let other = PointTree::new(&reversed);
@@ -374,7 +386,8 @@ mod tests {
         );
         assert!(tree.nearest(DVec3::NAN, 5, f64::INFINITY).is_empty());
         assert!(tree.nearest(DVec3::ZERO, 5, f64::NAN).is_empty());
-        // At infinity every squared distance is ∞: the first seven by index.
+        // Squared distances that overflow to ∞ (from 5e301, and from a query at infinity) or
+        // underflow to 0 (the 1e-300 offsets) still sort, by index among equals.
         for query in [DVec3::ZERO, DVec3::new(5e301, 0.0, 0.0), DVec3::new(0.0, 3e-299, 0.0), DVec3::INFINITY] {
             assert_eq!(tree.nearest(query, 7, f64::INFINITY), brute_force(&points, query, 7, f64::INFINITY), "{query}");
         }
@@ -384,9 +397,41 @@ mod tests {
             far.nearest(DVec3::INFINITY, 2, f64::INFINITY),
             [Neighbour { index: 0, distance_squared: f64::INFINITY }]
         );
+        // Half the points at x = +∞: the root's median is one of them, so the split's offset is
+        // ∞ − ∞ = NaN for a query at x = +∞, and the far side (every finite point, each at
+        // distance ∞) must still be searched.
+        let half: Vec<DVec3> = (0..200)
+            .map(|i| DVec3::new(if i % 2 == 0 { f64::INFINITY } else { f64::from(i) }, f64::from(i), 0.0))
+            .collect();
+        let query = DVec3::new(f64::INFINITY, 3.0, 0.0);
+        let found = PointTree::new(&half).nearest(query, 7, f64::INFINITY);
+        assert_eq!(found, brute_force(&half, query, 7, f64::INFINITY));
+        assert_eq!(found.iter().map(|n| n.index).collect::<Vec<_>>(), [1, 3, 5, 7, 9, 11, 13]);
         let same = PointTree::new(&vec![DVec3::ONE; 1000]);
         let found = same.nearest(DVec3::ONE, 1000, 0.0);
         assert_eq!(found.iter().map(|n| n.index).collect::<Vec<_>>(), (0..1000).collect::<Vec<u32>>());
+    }
+
+    /// The walk prunes: among 10⁵ points spread evenly over the unit sphere, 1000 random queries on
+    /// it compute on average 199.7 squared distances for the 50 nearest and 25.1 for the nearest
+    /// one (the renderer chapter quotes the first), not 10⁵; the bands allow a tenth either way.
+    #[unit_test]
+    fn the_walk_measures_a_few_hundred_distances_not_every_point() {
+        let points = fibonacci_sphere(100_000);
+        let tree = PointTree::new(&points);
+        let mut sampler = Sampler::new(5, 0, 0);
+        let queries: Vec<DVec3> = (0..1000)
+            .map(|_| {
+                let (z, phi) = (2.0 * sampler.uniform() - 1.0, 2.0 * std::f64::consts::PI * sampler.uniform());
+                let r = (1.0 - z * z).sqrt();
+                DVec3::new(r * phi.cos(), r * phi.sin(), z)
+            })
+            .collect();
+        let mean_offers =
+            |k| queries.iter().map(|&q| tree.candidates(q, k, f64::INFINITY).offers).sum::<usize>() as f64 / 1000.0;
+        let (fifty, one) = (mean_offers(50), mean_offers(1));
+        assert!((180.0..=220.0).contains(&fifty), "k = 50: {fifty} distances per query");
+        assert!((20.0..=30.0).contains(&one), "k = 1: {one} distances per query");
     }
 
     #[unit_test]

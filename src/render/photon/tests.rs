@@ -124,8 +124,11 @@ fn duplicate_photon_positions_are_handled() {
     let (nearest, r2) = map.nearest(DVec3::new(0.0, 0.0, 2.0), 5001).unwrap();
     assert_eq!(nearest.iter().filter(|p| p.position == DVec3::ZERO).count(), 5000);
     assert!((r2 - 5.0).abs() < 1e-12);
+    let white = Material::Diffuse { albedo: DVec3::ONE };
+    let gather = Gather::new(10, 0.5).unwrap();
     for point in [DVec3::NAN, DVec3::new(0.0, f64::INFINITY, 0.0)] {
         assert_eq!(map.irradiance(point, 10).unwrap_err(), PhotonError::QueryPoint);
+        assert_eq!(map.radiance_gathered(&white, point, DVec3::Z, DVec3::Z, gather), DVec3::ZERO);
     }
 }
 
