@@ -41,8 +41,8 @@ fn furnace_map(photons: usize) -> PhotonMap {
     trace_photons(&furnace_sphere(0.5, 1.0).expect("valid scene"), photons, 1).expect("photons").into_all()
 }
 
-fn brute_force_nearest(points: &[[f64; 3]], query: DVec3, k: usize) -> f64 {
-    let mut distances: Vec<f64> = points.iter().map(|p| DVec3::from(*p).distance_squared(query)).collect();
+fn brute_force_nearest(points: &[DVec3], query: DVec3, k: usize) -> f64 {
+    let mut distances: Vec<f64> = points.iter().map(|p| p.distance_squared(query)).collect();
     let (_, kth, _) = distances.select_nth_unstable_by(k - 1, f64::total_cmp);
     *kth
 }
@@ -89,31 +89,14 @@ mod kiddo_peer {
         let (kiddo, ours) = (tree(&positions), PointTree::new(&positions));
         let queries = fibonacci_sphere(1000);
         let fifty = NonZero::new(50).expect("50 > 0");
+        // kiddo's 50 nearest, nearest first (`distance` is the squared distance).
+        let nearest = |q: DVec3| kiddo.query(&q.to_array()).nearest_n::<SquaredEuclidean<f64>>(fifty).execute();
         for &q in &queries {
-            let theirs: Vec<f64> = kiddo
-                .query(&q.to_array())
-                .nearest_n::<SquaredEuclidean<f64>>(fifty)
-                .execute()
-                .iter()
-                .map(|n| n.distance)
-                .collect();
+            let theirs: Vec<f64> = nearest(q).iter().map(|n| n.distance).collect();
             let mine: Vec<f64> = ours.nearest(q, 50, f64::INFINITY).iter().map(|n| n.distance_squared).collect();
             assert_eq!(theirs, mine, "kiddo and the point tree disagree at {q}");
         }
-        bencher.bench_local(|| {
-            queries
-                .iter()
-                .map(|&q| {
-                    kiddo
-                        .query(&q.to_array())
-                        .nearest_n::<SquaredEuclidean<f64>>(fifty)
-                        .execute()
-                        .last()
-                        .expect("50 found")
-                        .distance
-                })
-                .sum::<f64>()
-        });
+        bencher.bench_local(|| queries.iter().map(|&q| nearest(q).last().expect("50 found").distance).sum::<f64>());
     }
 
     #[divan::bench]
@@ -125,8 +108,7 @@ mod kiddo_peer {
 
 #[divan::bench(sample_count = 3)]
 fn knn_brute_force(bencher: divan::Bencher) {
-    let map = furnace_map(50_000);
-    let points: Vec<[f64; 3]> = map.photons().iter().map(|p| p.position.to_array()).collect();
+    let points = furnace_positions();
     let queries = fibonacci_sphere(1000);
     bencher.bench_local(|| queries.iter().map(|&q| brute_force_nearest(&points, q, 50)).sum::<f64>());
 }

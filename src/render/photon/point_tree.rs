@@ -12,9 +12,9 @@
 //! and Mount's incremental distance, *Algorithms for fast vector quantization*, DCC 1993); and the
 //! `k` best are kept in a buffer cut back now and then instead of a heap (`Candidates`).
 //!
-//! Numerics: squared distances are `dx² + dy² + dz²`, summed in that order, exactly as
-//! [`glam::DVec3::distance_squared`] computes them. A far side's distance is the same sum over the
-//! query's offsets from the splitting planes; every step of it is monotonic under rounding, so it
+//! Numerics: squared distances are [`glam::DVec3::distance_squared`]'s, `dx² + dy² + dz²` summed in
+//! that order. A far side's distance is the same sum over the query's offsets from the splitting
+//! planes ([`glam::DVec3::length_squared`]); every step of it is monotonic under rounding, so it
 //! never exceeds the computed distance of a point beyond those planes, and skipping a side never
 //! loses a point. Among points at equal squared distance the lower index comes first, so the
 //! answer does not depend on how the tree was split.
@@ -33,13 +33,36 @@ pub const LEAF_SIZE: usize = 8;
 const PARALLEL_BUILD: usize = 1 << 14;
 
 /// One answer of [`PointTree::nearest`]: which point, and how far from the query.
-#[derive(Debug, Clone, Copy, PartialEq)]
+///
+/// Ordered by squared distance ([`f64::total_cmp`]), then by index: the order of the answers.
+/// Equality is that order's (the same bits of the distance, the same index).
+#[derive(Debug, Clone, Copy)]
 pub struct Neighbour {
     /// Index of the point in the slice the tree was built from.
     pub index: u32,
     /// Squared distance from the query point.
     pub distance_squared: f64,
 }
+
+impl Ord for Neighbour {
+    fn cmp(&self, other: &Self) -> Ordering {
+        self.distance_squared.total_cmp(&other.distance_squared).then(self.index.cmp(&other.index))
+    }
+}
+
+impl PartialOrd for Neighbour {
+    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
+        Some(self.cmp(other))
+    }
+}
+
+impl PartialEq for Neighbour {
+    fn eq(&self, other: &Self) -> bool {
+        self.cmp(other) == Ordering::Equal
+    }
+}
+
+impl Eq for Neighbour {}
 
 /// A balanced kd-tree over 3-D points (see the module documentation).
 ///
@@ -56,7 +79,7 @@ pub struct Neighbour {
 #[derive(Debug, Clone)]
 pub struct PointTree {
     /// The points in tree order.
-    points: Vec<[f64; 3]>,
+    points: Vec<DVec3>,
     /// For each point in tree order, its index in the slice the tree was built from.
     indices: Vec<u32>,
     /// The split axis (0, 1, 2) of the node whose median point is here; unused at leaves.
@@ -79,7 +102,7 @@ impl PointTree {
         let mut order: Vec<u32> = (0..points.len() as u32).collect();
         let mut axes = vec![0u8; points.len()];
         build(points, &mut order, &mut axes);
-        Self { points: order.iter().map(|&i| points[i as usize].to_array()).collect(), indices: order, axes }
+        Self { points: order.iter().map(|&i| points[i as usize]).collect(), indices: order, axes }
     }
 
     /// Number of points.
@@ -117,35 +140,31 @@ impl PointTree {
         if k == 0 || self.points.is_empty() || query.is_nan() || max_distance_squared.is_nan() {
             return Vec::new();
         }
-        self.candidates(query, k, max_distance_squared)
-            .into_sorted()
-            .into_iter()
-            .map(|c| Neighbour { index: c.index, distance_squared: c.distance_squared })
-            .collect()
+        self.candidates(query, k, max_distance_squared).into_sorted()
     }
 
     /// The search itself; `k ≥ 1`, a query and limit without NaN, a tree with points.
     fn candidates(&self, query: DVec3, k: usize, max_distance_squared: f64) -> Candidates {
         let mut found = Candidates::new(k, max_distance_squared, self.points.len());
-        self.search(0, self.points.len(), &query.to_array(), [0.0; 3], &mut found);
+        self.search(0, self.points.len(), query, DVec3::ZERO, &mut found);
         found
     }
 
     /// Offers the points of `lo..hi` whose cell may hold a winner. `gap[a]` is the query's offset
     /// along axis `a` from the slab of space this subtree covers (0 where the query lies within
     /// it), so `gap · gap` is a lower bound on the squared distance to any point here (Arya and
-    /// Mount's incremental distance): summed in the order of [`distance_squared`], rounding keeps
-    /// it a lower bound of the computed distances too, since every step is monotonic.
-    fn search(&self, lo: usize, hi: usize, query: &[f64; 3], gap: [f64; 3], found: &mut Candidates) {
+    /// Mount's incremental distance): summed in the order of a point's squared distance, rounding
+    /// keeps it a lower bound of the computed distances too, since every step is monotonic.
+    fn search(&self, lo: usize, hi: usize, query: DVec3, gap: DVec3, found: &mut Candidates) {
         if hi - lo <= LEAF_SIZE {
             for (point, &index) in self.points[lo..hi].iter().zip(&self.indices[lo..hi]) {
-                found.offer(distance_squared(point, query), index);
+                found.offer(point.distance_squared(query), index);
             }
             return;
         }
         let mid = lo + (hi - lo) / 2;
         let axis = usize::from(self.axes[mid]);
-        found.offer(distance_squared(&self.points[mid], query), self.indices[mid]);
+        found.offer(self.points[mid].distance_squared(query), self.indices[mid]);
         // Points in lo..mid have coordinate ≤ the median's, points in mid + 1..hi ≥ it: the far
         // side lies at least |delta| away along this axis.
         let delta = query[axis] - self.points[mid][axis];
@@ -156,7 +175,7 @@ impl PointTree {
         far_gap[axis] = delta;
         // Not `<`: a far point at exactly the bound may still win a tie by its index; and a NaN
         // gap (∞ − ∞, a query and a split both at infinity) proves nothing, so it visits.
-        if !(distance_squared(&far_gap, &[0.0; 3]) > found.bound()) {
+        if !(far_gap.length_squared() > found.bound) {
             self.search(far_lo, far_hi, query, far_gap, found);
         }
     }
@@ -188,11 +207,6 @@ fn build(points: &[DVec3], order: &mut [u32], axes: &mut [u8]) {
     }
 }
 
-fn distance_squared(a: &[f64; 3], b: &[f64; 3]) -> f64 {
-    let (dx, dy, dz) = (a[0] - b[0], a[1] - b[1], a[2] - b[2]);
-    dx * dx + dy * dy + dz * dz
-}
-
 /// The best `k` offers so far, kept lazily: offers go into a buffer of up to `2k`, which is cut
 /// back to its best `k` (`select_nth_unstable`, linear) whenever it fills, so each offer costs
 /// O(1) amortised instead of a heap's O(log k). The `k`-th distance of the last cut bounds what
@@ -200,11 +214,12 @@ fn distance_squared(a: &[f64; 3], b: &[f64; 3]) -> f64 {
 /// `k` was 1.1× slower at k = 50 and 1.9× at k = 2048, and a sorted array slower than the heap:
 /// 1000 queries among 10⁵ points on a sphere, release, on the 2-core test machine, 2026-12-05.)
 struct Candidates {
-    buffer: Vec<Candidate>,
+    buffer: Vec<Neighbour>,
     /// Squared distances computed (offers made), for the test that the walk prunes.
     offers: usize,
     k: usize,
-    /// The limit until the first cut, then the `k`-th squared distance at the last cut.
+    /// The squared distance beyond which no point can enter: the limit until the first cut, then
+    /// the `k`-th squared distance at the last cut.
     bound: f64,
 }
 
@@ -215,18 +230,13 @@ impl Candidates {
         Self { buffer: Vec::with_capacity(2 * k), offers: 0, k, bound: limit }
     }
 
-    /// The squared distance beyond which no point can enter.
-    fn bound(&self) -> f64 {
-        self.bound
-    }
-
     fn offer(&mut self, distance_squared: f64, index: u32) {
         self.offers += 1;
         // Also refuses NaN: ∞ − ∞ when a point and the query are infinite on the same axis.
         if !(distance_squared <= self.bound) {
             return;
         }
-        self.buffer.push(Candidate { distance_squared, index });
+        self.buffer.push(Neighbour { index, distance_squared });
         if self.buffer.len() == 2 * self.k {
             self.keep_best();
         }
@@ -243,50 +253,30 @@ impl Candidates {
     }
 
     /// The best `k` (or fewer), nearest first.
-    fn into_sorted(mut self) -> Vec<Candidate> {
+    fn into_sorted(mut self) -> Vec<Neighbour> {
         self.keep_best();
         self.buffer.sort_unstable();
         self.buffer
     }
 }
 
-#[derive(Debug, Clone, Copy, PartialEq)]
-struct Candidate {
-    distance_squared: f64,
-    index: u32,
-}
-
-impl Eq for Candidate {}
-
-impl Ord for Candidate {
-    fn cmp(&self, other: &Self) -> Ordering {
-        self.distance_squared.total_cmp(&other.distance_squared).then(self.index.cmp(&other.index))
-    }
-}
-
-impl PartialOrd for Candidate {
-    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
-        Some(self.cmp(other))
-    }
-}
-
 #[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;
-    use crate::render::sampling::{Sampler, fibonacci_sphere};
+    use crate::render::sampling::{Sampler, fibonacci_sphere, uniform_sphere};
 
     /// All points sorted by (squared distance, index), cut at the limit and at `k`: what
     /// [`PointTree::nearest`] promises.
     fn brute_force(points: &[DVec3], query: DVec3, k: usize, limit: f64) -> Vec<Neighbour> {
-        let mut all: Vec<Candidate> = points
+        let mut all: Vec<Neighbour> = points
             .iter()
             .enumerate()
-            .map(|(i, p)| Candidate { distance_squared: p.distance_squared(query), index: i as u32 })
-            .filter(|c| c.distance_squared <= limit)
+            .map(|(i, p)| Neighbour { index: i as u32, distance_squared: p.distance_squared(query) })
+            .filter(|n| n.distance_squared <= limit)
             .collect();
         all.sort();
         all.truncate(k);
-        all.into_iter().map(|c| Neighbour { index: c.index, distance_squared: c.distance_squared }).collect()
+        all
     }
 
     /// Point sets that stress the splits: uniform in a cube, on a plane (one axis never spreads),
@@ -413,20 +403,14 @@ mod tests {
     }
 
     /// The walk prunes: among 10⁵ points spread evenly over the unit sphere, 1000 random queries on
-    /// it compute on average 199.7 squared distances for the 50 nearest and 25.1 for the nearest
+    /// it compute on average 199.1 squared distances for the 50 nearest and 25.2 for the nearest
     /// one (the renderer chapter quotes the first), not 10⁵; the bands allow a tenth either way.
     #[unit_test]
     fn the_walk_measures_a_few_hundred_distances_not_every_point() {
         let points = fibonacci_sphere(100_000);
         let tree = PointTree::new(&points);
         let mut sampler = Sampler::new(5, 0, 0);
-        let queries: Vec<DVec3> = (0..1000)
-            .map(|_| {
-                let (z, phi) = (2.0 * sampler.uniform() - 1.0, 2.0 * std::f64::consts::PI * sampler.uniform());
-                let r = (1.0 - z * z).sqrt();
-                DVec3::new(r * phi.cos(), r * phi.sin(), z)
-            })
-            .collect();
+        let queries: Vec<DVec3> = (0..1000).map(|_| uniform_sphere(sampler.uniform(), sampler.uniform())).collect();
         let mean_offers =
             |k| queries.iter().map(|&q| tree.candidates(q, k, f64::INFINITY).offers).sum::<usize>() as f64 / 1000.0;
         let (fifty, one) = (mean_offers(50), mean_offers(1));
