@@ -22,7 +22,7 @@ use crate::render::{
 };
 use glam::DVec3;
 use serde::Serialize;
-use std::sync::OnceLock;
+use std::sync::{Mutex, OnceLock, PoisonError};
 
 /// Radiosity mesh used by the measured table: patches per quad edge and form-factor samples per
 /// patch edge.
@@ -468,6 +468,14 @@ pub fn verdict(fraction: f64) -> Verdict {
 /// and `hw3 effect-tables` share it (that command, which prints little more than the table, takes
 /// about 4 s in the test build on two cores). Any other budget is measured afresh on every call.
 ///
+/// Threads outside the rayon pool wait for one another, so such callers measure it once. A pool
+/// thread never waits for it: a worker blocked on a lock can still be handed other jobs while it
+/// waits for its own (rayon's work stealing), and one of them may ask for the table on the very
+/// thread that is measuring it, which would wait for itself (`cargo run --release` draws the figure
+/// jobs that ask for it, the Q5 tables and the effect grid, on the pool). A worker that finds no
+/// table measures one itself, and whichever table is stored first is kept; the measurements are
+/// seeded, so every copy is the same.
+///
 /// # Errors
 /// [`ExperimentError`] if an experiment fails (never for the built-in scenes).
 ///
@@ -482,11 +490,23 @@ pub fn verdict(fraction: f64) -> Verdict {
 /// ```
 pub fn measured_table(budget: &Budget) -> Result<Vec<MeasuredCell>, ExperimentError> {
     static TABLE: OnceLock<Result<Vec<MeasuredCell>, ExperimentError>> = OnceLock::new();
-    if *budget == Budget::PUBLISHED {
-        TABLE.get_or_init(|| measure_table(&Budget::PUBLISHED)).clone()
-    } else {
-        measure_table(budget)
+    // Whose turn it is to measure, among threads outside the pool; it guards no data, so a
+    // panicking measurement's poison is ignored.
+    static MEASURING: Mutex<()> = Mutex::new(());
+    if *budget != Budget::PUBLISHED {
+        return measure_table(budget);
     }
+    if let Some(table) = TABLE.get() {
+        return table.clone();
+    }
+    let _turn =
+        rayon::current_thread_index().is_none().then(|| MEASURING.lock().unwrap_or_else(PoisonError::into_inner));
+    if let Some(table) = TABLE.get() {
+        return table.clone();
+    }
+    let table = measure_table(&Budget::PUBLISHED);
+    // Only a finished table is moved into the cell: no thread ever waits here on a measurement.
+    TABLE.get_or_init(|| table).clone()
 }
 
 /// Every measurement of the table (each effect's reference, then its methods) is independent of
