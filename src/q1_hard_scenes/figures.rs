@@ -189,9 +189,9 @@ fn motion_figures(change: &MotionChange, noise: &MotionNoise) -> Result<Vec<Figu
 ///
 /// # Examples
 /// ```
-/// // `figures()` runs every job of `figure_jobs()`: every Q1 measurement, two seconds of CPU in
-/// // a test build. The example runs the first two, clutter and fog (about a fifth of that);
-/// // `tests/docs.rs` compares all twelve figures with the committed files byte for byte.
+/// // `figures()` runs every job of `figure_jobs()`: every Q1 measurement, about two seconds in
+/// // a test build. The example runs the first two, clutter and fog (about a quarter of that);
+/// // `tests/docs.rs` compares all twelve drawn figures with the committed files byte for byte.
 /// let first_two = &hw3::q1_hard_scenes::figure_jobs()[..2];
 /// let figures = hw3::plot::run_jobs(first_two).unwrap();
 /// let names: Vec<&str> = figures.iter().map(|f| f.file_name.as_str()).collect();

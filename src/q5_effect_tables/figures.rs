@@ -54,8 +54,8 @@ pub(super) fn figures(budget: &Budget) -> Result<Vec<Figure>, PlotError> {
     };
     figures.push(convergence.svg("q5_radiosity_convergence.svg", (640, 400))?);
     // The two measurements, side by side on the rayon pool: the validation's radiosity solves are
-    // partly serial, and alone they left a core idle while this job ran on in the test build.
-    // Errors are reported in the order the tables are written.
+    // partly serial, and run alone they left one core idle for the last seconds of the drawn-figure
+    // check in the test build. Errors are reported in the order the tables are written.
     let (validation, measured) = rayon::join(|| cornell_published::validation_table(budget), || measured_table(budget));
     let validation = validation.map_err(|e| draw_error("q5_cornell_published.md", &e))?;
     figures.push(Figure { file_name: "q5_cornell_published.md".into(), bytes: validation.into_bytes() });
