@@ -92,6 +92,9 @@ impl PhotonMaps {
 
     /// The map of every photon at every diffuse or glossy hit, built on the first call (on a
     /// copy of the stored photons) and kept: from then on the trace holds its photons twice.
+    /// Threads that ask at once before it is kept each build one (the same map) and the first is
+    /// kept: none waits for another's build, which runs on the rayon pool, so a pool thread can
+    /// never wait for a build that needs it.
     ///
     /// # Examples
     /// ```
@@ -102,7 +105,14 @@ impl PhotonMaps {
     /// ```
     #[must_use]
     pub fn all(&self) -> &PhotonMap {
-        self.all.get_or_init(|| PhotonMap::new(self.stored.clone()))
+        if let Some(map) = self.all.get() {
+            return map;
+        }
+        // Built outside the cell: a rayon worker that waits for its build's other half runs
+        // whatever job it can steal meanwhile, and one that asks for this map would otherwise wait
+        // in `get_or_init` for the build beneath it on the same thread.
+        let map = PhotonMap::new(self.stored.clone());
+        self.all.get_or_init(|| map)
     }
 
     /// The map of every stored photon, taken out of the trace (no copy when it was not built yet).
