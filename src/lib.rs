@@ -57,7 +57,7 @@ pub fn all_answers() -> Vec<Answers> {
 /// # Errors
 /// [`plot::PlotError`] if a figure cannot be drawn, or if two figures share a file name.
 pub fn all_figures() -> Result<Vec<plot::Figure>, plot::PlotError> {
-    // Two jobs read the Q5 measured table (the Q5 tables and the effect grid), and a pool worker
+    // Two jobs read the Q5 measured table (the Q5 figures and the effect grid), and a pool worker
     // never waits for another thread's measurement of it (`measured_table` says why): measured
     // here first, on the pool, it is measured once. A failure is reported by those jobs.
     let _ = q5_effect_tables::experiments::measured_table(&q5_effect_tables::Budget::PUBLISHED);

@@ -469,12 +469,13 @@ pub fn verdict(fraction: f64) -> Verdict {
 /// about 4 s in the test build on two cores). Any other budget is measured afresh on every call.
 ///
 /// Threads outside the rayon pool wait for one another, so such callers measure it once. A pool
-/// thread never waits for it: a worker blocked on a lock can still be handed other jobs while it
-/// waits for its own (rayon's work stealing), and one of them may ask for the table on the very
-/// thread that is measuring it, which would wait for itself (`cargo run --release` draws the figure
-/// jobs that ask for it, the Q5 tables and the effect grid, on the pool). A worker that finds no
-/// table measures one itself, and whichever table is stored first is kept; the measurements are
-/// seeded, so every copy is the same.
+/// thread never waits for it: while a worker waits inside rayon for part of its own work, it runs
+/// other queued jobs, so a worker that waited here could be the very thread that is measuring the
+/// table (re-entered), or could hold beneath its wait a piece the measurement needs; either way it
+/// would wait for itself (possible when two pool jobs read the table, on three or more threads).
+/// A worker that finds no table measures one itself, and whichever table is stored first is kept;
+/// the measurements are seeded, so every copy is the same. Pool jobs that read it are best run
+/// after one measurement outside them, as `all_figures` does.
 ///
 /// # Errors
 /// [`ExperimentError`] if an experiment fails (never for the built-in scenes).

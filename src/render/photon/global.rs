@@ -93,8 +93,9 @@ impl PhotonMaps {
     /// The map of every photon at every diffuse or glossy hit, built on the first call (on a
     /// copy of the stored photons) and kept: from then on the trace holds its photons twice.
     /// Threads that ask at once before it is kept each build one (the same map) and the first is
-    /// kept: none waits for another's build, which runs on the rayon pool, so a pool thread can
-    /// never wait for a build that needs it.
+    /// kept: none waits for another's build, which may run on the rayon pool (above 2¹⁴ photons),
+    /// so a pool thread can never wait for a build that needs it. Each such build copies the
+    /// photons, so call it once before reading the map from parallel jobs.
     ///
     /// # Examples
     /// ```
