@@ -180,10 +180,6 @@ pub fn answers() -> Answers {
 /// ```
 pub fn figures(budget: &Budget) -> Result<Vec<Figure>, PlotError> {
     let mut figures = figures::figures(budget)?;
-    let draw_error = |message| PlotError::Draw { figure: "q5_seed_comparison.md".into(), message };
-    let measured = experiments::measured_table(budget).map_err(|e| draw_error(e.to_string()))?;
-    let comparison = student_comparison_markdown(&measured).map_err(draw_error)?;
-    figures.push(Figure { file_name: "q5_seed_comparison.md".into(), bytes: comparison.into_bytes() });
     figures.push(photon_accuracy::figure()?);
     figures.push(photon_cornell::figure()?);
     Ok(figures)

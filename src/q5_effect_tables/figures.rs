@@ -14,8 +14,8 @@ use crate::render::scene::Scene;
 use crate::render::{Settings, render};
 
 /// The drawn figures: solver convergence (SVG), the published Cornell box's validation, the
-/// measured table and the grammar tables (markdown), the tables at `budget`; the renders are
-/// [`renders`].
+/// measured table, the grammar tables and the comparison with the student's answers (markdown),
+/// the tables at `budget`, measured once each; the renders are [`renders`].
 ///
 /// # Errors
 /// [`PlotError`] if drawing fails.
@@ -66,6 +66,9 @@ pub(super) fn figures(budget: &Budget) -> Result<Vec<Figure>, PlotError> {
     });
     let grammar = grammar_table_markdown().map_err(|e| draw_error("q5_grammar_tables.md", &e))?;
     figures.push(Figure { file_name: "q5_grammar_tables.md".into(), bytes: grammar.into_bytes() });
+    let comparison =
+        super::student_comparison_markdown(&measured).map_err(|e| draw_error("q5_seed_comparison.md", &e))?;
+    figures.push(Figure { file_name: "q5_seed_comparison.md".into(), bytes: comparison.into_bytes() });
     Ok(figures)
 }
 

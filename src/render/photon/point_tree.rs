@@ -265,6 +265,11 @@ mod tests {
     use super::*;
     use crate::render::sampling::{Sampler, fibonacci_sphere, uniform_sphere};
 
+    /// A point uniform in the unit cube.
+    fn in_unit_cube(sampler: &mut Sampler) -> DVec3 {
+        DVec3::new(sampler.uniform(), sampler.uniform(), sampler.uniform())
+    }
+
     /// All points sorted by (squared distance, index), cut at the limit and at `k`: what
     /// [`PointTree::nearest`] promises.
     fn brute_force(points: &[DVec3], query: DVec3, k: usize, limit: f64) -> Vec<Neighbour> {
@@ -284,9 +289,7 @@ mod tests {
     /// points, and collinear; sizes around the leaf size and the parallel build's threshold.
     fn point_sets() -> Vec<(&'static str, Vec<DVec3>)> {
         let mut sampler = Sampler::new(7, 0, 0);
-        let mut uniform = |n: usize| -> Vec<DVec3> {
-            (0..n).map(|_| DVec3::new(sampler.uniform(), sampler.uniform(), sampler.uniform())).collect()
-        };
+        let mut uniform = |n: usize| -> Vec<DVec3> { (0..n).map(|_| in_unit_cube(&mut sampler)).collect() };
         let cube = uniform(40_000);
         let plane: Vec<DVec3> = uniform(3000).into_iter().map(|p| DVec3::new(p.x, p.y, 0.25)).collect();
         let grid: Vec<DVec3> =
@@ -311,11 +314,11 @@ mod tests {
             assert_eq!(tree.len(), points.len());
             for q in 0..60 {
                 let query = match q % 3 {
-                    0 => DVec3::new(sampler.uniform(), sampler.uniform(), sampler.uniform()) * 20.0 - 5.0,
+                    0 => in_unit_cube(&mut sampler) * 20.0 - 5.0,
                     1 if !points.is_empty() => {
                         points[(sampler.uniform() * points.len() as f64) as usize % points.len()]
                     }
-                    _ => DVec3::new(sampler.uniform(), sampler.uniform(), sampler.uniform()),
+                    _ => in_unit_cube(&mut sampler),
                 };
                 let k = [1, 2, 7, 50, 600][q % 5];
                 let limit = [f64::INFINITY, 1.0, 0.01, 0.0][q % 4];
@@ -338,8 +341,7 @@ mod tests {
     #[unit_test]
     fn the_tree_does_not_depend_on_input_order_or_threads() {
         let mut sampler = Sampler::new(3, 0, 0);
-        let points: Vec<DVec3> =
-            (0..50_000).map(|_| DVec3::new(sampler.uniform(), sampler.uniform(), sampler.uniform())).collect();
+        let points: Vec<DVec3> = (0..50_000).map(|_| in_unit_cube(&mut sampler)).collect();
         let on_threads = |threads| {
             rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap().install(|| PointTree::new(&points))
         };
