@@ -99,10 +99,14 @@ impl PointTree {
     pub fn new(points: &[DVec3]) -> Self {
         assert!(u32::try_from(points.len()).is_ok(), "a point tree holds at most 2³² − 1 points");
         assert!(points.iter().all(|p| !p.is_nan()), "a point tree's points must not be NaN");
-        let mut order: Vec<u32> = (0..points.len() as u32).collect();
+        // Each point travels with its index: the medians are found by moving whole records of
+        // one contiguous array, not indices whose comparisons would read the points at random
+        // (cache misses above a few hundred thousand points).
+        let mut records: Vec<(DVec3, u32)> = points.iter().copied().zip(0..).collect();
         let mut axes = vec![0u8; points.len()];
-        build(points, &mut order, &mut axes);
-        Self { points: order.iter().map(|&i| points[i as usize]).collect(), indices: order, axes }
+        build(&mut records, &mut axes);
+        let (points, indices) = records.into_iter().unzip();
+        Self { points, indices, axes }
     }
 
     /// Number of points.
@@ -181,29 +185,31 @@ impl PointTree {
     }
 }
 
-/// Orders `order[..]` (indices into `points`) into tree order and records each interior node's
-/// axis at its middle (`axes` is the part of the tree's axis array for this range).
-fn build(points: &[DVec3], order: &mut [u32], axes: &mut [u8]) {
-    let n = order.len();
+/// Orders `records` (points with their indices) into tree order and records each interior
+/// node's axis at its middle (`axes` is the part of the tree's axis array for this range).
+///
+/// The records move exactly as bare indices would under the same comparisons, so the tree is the
+/// one an index array would give.
+fn build(records: &mut [(DVec3, u32)], axes: &mut [u8]) {
+    let n = records.len();
     if n <= LEAF_SIZE {
         return;
     }
-    let (lower, upper) = order.iter().fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lower, upper), &i| {
-        let p = points[i as usize];
-        (lower.min(p), upper.max(p))
-    });
+    let (lower, upper) = records
+        .iter()
+        .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lower, upper), &(p, _)| (lower.min(p), upper.max(p)));
     let axis = (upper - lower).max_position();
     let mid = n / 2;
-    order.select_nth_unstable_by(mid, |&a, &b| points[a as usize][axis].total_cmp(&points[b as usize][axis]));
+    records.select_nth_unstable_by(mid, |a, b| a.0[axis].total_cmp(&b.0[axis]));
     axes[mid] = axis as u8;
-    let (order_left, order_right) = order.split_at_mut(mid);
+    let (records_left, records_right) = records.split_at_mut(mid);
     let (axes_left, axes_right) = axes.split_at_mut(mid);
-    let (order_right, axes_right) = (&mut order_right[1..], &mut axes_right[1..]);
+    let (records_right, axes_right) = (&mut records_right[1..], &mut axes_right[1..]);
     if n > PARALLEL_BUILD {
-        rayon::join(|| build(points, order_left, axes_left), || build(points, order_right, axes_right));
+        rayon::join(|| build(records_left, axes_left), || build(records_right, axes_right));
     } else {
-        build(points, order_left, axes_left);
-        build(points, order_right, axes_right);
+        build(records_left, axes_left);
+        build(records_right, axes_right);
     }
 }
 
