@@ -9,7 +9,7 @@ use std::fmt::Write;
 /// ending in a newline. Cells are written as given (a `|` inside a cell must already be escaped).
 ///
 /// # Panics
-/// In debug builds, if a row's cell count differs from the header's.
+/// If a row's cell count differs from the header's.
 ///
 /// # Examples
 /// ```
@@ -26,7 +26,7 @@ where
     let mut out = format!("| {} |\n|{}\n", header.join(" | "), "---|".repeat(header.len()));
     for row in rows {
         let cells: Vec<C> = row.into_iter().collect();
-        debug_assert_eq!(cells.len(), header.len(), "a row has as many cells as the header");
+        assert_eq!(cells.len(), header.len(), "a row has as many cells as the header");
         out.push('|');
         for cell in &cells {
             let _ = write!(out, " {} |", cell.as_ref());
