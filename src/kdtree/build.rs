@@ -621,7 +621,8 @@ impl Builder {
         counts: &mut [[u32; W]; 6],
     ) -> Option<Candidate> {
         let bins = self.costs.bins;
-        assert!(bins <= W && W.is_power_of_two());
+        const { assert!(W.is_power_of_two()) };
+        assert!(bins <= W);
         let area = cell.surface_area();
         let (lo, hi) = (cell.min.to_array(), cell.max.to_array());
         let extent = [hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]];

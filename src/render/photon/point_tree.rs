@@ -101,7 +101,7 @@ impl PointTree {
         assert!(points.iter().all(|p| !p.is_nan()), "a point tree's points must not be NaN");
         // Each point travels with its index: the medians are found by moving whole records of
         // one contiguous array, not indices whose comparisons would read the points at random
-        // (cache misses above a few hundred thousand points).
+        // (a cache miss each, once the points outgrow the cache).
         let mut records: Vec<(DVec3, u32)> = points.iter().copied().zip(0..).collect();
         let mut axes = vec![0u8; points.len()];
         build(&mut records, &mut axes);
@@ -188,8 +188,10 @@ impl PointTree {
 /// Orders `records` (points with their indices) into tree order and records each interior
 /// node's axis at its middle (`axes` is the part of the tree's axis array for this range).
 ///
-/// The records move exactly as bare indices would under the same comparisons, so the tree is the
-/// one an index array would give.
+/// With the standard library of Rust 1.95, the records move exactly as bare indices would (its
+/// selection's steps depend on the comparisons alone for either size), so the tree is the one an
+/// index array gave; the answers of [`PointTree::nearest`] do not depend on the tree's shape in
+/// any case (ties go to the lower index).
 fn build(records: &mut [(DVec3, u32)], axes: &mut [u8]) {
     let n = records.len();
     if n <= LEAF_SIZE {
