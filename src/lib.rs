@@ -59,7 +59,8 @@ pub fn all_answers() -> Vec<Answers> {
 pub fn all_figures() -> Result<Vec<plot::Figure>, plot::PlotError> {
     // Two jobs read the Q5 measured table (the Q5 figures and the effect grid), and a pool worker
     // never waits for another thread's measurement of it (`measured_table` says why): measured
-    // here first, on the pool, it is measured once. A failure is reported by those jobs.
+    // here first, from this thread outside the pool, it is measured once. A failure is reported
+    // by those jobs.
     let _ = q5_effect_tables::experiments::measured_table(&q5_effect_tables::Budget::PUBLISHED);
     let figures = plot::run_jobs(&figure_jobs())?;
     let mut names: Vec<&str> = figures.iter().map(|f| f.file_name.as_str()).collect();

@@ -188,10 +188,9 @@ impl PointTree {
 /// Orders `records` (points with their indices) into tree order and records each interior
 /// node's axis at its middle (`axes` is the part of the tree's axis array for this range).
 ///
-/// With the standard library of Rust 1.95, the records move exactly as bare indices would (its
-/// selection's steps depend on the comparisons alone for either size), so the tree is the one an
-/// index array gave; the answers of [`PointTree::nearest`] do not depend on the tree's shape in
-/// any case (ties go to the lower index).
+/// Which of several points with the median's coordinate lands on which side is up to the
+/// standard library's selection; the answers of [`PointTree::nearest`] do not depend on it (ties
+/// go to the lower index), as the brute-force tests below check on grids, copies and planes.
 fn build(records: &mut [(DVec3, u32)], axes: &mut [u8]) {
     let n = records.len();
     if n <= LEAF_SIZE {
