@@ -6,8 +6,7 @@ use super::budget::Budget;
 use super::effect_scenes::{GLOSSY_FLOOR, WHITE_FLOOR, highlight_camera, lit_floor, mirror_room};
 use super::error::ExperimentError;
 use super::experiments::{
-    EXPERIMENTS, Measured, MeasuredCell, NEIGHBOURS, PHOTON_SEED, SPECULAR_DEPTH, measured_table, photon_eye,
-    table_methods,
+    Measured, MeasuredCell, NEIGHBOURS, PHOTON_SEED, SPECULAR_DEPTH, measured_table, photon_eye, table_methods,
 };
 use super::radiosity::{Mesh, Solver, System};
 use crate::plot::{self, Figure, Panel, PlotError};
@@ -71,7 +70,7 @@ pub const COLUMNS: usize = 2;
 /// ```
 pub const ROWS_PER_EFFECT: usize = 2;
 
-/// A row of the grid: the effect's id (a row of [`EXPERIMENTS`]), its title, and the exposure its
+/// A row of the grid: the effect's id (a row of [`EXPERIMENTS`](super::experiments::EXPERIMENTS)), its title, and the exposure its
 /// panels share (radiance is multiplied by it before the sRGB curve clips at 1).
 struct Row {
     effect: &'static str,
@@ -193,7 +192,7 @@ fn label(row: &Row, method: Measured, cost: &str, cell: &MeasuredCell) -> String
     )
 }
 
-/// The grid figure ([`GRID_PNG`]): for each effect of [`EXPERIMENTS`], its four [`PANEL_SIZE`]
+/// The grid figure ([`GRID_PNG`]): for each effect of [`EXPERIMENTS`](super::experiments::EXPERIMENTS), its four [`PANEL_SIZE`]
 /// panels (the methods of [`table_methods`]) on two rows of [`COLUMNS`], each labelled to its right
 /// with the cell of [`measured_table`] at the same `budget`, the same exposure across an effect's
 /// panels, each image rendered once (the bleeding and glow rows share theirs).
@@ -244,6 +243,7 @@ pub fn figure(budget: &Budget) -> Result<Figure, PlotError> {
 
 #[cfg(feature = "unit-tests")]
 mod tests {
+    use super::super::experiments::EXPERIMENTS;
     use super::*;
 
     /// The reuse in [`render_methods`] is exact: in a scene with nothing specular, photon
