@@ -70,8 +70,10 @@ pub const COLUMNS: usize = 2;
 /// ```
 pub const ROWS_PER_EFFECT: usize = 2;
 
-/// A row of the grid: the effect's id (a row of [`EXPERIMENTS`](super::experiments::EXPERIMENTS)), its title, and the exposure its
+/// A row of the grid: the effect's id (a row of [`EXPERIMENTS`]), its title, and the exposure its
 /// panels share (radiance is multiplied by it before the sRGB curve clips at 1).
+///
+/// [`EXPERIMENTS`]: super::experiments::EXPERIMENTS
 struct Row {
     effect: &'static str,
     title: &'static str,
@@ -192,7 +194,7 @@ fn label(row: &Row, method: Measured, cost: &str, cell: &MeasuredCell) -> String
     )
 }
 
-/// The grid figure ([`GRID_PNG`]): for each effect of [`EXPERIMENTS`](super::experiments::EXPERIMENTS), its four [`PANEL_SIZE`]
+/// The grid figure ([`GRID_PNG`]): for each effect of [`EXPERIMENTS`], its four [`PANEL_SIZE`]
 /// panels (the methods of [`table_methods`]) on two rows of [`COLUMNS`], each labelled to its right
 /// with the cell of [`measured_table`] at the same `budget`, the same exposure across an effect's
 /// panels, each image rendered once (the bleeding and glow rows share theirs).
@@ -214,6 +216,8 @@ fn label(row: &Row, method: Measured, cost: &str, cell: &MeasuredCell) -> String
 /// // Five white gaps of GROUP_GAP pixels between the six effects.
 /// assert_eq!(png.dimensions(), (COLUMNS as u32 * (width + LABEL_WIDTH), 12 * height + 5 * hw3::plot::GROUP_GAP));
 /// ```
+///
+/// [`EXPERIMENTS`]: super::experiments::EXPERIMENTS
 pub fn figure(budget: &Budget) -> Result<Figure, PlotError> {
     let draw_error = |e: &dyn std::fmt::Display| PlotError::Draw { figure: GRID_PNG.into(), message: e.to_string() };
     let cells = measured_table(budget).map_err(|e| draw_error(&e))?;
