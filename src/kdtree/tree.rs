@@ -69,9 +69,15 @@ pub struct KdTree {
     /// False when a sphere does not fit the grid: then [`KdTree::coarse`] is a placeholder and
     /// the traversal tests every sphere exactly.
     fits: bool,
-    /// The same lists exact, with each sphere's input index: read only for the spheres the
-    /// coarse test keeps.
-    exact: Vec<LeafSphere>,
+    /// The same lists exact, 32 bytes a sphere, two to a cache line: read only for the spheres
+    /// the coarse test keeps, one line each.
+    exact: Vec<ExactSphere>,
+    /// Each listed sphere's index in the input slice, beside [`KdTree::exact`] rather than in it
+    /// (40 bytes a sphere would put half of them across two lines): read only for a hit.
+    indices: Vec<u32>,
+    /// Whether a walk from inside the tree's box asks for every line of a leaf's exact spheres as
+    /// it reaches the leaf, before the coarse test: see [`prefetches_exact`].
+    prefetch_exact: bool,
     pub(super) bounds: Aabb,
 }
 
@@ -86,11 +92,70 @@ struct Motion {
     interval: (f64, f64),
 }
 
-/// A leaf's sphere in `f64` with its index in the input slice.
-#[derive(Debug, Clone, Copy)]
-struct LeafSphere {
-    sphere: Sphere<f64>,
-    index: u32,
+/// A leaf's sphere in `f64`, aligned so that none straddles two cache lines.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[repr(C, align(32))]
+struct ExactSphere(Sphere<f64>);
+
+const _: () = assert!(std::mem::size_of::<ExactSphere>() == 32);
+
+/// The cache line of the x86-64 processors measured (and most others).
+const LINE: usize = 64;
+
+/// [`prefetches_exact`]'s threshold on the coarse test's expected survivors per leaf visit.
+const PREFETCH_SURVIVORS: f64 = 0.5;
+
+/// [`prefetches_exact`]'s threshold on the size of a tree's exact lists: twice a core's
+/// second-level cache on the processors measured (1 MB), below which the lists are found in the
+/// near caches anyway and the requests are only work.
+const PREFETCH_MIN_BYTES: usize = 2 << 20;
+
+/// Whether a tree with these leaves asks for a leaf's exact spheres ahead (the scattered walk of
+/// [`KdTree::traverse_with`]): when its exact lists take more than [`PREFETCH_MIN_BYTES`] and a
+/// leaf visit is expected to find at least [`PREFETCH_SURVIVORS`] coarse survivors
+/// ([`survivors_per_leaf_visit`]). Large spheres (many survivors) then have their exact lines on
+/// the way while the coarse test runs; small ones would have nearly every line read for nothing.
+fn prefetches_exact(nodes: &[Node], bounds: Aabb, indices: &[u32], spheres: &[Sphere<f64>]) -> bool {
+    indices.len() * std::mem::size_of::<ExactSphere>() > PREFETCH_MIN_BYTES
+        && survivors_per_leaf_visit(nodes, bounds, indices, spheres) >= PREFETCH_SURVIVORS
+}
+
+/// An estimate of how many of a leaf's spheres a random line meets, averaged over the leaves a
+/// random line visits: `Σ_L Σ_{s∈L} min(S(s), S(L)) / Σ_L S(L)` over leaves `L` with cell
+/// surface area `S(L)` and spheres `s` of surface area `S(s) = 4πr²`.
+///
+/// By the Cauchy–Crofton formula, the lines that meet a convex body have a measure proportional to
+/// its surface area, so a random line that meets a convex cell meets a convex body inside it with
+/// probability `S(body)/S(cell)` (the same argument gives the surface area heuristic its
+/// probabilities: MacDonald and Booth, "Heuristics for ray tracing using space subdivision", *The
+/// Visual Computer* 6(3), 1990), and it visits the leaves in proportion to their areas. A sphere
+/// that sticks out of its cell is counted as `min(S(s), S(L))`, an upper bound. The coarse test
+/// keeps every sphere the line meets (and a few it misses), so this is close to its survivors.
+///
+/// A ball inscribed in a cube, alone: `4π / 24 = π/6 ≈ 0.52`.
+fn survivors_per_leaf_visit(nodes: &[Node], bounds: Aabb, indices: &[u32], spheres: &[Sphere<f64>]) -> f64 {
+    let (mut met, mut visits) = (0.0, 0.0);
+    let mut cells = vec![(0u32, bounds)];
+    while let Some((node, cell)) = cells.pop() {
+        match nodes[node as usize].kind() {
+            NodeKind::Interior { split, upper, axis } => {
+                let (mut lower_cell, mut upper_cell) = (cell, cell);
+                lower_cell.max[axis] = split;
+                upper_cell.min[axis] = split;
+                cells.push((node + 1, lower_cell));
+                cells.push((upper, upper_cell));
+            }
+            NodeKind::Leaf { first, count } => {
+                let area = cell.surface_area();
+                visits += area;
+                for &index in &indices[first as usize..(first + count) as usize] {
+                    let radius = spheres[index as usize].radius;
+                    met += (4.0 * std::f64::consts::PI * radius * radius).min(area);
+                }
+            }
+        }
+    }
+    if visits > 0.0 { met / visits } else { 0.0 }
 }
 
 impl KdTree {
@@ -207,7 +272,7 @@ impl KdTree {
         } else {
             (build(), spheres.iter().map(pack).collect())
         };
-        let leaf = |&index: &u32| LeafSphere { sphere: spheres[index as usize], index };
+        let leaf = |&index: &u32| ExactSphere(spheres[index as usize]);
         // A sphere off the grid leaves a placeholder and clears `fits` (indexed collects write in
         // place; collecting `Option`s would gather pieces and copy them).
         let fits = AtomicBool::new(true);
@@ -220,7 +285,7 @@ impl KdTree {
         // The leaf test reads whole groups of up to `WIDE_LANES` copies: placeholders after the
         // last leaf's copies keep its group inside the list (chained, so the list is written once).
         let padding = WIDE_LANES - 1;
-        let (exact, coarse): (Vec<LeafSphere>, Vec<CoarseSphere>) = if parallel {
+        let (exact, coarse): (Vec<ExactSphere>, Vec<CoarseSphere>) = if parallel {
             let indices = || built.indices.par_iter().with_min_len(PARALLEL_CHUNK);
             rayon::join(
                 || indices().map(leaf).collect(),
@@ -233,12 +298,15 @@ impl KdTree {
         let fits = fits.into_inner();
         // The traversal never reads the copies then; all placeholders, as they always were.
         let coarse = if fits { coarse } else { vec![CoarseSphere::KEEP; exact.len() + padding] };
-        Self { nodes: built.nodes, coarse, grid, fits, exact, bounds, motion: None }
+        let prefetch_exact = prefetches_exact(&built.nodes, bounds, &built.indices, spheres);
+        let indices = built.indices;
+        Self { nodes: built.nodes, coarse, grid, fits, exact, indices, prefetch_exact, bounds, motion: None }
     }
 
     /// The spheres of the leaf `(first, count)` with their input indices, in list order.
     pub(super) fn leaf_spheres(&self, first: u32, count: u32) -> impl Iterator<Item = (Sphere<f64>, u32)> + '_ {
-        self.exact[first as usize..(first + count) as usize].iter().map(|leaf| (leaf.sphere, leaf.index))
+        let range = first as usize..(first + count) as usize;
+        self.exact[range.clone()].iter().zip(&self.indices[range]).map(|(exact, &index)| (exact.0, index))
     }
 
     /// Number of nodes (interior and leaf).
@@ -353,10 +421,11 @@ impl KdTree {
 
     /// The leaf sphere `leaf` at `time`: the stored copy, moved by its velocity in a moving tree.
     #[inline]
-    fn sphere_at(&self, leaf: &LeafSphere, time: f64) -> Sphere<f64> {
+    /// The `k`-th listed sphere at `time`.
+    fn sphere_at(&self, k: usize, time: f64) -> Sphere<f64> {
         match &self.motion {
-            Some(motion) => moved(leaf.sphere, motion.velocities[leaf.index as usize], time),
-            None => leaf.sphere,
+            Some(motion) => moved(self.exact[k].0, motion.velocities[self.indices[k] as usize], time),
+            None => self.exact[k].0,
         }
     }
 
@@ -389,14 +458,14 @@ impl KdTree {
             let mask = if filtered { unsafe { coarse.survivors_of::<WIDE>(copies) } } else { lanes };
             let mut kept = mask & lanes;
             while kept != 0 {
-                let leaf = &self.exact[first + group + kept.trailing_zeros() as usize];
+                let k = first + group + kept.trailing_zeros() as usize;
                 kept &= kept - 1;
                 let Some(t) =
-                    roots_stable(ray, &self.sphere_at(leaf, time)).and_then(|roots| roots.first_in(t_min, t_max))
+                    roots_stable(ray, &self.sphere_at(k, time)).and_then(|roots| roots.first_in(t_min, t_max))
                 else {
                     continue;
                 };
-                let i = leaf.index as usize;
+                let i = self.indices[k] as usize;
                 if best.is_none_or(|(j, u)| t < u || (t == u && i < j)) {
                     *best = Some((i, t));
                 }
@@ -506,6 +575,9 @@ impl KdTree {
                 }
                 NodeKind::Leaf { first, count } => {
                     counter.sphere_tests(count);
+                    if scattered && self.prefetch_exact {
+                        prefetch_lines(&self.exact[first as usize..(first + count) as usize]);
+                    }
                     self.test_leaf::<WIDE>(ray, &coarse, filtered, (first, count), (t_min, t_max), time, &mut best);
                 }
             }
@@ -755,16 +827,35 @@ impl KdTree {
 /// Asks the CPU to start loading `items[index]`'s cache line without waiting for it.
 #[inline]
 pub(super) fn prefetch<T>(items: &[T], index: u32) {
+    prefetch_address(items.as_ptr().wrapping_add(index as usize).cast());
+}
+
+/// Asks the CPU to start loading every cache line `items` occupies (none for an empty slice).
+#[inline]
+fn prefetch_lines<T>(items: &[T]) {
+    let (start, bytes) = (items.as_ptr().cast::<i8>(), std::mem::size_of_val(items));
+    if bytes == 0 {
+        return;
+    }
+    // From the start of the line holding the first byte, one address per line.
+    let skip = start.addr() % LINE;
+    for offset in (0..skip + bytes).step_by(LINE) {
+        prefetch_address(start.wrapping_sub(skip).wrapping_add(offset));
+    }
+}
+
+/// Asks the CPU to start loading the cache line holding `at`.
+#[inline]
+fn prefetch_address(at: *const i8) {
     #[cfg(target_arch = "x86_64")]
     {
         use std::arch::x86_64::{_MM_HINT_T0, _mm_prefetch};
-        let at = items.as_ptr().wrapping_add(index as usize).cast::<i8>();
         // SAFETY: a prefetch is only a hint: it never faults, whatever the address, and changes no
         // memory; SSE is part of every x86-64 CPU.
         unsafe { _mm_prefetch::<_MM_HINT_T0>(at) };
     }
     #[cfg(not(target_arch = "x86_64"))]
-    let _ = (items, index);
+    let _ = at;
 }
 
 /// `sphere` moved by `velocity · time`; a static sphere untouched (no `+ 0·t`, which would turn a
@@ -1041,7 +1132,7 @@ mod tests {
         assert_eq!(one.bounds, four.bounds);
         assert_eq!((one.fits, one.grid), (four.fits, four.grid));
         assert_eq!(one.coarse, four.coarse);
-        let leaves = |tree: &KdTree| tree.exact.iter().map(|leaf| (leaf.index, leaf.sphere)).collect::<Vec<_>>();
+        let leaves = |tree: &KdTree| (tree.exact.clone(), tree.indices.clone(), tree.prefetch_exact);
         assert_eq!(leaves(&one), leaves(&four));
     }
 
@@ -1144,5 +1235,59 @@ mod tests {
             KdTree::build_moving(&spheres, &velocities[..2], (0.0, 1.0)),
             Err(BuildError::VelocityCount { spheres: 300, velocities: 2 })
         ));
+    }
+
+    /// A random line through a cube meets its inscribed ball with probability π/6 (the ratio of
+    /// their surface areas, 4π r² / 24 r²): a one-sphere tree is one leaf whose cell is that cube.
+    #[unit_test]
+    fn survivors_per_leaf_visit_of_a_ball_in_its_cube_is_pi_over_6() {
+        let spheres = [Sphere::new(DVec3::new(0.5, -2.0, 7.0), 1.5).unwrap()];
+        let tree = KdTree::build(&spheres).unwrap();
+        assert_eq!(tree.node_count(), 1);
+        let estimate = survivors_per_leaf_visit(&tree.nodes, tree.bounds, &tree.indices, &spheres);
+        let expected = std::f64::consts::PI / 6.0;
+        assert!((estimate - expected).abs() <= 4.0 * f64::EPSILON * expected, "{estimate} against {expected}");
+    }
+
+    /// The trees that ask for a leaf's exact spheres ahead: large spheres (about 1.8 survivors
+    /// per leaf visit at fixed volume, 10⁵ spheres) in lists over 2 MiB, not small ones (a tenth
+    /// of a survivor at fixed k) nor lists that fit the near caches; and a tree that asks answers
+    /// as brute force does, rays from inside its box (the walk that asks) and from outside.
+    #[unit_test]
+    fn only_large_spheres_in_large_lists_are_asked_for_ahead() {
+        let mut rng = seeded(0x5EED, 1);
+        let n = 80_000;
+        // Radii as the benchmark's two densities give them: spheres filling about a tenth of the
+        // unit cube, and radii ten times smaller.
+        let radius = (0.1 * 3.0 / (4.0 * std::f64::consts::PI * n as f64)).cbrt();
+        let scene_of = |rng: &mut Generator, n: usize, radius: f64| -> Vec<Sphere<f64>> {
+            (0..n)
+                .map(|_| {
+                    let c = DVec3::new(uniform(rng, 0.0, 1.0), uniform(rng, 0.0, 1.0), uniform(rng, 0.0, 1.0));
+                    Sphere::new(c, radius * uniform(rng, 0.5, 1.5)).unwrap()
+                })
+                .collect()
+        };
+        let large = scene_of(&mut rng, n, radius);
+        let tree = KdTree::build(&large).unwrap();
+        let survivors = survivors_per_leaf_visit(&tree.nodes, tree.bounds, &tree.indices, &large);
+        assert!(tree.reference_count() * 32 > PREFETCH_MIN_BYTES && survivors > PREFETCH_SURVIVORS, "{survivors}");
+        assert!(tree.prefetch_exact);
+        let small = scene_of(&mut rng, n, radius / 10.0);
+        let small_tree = KdTree::build(&small).unwrap();
+        let survivors = survivors_per_leaf_visit(&small_tree.nodes, small_tree.bounds, &small_tree.indices, &small);
+        assert!(survivors < PREFETCH_SURVIVORS && !small_tree.prefetch_exact, "{survivors}");
+        let few = &large[..n / 8];
+        assert!(!KdTree::build(few).unwrap().prefetch_exact);
+        let (mut inside, mut hits) = (0, 0);
+        for _ in 0..1_000 {
+            let ray = random_ray(&mut rng);
+            let expected = brute_force_closest_hit(&large, &ray, 0.0, f64::INFINITY);
+            assert_eq!(tree.closest_hit(&ray, 0.0, f64::INFINITY), expected, "{ray:?}");
+            inside += usize::from(tree.bounds.clip(&ray, 0.0, f64::INFINITY).is_some_and(|(t0, _)| t0 == 0.0));
+            hits += usize::from(expected.is_some());
+        }
+        // About an eighth of the origins lie in the cube, and about a fifth of the rays hit.
+        assert!(inside > 80 && hits > 150, "{inside} rays from inside, {hits} hits");
     }
 }
