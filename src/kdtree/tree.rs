@@ -124,11 +124,13 @@ fn prefetches_exact(nodes: &[Node], bounds: Aabb, indices: &[u32], spheres: &[Sp
 /// random line visits: `Σ_L Σ_{s∈L} min(S(s), S(L)) / Σ_L S(L)` over leaves `L` with cell
 /// surface area `S(L)` and spheres `s` of surface area `S(s) = 4πr²`.
 ///
-/// By the Cauchy–Crofton formula, the lines that meet a convex body have a measure proportional to
-/// its surface area, so a random line that meets a convex cell meets a convex body inside it with
-/// probability `S(body)/S(cell)` (the same argument gives the surface area heuristic its
-/// probabilities: MacDonald and Booth, "Heuristics for ray tracing using space subdivision", *The
-/// Visual Computer* 6(3), 1990), and it visits the leaves in proportion to their areas. A sphere
+/// The mean area of a convex body's shadows over all directions is a quarter of its surface area
+/// (Cauchy's surface area formula: Tsukerman and Veomett, arXiv:1604.05815, Theorem 1), so the
+/// lines that meet a convex body have a measure proportional to its surface area (Cauchy–Crofton),
+/// and a random line that meets a convex cell meets a convex body inside it with probability
+/// `S(body)/S(cell)` (the probability the surface area heuristic is built on: MacDonald and Booth,
+/// "Heuristics for ray tracing using space subdivision", *The Visual Computer* 6(3), 1990); it
+/// visits the leaves in proportion to their areas. A sphere
 /// that sticks out of its cell is counted as `min(S(s), S(L))`, an upper bound. The coarse test
 /// keeps every sphere the line meets (and a few it misses), so this is close to its survivors.
 ///
