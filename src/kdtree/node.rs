@@ -112,6 +112,25 @@ impl Node {
     }
 }
 
+/// Calls `visit` with every node of the tree `nodes` (root first, pre-order not guaranteed) and its
+/// cell: the root's is `bounds`; an interior node's lower child (the next node) takes the part
+/// below its split plane, its upper child the part above. The one place the cells are derived from
+/// the splits, for the measures of a built tree.
+pub(crate) fn visit_cells(nodes: &[Node], bounds: Aabb, mut visit: impl FnMut(NodeKind, &Aabb)) {
+    let mut cells = vec![(0u32, bounds)];
+    while let Some((node, cell)) = cells.pop() {
+        let kind = nodes[node as usize].kind();
+        visit(kind, &cell);
+        if let NodeKind::Interior { split, upper, axis } = kind {
+            let (mut lower_cell, mut upper_cell) = (cell, cell);
+            lower_cell.max[axis] = split;
+            upper_cell.min[axis] = split;
+            cells.push((node + 1, lower_cell));
+            cells.push((upper, upper_cell));
+        }
+    }
+}
+
 #[cfg(feature = "unit-tests")]
 mod tests {
     use super::*;

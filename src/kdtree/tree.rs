@@ -7,7 +7,7 @@ use super::build::{
     Builder, EXACT_MAX, PARALLEL_CHUNK, PARALLEL_MIN, Prim, SahCosts, Subtree, check_costs, max_depth, sphere_prims,
 };
 use super::coarse::{CoarseRay, CoarseSphere, Grid, LANES, WIDE_LANES};
-use super::node::{Aabb, Node, NodeKind};
+use super::node::{Aabb, Node, NodeKind, visit_cells};
 use super::stack::FarStack;
 use super::{BuildError, ReciprocalAxis, Side, split_pieces};
 use crate::geometry::sphere::roots_stable;
@@ -56,8 +56,8 @@ pub struct KdTree {
     /// The spheres' motion ([`KdTree::build_moving`]); `None` for a tree of static spheres, whose
     /// traversal then never reads it.
     motion: Option<Motion>,
-    /// A leaf's `first` indexes [`KdTree::coarse`] and [`KdTree::exact`], its `count` is its
-    /// number of spheres.
+    /// A leaf's `first` indexes [`KdTree::coarse`], [`KdTree::exact`] and [`KdTree::indices`], its
+    /// `count` is its number of spheres.
     pub(super) nodes: Vec<Node>,
     /// The leaves' sphere lists, concatenated in node order, as the coarse `f32` test reads them
     /// (8 bytes a sphere, on [`KdTree::grid`]): a copy of each sphere sits beside its leaf's others
@@ -73,7 +73,8 @@ pub struct KdTree {
     /// the coarse test keeps, one line each.
     exact: Vec<ExactSphere>,
     /// Each listed sphere's index in the input slice, beside [`KdTree::exact`] rather than in it
-    /// (40 bytes a sphere would put half of them across two lines): read only for a hit.
+    /// (40 bytes a sphere would put half of them across two lines): read only for a hit (and, in a
+    /// moving tree, for every exact test, to find the sphere's velocity).
     indices: Vec<u32>,
     /// Whether a walk from inside the tree's box asks for every line of a leaf's exact spheres as
     /// it reaches the leaf, before the coarse test: see [`prefetches_exact`].
@@ -105,16 +106,19 @@ const LINE: usize = 64;
 /// [`prefetches_exact`]'s threshold on the coarse test's expected survivors per leaf visit.
 const PREFETCH_SURVIVORS: f64 = 0.5;
 
-/// [`prefetches_exact`]'s threshold on the size of a tree's exact lists: twice a core's
-/// second-level cache on the processors measured (1 MB), below which the lists are found in the
-/// near caches anyway and the requests are only work.
+/// [`prefetches_exact`]'s threshold on the size of a tree's exact lists: two to four times a
+/// core's second-level cache on the processors the Q3 engineering notes measure (1 MB and
+/// 512 KB), below which the lists are found in the near caches anyway and the requests are only
+/// work.
 const PREFETCH_MIN_BYTES: usize = 2 << 20;
 
-/// Whether a tree with these leaves asks for a leaf's exact spheres ahead (the scattered walk of
-/// [`KdTree::traverse_with`]): when its exact lists take more than [`PREFETCH_MIN_BYTES`] and a
-/// leaf visit is expected to find at least [`PREFETCH_SURVIVORS`] coarse survivors
-/// ([`survivors_per_leaf_visit`]). Large spheres (many survivors) then have their exact lines on
-/// the way while the coarse test runs; small ones would have nearly every line read for nothing.
+/// Whether a tree with these leaves asks for a leaf's exact spheres ahead (the single-ray walk of
+/// [`KdTree::traverse_with`], for rays that start inside the box): when its exact lists take more
+/// than [`PREFETCH_MIN_BYTES`] and a leaf visit is expected to find at least
+/// [`PREFETCH_SURVIVORS`] coarse survivors ([`survivors_per_leaf_visit`]). Large spheres (many
+/// survivors) then have their exact lines on the way while the coarse test runs; small ones would
+/// have nearly every line read for nothing. The threshold is checked on the benchmark's two
+/// densities only, whose estimates (0.05–0.29 and 0.76–0.84) any value between them separates.
 fn prefetches_exact(nodes: &[Node], bounds: Aabb, indices: &[u32], spheres: &[Sphere<f64>]) -> bool {
     indices.len() * std::mem::size_of::<ExactSphere>() > PREFETCH_MIN_BYTES
         && survivors_per_leaf_visit(nodes, bounds, indices, spheres) >= PREFETCH_SURVIVORS
@@ -126,37 +130,29 @@ fn prefetches_exact(nodes: &[Node], bounds: Aabb, indices: &[u32], spheres: &[Sp
 ///
 /// The mean area of a convex body's shadows over all directions is a quarter of its surface area
 /// (Cauchy's surface area formula: Tsukerman and Veomett, arXiv:1604.05815, Theorem 1), so the
-/// lines that meet a convex body have a measure proportional to its surface area (Cauchy–Crofton),
-/// and a random line that meets a convex cell meets a convex body inside it with probability
-/// `S(body)/S(cell)` (the probability the surface area heuristic is built on: MacDonald and Booth,
-/// "Heuristics for ray tracing using space subdivision", *The Visual Computer* 6(3), 1990); it
-/// visits the leaves in proportion to their areas. A sphere
-/// that sticks out of its cell is counted as `min(S(s), S(L))`, an upper bound. The coarse test
-/// keeps every sphere the line meets (and a few it misses), so this is close to its survivors.
+/// random lines that meet a convex body (directions uniform, positions uniform across the shadow)
+/// have a measure proportional to its surface area. A random line that meets a convex cell then
+/// meets a convex body inside it with probability `S(body)/S(cell)` (the probability the surface
+/// area heuristic is built on: MacDonald and Booth, "Heuristics for ray tracing using space
+/// subdivision", *The Visual Computer* 6(3), 1990), and random lines visit the leaves in
+/// proportion to their areas. A sphere that sticks out of its cell is counted as
+/// `min(S(s), S(L))`, an upper bound. The coarse test keeps every sphere the line meets (and a few
+/// it misses), so this is close to its survivors for lines; the walk's rays start inside the box
+/// and stop at their first hit, so for them it is an estimate.
 ///
 /// A ball inscribed in a cube, alone: `4π / 24 = π/6 ≈ 0.52`.
 fn survivors_per_leaf_visit(nodes: &[Node], bounds: Aabb, indices: &[u32], spheres: &[Sphere<f64>]) -> f64 {
     let (mut met, mut visits) = (0.0, 0.0);
-    let mut cells = vec![(0u32, bounds)];
-    while let Some((node, cell)) = cells.pop() {
-        match nodes[node as usize].kind() {
-            NodeKind::Interior { split, upper, axis } => {
-                let (mut lower_cell, mut upper_cell) = (cell, cell);
-                lower_cell.max[axis] = split;
-                upper_cell.min[axis] = split;
-                cells.push((node + 1, lower_cell));
-                cells.push((upper, upper_cell));
-            }
-            NodeKind::Leaf { first, count } => {
-                let area = cell.surface_area();
-                visits += area;
-                for &index in &indices[first as usize..(first + count) as usize] {
-                    let radius = spheres[index as usize].radius;
-                    met += (4.0 * std::f64::consts::PI * radius * radius).min(area);
-                }
+    visit_cells(nodes, bounds, |kind, cell| {
+        if let NodeKind::Leaf { first, count } = kind {
+            let area = cell.surface_area();
+            visits += area;
+            for &index in &indices[first as usize..(first + count) as usize] {
+                let radius = spheres[index as usize].radius;
+                met += (4.0 * std::f64::consts::PI * radius * radius).min(area);
             }
         }
-    }
+    });
     if visits > 0.0 { met / visits } else { 0.0 }
 }
 
@@ -343,21 +339,13 @@ impl KdTree {
             return 0.0;
         }
         let mut total = 0.0;
-        let mut stack = vec![(0u32, self.bounds)];
-        while let Some((node, cell)) = stack.pop() {
+        visit_cells(&self.nodes, self.bounds, |kind, cell| {
             let p = cell.surface_area() / root_area;
-            match self.nodes[node as usize].kind() {
-                NodeKind::Interior { split, upper, axis } => {
-                    total += costs.traversal * p;
-                    let (mut lower_cell, mut upper_cell) = (cell, cell);
-                    lower_cell.max[axis] = split;
-                    upper_cell.min[axis] = split;
-                    stack.push((node + 1, lower_cell));
-                    stack.push((upper, upper_cell));
-                }
-                NodeKind::Leaf { count, .. } => total += costs.intersection * f64::from(count) * p,
-            }
-        }
+            total += match kind {
+                NodeKind::Interior { .. } => costs.traversal * p,
+                NodeKind::Leaf { count, .. } => costs.intersection * f64::from(count) * p,
+            };
+        });
         total
     }
 
@@ -421,9 +409,8 @@ impl KdTree {
         self.motion.as_ref().map_or(0.0, |m| m.interval.0)
     }
 
-    /// The leaf sphere `leaf` at `time`: the stored copy, moved by its velocity in a moving tree.
+    /// The `k`-th listed sphere at `time`: the stored copy, moved by its velocity in a moving tree.
     #[inline]
-    /// The `k`-th listed sphere at `time`.
     fn sphere_at(&self, k: usize, time: f64) -> Sphere<f64> {
         match &self.motion {
             Some(motion) => moved(self.exact[k].0, motion.velocities[self.indices[k] as usize], time),
@@ -1251,17 +1238,36 @@ mod tests {
         assert!((estimate - expected).abs() <= 4.0 * f64::EPSILON * expected, "{estimate} against {expected}");
     }
 
-    /// The trees that ask for a leaf's exact spheres ahead: large spheres (about 1.8 survivors
-    /// per leaf visit at fixed volume, 10⁵ spheres) in lists over 2 MiB, not small ones (a tenth
-    /// of a survivor at fixed k) nor lists that fit the near caches; and a tree that asks answers
-    /// as brute force does, rays from inside its box (the walk that asks) and from outside.
+    /// The estimate on a tree written by hand, worked out in small numbers: the box
+    /// [−2, 2] × [−1, 1] × [−1, 1] split at x = 0 into two cells of area 24 each; the lower leaf
+    /// lists a ball of radius 1 (area 4π), the upper one a ball of radius ½ (area π) and one of
+    /// radius 2 (area 16π, more than its cell's 24, so counted as 24): (4π + π + 24) / 48.
+    #[unit_test]
+    fn survivors_per_leaf_visit_caps_a_sphere_at_its_cell_and_weighs_leaves_by_area() {
+        let spheres = [
+            Sphere::new(DVec3::new(-1.0, 0.0, 0.0), 1.0).unwrap(),
+            Sphere::new(DVec3::new(1.0, 0.0, 0.0), 0.5).unwrap(),
+            Sphere::new(DVec3::new(1.0, 0.0, 0.0), 2.0).unwrap(),
+        ];
+        let nodes = [Node::interior(0.0, 0, 2), Node::leaf(0, 1), Node::leaf(1, 2)];
+        let bounds = Aabb { min: DVec3::new(-2.0, -1.0, -1.0), max: DVec3::new(2.0, 1.0, 1.0) };
+        let estimate = survivors_per_leaf_visit(&nodes, bounds, &[0, 1, 2], &spheres);
+        let expected = (5.0 * std::f64::consts::PI + 24.0) / 48.0;
+        assert!((estimate - expected).abs() <= 4.0 * f64::EPSILON * expected, "{estimate} against {expected}");
+    }
+
+    /// Which trees ask for a leaf's exact spheres ahead: 80 000 spheres filling about a tenth of
+    /// the unit cube (135 392 listings, 4.3 MB; 0.68 expected survivors per leaf visit) do; as many
+    /// spheres ten times smaller (81 930 listings, 2.6 MB; 0.004 per visit) do not, and neither do
+    /// 8 000 spheres filling a tenth of the cube (0.63 per visit, but 12 749 listings, 0.4 MB). A
+    /// tree that asks answers as brute force does, rays from inside its box (the walk that asks)
+    /// and from outside.
     #[unit_test]
     fn only_large_spheres_in_large_lists_are_asked_for_ahead() {
         let mut rng = seeded(0x5EED, 1);
         let n = 80_000;
-        // Radii as the benchmark's two densities give them: spheres filling about a tenth of the
-        // unit cube, and radii ten times smaller.
-        let radius = (0.1 * 3.0 / (4.0 * std::f64::consts::PI * n as f64)).cbrt();
+        // The radius at which `n` spheres fill about a tenth of the unit cube.
+        let radius = |n: usize| (0.1 * 3.0 / (4.0 * std::f64::consts::PI * n as f64)).cbrt();
         let scene_of = |rng: &mut Generator, n: usize, radius: f64| -> Vec<Sphere<f64>> {
             (0..n)
                 .map(|_| {
@@ -1270,17 +1276,23 @@ mod tests {
                 })
                 .collect()
         };
-        let large = scene_of(&mut rng, n, radius);
+        let survivors = |tree: &KdTree, spheres: &[Sphere<f64>]| {
+            survivors_per_leaf_visit(&tree.nodes, tree.bounds, &tree.indices, spheres)
+        };
+        let large_lists =
+            |tree: &KdTree| tree.reference_count() * std::mem::size_of::<ExactSphere>() > PREFETCH_MIN_BYTES;
+        let large = scene_of(&mut rng, n, radius(n));
         let tree = KdTree::build(&large).unwrap();
-        let survivors = survivors_per_leaf_visit(&tree.nodes, tree.bounds, &tree.indices, &large);
-        assert!(tree.reference_count() * 32 > PREFETCH_MIN_BYTES && survivors > PREFETCH_SURVIVORS, "{survivors}");
-        assert!(tree.prefetch_exact);
-        let small = scene_of(&mut rng, n, radius / 10.0);
+        let estimate = survivors(&tree, &large);
+        assert!(large_lists(&tree) && estimate > PREFETCH_SURVIVORS && tree.prefetch_exact, "{estimate}");
+        let small = scene_of(&mut rng, n, radius(n) / 10.0);
         let small_tree = KdTree::build(&small).unwrap();
-        let survivors = survivors_per_leaf_visit(&small_tree.nodes, small_tree.bounds, &small_tree.indices, &small);
-        assert!(survivors < PREFETCH_SURVIVORS && !small_tree.prefetch_exact, "{survivors}");
-        let few = &large[..n / 8];
-        assert!(!KdTree::build(few).unwrap().prefetch_exact);
+        let estimate = survivors(&small_tree, &small);
+        assert!(large_lists(&small_tree) && estimate < PREFETCH_SURVIVORS && !small_tree.prefetch_exact, "{estimate}");
+        let few = scene_of(&mut rng, n / 10, radius(n / 10));
+        let few_tree = KdTree::build(&few).unwrap();
+        let estimate = survivors(&few_tree, &few);
+        assert!(!large_lists(&few_tree) && estimate > PREFETCH_SURVIVORS && !few_tree.prefetch_exact, "{estimate}");
         let (mut inside, mut hits) = (0, 0);
         for _ in 0..1_000 {
             let ray = random_ray(&mut rng);
