@@ -126,6 +126,10 @@ pub fn checksum(hits: &[Option<(usize, f64)>]) -> (usize, f64) {
 /// - the checksums at N = 100 (fixed k) of the first run (`f32`): camera 184 983 hits,
 ///   Σt = 223 855.88; random 727 694 hits, Σt = 96 248.64. The `f64` tree must land within 3 hits
 ///   and 2·10⁻⁵ relative.
+/// - the trees' expected coarse survivors per leaf visit
+///   ([`KdTree::survivors_per_leaf_visit`]) that the Q3 engineering notes quote (step 23) and
+///   choose the prefetch of exact spheres by: 0.29 and 0.12 at N = 10⁴ and 10⁵ with fixed k, 0.76
+///   and 0.82 with fixed volume, to two decimals.
 ///
 /// # Panics
 /// On the first check that fails.
@@ -146,6 +150,16 @@ pub fn self_checks() {
         }
     }
     assert!(hits > 0, "the ray hits something in at least one scene");
+
+    for (density, n, quoted) in [
+        (Density::FixedMeanFreePath, 10_000, "0.29"),
+        (Density::FixedMeanFreePath, 100_000, "0.12"),
+        (Density::FixedVolumeFraction, 10_000, "0.76"),
+        (Density::FixedVolumeFraction, 100_000, "0.82"),
+    ] {
+        let estimate = KdTree::build(&scene(n, density)).unwrap().survivors_per_leaf_visit();
+        assert_eq!(format!("{estimate:.2}"), quoted, "{density:?}, N = {n}");
+    }
 
     let spheres = scene(100, Density::FixedMeanFreePath);
     let tree = KdTree::build(&spheres).unwrap();

@@ -1,5 +1,5 @@
 //! The node layout both the builder and the traversal read: the bounding box, the packed 8-byte
-//! node and its decoded view.
+//! node and its decoded view, and the cells a built tree's splits make ([`visit_cells`]).
 
 use crate::geometry::Ray;
 use glam::DVec3;
@@ -112,8 +112,8 @@ impl Node {
     }
 }
 
-/// Calls `visit` with every node of the tree `nodes` (root first, pre-order not guaranteed) and its
-/// cell: the root's is `bounds`; an interior node's lower child (the next node) takes the part
+/// Calls `visit` with every node of the tree `nodes` and its cell, depth first from the root (each
+/// upper subtree before its lower one): the root's is `bounds`; an interior node's lower child (the next node) takes the part
 /// below its split plane, its upper child the part above. The one place the cells are derived from
 /// the splits, for the measures of a built tree.
 pub(crate) fn visit_cells(nodes: &[Node], bounds: Aabb, mut visit: impl FnMut(NodeKind, &Aabb)) {

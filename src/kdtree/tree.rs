@@ -115,40 +115,24 @@ const PREFETCH_MIN_BYTES: usize = 2 << 20;
 /// Whether a tree with these leaves asks for a leaf's exact spheres ahead (the single-ray walk of
 /// [`KdTree::traverse_with`], for rays that start inside the box): when its exact lists take more
 /// than [`PREFETCH_MIN_BYTES`] and a leaf visit is expected to find at least
-/// [`PREFETCH_SURVIVORS`] coarse survivors ([`survivors_per_leaf_visit`]). Large spheres (many
+/// [`PREFETCH_SURVIVORS`] coarse survivors ([`KdTree::survivors_per_leaf_visit`]). Large spheres (many
 /// survivors) then have their exact lines on the way while the coarse test runs; small ones would
 /// have nearly every line read for nothing. The threshold is checked on the benchmark's two
 /// densities only, whose estimates (0.05–0.29 and 0.76–0.84) any value between them separates.
-fn prefetches_exact(nodes: &[Node], bounds: Aabb, indices: &[u32], spheres: &[Sphere<f64>]) -> bool {
-    indices.len() * std::mem::size_of::<ExactSphere>() > PREFETCH_MIN_BYTES
-        && survivors_per_leaf_visit(nodes, bounds, indices, spheres) >= PREFETCH_SURVIVORS
+fn prefetches_exact(nodes: &[Node], bounds: Aabb, exact: &[ExactSphere]) -> bool {
+    std::mem::size_of_val(exact) > PREFETCH_MIN_BYTES
+        && survivors_per_leaf_visit(nodes, bounds, exact) >= PREFETCH_SURVIVORS
 }
 
-/// An estimate of how many of a leaf's spheres a random line meets, averaged over the leaves a
-/// random line visits: `Σ_L Σ_{s∈L} min(S(s), S(L)) / Σ_L S(L)` over leaves `L` with cell
-/// surface area `S(L)` and spheres `s` of surface area `S(s) = 4πr²`.
-///
-/// The mean area of a convex body's shadows over all directions is a quarter of its surface area
-/// (Cauchy's surface area formula: Tsukerman and Veomett, arXiv:1604.05815, Theorem 1), so the
-/// random lines that meet a convex body (directions uniform, positions uniform across the shadow)
-/// have a measure proportional to its surface area. A random line that meets a convex cell then
-/// meets a convex body inside it with probability `S(body)/S(cell)` (the probability the surface
-/// area heuristic is built on: MacDonald and Booth, "Heuristics for ray tracing using space
-/// subdivision", *The Visual Computer* 6(3), 1990), and random lines visit the leaves in
-/// proportion to their areas. A sphere that sticks out of its cell is counted as
-/// `min(S(s), S(L))`, an upper bound. The coarse test keeps every sphere the line meets (and a few
-/// it misses), so this is close to its survivors for lines; the walk's rays start inside the box
-/// and stop at their first hit, so for them it is an estimate.
-///
-/// A ball inscribed in a cube, alone: `4π / 24 = π/6 ≈ 0.52`.
-fn survivors_per_leaf_visit(nodes: &[Node], bounds: Aabb, indices: &[u32], spheres: &[Sphere<f64>]) -> f64 {
+/// [`KdTree::survivors_per_leaf_visit`] of the tree with these nodes, box and exact lists.
+fn survivors_per_leaf_visit(nodes: &[Node], bounds: Aabb, exact: &[ExactSphere]) -> f64 {
     let (mut met, mut visits) = (0.0, 0.0);
     visit_cells(nodes, bounds, |kind, cell| {
         if let NodeKind::Leaf { first, count } = kind {
             let area = cell.surface_area();
             visits += area;
-            for &index in &indices[first as usize..(first + count) as usize] {
-                let radius = spheres[index as usize].radius;
+            for listed in &exact[first as usize..(first + count) as usize] {
+                let radius = listed.0.radius;
                 met += (4.0 * std::f64::consts::PI * radius * radius).min(area);
             }
         }
@@ -296,7 +280,7 @@ impl KdTree {
         let fits = fits.into_inner();
         // The traversal never reads the copies then; all placeholders, as they always were.
         let coarse = if fits { coarse } else { vec![CoarseSphere::KEEP; exact.len() + padding] };
-        let prefetch_exact = prefetches_exact(&built.nodes, bounds, &built.indices, spheres);
+        let prefetch_exact = prefetches_exact(&built.nodes, bounds, &exact);
         let indices = built.indices;
         Self { nodes: built.nodes, coarse, grid, fits, exact, indices, prefetch_exact, bounds, motion: None }
     }
@@ -347,6 +331,42 @@ impl KdTree {
             };
         });
         total
+    }
+
+    /// An estimate of how many of a leaf's spheres a random line meets, averaged over the leaves a
+    /// random line visits: `Σ_L Σ_{s∈L} min(S(s), S(L)) / Σ_L S(L)` over leaves `L` with cell
+    /// surface area `S(L)` and spheres `s` of surface area `S(s) = 4πr²` (for a moving tree, the
+    /// spheres at time 0); 0 for an empty tree. Like [`KdTree::sah_cost`], a measure of the tree
+    /// that does not depend on the machine.
+    ///
+    /// The mean area of a convex body's shadows over all directions is a quarter of its surface area
+    /// (Cauchy's surface area formula: Tsukerman and Veomett, arXiv:1604.05815, Theorem 1), so the
+    /// random lines that meet a convex body (directions uniform, positions uniform across the shadow)
+    /// have a measure proportional to its surface area. A random line that meets a convex cell then
+    /// meets a convex body inside it with probability `S(body)/S(cell)` (the probability the surface
+    /// area heuristic is built on: MacDonald and Booth, "Heuristics for ray tracing using space
+    /// subdivision", *The Visual Computer* 6(3), 1990), and random lines visit the leaves in
+    /// proportion to their areas. A sphere that sticks out of its cell is counted as
+    /// `min(S(s), S(L))`, an upper bound. The coarse test keeps every sphere the line meets (and a few
+    /// it misses), so this is close to its survivors for lines; the walk's rays start inside the box
+    /// and stop at their first hit, so for them it is an estimate.
+    ///
+    /// The tree asks for a leaf's exact spheres ahead when this is at least one half and its
+    /// exact lists are large (the Q3 engineering notes, What made it fast, step 23).
+    ///
+    /// # Examples
+    /// A ball alone in its bounding cube, one leaf: `4π r² / 24 r² = π/6 ≈ 0.52`.
+    /// ```
+    /// use glam::DVec3;
+    /// use hw3::geometry::Sphere;
+    /// use hw3::kdtree::KdTree;
+    /// let tree = KdTree::build(&[Sphere::new(DVec3::new(0.5, -2.0, 7.0), 1.5).unwrap()]).unwrap();
+    /// let pi_over_6 = std::f64::consts::PI / 6.0;
+    /// assert!((tree.survivors_per_leaf_visit() - pi_over_6).abs() <= 4.0 * f64::EPSILON * pi_over_6);
+    /// ```
+    #[must_use]
+    pub fn survivors_per_leaf_visit(&self) -> f64 {
+        survivors_per_leaf_visit(&self.nodes, self.bounds, &self.exact)
     }
 
     /// Number of sphere references in the leaves (≥ the sphere count: straddling spheres repeat).
@@ -1226,18 +1246,6 @@ mod tests {
         ));
     }
 
-    /// A random line through a cube meets its inscribed ball with probability π/6 (the ratio of
-    /// their surface areas, 4π r² / 24 r²): a one-sphere tree is one leaf whose cell is that cube.
-    #[unit_test]
-    fn survivors_per_leaf_visit_of_a_ball_in_its_cube_is_pi_over_6() {
-        let spheres = [Sphere::new(DVec3::new(0.5, -2.0, 7.0), 1.5).unwrap()];
-        let tree = KdTree::build(&spheres).unwrap();
-        assert_eq!(tree.node_count(), 1);
-        let estimate = survivors_per_leaf_visit(&tree.nodes, tree.bounds, &tree.indices, &spheres);
-        let expected = std::f64::consts::PI / 6.0;
-        assert!((estimate - expected).abs() <= 4.0 * f64::EPSILON * expected, "{estimate} against {expected}");
-    }
-
     /// The estimate on a tree written by hand, worked out in small numbers: the box
     /// [−2, 2] × [−1, 1] × [−1, 1] split at x = 0 into two cells of area 24 each; the lower leaf
     /// lists a ball of radius 1 (area 4π), the upper one a ball of radius ½ (area π) and one of
@@ -1251,7 +1259,7 @@ mod tests {
         ];
         let nodes = [Node::interior(0.0, 0, 2), Node::leaf(0, 1), Node::leaf(1, 2)];
         let bounds = Aabb { min: DVec3::new(-2.0, -1.0, -1.0), max: DVec3::new(2.0, 1.0, 1.0) };
-        let estimate = survivors_per_leaf_visit(&nodes, bounds, &[0, 1, 2], &spheres);
+        let estimate = survivors_per_leaf_visit(&nodes, bounds, &spheres.map(ExactSphere));
         let expected = (5.0 * std::f64::consts::PI + 24.0) / 48.0;
         assert!((estimate - expected).abs() <= 4.0 * f64::EPSILON * expected, "{estimate} against {expected}");
     }
@@ -1276,22 +1284,19 @@ mod tests {
                 })
                 .collect()
         };
-        let survivors = |tree: &KdTree, spheres: &[Sphere<f64>]| {
-            survivors_per_leaf_visit(&tree.nodes, tree.bounds, &tree.indices, spheres)
-        };
         let large_lists =
             |tree: &KdTree| tree.reference_count() * std::mem::size_of::<ExactSphere>() > PREFETCH_MIN_BYTES;
         let large = scene_of(&mut rng, n, radius(n));
         let tree = KdTree::build(&large).unwrap();
-        let estimate = survivors(&tree, &large);
+        let estimate = tree.survivors_per_leaf_visit();
         assert!(large_lists(&tree) && estimate > PREFETCH_SURVIVORS && tree.prefetch_exact, "{estimate}");
         let small = scene_of(&mut rng, n, radius(n) / 10.0);
         let small_tree = KdTree::build(&small).unwrap();
-        let estimate = survivors(&small_tree, &small);
+        let estimate = small_tree.survivors_per_leaf_visit();
         assert!(large_lists(&small_tree) && estimate < PREFETCH_SURVIVORS && !small_tree.prefetch_exact, "{estimate}");
         let few = scene_of(&mut rng, n / 10, radius(n / 10));
         let few_tree = KdTree::build(&few).unwrap();
-        let estimate = survivors(&few_tree, &few);
+        let estimate = few_tree.survivors_per_leaf_visit();
         assert!(!large_lists(&few_tree) && estimate > PREFETCH_SURVIVORS && !few_tree.prefetch_exact, "{estimate}");
         let (mut inside, mut hits) = (0, 0);
         for _ in 0..1_000 {
