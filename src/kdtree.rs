@@ -39,7 +39,9 @@
 
 mod build;
 mod coarse;
+mod exact;
 mod node;
+mod prefetch;
 mod stack;
 mod tree;
 mod tree_f32;

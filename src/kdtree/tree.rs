@@ -7,7 +7,9 @@ use super::build::{
     Builder, EXACT_MAX, PARALLEL_CHUNK, PARALLEL_MIN, Prim, SahCosts, Subtree, check_costs, max_depth, sphere_prims,
 };
 use super::coarse::{CoarseRay, CoarseSphere, Grid, LANES, WIDE_LANES};
+use super::exact::ExactLists;
 use super::node::{Aabb, Node, NodeKind, visit_cells};
+use super::prefetch::prefetch;
 use super::stack::FarStack;
 use super::{BuildError, ReciprocalAxis, Side, split_pieces};
 use crate::geometry::sphere::roots_stable;
@@ -69,9 +71,9 @@ pub struct KdTree {
     /// False when a sphere does not fit the grid: then [`KdTree::coarse`] is a placeholder and
     /// the traversal tests every sphere exactly.
     fits: bool,
-    /// The same lists exact, 32 bytes a sphere, two to a cache line: read only for the spheres
-    /// the coarse test keeps, one line each.
-    exact: Vec<ExactSphere>,
+    /// The same lists exact (32 bytes a sphere in `f64`, or 16 in `f32` when the scene's spheres
+    /// are all `f32` values): read only for the spheres the coarse test keeps, one line each.
+    exact: ExactLists,
     /// Each listed sphere's index in the input slice, beside [`KdTree::exact`] rather than in it
     /// (40 bytes a sphere would put half of them across two lines): read only for a hit (and, in a
     /// moving tree, for every exact test, to find the sphere's velocity).
@@ -93,16 +95,6 @@ struct Motion {
     interval: (f64, f64),
 }
 
-/// A leaf's sphere in `f64`, aligned so that none straddles two cache lines.
-#[derive(Debug, Clone, Copy, PartialEq)]
-#[repr(C, align(32))]
-struct ExactSphere(Sphere<f64>);
-
-const _: () = assert!(std::mem::size_of::<ExactSphere>() == 32);
-
-/// The cache line of the x86-64 processors measured (and most others).
-const LINE: usize = 64;
-
 /// [`prefetches_exact`]'s threshold on the coarse test's expected survivors per leaf visit.
 const PREFETCH_SURVIVORS: f64 = 0.5;
 
@@ -119,20 +111,19 @@ const PREFETCH_MIN_BYTES: usize = 2 << 20;
 /// survivors) then have their exact lines on the way while the coarse test runs; small ones would
 /// have nearly every line read for nothing. The threshold is checked on the benchmark's two
 /// densities only, whose estimates (0.05–0.29 and 0.76–0.84) any value between them separates.
-fn prefetches_exact(nodes: &[Node], bounds: Aabb, exact: &[ExactSphere]) -> bool {
-    std::mem::size_of_val(exact) > PREFETCH_MIN_BYTES
-        && survivors_per_leaf_visit(nodes, bounds, exact) >= PREFETCH_SURVIVORS
+fn prefetches_exact(nodes: &[Node], bounds: Aabb, exact: &ExactLists) -> bool {
+    exact.bytes() > PREFETCH_MIN_BYTES && survivors_per_leaf_visit(nodes, bounds, exact) >= PREFETCH_SURVIVORS
 }
 
 /// [`KdTree::survivors_per_leaf_visit`] of the tree with these nodes, box and exact lists.
-fn survivors_per_leaf_visit(nodes: &[Node], bounds: Aabb, exact: &[ExactSphere]) -> f64 {
+fn survivors_per_leaf_visit(nodes: &[Node], bounds: Aabb, exact: &ExactLists) -> f64 {
     let (mut met, mut visits) = (0.0, 0.0);
     visit_cells(nodes, bounds, |kind, cell| {
         if let NodeKind::Leaf { first, count } = kind {
             let area = cell.surface_area();
             visits += area;
-            for listed in &exact[first as usize..(first + count) as usize] {
-                let radius = listed.0.radius;
+            for k in first as usize..(first + count) as usize {
+                let radius = exact.sphere(k).radius;
                 met += (4.0 * std::f64::consts::PI * radius * radius).min(area);
             }
         }
@@ -254,7 +245,6 @@ impl KdTree {
         } else {
             (build(), spheres.iter().map(pack).collect())
         };
-        let leaf = |&index: &u32| ExactSphere(spheres[index as usize]);
         // A sphere off the grid leaves a placeholder and clears `fits` (indexed collects write in
         // place; collecting `Option`s would gather pieces and copy them).
         let fits = AtomicBool::new(true);
@@ -267,15 +257,15 @@ impl KdTree {
         // The leaf test reads whole groups of up to `WIDE_LANES` copies: placeholders after the
         // last leaf's copies keep its group inside the list (chained, so the list is written once).
         let padding = WIDE_LANES - 1;
-        let (exact, coarse): (Vec<ExactSphere>, Vec<CoarseSphere>) = if parallel {
-            let indices = || built.indices.par_iter().with_min_len(PARALLEL_CHUNK);
-            rayon::join(
-                || indices().map(leaf).collect(),
-                || indices().map(coarse).chain(rayon::iter::repeat_n(CoarseSphere::KEEP, padding)).collect(),
-            )
+        let exact = || ExactLists::new(spheres, &built.indices, parallel);
+        let (exact, coarse): (ExactLists, Vec<CoarseSphere>) = if parallel {
+            let indices = built.indices.par_iter().with_min_len(PARALLEL_CHUNK);
+            rayon::join(exact, || {
+                indices.map(coarse).chain(rayon::iter::repeat_n(CoarseSphere::KEEP, padding)).collect()
+            })
         } else {
             let coarse = built.indices.iter().map(coarse).chain(std::iter::repeat_n(CoarseSphere::KEEP, padding));
-            (built.indices.iter().map(leaf).collect(), coarse.collect())
+            (exact(), coarse.collect())
         };
         let fits = fits.into_inner();
         // The traversal never reads the copies then; all placeholders, as they always were.
@@ -288,7 +278,7 @@ impl KdTree {
     /// The spheres of the leaf `(first, count)` with their input indices, in list order.
     pub(super) fn leaf_spheres(&self, first: u32, count: u32) -> impl Iterator<Item = (Sphere<f64>, u32)> + '_ {
         let range = first as usize..(first + count) as usize;
-        self.exact[range.clone()].iter().zip(&self.indices[range]).map(|(exact, &index)| (exact.0, index))
+        range.map(|k| (self.exact.sphere(k), self.indices[k]))
     }
 
     /// Number of nodes (interior and leaf).
@@ -433,8 +423,8 @@ impl KdTree {
     #[inline]
     fn sphere_at(&self, k: usize, time: f64) -> Sphere<f64> {
         match &self.motion {
-            Some(motion) => moved(self.exact[k].0, motion.velocities[self.indices[k] as usize], time),
-            None => self.exact[k].0,
+            Some(motion) => moved(self.exact.sphere(k), motion.velocities[self.indices[k] as usize], time),
+            None => self.exact.sphere(k),
         }
     }
 
@@ -585,7 +575,7 @@ impl KdTree {
                 NodeKind::Leaf { first, count } => {
                     counter.sphere_tests(count);
                     if scattered && self.prefetch_exact {
-                        prefetch_lines(&self.exact[first as usize..(first + count) as usize]);
+                        self.exact.prefetch(first as usize..(first + count) as usize);
                     }
                     self.test_leaf::<WIDE>(ray, &coarse, filtered, (first, count), (t_min, t_max), time, &mut best);
                 }
@@ -833,40 +823,6 @@ impl KdTree {
     }
 }
 
-/// Asks the CPU to start loading `items[index]`'s cache line without waiting for it.
-#[inline]
-pub(super) fn prefetch<T>(items: &[T], index: u32) {
-    prefetch_address(items.as_ptr().wrapping_add(index as usize).cast());
-}
-
-/// Asks the CPU to start loading every cache line `items` occupies (none for an empty slice).
-#[inline]
-fn prefetch_lines<T>(items: &[T]) {
-    let (start, bytes) = (items.as_ptr().cast::<i8>(), std::mem::size_of_val(items));
-    if bytes == 0 {
-        return;
-    }
-    // From the start of the line holding the first byte, one address per line.
-    let skip = start.addr() % LINE;
-    for offset in (0..skip + bytes).step_by(LINE) {
-        prefetch_address(start.wrapping_sub(skip).wrapping_add(offset));
-    }
-}
-
-/// Asks the CPU to start loading the cache line holding `at`.
-#[inline]
-fn prefetch_address(at: *const i8) {
-    #[cfg(target_arch = "x86_64")]
-    {
-        use std::arch::x86_64::{_MM_HINT_T0, _mm_prefetch};
-        // SAFETY: a prefetch is only a hint: it never faults, whatever the address, and changes no
-        // memory; SSE is part of every x86-64 CPU.
-        unsafe { _mm_prefetch::<_MM_HINT_T0>(at) };
-    }
-    #[cfg(not(target_arch = "x86_64"))]
-    let _ = at;
-}
-
 /// `sphere` moved by `velocity · time`; a static sphere untouched (no `+ 0·t`, which would turn a
 /// `−0.0` coordinate into `+0.0`). The scene's brute-force loop uses it too: the same numbers.
 pub(crate) fn moved(sphere: Sphere<f64>, velocity: DVec3, time: f64) -> Sphere<f64> {
@@ -954,7 +910,8 @@ mod tests {
 
     /// ≥ 10⁵ random rays over 100 random scenes (sizes 1 … 300): the tree's closest hit equals
     /// brute force exactly (same sphere, same t), in both walks (rays from inside and outside the
-    /// tree's box) and with four and eight copies per coarse test.
+    /// tree's box), with four and eight copies per coarse test, and with the exact lists in `f64`
+    /// and (every other scene rounded to `f32` values) in `f32`.
     #[unit_test]
     fn closest_hit_equals_brute_force_on_random_rays() {
         let mut rng = seeded(0x4b44, 0);
@@ -963,8 +920,14 @@ mod tests {
         let mut hits = 0;
         for scene_index in 0..100 {
             let n = 1 + (scene_index * 37) % 300;
-            let spheres = scene(&mut rng, n);
+            let mut spheres = scene(&mut rng, n);
+            let in_f32 = scene_index % 2 == 1;
+            if in_f32 {
+                let narrowed = |s: &Sphere<f64>| Sphere::new(s.center.as_vec3().as_dvec3(), f64::from(s.radius as f32));
+                spheres = spheres.iter().map(|s| narrowed(s).unwrap()).collect();
+            }
             let tree = KdTree::build(&spheres).unwrap();
+            assert_eq!(tree.exact.is_f32(), in_f32, "scene {scene_index}");
             for _ in 0..1_000 {
                 let ray = random_ray(&mut rng);
                 let t_min = if rng.next_u64().is_multiple_of(2) { 0.0 } else { 1e-4 };
@@ -1259,7 +1222,7 @@ mod tests {
         ];
         let nodes = [Node::interior(0.0, 0, 2), Node::leaf(0, 1), Node::leaf(1, 2)];
         let bounds = Aabb { min: DVec3::new(-2.0, -1.0, -1.0), max: DVec3::new(2.0, 1.0, 1.0) };
-        let estimate = survivors_per_leaf_visit(&nodes, bounds, &spheres.map(ExactSphere));
+        let estimate = survivors_per_leaf_visit(&nodes, bounds, &ExactLists::new(&spheres, &[0, 1, 2], false));
         let expected = (5.0 * std::f64::consts::PI + 24.0) / 48.0;
         assert!((estimate - expected).abs() <= 4.0 * f64::EPSILON * expected, "{estimate} against {expected}");
     }
@@ -1284,8 +1247,7 @@ mod tests {
                 })
                 .collect()
         };
-        let large_lists =
-            |tree: &KdTree| tree.reference_count() * std::mem::size_of::<ExactSphere>() > PREFETCH_MIN_BYTES;
+        let large_lists = |tree: &KdTree| tree.exact.bytes() > PREFETCH_MIN_BYTES;
         let large = scene_of(&mut rng, n, radius(n));
         let tree = KdTree::build(&large).unwrap();
         let estimate = tree.survivors_per_leaf_visit();

@@ -5,8 +5,8 @@
 
 use super::KdTree;
 use super::node::{Aabb, Node, NodeKind};
+use super::prefetch::prefetch;
 use super::stack::FarStack;
-use super::tree::prefetch;
 use crate::geometry::sphere::roots_stable;
 use crate::geometry::{Ray, Sphere};
 use glam::Vec3;
