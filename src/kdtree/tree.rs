@@ -1,12 +1,12 @@
 //! The 3-D kd-tree over spheres: flat node array, closest-hit traversal with early exit, one ray
 //! at a time ([`KdTree::closest_hit`]) or several in flight ([`KdTree::closest_hits`]); both walks
-//! share the leaf step (`KdTree::test_leaf`: four quantised copies per test, eight in the
-//! single-ray walk on a CPU with AVX2, then the exact test).
+//! share the leaf step (`KdTree::test_leaf`: four quantised copies per test, eight or sixteen in
+//! the single-ray walk on a CPU with AVX2 or AVX-512, then the exact test).
 
 use super::build::{
     Builder, EXACT_MAX, PARALLEL_CHUNK, PARALLEL_MIN, Prim, SahCosts, Subtree, check_costs, max_depth, sphere_prims,
 };
-use super::coarse::{CoarseRay, CoarseSphere, Grid, LANES, WIDE_LANES};
+use super::coarse::{CoarseRay, CoarseSphere, Grid, LANES, WIDE_LANES, WIDEST_LANES};
 use super::exact::ExactLists;
 use super::node::{Aabb, Node, NodeKind, visit_cells};
 use super::prefetch::prefetch;
@@ -254,9 +254,9 @@ impl KdTree {
                 CoarseSphere::KEEP
             })
         };
-        // The leaf test reads whole groups of up to `WIDE_LANES` copies: placeholders after the
+        // The leaf test reads whole groups of up to `WIDEST_LANES` copies: placeholders after the
         // last leaf's copies keep its group inside the list (chained, so the list is written once).
-        let padding = WIDE_LANES - 1;
+        let padding = WIDEST_LANES - 1;
         let exact = || ExactLists::new(spheres, &built.indices, parallel);
         let (exact, coarse): (ExactLists, Vec<CoarseSphere>) = if parallel {
             let indices = built.indices.par_iter().with_min_len(PARALLEL_CHUNK);
@@ -430,14 +430,14 @@ impl KdTree {
 
     /// Tests the spheres of the leaf `(first, count)` against `ray` over `(t_min, t_max)` at
     /// `time`, keeping in `best` the closest hit (ties to the lower index): the leaf step of both
-    /// walks. With `filtered`, groups of [`LANES`] quantised copies are tested at once first
-    /// ([`CoarseRay::survivors`]; with `WIDE`, only in a walk compiled for AVX2, groups of
-    /// [`WIDE_LANES`], [`CoarseRay::survivors_wide`]), and only the copies that may be hit reach
-    /// the exact test, in list order; without it (a moving tree, or a sphere off the grid) every
-    /// sphere is tested exactly.
+    /// walks. With `filtered`, groups of `GROUP` quantised copies are tested at once first
+    /// ([`CoarseRay::survivors_of`]: [`LANES`], or [`WIDE_LANES`] only in a walk compiled for
+    /// AVX2, or [`WIDEST_LANES`] only in one compiled for AVX-512), and only the copies that may be
+    /// hit reach the exact test, in list order; without it (a moving tree, or a sphere off the
+    /// grid) every sphere is tested exactly.
     #[inline(always)]
     #[allow(clippy::too_many_arguments)]
-    fn test_leaf<const WIDE: bool>(
+    fn test_leaf<const GROUP: usize>(
         &self,
         ray: &Ray<f64>,
         coarse: &CoarseRay,
@@ -449,12 +449,12 @@ impl KdTree {
     ) {
         let (first, count) = (first as usize, count as usize);
         // A mask of the survivors per group, instead of a branch per copy.
-        let width = if WIDE { WIDE_LANES } else { LANES };
-        for group in (0..count).step_by(width) {
-            let lanes = (1u32 << (count - group).min(width)) - 1;
+        for group in (0..count).step_by(GROUP) {
+            let lanes = (1u32 << (count - group).min(GROUP)) - 1;
             let copies = &self.coarse[first + group..];
-            // SAFETY: `WIDE` is true only in `traverse_avx2`, called on a CPU with AVX2.
-            let mask = if filtered { unsafe { coarse.survivors_of::<WIDE>(copies) } } else { lanes };
+            // SAFETY: `GROUP` is `WIDE_LANES` only in `traverse_avx2`, called on a CPU with AVX2,
+            // and `WIDEST_LANES` only in `traverse_avx512`, called on one with AVX-512F and BW.
+            let mask = if filtered { unsafe { coarse.survivors_of::<GROUP>(copies) } } else { lanes };
             let mut kept = mask & lanes;
             while kept != 0 {
                 let k = first + group + kept.trailing_zeros() as usize;
@@ -496,33 +496,55 @@ impl KdTree {
         self.traverse(Query { ray, t_min, t_max, time: self.default_time() }, stats)
     }
 
-    /// The walk of one ray: [`KdTree::traverse_with::<false>`] (four copies per coarse test), or
-    /// on a CPU with AVX2 the same walk compiled for it, with eight copies per coarse test. The
-    /// same answer either way: every lane of either test is the scalar test's.
+    /// The walk of one ray: [`KdTree::traverse_with`] with four copies per coarse test, or the
+    /// same walk compiled for the CPU's widest vectors: sixteen copies per test with AVX-512F and
+    /// AVX-512BW, eight with AVX2. The same answer either way: every lane of every test is the
+    /// scalar test's. (The detection macro caches its answer: after the first call, each check is
+    /// a load and a test.)
     #[inline]
     fn traverse<C: Counter>(&self, query: Query<'_>, counter: &mut C) -> Option<(usize, f64)> {
         #[cfg(target_arch = "x86_64")]
-        if std::arch::is_x86_feature_detected!("avx2") {
-            // SAFETY: the CPU has AVX2 (checked just above).
-            return unsafe { self.traverse_avx2(query, counter) };
+        {
+            use std::arch::is_x86_feature_detected as has;
+            if has!("avx512f") && has!("avx512bw") {
+                // SAFETY: the CPU has AVX-512F and AVX-512BW (checked just above).
+                return unsafe { self.traverse_avx512(query, counter) };
+            }
+            if has!("avx2") {
+                // SAFETY: the CPU has AVX2 (checked just above).
+                return unsafe { self.traverse_avx2(query, counter) };
+            }
         }
-        self.traverse_with::<C, false>(query, counter)
+        self.traverse_with::<C, LANES>(query, counter)
     }
 
-    /// [`KdTree::traverse_with::<true>`] compiled for AVX2.
+    /// [`KdTree::traverse_with`] compiled for AVX2, eight copies per coarse test.
     ///
     /// # Safety
     /// The CPU must have AVX2.
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2")]
     unsafe fn traverse_avx2<C: Counter>(&self, query: Query<'_>, counter: &mut C) -> Option<(usize, f64)> {
-        self.traverse_with::<C, true>(query, counter)
+        self.traverse_with::<C, WIDE_LANES>(query, counter)
     }
 
-    /// The single-ray walk, counting its work into `counter`; with `WIDE` (only in
-    /// [`KdTree::traverse_avx2`]) groups of eight copies per coarse test.
+    /// [`KdTree::traverse_with`] compiled for AVX-512 (and AVX2, which it includes), sixteen
+    /// copies per coarse test. (On processors that slow their clock for 512-bit instructions, as
+    /// some Intel ones before Ice Lake do, this may not pay; the Q3 engineering notes measured it
+    /// on an AMD Zen 4.)
+    ///
+    /// # Safety
+    /// The CPU must have AVX-512F and AVX-512BW.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,avx512f,avx512bw")]
+    unsafe fn traverse_avx512<C: Counter>(&self, query: Query<'_>, counter: &mut C) -> Option<(usize, f64)> {
+        self.traverse_with::<C, WIDEST_LANES>(query, counter)
+    }
+
+    /// The single-ray walk, counting its work into `counter`, with `GROUP` copies per coarse test
+    /// ([`KdTree::test_leaf`]).
     #[inline(always)]
-    fn traverse_with<C: Counter, const WIDE: bool>(&self, query: Query<'_>, counter: &mut C) -> Option<(usize, f64)> {
+    fn traverse_with<C: Counter, const GROUP: usize>(&self, query: Query<'_>, counter: &mut C) -> Option<(usize, f64)> {
         let Query { ray, t_min, t_max, time } = query;
         if !(t_min < t_max) {
             return None;
@@ -577,7 +599,7 @@ impl KdTree {
                     if scattered && self.prefetch_exact {
                         self.exact.prefetch(first as usize..(first + count) as usize);
                     }
-                    self.test_leaf::<WIDE>(ray, &coarse, filtered, (first, count), (t_min, t_max), time, &mut best);
+                    self.test_leaf::<GROUP>(ray, &coarse, filtered, (first, count), (t_min, t_max), time, &mut best);
                 }
             }
             // Early exit: the cells still on the stack begin at or after this one ends; one that
@@ -802,7 +824,7 @@ impl KdTree {
             }
             NodeKind::Leaf { first, count } => {
                 let time = self.default_time();
-                self.test_leaf::<false>(
+                self.test_leaf::<LANES>(
                     &flight.ray,
                     &flight.coarse,
                     self.fits,
@@ -910,7 +932,8 @@ mod tests {
 
     /// ≥ 10⁵ random rays over 100 random scenes (sizes 1 … 300): the tree's closest hit equals
     /// brute force exactly (same sphere, same t), in both walks (rays from inside and outside the
-    /// tree's box), with four and eight copies per coarse test, and with the exact lists in `f64`
+    /// tree's box), with four, eight and (where the CPU has AVX-512) sixteen copies per coarse
+    /// test, and with the exact lists in `f64`
     /// and (every other scene rounded to `f32` values) in `f32`.
     #[unit_test]
     fn closest_hit_equals_brute_force_on_random_rays() {
@@ -934,10 +957,15 @@ mod tests {
                 let t_max = if rng.next_u64().is_multiple_of(5) { 0.7 } else { f64::INFINITY };
                 let expected = brute_force_closest_hit(&spheres, &ray, t_min, t_max);
                 assert_eq!(tree.closest_hit(&ray, t_min, t_max), expected, "{ray:?}");
-                // The four-wide walk too (what a CPU without AVX2 runs), whichever walk
-                // `closest_hit` takes on this one.
+                // The four-wide walk too (what a CPU without AVX2 runs), and the eight-wide one
+                // (AVX2 without AVX-512), whichever walk `closest_hit` takes on this one.
                 let query = Query { ray: &ray, t_min, t_max, time: 0.0 };
-                assert_eq!(tree.traverse_with::<(), false>(query, &mut ()), expected, "four-wide: {ray:?}");
+                assert_eq!(tree.traverse_with::<(), LANES>(query, &mut ()), expected, "four-wide: {ray:?}");
+                #[cfg(target_arch = "x86_64")]
+                if std::arch::is_x86_feature_detected!("avx2") {
+                    // SAFETY: the CPU has AVX2 (checked just above).
+                    assert_eq!(unsafe { tree.traverse_avx2(query, &mut ()) }, expected, "eight-wide: {ray:?}");
+                }
                 rays += 1;
                 hits += usize::from(expected.is_some());
                 // The walk without branches takes the rays that start inside the tree's box.
