@@ -51,7 +51,7 @@ pub struct SahCosts {
 }
 
 impl Default for SahCosts {
-    /// `K_T = 1`, `K_I = 0.15`, `b = 0.2`, 32 bins. The constants are *measured* costs, not
+    /// `K_T = 1`, `K_I = 0.075`, `b = 0.2`, 32 bins. The constants are *measured* costs, not
     /// textbook ones: on the Q3 benchmark workload a node step costs several times a
     /// ray/sphere test (a node step is a dependent load from a tree that outgrows the cache, a
     /// sphere test mostly an 8-byte conservative reject, eight at a time, on data that sits next
@@ -62,10 +62,15 @@ impl Default for SahCosts {
     /// on a machine with half that machine's second-level cache per core (512 KB), a
     /// third, timing two trees in turns in one process, found 0.15 faster than 0.3 on every ray
     /// set from N = 10³ to 10⁶, by 0.5–3 % at 10³ and 5–13 % at 10⁶, and up to 9 % slower at 10²
-    /// (a tree of a dozen nodes); the Q3 engineering notes, What made it fast, steps 1, 12 and 20.
+    /// (a tree of a dozen nodes); a fourth, the same way on an AMD Zen 4 once a leaf's coarse test
+    /// took sixteen copies at once (AVX-512), found 0.075 faster than 0.15 by 7–9 % on random rays
+    /// at N = 10⁴ and 10⁵ with fixed k, 10–13 % at 10⁶, 2–3 % with fixed volume at 10⁴ and 10⁵,
+    /// within 3 % on camera rays at 10⁴ and 10⁵ (11 % faster at 10⁶), but 11 % slower at 10² (5
+    /// nodes against 15); the
+    /// Q3 engineering notes, What made it fast, steps 1, 12, 20 and 24.
     /// Textbook defaults for comparison: pbrt `(1, 80)` for expensive shapes, Mitsuba `(15, 20)`.
     fn default() -> Self {
-        Self { traversal: 1.0, intersection: 0.15, empty_bonus: 0.2, bins: 32 }
+        Self { traversal: 1.0, intersection: 0.075, empty_bonus: 0.2, bins: 32 }
     }
 }
 
@@ -220,10 +225,11 @@ impl Subtree {
 /// faces are then fewer than the binned planes, and sorting them is cheap. On random sphere scenes
 /// of 200 to 20 000 spheres this lowered the SAH cost by 0.3–0.9 % with `K_I = 0.3` (8 lowered it
 /// less; 32, with the face lists on the heap, cost about 30 % more build instructions under
-/// callgrind). With the default `K_I = 0.15` nodes of up to six spheres are leaves without a search
-/// and few small nodes split: the two candidate sets then built trees of the same SAH cost at 200
-/// and 2 000 spheres and differed by 5·10⁻⁶ of it at 20 000. A test pins that the exact set is
-/// never worse at the default and strictly better at `K_I = 0.3`.
+/// callgrind). With `K_I = 0.15` nodes of up to six spheres are leaves without a search and few
+/// small nodes split: the two candidate sets then built trees of the same SAH cost at 200 and 2 000
+/// spheres and differed by 5·10⁻⁶ of it at 20 000. With the default `K_I = 0.075` nodes of up to 13
+/// spheres are leaves without a search, so only nodes of 14 to 16 spheres take the exact set. A
+/// test pins that the exact set is never worse at the default and strictly better at `K_I = 0.3`.
 pub(super) const EXACT_MAX: usize = 16;
 
 /// The largest `exact_max` a [`Builder`] accepts (its face arrays live on the stack).
@@ -453,7 +459,7 @@ impl Builder {
     fn choose(&self, cell: &Aabb, prims: &[Prim], depth: usize) -> Option<Candidate> {
         let leaf_cost = self.costs.intersection * prims.len() as f64;
         // A split costs at least K_T (its other terms are products of non-negative factors), so a
-        // leaf that costs no more (six spheres, with the default constants) needs no search.
+        // leaf that costs no more (13 spheres, with the default constants) needs no search.
         if prims.len() <= 1 || depth >= self.max_depth || leaf_cost <= self.costs.traversal {
             return None;
         }

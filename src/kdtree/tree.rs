@@ -1088,8 +1088,9 @@ mod tests {
                 .collect();
             let prims = sphere_prims(&spheres).unwrap();
             // The default costs, and the K_I = 0.3 under which the gain was first measured: with
-            // K_I = 0.15 nodes of up to six spheres are leaves without a search and fewer small
-            // nodes split, so at N = 200 the two candidate sets can build equally good trees.
+            // the default K_I = 0.075 nodes of up to 13 spheres are leaves without a search and
+            // fewer small nodes split, so at N = 200 the two candidate sets can build equally good
+            // trees.
             let at_0_3 = SahCosts { intersection: 0.3, ..SahCosts::default() };
             for (costs, strictly) in [(SahCosts::default(), false), (at_0_3, true)] {
                 let binned = KdTree::from_prims_with(&spheres, prims.clone(), costs, 0).sah_cost(&costs);
@@ -1104,13 +1105,13 @@ mod tests {
     }
 
     /// A build on one thread and one on four give the same tree: the same nodes, the same leaf
-    /// lists (index and sphere), the same quantised copies and box. 60 000 small spheres, a
+    /// lists (index and sphere), the same quantised copies and box. 120 000 small spheres, a
     /// quarter of them snapped to a grid (shared faces, planes on them), so that several levels
     /// lie above the parallel threshold and their planes see ties.
     #[unit_test]
     fn builds_on_one_and_on_four_threads_are_identical() {
         let mut rng = seeded(0x5eed, 6);
-        let n = 60_000;
+        let n = 120_000;
         let r = (3.0 / (std::f64::consts::PI * n as f64)).sqrt();
         let spheres: Vec<_> = (0..n)
             .map(|_| {
