@@ -420,7 +420,7 @@ impl KdTree {
     }
 
     /// The `k`-th listed sphere at `time`: the stored copy, moved by its velocity in a moving tree.
-    #[inline]
+    #[inline(always)]
     fn sphere_at(&self, k: usize, time: f64) -> Sphere<f64> {
         match &self.motion {
             Some(motion) => moved(self.exact.sphere(k), motion.velocities[self.indices[k] as usize], time),
