@@ -52,11 +52,11 @@ pub struct SahCosts {
 
 impl Default for SahCosts {
     /// `K_T = 1`, `K_I = 0.075`, `b = 0.2`, 32 bins. The constants are *measured* costs, not
-    /// textbook ones: on the Q3 benchmark workload a node step costs several times a
+    /// textbook ones: on the Q3 benchmark workload a node step costs about thirteen times a
     /// ray/sphere test (a node step is a dependent load from a tree that outgrows the cache, a
-    /// sphere test mostly an 8-byte conservative reject, eight at a time, on data that sits next
-    /// to its leaf's other spheres), so a ray should rather test a few more spheres than walk many
-    /// small cells. A first sweep of `K_I` over 0.2, 0.3, 0.5 and 1.5 found 0.2–0.5 alike and all
+    /// sphere test mostly an 8-byte conservative reject, eight or sixteen at a time, on data that
+    /// sits next to its leaf's other spheres), so a ray should rather test a few more spheres than
+    /// walk many small cells. A first sweep of `K_I` over 0.2, 0.3, 0.5 and 1.5 found 0.2–0.5 alike and all
     /// far ahead of 1.5; once the leaves' quantised copies and the prefetches had made tests and
     /// waits cheaper, a second found 0.3 faster than 0.5 by about 12 % on random rays at N = 10⁵;
     /// on a machine with half that machine's second-level cache per core (512 KB), a
@@ -64,10 +64,11 @@ impl Default for SahCosts {
     /// set from N = 10³ to 10⁶, by 0.5–3 % at 10³ and 5–13 % at 10⁶, and up to 9 % slower at 10²
     /// (a tree of a dozen nodes); a fourth, the same way on an AMD Zen 4 once a leaf's coarse test
     /// took sixteen copies at once (AVX-512), found 0.075 faster than 0.15 by 7–9 % on random rays
-    /// at N = 10⁴ and 10⁵ with fixed k, 10–13 % at 10⁶, 2–3 % with fixed volume at 10⁴ and 10⁵,
-    /// within 3 % on camera rays at 10⁴ and 10⁵ (11 % faster at 10⁶), but 11 % slower at 10² (5
-    /// nodes against 15); the
-    /// Q3 engineering notes, What made it fast, steps 1, 12, 20 and 24.
+    /// at N = 10⁴ and 10⁵ with fixed k and 13 % at 10⁶, by 2–3 % with fixed volume at 10⁴ and 10⁵
+    /// and 10 % at 10⁶, within 3 % on camera rays at 10⁴ and 10⁵ (11 % faster at 10⁶), but 11 %
+    /// slower at 10² (5 nodes against 15); with that machine's eight-wide (AVX2) walk, 4 % faster
+    /// on random rays at 10⁵ with fixed k, 7 % with fixed volume, 24 % at 10⁶, 1 % slower on camera
+    /// rays and 6 % at 10². The Q3 engineering notes, What made it fast, steps 1, 12, 20 and 24.
     /// Textbook defaults for comparison: pbrt `(1, 80)` for expensive shapes, Mitsuba `(15, 20)`.
     fn default() -> Self {
         Self { traversal: 1.0, intersection: 0.075, empty_bonus: 0.2, bins: 32 }

@@ -15,10 +15,11 @@
 //! page has the table).
 //!
 //! A leaf's copies lie side by side, so the walk tests four at a time
-//! ([`CoarseRay::survivors`], SSE2 on x86-64, one sphere at a time elsewhere), or eight at a time
-//! on a CPU with AVX2 ([`CoarseRay::survivors_wide`], in a walk compiled for it), each lane with
-//! the scalar test's operations in the same order: the same answers, a bit mask of survivors
-//! instead of a branch per copy.
+//! ([`CoarseRay::survivors`], SSE2 on x86-64, one sphere at a time elsewhere), eight at a time on
+//! a CPU with AVX2 ([`CoarseRay::survivors_wide`]) or sixteen on one with AVX-512F and AVX-512BW
+//! ([`CoarseRay::survivors_widest`]), each in a walk compiled for it, each lane with the scalar
+//! test's operations in the same order: the same answers, a bit mask of survivors instead of a
+//! branch per copy.
 //!
 //! # The grid
 //! Each tree has one [`Grid`]: a corner `g` (an `f32` at or below its box) and a power-of-two step
@@ -162,7 +163,9 @@ pub(super) struct CoarseSphere {
 }
 
 impl CoarseSphere {
-    /// A placeholder for a tree whose spheres do not fit its grid (the tree then never reads it).
+    /// A placeholder: every copy of a tree whose spheres do not fit its grid (the tree then skips
+    /// the coarse test), and the padding after the last leaf's copies (read by that leaf's last
+    /// group, whose mask leaves it out).
     pub const KEEP: Self = Self { steps: [0, 0, 0, u16::MAX] };
 }
 
@@ -368,7 +371,7 @@ impl CoarseRay {
     /// copies need no transposition here: one two-source word shuffle (`vpermt2w`) gathers the 16
     /// x and 16 y counts of the two 64-byte halves into one register, another the z counts and the
     /// radii, and the comparison writes its mask straight to a mask register. A leaf of 9 to 16
-    /// spheres (most leaves of the benchmark's trees at N = 10⁵) is then one test instead of two.
+    /// spheres is then one test instead of two, one of 17 to 32 two instead of four.
     ///
     /// # Safety
     /// The CPU must have AVX-512F and AVX-512BW (the caller checks once, and calls this from code
@@ -469,15 +472,17 @@ impl CoarseRay {
     /// With `GROUP` 16, the CPU must have AVX-512F and AVX-512BW; with 8, AVX2.
     ///
     /// # Panics
-    /// If `GROUP` is not 4, 8 or 16 (8 and 16 exist on x86-64 only), or `spheres` holds fewer
-    /// than `GROUP` copies.
+    /// If `spheres` holds fewer than `GROUP` copies, or (on a target other than x86-64) `GROUP`
+    /// is 8 or 16. A `GROUP` other than 4, 8 and 16 does not compile.
     #[inline(always)]
     pub unsafe fn survivors_of<const GROUP: usize>(&self, spheres: &[CoarseSphere]) -> u32 {
+        const { assert!(GROUP == LANES || GROUP == WIDE_LANES || GROUP == WIDEST_LANES, "4, 8 or 16 copies") };
         match GROUP {
-            // SAFETY: the caller guarantees AVX-512F and AVX-512BW for 16, AVX2 for 8.
             #[cfg(target_arch = "x86_64")]
+            // SAFETY: the caller guarantees AVX-512F and AVX-512BW when `GROUP` is 16.
             WIDEST_LANES => unsafe { self.survivors_widest(spheres) },
             #[cfg(target_arch = "x86_64")]
+            // SAFETY: the caller guarantees AVX2 when `GROUP` is 8.
             WIDE_LANES => unsafe { self.survivors_wide(spheres) },
             LANES => self.survivors(spheres),
             _ => panic!("no coarse test of {GROUP} copies at once on this target"),
@@ -570,13 +575,16 @@ mod tests {
 
     /// The four-, eight- and sixteen-at-once tests give every copy the scalar test's answer, bit
     /// for bit: random and grazing rays (about half of the grazing copies kept), copies at the
-    /// grid's extremes (counts 0 and 65 535), and disabled rays, which keep all four. (The wider
-    /// tests run where the CPU has them: AVX2, and AVX-512F with AVX-512BW.)
+    /// grid's extremes (counts 0 and 65 535), and disabled rays, which keep every copy. (The wider
+    /// tests run where the CPU has them: AVX2, and AVX-512F with AVX-512BW; the test prints on
+    /// how many groups the sixteen-wide one ran.)
     #[unit_test]
     fn survivors_equal_the_scalar_test_lane_by_lane() {
         let mut rng = seeded(0x5EED, 4);
         let grid = Grid::new(&Aabb { min: DVec3::splat(-1.0), max: DVec3::splat(1.0) });
-        let (mut groups, mut kept, mut lanes, mut widest) = (0, 0, 0, 0);
+        let (mut groups, mut kept, mut lanes) = (0, 0, 0);
+        #[cfg_attr(not(target_arch = "x86_64"), allow(unused_mut))]
+        let mut widest = 0;
         for round in 0..20_000 {
             let spheres: Vec<Sphere<f64>> = (0..WIDEST_LANES)
                 .map(|_| {
@@ -605,6 +613,7 @@ mod tests {
             let mask = coarse.survivors(&group);
             assert_eq!(mask, coarse.survivors_scalar(group[..LANES].try_into().unwrap()), "{ray:?} {group:?}");
             let scalar = group.iter().enumerate().fold(0, |m, (k, c)| m | (u32::from(coarse.may_hit(c)) << k));
+            assert_eq!(mask, scalar & ALL_LANES, "four at once: {ray:?} {group:?}");
             #[cfg(target_arch = "x86_64")]
             if std::arch::is_x86_feature_detected!("avx2") {
                 // SAFETY: the CPU has AVX2 (checked just above).

@@ -2,7 +2,7 @@
 //! after the coarse test keeps it, stored in `f32` when that loses nothing.
 //!
 //! A random ray at N = 10⁵ keeps about one sphere in all its leaves, and that sphere's line is
-//! rarely in a near cache: the lists are too large (122 235 copies at fixed k, 32 bytes each, 3.9
+//! rarely in a near cache: the lists are too large (119 987 copies at fixed k, 32 bytes each, 3.8
 //! MB), so each kept sphere waits for memory. Most scenes are made in `f32` (a scene file, a mesh,
 //! this crate's benchmark), and an `f32` value widens to `f64` exactly. So when every sphere's
 //! centre and radius is an `f32` value, the lists hold 16-byte `f32` copies ([`ExactSphereF32`]:
@@ -146,9 +146,10 @@ mod tests {
             let bits = |s: Sphere<f64>| [s.center.x, s.center.y, s.center.z, s.radius].map(f64::to_bits);
             assert_eq!(bits(got), bits(want), "copy {k}");
         }
-        // 0.1 rounds in f32; so does 1e-50 (below the smallest f32) and 2^-150 + 2^-149 · 0.5
-        // (between two f32 subnormals); 1e39 overflows it.
-        for odd in [0.1, 1e-50, 1e39, 3.0 * 2.0f64.powi(-151)] {
+        // 0.1 rounds in f32; so do 1e-50 (below the smallest f32 subnormal, 2^-149) and
+        // 2^-140 + 2^-150 (halfway between two neighbouring f32 subnormals, which lie 2^-149
+        // apart); 1e39 overflows it.
+        for odd in [0.1, 1e-50, 1e39, 2.0f64.powi(-140) + 2.0f64.powi(-150)] {
             let lists = ExactLists::new(&[exact[0], sphere(1.0, 1.0, odd, 1.0)], &[0, 1], false);
             assert!(!lists.is_f32(), "{odd}");
             assert_eq!((lists.sphere(1).center.z, lists.bytes()), (odd, 64));

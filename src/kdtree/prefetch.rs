@@ -2,7 +2,7 @@
 //! for them: the one place the walks' prefetch instructions are written.
 
 /// The cache line of the x86-64 processors measured (and most others).
-pub(super) const LINE: usize = 64;
+const LINE: usize = 64;
 
 /// Asks the CPU to start loading `items[index]`'s cache line without waiting for it.
 #[inline]

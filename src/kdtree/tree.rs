@@ -6,7 +6,9 @@
 use super::build::{
     Builder, EXACT_MAX, PARALLEL_CHUNK, PARALLEL_MIN, Prim, SahCosts, Subtree, check_costs, max_depth, sphere_prims,
 };
-use super::coarse::{CoarseRay, CoarseSphere, Grid, LANES, WIDE_LANES, WIDEST_LANES};
+#[cfg(target_arch = "x86_64")]
+use super::coarse::WIDE_LANES;
+use super::coarse::{CoarseRay, CoarseSphere, Grid, LANES, WIDEST_LANES};
 use super::exact::ExactLists;
 use super::node::{Aabb, Node, NodeKind, visit_cells};
 use super::prefetch::prefetch;
@@ -110,7 +112,8 @@ const PREFETCH_MIN_BYTES: usize = 2 << 20;
 /// [`PREFETCH_SURVIVORS`] coarse survivors ([`KdTree::survivors_per_leaf_visit`]). Large spheres (many
 /// survivors) then have their exact lines on the way while the coarse test runs; small ones would
 /// have nearly every line read for nothing. The threshold is checked on the benchmark's two
-/// densities only, whose estimates (0.05–0.29 and 0.76–0.84) any value between them separates.
+/// densities only, whose estimates (0.16–0.35 with fixed k and 0.89–0.98 with fixed volume at N
+/// = 10⁴ and 10⁵, with `K_I = 0.075`) any value between them separates.
 fn prefetches_exact(nodes: &[Node], bounds: Aabb, exact: &ExactLists) -> bool {
     exact.bytes() > PREFETCH_MIN_BYTES && survivors_per_leaf_visit(nodes, bounds, exact) >= PREFETCH_SURVIVORS
 }
@@ -908,6 +911,13 @@ mod tests {
             .collect()
     }
 
+    /// `spheres` with every centre coordinate and radius rounded to `f32`: a scene whose tree keeps
+    /// its exact copies in `f32`.
+    fn narrowed(spheres: &[Sphere<f64>]) -> Vec<Sphere<f64>> {
+        let narrow = |s: &Sphere<f64>| Sphere::new(s.center.as_vec3().as_dvec3(), f64::from(s.radius as f32));
+        spheres.iter().map(|s| narrow(s).unwrap()).collect()
+    }
+
     /// Random rays: origins in a box around the scene (often on the grid), directions on the
     /// sphere, sometimes with exact (±)zero or axis-aligned components.
     fn random_ray(rng: &mut Generator) -> Ray<f64> {
@@ -933,8 +943,8 @@ mod tests {
     /// ≥ 10⁵ random rays over 100 random scenes (sizes 1 … 300): the tree's closest hit equals
     /// brute force exactly (same sphere, same t), in both walks (rays from inside and outside the
     /// tree's box), with four, eight and (where the CPU has AVX-512) sixteen copies per coarse
-    /// test, and with the exact lists in `f64`
-    /// and (every other scene rounded to `f32` values) in `f32`.
+    /// test, and with the exact lists in `f64` and (every other scene rounded to `f32` values) in
+    /// `f32`.
     #[unit_test]
     fn closest_hit_equals_brute_force_on_random_rays() {
         let mut rng = seeded(0x4b44, 0);
@@ -946,8 +956,7 @@ mod tests {
             let mut spheres = scene(&mut rng, n);
             let in_f32 = scene_index % 2 == 1;
             if in_f32 {
-                let narrowed = |s: &Sphere<f64>| Sphere::new(s.center.as_vec3().as_dvec3(), f64::from(s.radius as f32));
-                spheres = spheres.iter().map(|s| narrowed(s).unwrap()).collect();
+                spheres = narrowed(&spheres);
             }
             let tree = KdTree::build(&spheres).unwrap();
             assert_eq!(tree.exact.is_f32(), in_f32, "scene {scene_index}");
@@ -982,7 +991,8 @@ mod tests {
     /// The batch query answers every ray as the single-ray query does, bit for bit: random scenes
     /// and rays (zero and −0 direction components, origins on the grid's planes), batches of 0 to
     /// 300 rays (fewer and more than the rays in flight), ranges that are empty, reversed, NaN or
-    /// bounded, unvalidated rays with NaN or infinite components, and a tree of moving spheres.
+    /// bounded, unvalidated rays with NaN or infinite components, and a tree of moving spheres;
+    /// exact copies in `f64` and (every other scene rounded to `f32` values) in `f32`.
     #[unit_test]
     fn closest_hits_equal_closest_hit_ray_by_ray() {
         let mut rng = seeded(0xBA7C, 0);
@@ -1001,7 +1011,10 @@ mod tests {
         for scene_index in 0..60 {
             let n = 1 + (scene_index * 53) % 400;
             let spheres = scene(&mut rng, n);
+            // Every other scene in `f32` values: the exact copies in `f32`.
+            let spheres = if scene_index % 2 == 1 { narrowed(&spheres) } else { spheres };
             let tree = KdTree::build(&spheres).unwrap();
+            assert_eq!(tree.exact.is_f32(), scene_index % 2 == 1);
             let (t_min, t_max) = ranges[scene_index % ranges.len()];
             let count = [0, 1, 3, 7, 8, 9, 17, 300][scene_index % 8];
             let mut rays: Vec<Ray<f64>> = (0..count).map(|_| random_ray(&mut rng)).collect();
@@ -1257,11 +1270,12 @@ mod tests {
     }
 
     /// Which trees ask for a leaf's exact spheres ahead: 80 000 spheres filling about a tenth of
-    /// the unit cube (135 392 listings, 4.3 MB; 0.68 expected survivors per leaf visit) do; as many
-    /// spheres ten times smaller (81 930 listings, 2.6 MB; 0.004 per visit) do not, and neither do
-    /// 8 000 spheres filling a tenth of the cube (0.63 per visit, but 12 749 listings, 0.4 MB). A
-    /// tree that asks answers as brute force does, rays from inside its box (the walk that asks)
-    /// and from outside.
+    /// the unit cube (124 266 listings, 4.0 MB of `f64` copies; 0.81 expected survivors per leaf
+    /// visit) do; as many spheres ten times smaller (81 927 listings, 2.6 MB; 0.005 per visit) do
+    /// not, and neither do 8 000 spheres filling a tenth of the cube (0.72 per visit, but 11 846
+    /// listings, 0.4 MB). A tree that asks answers as brute force does, rays from inside its box
+    /// (the walk that asks) and from outside, with its lists in `f64` and, for the same scene
+    /// rounded to `f32` values, in `f32`.
     #[unit_test]
     fn only_large_spheres_in_large_lists_are_asked_for_ahead() {
         let mut rng = seeded(0x5EED, 1);
@@ -1289,11 +1303,19 @@ mod tests {
         let few_tree = KdTree::build(&few).unwrap();
         let estimate = few_tree.survivors_per_leaf_visit();
         assert!(!large_lists(&few_tree) && estimate > PREFETCH_SURVIVORS && !few_tree.prefetch_exact, "{estimate}");
+        // The same large scene in `f32` values: its 16-byte lists, asked for ahead too (set by
+        // hand, whatever their size), so that the walk's `f32` prefetch runs.
+        let narrowed = narrowed(&large);
+        let mut narrow_tree = KdTree::build(&narrowed).unwrap();
+        assert!(narrow_tree.exact.is_f32());
+        narrow_tree.prefetch_exact = true;
         let (mut inside, mut hits) = (0, 0);
         for _ in 0..1_000 {
             let ray = random_ray(&mut rng);
             let expected = brute_force_closest_hit(&large, &ray, 0.0, f64::INFINITY);
             assert_eq!(tree.closest_hit(&ray, 0.0, f64::INFINITY), expected, "{ray:?}");
+            let narrow_expected = brute_force_closest_hit(&narrowed, &ray, 0.0, f64::INFINITY);
+            assert_eq!(narrow_tree.closest_hit(&ray, 0.0, f64::INFINITY), narrow_expected, "f32 lists: {ray:?}");
             inside += usize::from(tree.bounds.clip(&ray, 0.0, f64::INFINITY).is_some_and(|(t0, _)| t0 == 0.0));
             hits += usize::from(expected.is_some());
         }
