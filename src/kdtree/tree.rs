@@ -438,9 +438,13 @@ impl KdTree {
     /// AVX2, or [`WIDEST_LANES`] only in one compiled for AVX-512), and only the copies that may be
     /// hit reach the exact test, in list order; without it (a moving tree, or a sphere off the
     /// grid) every sphere is tested exactly.
+    ///
+    /// # Safety
+    /// With `GROUP` 8 the CPU must have AVX2, with 16 AVX-512F and AVX-512BW ([`LANES`] needs
+    /// nothing).
     #[inline(always)]
     #[allow(clippy::too_many_arguments)]
-    fn test_leaf<const GROUP: usize>(
+    unsafe fn test_leaf<const GROUP: usize>(
         &self,
         ray: &Ray<f64>,
         coarse: &CoarseRay,
@@ -455,8 +459,7 @@ impl KdTree {
         for group in (0..count).step_by(GROUP) {
             let lanes = (1u32 << (count - group).min(GROUP)) - 1;
             let copies = &self.coarse[first + group..];
-            // SAFETY: `GROUP` is `WIDE_LANES` only in `traverse_avx2`, called on a CPU with AVX2,
-            // and `WIDEST_LANES` only in `traverse_avx512`, called on one with AVX-512F and BW.
+            // SAFETY: the caller guarantees the features `GROUP` needs (this function's contract).
             let mask = if filtered { unsafe { coarse.survivors_of::<GROUP>(copies) } } else { lanes };
             let mut kept = mask & lanes;
             while kept != 0 {
@@ -518,7 +521,8 @@ impl KdTree {
                 return unsafe { self.traverse_avx2(query, counter) };
             }
         }
-        self.traverse_with::<C, LANES>(query, counter)
+        // SAFETY: four copies per test need no feature beyond the target's baseline.
+        unsafe { self.traverse_with::<C, LANES>(query, counter) }
     }
 
     /// [`KdTree::traverse_with`] compiled for AVX2, eight copies per coarse test.
@@ -528,7 +532,8 @@ impl KdTree {
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2")]
     unsafe fn traverse_avx2<C: Counter>(&self, query: Query<'_>, counter: &mut C) -> Option<(usize, f64)> {
-        self.traverse_with::<C, WIDE_LANES>(query, counter)
+        // SAFETY: the caller guarantees AVX2 (this function's contract).
+        unsafe { self.traverse_with::<C, WIDE_LANES>(query, counter) }
     }
 
     /// [`KdTree::traverse_with`] compiled for AVX-512 (and AVX2, which it includes), sixteen
@@ -541,13 +546,21 @@ impl KdTree {
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,avx512f,avx512bw")]
     unsafe fn traverse_avx512<C: Counter>(&self, query: Query<'_>, counter: &mut C) -> Option<(usize, f64)> {
-        self.traverse_with::<C, WIDEST_LANES>(query, counter)
+        // SAFETY: the caller guarantees AVX-512F and AVX-512BW (this function's contract).
+        unsafe { self.traverse_with::<C, WIDEST_LANES>(query, counter) }
     }
 
     /// The single-ray walk, counting its work into `counter`, with `GROUP` copies per coarse test
     /// ([`KdTree::test_leaf`]).
+    ///
+    /// # Safety
+    /// As [`KdTree::test_leaf`]: the CPU must have the features `GROUP` needs.
     #[inline(always)]
-    fn traverse_with<C: Counter, const GROUP: usize>(&self, query: Query<'_>, counter: &mut C) -> Option<(usize, f64)> {
+    unsafe fn traverse_with<C: Counter, const GROUP: usize>(
+        &self,
+        query: Query<'_>,
+        counter: &mut C,
+    ) -> Option<(usize, f64)> {
         let Query { ray, t_min, t_max, time } = query;
         if !(t_min < t_max) {
             return None;
@@ -602,7 +615,19 @@ impl KdTree {
                     if scattered && self.prefetch_exact {
                         self.exact.prefetch(first as usize..(first + count) as usize);
                     }
-                    self.test_leaf::<GROUP>(ray, &coarse, filtered, (first, count), (t_min, t_max), time, &mut best);
+                    // SAFETY: the caller guarantees the features `GROUP` needs (this function's
+                    // contract).
+                    unsafe {
+                        self.test_leaf::<GROUP>(
+                            ray,
+                            &coarse,
+                            filtered,
+                            (first, count),
+                            (t_min, t_max),
+                            time,
+                            &mut best,
+                        );
+                    }
                 }
             }
             // Early exit: the cells still on the stack begin at or after this one ends; one that
@@ -827,15 +852,18 @@ impl KdTree {
             }
             NodeKind::Leaf { first, count } => {
                 let time = self.default_time();
-                self.test_leaf::<LANES>(
-                    &flight.ray,
-                    &flight.coarse,
-                    self.fits,
-                    (first, count),
-                    (t_min, t_max),
-                    time,
-                    &mut flight.best,
-                );
+                // SAFETY: four copies per test need no feature beyond the target's baseline.
+                unsafe {
+                    self.test_leaf::<LANES>(
+                        &flight.ray,
+                        &flight.coarse,
+                        self.fits,
+                        (first, count),
+                        (t_min, t_max),
+                        time,
+                        &mut flight.best,
+                    );
+                }
             }
         }
         let best_t = flight.best.map_or(f64::INFINITY, |(_, t)| t);
@@ -969,7 +997,9 @@ mod tests {
                 // The four-wide walk too (what a CPU without AVX2 runs), and the eight-wide one
                 // (AVX2 without AVX-512), whichever walk `closest_hit` takes on this one.
                 let query = Query { ray: &ray, t_min, t_max, time: 0.0 };
-                assert_eq!(tree.traverse_with::<(), LANES>(query, &mut ()), expected, "four-wide: {ray:?}");
+                // SAFETY: four copies per test need no feature beyond the target's baseline.
+                let four = unsafe { tree.traverse_with::<(), LANES>(query, &mut ()) };
+                assert_eq!(four, expected, "four-wide: {ray:?}");
                 #[cfg(target_arch = "x86_64")]
                 if std::arch::is_x86_feature_detected!("avx2") {
                     // SAFETY: the CPU has AVX2 (checked just above).
