@@ -188,6 +188,29 @@ pub(super) struct CoarseRay {
 const MAX_COORDINATE: f64 = 16_777_216.0; // 2²⁴
 const MIN_DIRECTION: f64 = 1.0 / 16_777_216.0; // 2⁻²⁴
 
+/// The vector tests' lane arithmetic, written once for the three widths: [`CoarseRay::may_hit`]'s
+/// `f32` operations in its order (no fused multiply-add), lane by lane, on `ray` (a
+/// [`CoarseRay`]), the copies' counts `q` (one vector per coordinate) and their `radius` counts,
+/// with the width's intrinsics `$sub`, `$mul`, `$add` and `$set1`. Evaluates to `(lhs, rhs)`: a lane
+/// survives where `lhs <= rhs`. Each caller is a function compiled for its width, which the
+/// expanded intrinsics need.
+#[cfg(target_arch = "x86_64")]
+macro_rules! lane_sides {
+    ($ray:expr, $q:expr, $radius:expr, $sub:ident, $mul:ident, $add:ident, $set1:ident) => {{
+        let (ray, q, radius) = ($ray, $q, $radius);
+        let (o, d) = (ray.origin.map(|x| $set1(x)), ray.dir.map(|x| $set1(x)));
+        let f = [$sub(o[0], q[0]), $sub(o[1], q[1]), $sub(o[2], q[2])];
+        let p = [
+            $sub($mul(f[1], d[2]), $mul(f[2], d[1])),
+            $sub($mul(f[2], d[0]), $mul(f[0], d[2])),
+            $sub($mul(f[0], d[1]), $mul(f[1], d[0])),
+        ];
+        let lhs = $add($add($mul(p[0], p[0]), $mul(p[1], p[1])), $mul(p[2], p[2]));
+        let s = $add(radius, $set1(ray.widening));
+        (lhs, $mul($mul(s, s), $set1(ray.scaled_a)))
+    }};
+}
+
 impl CoarseRay {
     /// The coarse ray for `ray` in a tree with the grid `grid`.
     pub fn new(ray: &Ray<f64>, grid: &Grid) -> Self {
@@ -284,16 +307,7 @@ impl CoarseRay {
             let (zr01, zr23) = (_mm_unpackhi_ps(rows[0], rows[1]), _mm_unpackhi_ps(rows[2], rows[3]));
             let q = [_mm_movelh_ps(xy01, xy23), _mm_movehl_ps(xy23, xy01), _mm_movelh_ps(zr01, zr23)];
             let radius = _mm_movehl_ps(zr23, zr01);
-            let (o, d) = (self.origin.map(|x| _mm_set1_ps(x)), self.dir.map(|x| _mm_set1_ps(x)));
-            let f = [_mm_sub_ps(o[0], q[0]), _mm_sub_ps(o[1], q[1]), _mm_sub_ps(o[2], q[2])];
-            let p = [
-                _mm_sub_ps(_mm_mul_ps(f[1], d[2]), _mm_mul_ps(f[2], d[1])),
-                _mm_sub_ps(_mm_mul_ps(f[2], d[0]), _mm_mul_ps(f[0], d[2])),
-                _mm_sub_ps(_mm_mul_ps(f[0], d[1]), _mm_mul_ps(f[1], d[0])),
-            ];
-            let lhs = _mm_add_ps(_mm_add_ps(_mm_mul_ps(p[0], p[0]), _mm_mul_ps(p[1], p[1])), _mm_mul_ps(p[2], p[2]));
-            let s = _mm_add_ps(radius, _mm_set1_ps(self.widening));
-            let rhs = _mm_mul_ps(_mm_mul_ps(s, s), _mm_set1_ps(self.scaled_a));
+            let (lhs, rhs) = lane_sides!(self, q, radius, _mm_sub_ps, _mm_mul_ps, _mm_add_ps, _mm_set1_ps);
             _mm_movemask_ps(_mm_cmple_ps(lhs, rhs)) as u32
         }
     }
@@ -348,19 +362,7 @@ impl CoarseRay {
                 _mm256_castpd_ps(_mm256_unpacklo_pd(zr01, zr23)),
             ];
             let radius = _mm256_castpd_ps(_mm256_unpackhi_pd(zr01, zr23));
-            let (o, d) = (self.origin.map(|x| _mm256_set1_ps(x)), self.dir.map(|x| _mm256_set1_ps(x)));
-            let f = [_mm256_sub_ps(o[0], q[0]), _mm256_sub_ps(o[1], q[1]), _mm256_sub_ps(o[2], q[2])];
-            let p = [
-                _mm256_sub_ps(_mm256_mul_ps(f[1], d[2]), _mm256_mul_ps(f[2], d[1])),
-                _mm256_sub_ps(_mm256_mul_ps(f[2], d[0]), _mm256_mul_ps(f[0], d[2])),
-                _mm256_sub_ps(_mm256_mul_ps(f[0], d[1]), _mm256_mul_ps(f[1], d[0])),
-            ];
-            let lhs = _mm256_add_ps(
-                _mm256_add_ps(_mm256_mul_ps(p[0], p[0]), _mm256_mul_ps(p[1], p[1])),
-                _mm256_mul_ps(p[2], p[2]),
-            );
-            let s = _mm256_add_ps(radius, _mm256_set1_ps(self.widening));
-            let rhs = _mm256_mul_ps(_mm256_mul_ps(s, s), _mm256_set1_ps(self.scaled_a));
+            let (lhs, rhs) = lane_sides!(self, q, radius, _mm256_sub_ps, _mm256_mul_ps, _mm256_add_ps, _mm256_set1_ps);
             _mm256_movemask_ps(_mm256_cmp_ps::<_CMP_LE_OQ>(lhs, rhs)) as u32
         }
     }
@@ -386,7 +388,7 @@ impl CoarseRay {
         use std::arch::x86_64::{
             __m512i, _CMP_LE_OQ, _mm512_add_ps, _mm512_castsi512_si256, _mm512_cmp_ps_mask, _mm512_cvtepi32_ps,
             _mm512_cvtepu16_epi32, _mm512_extracti64x4_epi64, _mm512_loadu_si512, _mm512_mul_ps,
-            _mm512_permutex2var_epi16, _mm512_set_epi16, _mm512_set1_ps, _mm512_sub_ps,
+            _mm512_permutex2var_epi16, _mm512_set1_ps, _mm512_sub_ps,
         };
         let sixteen: &[CoarseSphere; WIDEST_LANES] =
             spheres[..WIDEST_LANES].try_into().expect("a group of sixteen copies");
@@ -394,72 +396,21 @@ impl CoarseRay {
             return (1 << WIDEST_LANES) - 1;
         }
         // SAFETY: the caller guarantees AVX-512F and AVX-512BW; the only memory touched is two
-        // unaligned 64-byte loads of `sixteen`: sixteen `#[repr(C)]` copies of four `u16`s, 128
-        // bytes without padding.
+        // unaligned 64-byte loads of `sixteen` (sixteen `#[repr(C)]` copies of four `u16`s, 128
+        // bytes without padding) and one of each 64-byte word table (32 `i16`s).
         unsafe {
             let at = sixteen.as_ptr().cast::<__m512i>();
             let (front, back) = (_mm512_loadu_si512(at), _mm512_loadu_si512(at.add(1)));
-            // Word 4k + j of the pair (`front`'s 32 words, then `back`'s) is count j of sphere k.
-            // Word p of a shuffle's result: count `first` of sphere p for p < 16, count `second`
-            // of sphere p − 16 above (`_mm512_set_epi16` lists the last word first).
-            let order = |first: i16, second: i16| {
-                let w = |p: i16| if p < 16 { 4 * p + first } else { 4 * (p - 16) + second };
-                _mm512_set_epi16(
-                    w(31),
-                    w(30),
-                    w(29),
-                    w(28),
-                    w(27),
-                    w(26),
-                    w(25),
-                    w(24),
-                    w(23),
-                    w(22),
-                    w(21),
-                    w(20),
-                    w(19),
-                    w(18),
-                    w(17),
-                    w(16),
-                    w(15),
-                    w(14),
-                    w(13),
-                    w(12),
-                    w(11),
-                    w(10),
-                    w(9),
-                    w(8),
-                    w(7),
-                    w(6),
-                    w(5),
-                    w(4),
-                    w(3),
-                    w(2),
-                    w(1),
-                    w(0),
-                )
-            };
-            let xy = _mm512_permutex2var_epi16(front, order(0, 1), back);
-            let zr = _mm512_permutex2var_epi16(front, order(2, 3), back);
+            let table = |words: &[i16; 32]| _mm512_loadu_si512(words.as_ptr().cast());
+            let xy = _mm512_permutex2var_epi16(front, table(&XY_WORDS), back);
+            let zr = _mm512_permutex2var_epi16(front, table(&ZR_WORDS), back);
             let counts = |words: __m512i, high: bool| {
                 let half = if high { _mm512_extracti64x4_epi64::<1>(words) } else { _mm512_castsi512_si256(words) };
                 _mm512_cvtepi32_ps(_mm512_cvtepu16_epi32(half))
             };
             let q = [counts(xy, false), counts(xy, true), counts(zr, false)];
             let radius = counts(zr, true);
-            let (o, d) = (self.origin.map(|x| _mm512_set1_ps(x)), self.dir.map(|x| _mm512_set1_ps(x)));
-            let f = [_mm512_sub_ps(o[0], q[0]), _mm512_sub_ps(o[1], q[1]), _mm512_sub_ps(o[2], q[2])];
-            let p = [
-                _mm512_sub_ps(_mm512_mul_ps(f[1], d[2]), _mm512_mul_ps(f[2], d[1])),
-                _mm512_sub_ps(_mm512_mul_ps(f[2], d[0]), _mm512_mul_ps(f[0], d[2])),
-                _mm512_sub_ps(_mm512_mul_ps(f[0], d[1]), _mm512_mul_ps(f[1], d[0])),
-            ];
-            let lhs = _mm512_add_ps(
-                _mm512_add_ps(_mm512_mul_ps(p[0], p[0]), _mm512_mul_ps(p[1], p[1])),
-                _mm512_mul_ps(p[2], p[2]),
-            );
-            let s = _mm512_add_ps(radius, _mm512_set1_ps(self.widening));
-            let rhs = _mm512_mul_ps(_mm512_mul_ps(s, s), _mm512_set1_ps(self.scaled_a));
+            let (lhs, rhs) = lane_sides!(self, q, radius, _mm512_sub_ps, _mm512_mul_ps, _mm512_add_ps, _mm512_set1_ps);
             u32::from(_mm512_cmp_ps_mask::<_CMP_LE_OQ>(lhs, rhs))
         }
     }
@@ -489,6 +440,29 @@ impl CoarseRay {
         }
     }
 }
+
+/// The word order of [`CoarseRay::survivors_widest`]'s two shuffles. Word `4k + j` of the 128
+/// bytes of sixteen copies (the first 64-byte half's 32 words, then the second's) is count `j` of
+/// copy `k`; word `p` of a shuffle's result is count `first` of copy `p` for `p < 16` and count
+/// `second` of copy `p − 16` above.
+#[cfg(target_arch = "x86_64")]
+const fn shuffle_words(first: i16, second: i16) -> [i16; 32] {
+    let mut words = [0; 32];
+    let mut p = 0;
+    while p < 32 {
+        words[p] = if p < 16 { 4 * p as i16 + first } else { 4 * (p as i16 - 16) + second };
+        p += 1;
+    }
+    words
+}
+
+/// The x counts of sixteen copies, then their y counts ([`shuffle_words`]).
+#[cfg(target_arch = "x86_64")]
+const XY_WORDS: [i16; 32] = shuffle_words(0, 1);
+
+/// The z counts of sixteen copies, then their radii ([`shuffle_words`]).
+#[cfg(target_arch = "x86_64")]
+const ZR_WORDS: [i16; 32] = shuffle_words(2, 3);
 
 /// How many coarse copies [`CoarseRay::survivors_widest`] tests at once.
 pub(super) const WIDEST_LANES: usize = 16;

@@ -113,9 +113,9 @@ impl Node {
 }
 
 /// Calls `visit` with every node of the tree `nodes` and its cell, depth first from the root (each
-/// upper subtree before its lower one): the root's is `bounds`; an interior node's lower child (the next node) takes the part
-/// below its split plane, its upper child the part above. The one place the cells are derived from
-/// the splits, for the measures of a built tree.
+/// upper subtree before its lower one): the root's is `bounds`; an interior node's lower child
+/// (the next node) takes the part below its split plane, its upper child the part above. The one
+/// place the cells are derived from the splits, for the measures of a built tree.
 pub(crate) fn visit_cells(nodes: &[Node], bounds: Aabb, mut visit: impl FnMut(NodeKind, &Aabb)) {
     let mut cells = vec![(0u32, bounds)];
     while let Some((node, cell)) = cells.pop() {
