@@ -7,6 +7,11 @@ pub mod glossary {
     #![doc = include_str!(concat!(env!("OUT_DIR"), "/glossary.md"))]
 }
 
+/// How a student hands in answers: the template, the answers file's forms, `hw3 check`.
+pub mod hand_in {
+    #![doc = include_str!(concat!(env!("OUT_DIR"), "/hand_in.md"))]
+}
+
 /// The printable answer key: every part's answer, the student's answer and its grade, and the
 /// section that explains it.
 pub mod answer_key {

@@ -149,7 +149,7 @@ pub fn answers() -> Answers {
     let (two_pass, photon_mapping) = CAUSTIC_PERCENT;
     let text = format!(
         "(a) radiosity, LD*E: (a) highlight No (misses LGE), (b) colour bleeding Yes, (c) diffuse shading Yes, (d) specular effects No (misses LDSE, LSDE), (e) ambient glow Yes — all five as the student says, and all five measured so against the path tracer (table q5_measured).\n\
-         (b) two-pass (direct light from eye rays + photon tracing): (a) Yes, (b) Yes, (c) Yes, (d) mirror images No (misses LDSE: eye rays are not traced further), caustics possible but impractical by the grammar (LSDE only in the diffuse photon map) and No when measured (a photon pass that stores photons only after a diffuse bounce never holds LS+D photons: {two_pass} % of the path-traced caustic; photon mapping with a caustic map: {photon_mapping} %), (e) Yes (the student: Yes, as in (b)).\n\
+         (b) two-pass (direct light from eye rays + photon tracing): (a) Yes, (b) Yes, (c) Yes, (d) mirror images No (misses LDSE: eye rays are not traced further), caustics No (misses LSDE: its map keeps photons only after a diffuse bounce, so it never holds the LS+D photons of a caustic; measured {two_pass} % of the path-traced caustic, against {photon_mapping} % for photon mapping, whose caustic map keeps them), (e) Yes (the student: Yes, as in (b)).\n\
          With a point light the path tracer loses caustics altogether (No: LSDE), photon mapping keeps them."
     );
     Answers {
@@ -313,7 +313,13 @@ mod tests {
             cell("two_pass", "d_mirror").witness.as_deref().unwrap()
         );
         assert!(line.contains(&expected), "{expected}");
-        assert_eq!(cell("two_pass", "d_caustic").verdict, Verdict::Impractical, "printed as possible but impractical");
+        assert_eq!(cell("two_pass", "d_caustic").verdict, Verdict::No, "printed as No");
+        assert!(
+            line.contains(&format!(
+                "caustics No (misses {}",
+                cell("two_pass", "d_caustic").witness.as_deref().unwrap()
+            ))
+        );
         // "all five as the student says" (printed): one answer of the student's per letter of Q5(a).
         assert_eq!(STUDENT_ANSWERS.iter().filter(|(part, _, _)| *part == 'a').count(), 5);
     }

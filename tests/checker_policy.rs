@@ -92,8 +92,6 @@ one_test_per_rule! {
     convention_earns_half_everywhere => Rule::Convention,
     other_quantity_earns_nothing_everywhere => Rule::OtherQuantity,
     wrong_case_earns_nothing_everywhere => Rule::WrongCase,
-    impractical_as_yes_earns_half => Rule::ImpracticalAsYes,
-    measured_no_earns_full_credit => Rule::MeasuredNo,
 }
 
 /// The inconsistencies, each resolved by one rule: the distance for t earns the same in

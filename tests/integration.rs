@@ -23,6 +23,8 @@ mod hostile_cli;
 mod hostile_fuzz;
 #[path = "layering.rs"]
 mod layering;
+#[path = "notes.rs"]
+mod notes;
 #[path = "q4_cli.rs"]
 mod q4_cli;
 #[path = "solution_cli.rs"]

@@ -193,7 +193,7 @@ impl MalRule {
 /// let q2 = hw3::checker::variant("q2", 0).unwrap();
 /// let part = q2.parts.iter().find(|p| p.key == "q2a.t").unwrap();
 /// assert_eq!(part.points, 2.0);
-/// assert_eq!(part.explained_in, "hw3/q2_ray_sphere/index.html#a-derivation");
+/// assert_eq!(part.explained_in, "hw3/q2_ray_sphere/index.html#part-q2a-the-case-the-first-hit-and-its-point");
 /// ```
 #[derive(Debug, Clone, PartialEq)]
 pub struct Part {

@@ -43,17 +43,13 @@ pub enum Rule {
     OtherQuantity,
     /// The wrong case of the analysis.
     WrongCase,
-    /// Yes where the method finds the paths only by chance.
-    ImpracticalAsYes,
-    /// No where the paths are possible but the notes' own experiment measures No.
-    MeasuredNo,
     /// A step that follows correctly from the student's own earlier wrong answer.
     CarriedForward,
 }
 
 impl Rule {
     /// Every rule, in the order of the policy table.
-    pub const ALL: [Self; 15] = [
+    pub const ALL: [Self; 13] = [
         Self::Sign,
         Self::Factor,
         Self::Power,
@@ -66,8 +62,6 @@ impl Rule {
         Self::Convention,
         Self::OtherQuantity,
         Self::WrongCase,
-        Self::ImpracticalAsYes,
-        Self::MeasuredNo,
         Self::CarriedForward,
     ];
 
@@ -92,8 +86,6 @@ impl Rule {
             Self::Convention => "convention",
             Self::OtherQuantity => "other_quantity",
             Self::WrongCase => "wrong_case",
-            Self::ImpracticalAsYes => "impractical_as_yes",
-            Self::MeasuredNo => "measured_no",
             Self::CarriedForward => "carried_forward",
         }
     }
@@ -102,8 +94,8 @@ impl Rule {
     ///
     /// Half credit is for a right method with one mechanical slip in expressing it (a unit, a
     /// constant, a normalisation, a convention); none for a different method, quantity or
-    /// geometry; full credit for an answer the notes themselves support or one that follows
-    /// from the student's own earlier mistake (charged once, where it was made).
+    /// geometry; full credit for a step that follows from the student's own earlier mistake
+    /// (charged once, where it was made).
     ///
     /// # Examples
     /// ```
@@ -120,9 +112,8 @@ impl Rule {
             | Self::NotNormalised
             | Self::Unit
             | Self::FullForHalfAngle
-            | Self::Convention
-            | Self::ImpracticalAsYes => 0.5,
-            Self::MeasuredNo | Self::CarriedForward => 1.0,
+            | Self::Convention => 0.5,
+            Self::CarriedForward => 1.0,
         }
     }
 
@@ -168,12 +159,6 @@ impl Rule {
             }
             Self::WrongCase => {
                 "The wrong case of the analysis, or a hit for a miss: every later part rests on it, and the feedback says which sign decides."
-            }
-            Self::ImpracticalAsYes => {
-                "Yes where the method has the paths but finds them only by chance: right that it can, wrong that it does in practice."
-            }
-            Self::MeasuredNo => {
-                "No where the paths are possible by chance but the notes' own experiment measures No: a reading the notes support, so full credit, with the path analysis in the feedback."
             }
             Self::CarriedForward => {
                 "A step that follows correctly from the student's own earlier wrong answer: the error is charged once, at the step where it was made."

@@ -16,11 +16,11 @@ use rand_core::Rng;
 const STREAM: u64 = 1;
 
 /// The chapter's sections each part is explained in.
-const CLUTTER_NOTES: &str = "hw3/q1_hard_scenes/index.html#a-clutter-a-forest-of-spheres";
-const FOG_NOTES: &str = "hw3/q1_hard_scenes/index.html#b-fog-contrast-and-transmittance-versus-distance";
-const MIRROR_NOTES: &str = "hw3/q1_hard_scenes/index.html#c-mirrors-image-change-per-unit-camera-move";
-const MOTION_NOTES: &str = "hw3/q1_hard_scenes/index.html#d-change-over-time";
-const ANSWER_NOTES: &str = "hw3/q1_hard_scenes/index.html#the-answer";
+const CLUTTER_NOTES: &str = "hw3/q1_hard_scenes/index.html#part-q1a-the-gap-fraction-of-a-slab-of-spheres";
+const FOG_NOTES: &str = "hw3/q1_hard_scenes/index.html#part-q1b-transmittance-and-visual-range";
+const MIRROR_NOTES: &str = "hw3/q1_hard_scenes/index.html#part-q1c-how-far-a-mirror-balls-reflection-turns";
+const MOTION_NOTES: &str = "hw3/q1_hard_scenes/index.html#part-q1d-image-shift-per-frame";
+const ANSWER_NOTES: &str = "hw3/q1_hard_scenes/index.html#part-q1match-which-scene-shows-which-difficulty";
 
 /// The difficulties of Q1, by the homework's letters.
 const DIFFICULTIES: [&str; 4] = ["a", "b", "c", "d"];
@@ -210,7 +210,7 @@ pub(super) fn variant(seed: u64) -> Variant {
         },
         Part {
             key: "q1b.transmittance",
-            prompt: "transmittance e^(-sigma_t l)",
+            prompt: "transmittance along the path",
             points: 1.0,
             expected: Expected::number(transmittance, 1e-3),
             mal_rules: vec![MalRule {
@@ -223,7 +223,7 @@ pub(super) fn variant(seed: u64) -> Variant {
         },
         Part {
             key: "q1b.visual_range",
-            prompt: "visual range ln(50)/sigma_t",
+            prompt: "visual range (the distance at which contrast falls to 2 %)",
             points: 1.0,
             expected: Expected::number(visual_range, 1e-3),
             mal_rules: vec![MalRule {

@@ -14,9 +14,9 @@ use rand_core::Rng;
 const STREAM: u64 = 2;
 
 /// The chapter's sections each part is explained in.
-const DERIVATION: &str = "hw3/q2_ray_sphere/index.html#a-derivation";
-const REFLECTION_NOTES: &str = "hw3/q2_ray_sphere/index.html#b-reflection";
-const CLOSEST_NOTES: &str = "hw3/q2_ray_sphere/index.html#c-the-closest-approach-two-ways";
+const DERIVATION: &str = "hw3/q2_ray_sphere/index.html#part-q2a-the-case-the-first-hit-and-its-point";
+const REFLECTION_NOTES: &str = "hw3/q2_ray_sphere/index.html#part-q2b-the-normal-and-the-reflected-direction";
+const CLOSEST_NOTES: &str = "hw3/q2_ray_sphere/index.html#part-q2c-the-closest-approach";
 
 const T_METHOD: &str = "Solve A t^2 + B t + C = 0 and take the smallest positive root (t = 0 is the eye, not a hit).";
 const POINT_METHOD: &str = "Put the first hit's t into the ray: p = e + d t.";
@@ -370,7 +370,7 @@ pub(super) fn variant(seed: u64) -> Variant {
         }
         let mut point_part = Part {
             key: "q2a.point",
-            prompt: "intersection point e + d t",
+            prompt: "the first intersection point",
             points: 1.0,
             expected: or_none(vector(hit.point)),
             mal_rules: vec![],
@@ -386,7 +386,7 @@ pub(super) fn variant(seed: u64) -> Variant {
         }
         let mut reflected_part = Part {
             key: "q2b.reflected_dir",
-            prompt: "unit reflected direction d^ - 2 (n . d^) n",
+            prompt: "unit reflected direction at the hit",
             points: 2.0,
             expected: or_none(direction(reflected)),
             mal_rules: vec![],
@@ -430,7 +430,7 @@ pub(super) fn variant(seed: u64) -> Variant {
         parts.extend([
             Part {
                 key: "q2b.normal",
-                prompt: "unit normal (p - o)/r at the hit",
+                prompt: "unit outward normal at the hit",
                 points: 1.0,
                 expected: or_none(direction(hit.normal)),
                 mal_rules: vec![MalRule {
@@ -457,22 +457,15 @@ pub(super) fn variant(seed: u64) -> Variant {
         let zero = DVec3::X;
         parts.extend([
             none("q2a.t", "first intersection parameter t", 2.0, Expected::number(0.0, 1e-3), DERIVATION, T_METHOD),
-            none("q2a.point", "intersection point e + d t", 1.0, vector(zero), DERIVATION, POINT_METHOD),
+            none("q2a.point", "the first intersection point", 1.0, vector(zero), DERIVATION, POINT_METHOD),
             a,
             b,
             c,
             t_formula,
-            none(
-                "q2b.normal",
-                "unit normal (p - o)/r at the hit",
-                1.0,
-                direction(zero),
-                REFLECTION_NOTES,
-                NORMAL_METHOD,
-            ),
+            none("q2b.normal", "unit outward normal at the hit", 1.0, direction(zero), REFLECTION_NOTES, NORMAL_METHOD),
             none(
                 "q2b.reflected_dir",
-                "unit reflected direction d^ - 2 (n . d^) n",
+                "unit reflected direction at the hit",
                 2.0,
                 direction(zero),
                 REFLECTION_NOTES,
@@ -483,7 +476,7 @@ pub(super) fn variant(seed: u64) -> Variant {
     parts.extend([normal_formula, reflected_formula]);
     let mut closest = Part {
         key: "q2c.t_closest",
-        prompt: "closest-approach parameter -(e - o) . d / |d|^2",
+        prompt: "parameter t of the ray's closest approach to the centre",
         points: 2.0,
         expected: Expected::number(t_closest, 1e-3),
         mal_rules: vec![],

@@ -13,7 +13,10 @@ use rand_core::Rng;
 const STREAM: u64 = 3;
 
 /// The chapter's sections each part is explained in.
-const DERIVATION: &str = "hw3/q3_kd_traversal/index.html#derivation";
+/// The chapter's sections on the graded parts: the plane parameters (b) and (c), and the traces.
+const ROOT_PLANE_NOTES: &str = "hw3/q3_kd_traversal/index.html#part-q3b-the-root-planes-parameter";
+const CHILD_PLANE_NOTES: &str = "hw3/q3_kd_traversal/index.html#part-q3c-the-plane-parameter-in-the-left-child";
+const TRACE_NOTES: &str = "hw3/q3_kd_traversal/index.html#parts-q3d-and-q3e-tracing-a-ray-through-the-tree";
 const TRAVERSAL_METHOD: &str = "At each node cut [tmin, tmax] at the plane's t = (s - e_a)/d_a: the near child gets [tmin, min(t, tmax)], the far child [max(t, tmin), tmax], and a piece of zero length is not visited.";
 
 /// The key of one ray: its leaves, every descent, its planes, and the plane crossings (for the
@@ -171,7 +174,7 @@ pub(super) fn variant(seed: u64) -> Variant {
                 ("(e_x - 3)/d_x", "sign error: e_x + d_x t = 3 gives t = (3 - e_x)/d_x", Rule::Sign),
                 ("3/d_x", "the origin is missing: t = (3 - e_x)/d_x", Rule::WrongTerm),
             ],
-            DERIVATION,
+            ROOT_PLANE_NOTES,
             "The ray's x is e_x + d_x t; it equals 3 at t = (3 - e_x)/d_x.",
         ),
         formula_part(
@@ -185,7 +188,7 @@ pub(super) fn variant(seed: u64) -> Variant {
                 ("(e_y - 1)/d_y", "sign error: e_y + d_y t = 1 gives t = (1 - e_y)/d_y", Rule::Sign),
                 ("(1 - e_x)/d_x", "that is the x-axis: the plane y = 1 uses e_y and d_y", Rule::WrongTerm),
             ],
-            DERIVATION,
+            CHILD_PLANE_NOTES,
             "The ray's y is e_y + d_y t; it equals 1 at t = (1 - e_y)/d_y.",
         ),
     ];
@@ -207,7 +210,7 @@ pub(super) fn variant(seed: u64) -> Variant {
             points: 1.5,
             expected: Expected::Planes { steps: key.planes },
             mal_rules: vec![],
-            explained_in: DERIVATION,
+            explained_in: TRACE_NOTES,
             method: "At each node reached, t = (s - e_a)/d_a (none for a parallel ray), and first the child the ray is in just after tmin.",
         });
         parts.push(Part {
@@ -216,7 +219,7 @@ pub(super) fn variant(seed: u64) -> Variant {
             points: 1.5,
             expected: Expected::Trace { leaves: key.descents, planes: key.crossings.clone(), descents: true },
             mal_rules: vec![],
-            explained_in: DERIVATION,
+            explained_in: TRACE_NOTES,
             method: TRAVERSAL_METHOD,
         });
         parts.push(Part {
@@ -225,7 +228,7 @@ pub(super) fn variant(seed: u64) -> Variant {
             points: leaf_points,
             expected: Expected::Trace { leaves: key.leaves, planes: key.crossings, descents: false },
             mal_rules: vec![],
-            explained_in: DERIVATION,
+            explained_in: TRACE_NOTES,
             method: TRAVERSAL_METHOD,
         });
         follows.push(Follows {

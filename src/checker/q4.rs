@@ -18,8 +18,8 @@ use std::f64::consts::PI;
 const STREAM: u64 = 4;
 
 /// The chapter's sections each part is explained in.
-const IRRADIANCE_NOTES: &str = "hw3/q4_light_probe/index.html#oracles";
-const BLIND_NOTES: &str = "hw3/q4_light_probe/index.html#the-blind-spot";
+const IRRADIANCE_NOTES: &str = "hw3/q4_light_probe/index.html#part-q4a-the-irradiance-of-a-linear-sky";
+const BLIND_NOTES: &str = "hw3/q4_light_probe/index.html#part-q4b-the-blind-cone-and-the-light-it-loses";
 
 pub(super) fn variant(seed: u64) -> Variant {
     let mut g = rng::seeded(seed, STREAM);
@@ -46,8 +46,7 @@ pub(super) fn variant(seed: u64) -> Variant {
     let (sign, b_abs) = if b < 0.0 { ('-', -b) } else { ('+', b) };
     let statement = format!(
         "Q4 (variant {seed}). An environment of radiance L(w) = {a} {sign} {b_abs} w_z (z up) lights a diffuse surface.\n\
-         (a) the irradiance E(n) = integral of L(w) max(0, n . w) dw for the unit normal n tilted {tilt_deg} degrees \
-         from up towards +x;\n\
+         (a) the irradiance E(n) at a surface whose unit normal n is tilted {tilt_deg} degrees from up towards +x;\n\
          (b) a mirrored ball of radius R photographed from distance D = {distance_over_radius} R: the half-angle, \
          in degrees, of the cone of directions the ball cannot show, and the fraction of a uniform environment's \
          irradiance lost for a normal pointing straight into that cone."
@@ -79,7 +78,7 @@ pub(super) fn variant(seed: u64) -> Variant {
         },
         Part {
             key: "q4b.blind_half_angle_deg",
-            prompt: "blind cone half-angle arcsin(R/D), in degrees",
+            prompt: "half-angle of the blind cone, in degrees",
             points: 2.0,
             expected: Expected::number(gamma.to_degrees(), 1e-3),
             mal_rules: vec![
@@ -125,7 +124,7 @@ pub(super) fn variant(seed: u64) -> Variant {
 }
 
 /// Where the notes work a probe image by hand.
-const PROBE_NOTES: &str = "hw3/q4_light_probe/index.html#a-worked-probe-by-hand";
+const PROBE_NOTES: &str = "hw3/q4_light_probe/index.html#part-q4c-a-small-mirror-ball-image-texel-by-texel";
 const DIRECTION_METHOD: &str =
     "Reflect the view ray about the ball's normal at the texel's centre: w = 2(n . v)n - v, with v toward the camera.";
 const SOLID_ANGLE_METHOD: &str =
@@ -297,9 +296,10 @@ impl ProbeImage {
              left; \"-\" marks a texel whose centre is outside the disc: masked, not used):\n\n{table}\n\
              For texels {} (row, column): the world direction w of the texel's centre (unit, from the ball toward the \
              light it shows) and the texel's solid angle dw. Over every texel used, for the normal n of (a): the \
-             weighted sum E = sum of L max(0, n . w) dw; the unweighted sum (4 pi/N) times the sum of L max(0, n . w) \
-             over the N texels used; its bias as the ratio unweighted/weighted; the solid angle the masked texels \
-             hold (4 pi minus the sum of dw); the one direction the image cannot show; and, as a formula in L, n, w \
+             weighted texel sum of the irradiance E (each texel used weighted by its own solid angle); the unweighted \
+             texel sum (every texel used given the same share of the sphere, as the Q4 chapter defines it); the \
+             unweighted sum's bias as the ratio unweighted/weighted; the solid angle the masked texels hold; the one \
+             direction the image cannot show; and, as a formula in L, n, w \
              and dw, the term one texel adds to E.",
             listed.join(", ")
         )
@@ -400,7 +400,7 @@ impl ProbeImage {
             .collect();
         parts.push(Part {
             key: "q4c.weighted_sum",
-            prompt: "weighted sum E = sum of L max(0, n . w) dw over the texels used",
+            prompt: "the weighted texel sum of E over the texels used",
             points: 2.0,
             expected: probe_number(weighted),
             mal_rules: distinct(
@@ -438,7 +438,7 @@ impl ProbeImage {
         });
         parts.push(Part {
             key: "q4c.unweighted_sum",
-            prompt: "unweighted sum (4 pi/N) times the sum of L max(0, n . w)",
+            prompt: "the unweighted texel sum of E over the texels used",
             points: 1.0,
             expected: probe_number(unweighted),
             mal_rules: distinct(
@@ -491,7 +491,7 @@ impl ProbeImage {
         let masked: f64 = texels.iter().filter(|t| !t.centre_inside).map(|t| t.solid_angle).sum();
         parts.push(Part {
             key: "q4c.masked_solid_angle",
-            prompt: "solid angle held by the masked texels, 4 pi minus the sum of dw, steradians",
+            prompt: "solid angle held by the masked texels, steradians",
             points: 0.5,
             expected: probe_number(masked),
             mal_rules: vec![MalRule {

@@ -1,18 +1,12 @@
 //! Q5 tables: which effects each method captures, graded cell by cell against the grammar's
 //! verdicts (area light, the homework's setting). Q5 has one variant: the seed is ignored.
 
-use super::key::{Expected, MalRule, Part, Variant};
-use super::policy::Rule;
+use super::key::{Expected, Part, Variant};
 use crate::q5_effect_tables::{Cell, EFFECTS, LightKind, Verdict, grammar_table};
 use std::sync::OnceLock;
 
 /// The chapter's section on deciding a cell.
 const NOTES: &str = "hw3/q5_effect_tables/index.html#deciding-a-cell-from-light-paths";
-
-/// The cells (method, effect) whose paths are possible but impractical by the grammar and which
-/// the chapter's experiment measures No: there "no" is a reading the notes support
-/// ([`Rule::MeasuredNo`]). Checked against the committed measured table by a test.
-const MEASURED_NO: [(&str, &str); 1] = [("two_pass", "d_caustic")];
 
 const CELL_METHOD: &str = "Write the effect as light paths and compare with the paths the method produces: all of them is yes, none is no, only by chance (noise) is impractical.";
 
@@ -74,31 +68,12 @@ pub(super) fn variant(seed: u64) -> Variant {
         for cell in cells.iter().filter(|c| c.algorithm == method && c.light == LightKind::Area) {
             let name = format!("{table}.{}", cell.effect);
             let key = *KEYS.iter().find(|k| **k == name).expect("every Q5 effect row has a key");
-            let mal_rules = if cell.verdict == Verdict::Impractical {
-                let mut rules = vec![MalRule {
-                    value: Expected::Choice { value: "yes", options: &VERDICTS },
-                    message: "possible in principle, but only by chance (noise): impractical, not a practical yes",
-                    rule: Rule::ImpracticalAsYes,
-                }];
-                // "no" is an answer only where the chapter's experiment measures No; elsewhere
-                // the method does produce the paths, and "no" is plainly wrong.
-                if MEASURED_NO.contains(&(method, cell.effect)) {
-                    rules.push(MalRule {
-                        value: Expected::Choice { value: "no", options: &VERDICTS },
-                        message: "the chapter's experiment measures No here (its photon pass stores no photon that came straight through the glass); the path analysis says impractical: the paths exist, found only by chance",
-                        rule: Rule::MeasuredNo,
-                    });
-                }
-                rules
-            } else {
-                vec![]
-            };
             cell_parts.push(Part {
                 key,
-                prompt: "yes, no or impractical (a `why` is shown, not graded)",
+                prompt: "does the method capture the effect: yes, no or impractical (a `why` is shown, not graded)",
                 points: 1.0,
                 expected: Expected::Choice { value: word(cell.verdict), options: &VERDICTS },
-                mal_rules,
+                mal_rules: vec![],
                 explained_in: NOTES,
                 method: CELL_METHOD,
             });
@@ -108,7 +83,7 @@ pub(super) fn variant(seed: u64) -> Variant {
             let missed = if cell.verdict == Verdict::Yes { "none" } else { effect.paths };
             missed_parts.push(Part {
                 key: MISSED.iter().find(|k| **k == name).expect("every Q5 cell has a reason key"),
-                prompt: "the effect's light paths the method misses or gets only by chance (Heckbert's notation, or none)",
+                prompt: "the whole class of the effect's light paths that the method misses or gets only by chance (Heckbert's notation), or none",
                 points: 0.5,
                 expected: Expected::Paths { value: missed.to_string() },
                 mal_rules: vec![],
@@ -134,11 +109,16 @@ pub(super) fn variant(seed: u64) -> Variant {
         "Q5 (one variant; seed {seed} ignored). Effects: (a) a specular highlight on a glossy surface; (b) colour \
          bleeding; (c) diffuse shading that varies with the normal; (d) a specular effect, split into d_mirror (a \
          diffuse object seen in a mirror) and d_caustic (light focused by a mirror or glass); (e) ambient glow.\n\
-         For an area light, does (q5a) radiosity, and (q5b) the two-pass method (eye rays not traced further, \
-         plus photon tracing of diffuse transport), capture each? Answer yes, no or impractical, and give the reason \
-         as the effect's light paths the method misses or gets only by chance, in Heckbert's notation (L D G S V E, \
-         with | * + ? and parentheses; none if it misses nothing): e.g. \"LS+E\" for a mirror seen directly. Equivalent expressions \
-         are the same answer (LDD*E = LD+E).\n\
+         The scene is lit by an area light. (q5a) Radiosity. (q5b) The two-pass method: a first pass traces photons \
+         from the light, off diffuse surfaces and through mirrors and glass, and keeps in its map only the photons \
+         that land on a diffuse surface after at least one diffuse bounce; a second pass traces one ray from the eye \
+         to the first surface it meets, adds the direct light there with shadow rays to the light, and adds the \
+         map's estimate there. Eye rays are not traced further.\n\
+         For each method and effect: does the method capture the effect? Answer yes, no or impractical (possible, \
+         but only by chance: noise). For a no or an impractical, give the whole class of the effect's light paths \
+         that the method misses or gets only by chance (\"none\" where it misses nothing), in Heckbert's notation \
+         (L D G S V E, with | * + ? and parentheses), e.g. \"LS+E\" for every path from the light through one or \
+         more mirrors to the eye. Equivalent expressions are the same answer (LDD*E = LD+E).\n\
          q5paths: each effect's own class of light paths, light first and eye last."
     );
     Variant { question: "q5", seed, statement, parts, follows: vec![] }
@@ -149,25 +129,6 @@ mod tests {
     use super::*;
     use crate::q5_effect_tables::ALGORITHMS;
     use crate::render::analysis::grammar::{Lang, shortest_word};
-
-    /// [`MEASURED_NO`] is exactly the cells of the committed measured table (the chapter's
-    /// experiment) whose measured verdict is No where the grammar says Impractical.
-    #[unit_test]
-    fn measured_no_cells_are_the_measured_tables() {
-        let table =
-            std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/figures/q5_measured_table.md")).unwrap();
-        let mut found = Vec::new();
-        for row in table.lines().skip(2) {
-            let cells: Vec<&str> = row.split('|').map(str::trim).collect();
-            // | effect | method | measured | reference | fraction | measured verdict | grammar | student |
-            if cells.len() > 7 && cells[6] == "No" && cells[7] == "Impractical" {
-                let effect = cells[1].trim_matches(|c| c == '(' || c == ')').replace(' ', "_");
-                found.push((cells[2].to_string(), effect));
-            }
-        }
-        let wanted: Vec<(String, String)> = MEASURED_NO.iter().map(|(m, e)| (m.to_string(), e.to_string())).collect();
-        assert_eq!(found, wanted, "{table}");
-    }
 
     /// The reason key is the effect's paths outside the method's language (Impractical: outside
     /// its efficient language), decided by the grammar: for the built-in effects that is all of

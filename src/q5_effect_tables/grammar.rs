@@ -167,13 +167,15 @@ pub const ALGORITHMS: [Algorithm; 5] = [
         efficient: ["LD*E", "LD*E"],
     },
     Algorithm {
-        // Eye rays stop at the first hit (direct light by shadow rays, L(D|G)E); photons bounce
-        // diffusely and through mirrors and are read at the eye ray's diffuse hit.
+        // Eye rays stop at the first hit (direct light by shadow rays, L(D|G)E). Photons bounce
+        // off diffuse surfaces and through mirrors and glass, and the map read at the eye ray's
+        // diffuse hit holds only photons that had already bounced off a diffuse surface: the
+        // diffuse transport, which the direct light of the eye pass does not already count.
         id: "two_pass",
         name: "two-pass (eye rays + photon tracing)",
         student_part: Some('b'),
-        paths: ["L(D|G)E|L(D|S)*DE", "L(D|G)E|L(D|S)*DE"],
-        efficient: ["L(D|G)E|LD+DE", "L(D|G)E|LD+DE"],
+        paths: ["L(D|G)E|L(D|S)*D(D|S)*DE", "L(D|G)E|L(D|S)*D(D|S)*DE"],
+        efficient: ["L(D|G)E|L(D|S)*D(D|S)*DE", "L(D|G)E|L(D|S)*D(D|S)*DE"],
     },
     Algorithm {
         id: "whitted",

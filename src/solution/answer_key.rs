@@ -11,22 +11,27 @@ use std::fmt::Write as _;
 /// tests grade).
 const STUDENT_ANSWERS: &str = include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/tests/answers/seed_hw3.toml"));
 
-/// The chapter section that derives each part, by key prefix (first match wins): the heading's
-/// text, as written in the chapter.
-const SECTIONS: [(&str, &str); 13] = [
-    ("q1a", "(a) Clutter: a forest of spheres"),
-    ("q1b", "(b) Fog: contrast and transmittance versus distance"),
-    ("q1c", "(c) Mirrors: image change per unit camera move"),
-    ("q1d", "(d) Change over time"),
-    ("q1match", "The answer"),
-    ("q2a", "(a) Derivation"),
-    ("q2b", "(b) Reflection"),
-    ("q2c", "(c) The closest approach, two ways"),
-    ("q3", "Derivation"),
-    ("q4a", "Oracles"),
-    ("q4b", "The blind spot"),
-    ("q4c", "A worked probe, by hand"),
-    ("q5", "Deciding a cell from light paths"),
+/// The chapter section that teaches each graded part, by the part's table (the text before the
+/// `.` of its key): the heading's text, as written in the chapter.
+const SECTIONS: [(&str, &str); 18] = [
+    ("q1a", "Part q1a: the gap fraction of a slab of spheres"),
+    ("q1b", "Part q1b: transmittance and visual range"),
+    ("q1c", "Part q1c: how far a mirror ball's reflection turns"),
+    ("q1d", "Part q1d: image shift per frame"),
+    ("q1match", "Part q1match: which scene shows which difficulty"),
+    ("q2a", "Part q2a: the case, the first hit and its point"),
+    ("q2b", "Part q2b: the normal and the reflected direction"),
+    ("q2c", "Part q2c: the closest approach"),
+    ("q3b", "Part q3b: the root plane's parameter"),
+    ("q3c", "Part q3c: the plane parameter in the left child"),
+    ("q3d", "Parts q3d and q3e: tracing a ray through the tree"),
+    ("q3e", "Parts q3d and q3e: tracing a ray through the tree"),
+    ("q4a", "Part q4a: the irradiance of a linear sky"),
+    ("q4b", "Part q4b: the blind cone and the light it loses"),
+    ("q4c", "Part q4c: a small mirror-ball image, texel by texel"),
+    ("q5a", "Parts q5a and q5b: deciding a cell, and the paths a method misses"),
+    ("q5b", "Parts q5a and q5b: deciding a cell, and the paths a method misses"),
+    ("q5paths", "Part q5paths: an effect's class of light paths"),
 ];
 
 /// A heading's anchor as rustdoc writes it: lower case, spaces to `-`, other punctuation dropped.
@@ -54,7 +59,8 @@ fn chapter_of(explained_in: &str) -> (String, Option<String>) {
 /// else the section of [`SECTIONS`].
 fn section_link(key: &str, explained_in: &str) -> String {
     let (module, given) = chapter_of(explained_in);
-    let heading = SECTIONS.iter().find(|(prefix, _)| key.starts_with(prefix)).map(|(_, h)| *h);
+    let table = key.split_once('.').map_or(key, |(table, _)| table);
+    let heading = SECTIONS.iter().find(|(prefix, _)| *prefix == table).map(|(_, h)| *h);
     match (given, heading) {
         (Some(given), _) => match SECTIONS.iter().find(|(_, h)| anchor(h) == given) {
             Some((_, heading)) => format!("[§ {heading}](crate::{module}#{given})"),
@@ -82,9 +88,15 @@ fn cell(text: &str) -> String {
     text.replace('|', "\\|").replace('[', "\\[").replace(']', "\\]").replace('\n', " ")
 }
 
-fn grade(result: &PartResult) -> String {
+/// The grade as the key prints it: points, status, and for full points earned by following an
+/// earlier wrong answer, the part where the error was made.
+fn grade(result: &PartResult, follows: &[checker::Follows]) -> String {
     let points = |x: f64| format!("{x}");
-    format!("{}/{} {}", points(result.score), points(result.max_score), result.status)
+    let carried = (result.mistake == Some(checker::Rule::CarriedForward.id()))
+        .then(|| follows.iter().find(|f| f.key == result.key))
+        .flatten()
+        .map_or(String::new(), |f| format!(", error carried forward from `{}`", f.from));
+    format!("{}/{} {}{carried}", points(result.score), points(result.max_score), result.status)
 }
 
 /// The answer key as markdown: one table per question (part, what is asked, the answer, the
@@ -123,7 +135,7 @@ pub fn answer_key_table() -> Result<String, SolutionError> {
                 // A trace's leaves, one a line.
                 cell(&answer).replace("; ", "<br>"),
                 cell(given).replace("; ", "<br>"),
-                grade(result),
+                grade(result, &variant.follows),
                 section_link(part.key, part.explained_in),
             ]);
             if result.status != "correct" && result.status != "missing" {
@@ -171,7 +183,10 @@ mod tests {
                 let (module, _) = chapter_of(part.explained_in);
                 let path = format!("{}/docs/{module}.md", env!("CARGO_MANIFEST_DIR"));
                 let chapter = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}"));
-                let (_, heading) = SECTIONS.iter().find(|(p, _)| part.key.starts_with(p)).expect("a section per part");
+                let table = part.key.split_once('.').unwrap().0;
+                let (_, heading) = SECTIONS.iter().find(|(p, _)| *p == table).expect("a section per part");
+                let (_, given) = chapter_of(part.explained_in);
+                assert_eq!(given.as_deref(), Some(anchor(heading).as_str()), "{}", part.key);
                 let found = chapter.lines().any(|l| l.trim_start_matches('#').trim() == *heading && l.starts_with('#'));
                 assert!(found, "{module}.md has no heading `{heading}` for {}", part.key);
             }
@@ -190,8 +205,13 @@ mod tests {
         let report = checker::check(STUDENT_ANSWERS, Some(0)).unwrap();
         for part in &report.parts {
             let row = table.lines().find(|l| l.starts_with(&format!("| `{}` |", part.key))).expect("a row per part");
-            assert!(row.contains(&grade(part)), "{row}");
+            let follows = checker::variant(&part.key[..2], 0).unwrap().follows;
+            assert!(row.contains(&grade(part, &follows)), "{row}");
         }
         assert!(table.contains(&format!("**{} / {}**", report.score, report.max_score)));
+        // The student's q3d leaves earn full points only by following its own wrong descent:
+        // the key says so where it prints the grade.
+        let leaves = table.lines().find(|l| l.starts_with("| `q3d.leaves` |")).unwrap();
+        assert!(leaves.contains("3/3 correct, error carried forward from `q3d.descents`"), "{leaves}");
     }
 }
