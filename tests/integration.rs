@@ -7,6 +7,12 @@
 
 mod common;
 
+#[path = "chapters_q1_q2.rs"]
+mod chapters_q1_q2;
+#[path = "chapters_q3_render.rs"]
+mod chapters_q3_render;
+#[path = "chapters_q4_q5.rs"]
+mod chapters_q4_q5;
 #[path = "checker_cli.rs"]
 mod checker_cli;
 #[path = "checker_policy.rs"]
