@@ -7,6 +7,11 @@ pub mod glossary {
     #![doc = include_str!(concat!(env!("OUT_DIR"), "/glossary.md"))]
 }
 
+/// The homework: the student's handwritten answers, transcribed, which every chapter starts from.
+pub mod homework {
+    #![doc = include_str!(concat!(env!("OUT_DIR"), "/homework.md"))]
+}
+
 /// How a student hands in answers: the template, the answers file's forms, `hw3 check`.
 pub mod hand_in {
     #![doc = include_str!(concat!(env!("OUT_DIR"), "/hand_in.md"))]
