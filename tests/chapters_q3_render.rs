@@ -295,3 +295,275 @@ mod q3 {
         assert!(increments.iter().all(|d| (3.0..8.0).contains(d)), "{increments:?}");
     }
 }
+
+// ---------------------------------------------------------------------------------------------
+// The renderer chapter: its worked examples, and its statements about the two accuracy tables.
+
+mod render {
+    use super::*;
+    use std::f64::consts::PI;
+
+    /// The renderer chapter as one line of text (its prose wraps anywhere).
+    fn text() -> String {
+        chapter("render.md").split_whitespace().collect::<Vec<_>>().join(" ")
+    }
+
+    fn has(text: &str, phrase: &str) {
+        assert!(text.contains(phrase), "the renderer chapter should say {phrase:?}");
+    }
+
+    /// A committed CSV as rows of numbers by column name.
+    fn csv(name: &str) -> Vec<std::collections::HashMap<String, f64>> {
+        let text = std::fs::read_to_string(Path::new(DOCS).join("data").join(name)).unwrap();
+        let mut lines = text.lines();
+        let header: Vec<String> = lines.next().unwrap().split(',').map(str::to_string).collect();
+        lines.map(|l| header.iter().cloned().zip(l.split(',').map(|x| x.parse().unwrap())).collect()).collect()
+    }
+
+    /// A fraction as the chapter prints a percentage: `digits` after the point.
+    fn percent(x: f64, digits: usize) -> String {
+        format!("{:.*} %", digits, 100.0 * x)
+    }
+
+    /// The worked examples' numbers, recomputed.
+    #[test]
+    fn worked_examples_are_right() {
+        let t = text();
+        // Jittered samples: a half-covered pixel, 16 and 64 samples.
+        let sd = |n: f64| (0.5 * 0.5 / n).sqrt();
+        assert_eq!((sd(16.0), sd(64.0)), (0.125, 0.0625));
+        has(&t, "$\\sqrt{0.5 \\cdot 0.5 / 16} = 0.125$, and 64 samples halve that to 0.0625");
+        has(&t, "$\\sqrt{0.5 \\cdot 0.5 / 64} = 0.0625$");
+        // Motion blur: radius 0.5, 2 units during the shutter: covered for 1 of 2 units.
+        let scene = hw3::render::catalogue::moving_ball(2.0).unwrap();
+        let (open, close) = hw3::render::catalogue::MOTION_SHUTTER;
+        let moving: Vec<(f64, f64)> = scene
+            .objects()
+            .iter()
+            .filter_map(|o| match o.shape {
+                hw3::render::scene::Shape::Sphere { sphere, velocity } if velocity.length() > 0.0 => {
+                    Some((sphere.radius, velocity.length() * (close - open)))
+                }
+                _ => None,
+            })
+            .collect();
+        assert_eq!(moving, [(0.5, 2.0)], "one ball of radius 0.5 moving 2 units during the shutter");
+        has(&t, "Q1's ball, of radius 0.5, moves 2 units during the shutter");
+        // Transmittance: sigma_t = 0.1 at 10 and 30 units.
+        assert_eq!(percent((-1.0f64).exp(), 0), "37 %");
+        assert_eq!(percent((-3.0f64).exp(), 0), "5 %");
+        has(&t, "$e^{-1} = 37\\,\\%$ of its light to the eye, one 30 units away $e^{-3} = 5\\,\\%$");
+        // Equiangular: h = 0.1, x in [-1, 1], no extinction.
+        let h: f64 = 0.1;
+        let exact = 2.0 / h * (1.0 / h).atan();
+        let midpoint_x: f64 = [-0.75, -0.25, 0.25, 0.75].iter().map(|x: &f64| 0.5 / (h * h + x * x)).sum();
+        let theta = 2.0 * (1.0f64 / h).atan();
+        let midpoint_theta = theta / h; // one step of the constant 1/h
+        assert_eq!(format!("{exact:.2}"), "29.42");
+        assert_eq!(format!("{midpoint_x:.2}"), "15.54");
+        assert!((midpoint_theta - exact).abs() < 1e-12);
+        has(&t, "$(2/h)\\arctan(1/h) = 29.42$");
+        has(&t, "x = ±0.25 and ±0.75 and gives 15.54, half the answer");
+        // Diffuse shading: I = 10, r = 2, 60 degrees, albedo 0.6.
+        let e = 10.0 * 60f64.to_radians().cos() / 4.0;
+        let l = 0.6 / PI * e;
+        assert_eq!((format!("{e:.2}"), format!("{l:.3}")), ("1.25".into(), "0.239".into()));
+        has(&t, "$E = 10 \\cdot \\cos 60° / 2^2 = 1.25$ and $L = 0.6/\\pi \\cdot 1.25 = 0.239$");
+        // Glossy lobe: k_s = 0.5, n = 30, at 0 and 20 degrees.
+        let peak = 0.5 * 32.0 / (2.0 * PI);
+        let at20 = peak * 20f64.to_radians().cos().powi(30);
+        assert_eq!((format!("{peak:.2}"), format!("{at20:.2}")), ("2.55".into(), "0.39".into()));
+        assert!((5.5..7.0).contains(&(peak / at20)), "a sixth: {}", peak / at20);
+        has(&t, "$0.5 \\cdot 32/(2\\pi) = 2.55$; at α = 20° it is $2.55 \\cdot \\cos^{30} 20° = 0.39$, a sixth");
+        // Fresnel at normal incidence, n = 1.5.
+        assert!((((1.5f64 - 1.0) / (1.5 + 1.0)).powi(2) - 0.04).abs() < 1e-15);
+        has(&t, "$R = ((n - 1)/(n + 1))^2 = 0.04$: 4 % of the light is reflected and 96 % goes through");
+        // The ball lens of the caustic scene.
+        let center = hw3::render::catalogue::CAUSTIC_BALL_CENTER;
+        let (focus, _, _) = hw3::render::catalogue::caustic_footprint(1);
+        let focal = 1.5 * 1.0 / (2.0 * (1.5 - 1.0));
+        assert_eq!(focal, 1.5);
+        assert_eq!(format!("{:.2}", (focus - center).length()), "1.60");
+        assert_eq!(format!("{:.2}", focus.x), "0.56");
+        has(&t, "$nR/(2(n-1)) = 1.5 \\times 1/(2 \\times 0.5) = 1.5$");
+        has(&t, "(0.56, 0, 0), lies 1.60 from the centre");
+        // The photon estimate: 5 nearest of 0.002 W, the 5th at 0.05.
+        let disc = PI * 0.05 * 0.05;
+        let (k_minus_1, k) = (4.0 * 0.002 / disc, 5.0 * 0.002 / disc);
+        assert_eq!((format!("{k_minus_1:.2}"), format!("{k:.2}")), ("1.02".into(), "1.27".into()));
+        assert_eq!(percent(k / k_minus_1 - 1.0, 0), "25 %");
+        has(
+            &t,
+            "$E \\approx 4 \\times 0.002 / (\\pi \\cdot 0.05^2) = 1.02$ W/m²; counting the 5th as well would give 1.27, 25 % more",
+        );
+        // k/(k-1) and the noise at the caustic pass's k.
+        let gather = hw3::render::photon::CAUSTIC_GATHER;
+        assert_eq!((gather.neighbours(), gather.max_radius()), (50, 0.1));
+        assert_eq!(hw3::render::photon::CAUSTIC_PHOTONS, 50_000);
+        assert_eq!(percent(4.0 / 3.0 - 1.0, 0), "33 %");
+        assert_eq!(percent(50.0 / 49.0 - 1.0, 0), "2 %");
+        assert_eq!(percent(1.0 / 48f64.sqrt(), 0), "14 %");
+        has(&t, "(33 % at k = 4, 2 % at k = 50)");
+        has(&t, "relative noise is $1/\\sqrt{k-2}$: 14 % at the caustic pass's k = 50");
+        has(&t, "it shoots 50 000 photons");
+        has(&t, "the 50 [nearest photons]");
+        has(&t, "caps the disc at a radius of 0.1");
+        // The renderer's constants the chapter names.
+        assert_eq!(hw3::render::environment::ENVIRONMENT_SAMPLES, 8);
+        assert_eq!(hw3::render::integrator::IN_SCATTER_STEPS, 32);
+        assert_eq!(hw3::render::medium::AREA_IN_SCATTER_SAMPLES, 8);
+        has(&t, "draws 8 directions per hit");
+        has(&t, "midpoint rule with 32 steps in θ");
+        has(&t, "8 samples per light and segment");
+        has(&t, "up to 8 reflections");
+    }
+
+    /// Claim 7: tracing time does not grow linearly in the photons (×17 for ×10 from 10⁵ to 10⁶);
+    /// the chapter states the ratios the furnace table holds, and the gather's growth with k.
+    #[test]
+    fn tracing_and_gather_times_grow_as_the_table_says() {
+        let t = text();
+        assert!(!t.contains("linearly in the photons") && !t.contains("linear in the photons"));
+        let rows = csv("q5_photon_accuracy.csv");
+        let trace = |photons: f64| rows.iter().find(|r| r["photons"] == photons).unwrap()["trace_seconds"];
+        let (first, second) = (trace(1e5) / trace(1e4), trace(1e6) / trace(1e5));
+        has(
+            &t,
+            &format!(
+                "ten times the photons took {:.0} times as long to trace from 10⁴ to 10⁵ photons, and {:.0} times from 10⁵ to 10⁶",
+                first, second
+            ),
+        );
+        assert!(first > 10.0 && second > 10.0, "faster than linear: {first} {second}");
+        // From k = 128 to 2048 at every photon count that has both.
+        let query = |photons: f64, k: f64| {
+            rows.iter().find(|r| r["photons"] == photons && r["k"] == k).map(|r| r["query_seconds"])
+        };
+        let ratios: Vec<f64> =
+            [1e4, 3e4, 1e5, 1e6].iter().filter_map(|&p| Some(query(p, 2048.0)? / query(p, 128.0)?)).collect();
+        assert_eq!(ratios.len(), 3);
+        let (low, high) = ratios.iter().fold((f64::MAX, 0.0f64), |(lo, hi), &r| (lo.min(r), hi.max(r)));
+        has(
+            &t,
+            &format!("sixteen times the neighbours, they took {:.0} to {:.0} times as long", low.floor(), high.ceil()),
+        );
+    }
+
+    /// The caustic k table (`render_caustic_k.csv`): the noise law and its one exception (claim
+    /// 8), the bias at k = 800, the best k per photon count (claim 9), and the render's k.
+    #[test]
+    fn the_caustic_k_table_says_what_the_chapter_says() {
+        let t = text();
+        let rows = csv("render_caustic_k.csv");
+        let law = |k: f64| 1.0 / (k - 2.0).sqrt();
+        // Claim 8: within 10 % of the law in every row but (12 500, 800).
+        for row in &rows {
+            let ratio = row["noise"] / law(row["k"]);
+            if row["photons"] == 12_500.0 && row["k"] == 800.0 {
+                assert!(ratio > 1.5, "the exception: {ratio}");
+                has(
+                    &t,
+                    &format!(
+                        "at 12 500 photons and k = 800 it is {}, twice the law's {}",
+                        percent(row["noise"], 1),
+                        percent(law(800.0), 1)
+                    ),
+                );
+            } else {
+                assert!((0.9..1.1).contains(&ratio), "{row:?}: {ratio}");
+            }
+        }
+        has(&t, "The noise column follows $1/\\sqrt{k-2}$ within 10 % in every row but one");
+        assert!(!t.contains("$1/\\sqrt{k-2}$ whatever the photon count"));
+        // Bias at k = 800.
+        let at = |photons: f64, k: f64, column: &str| {
+            rows.iter().find(|r| r["photons"] == photons && r["k"] == k).unwrap()[column]
+        };
+        has(
+            &t,
+            &format!(
+                "(at k = 800: {}, {} and {} for 12 500, 50 000 and 200 000 photons)",
+                percent(at(12_500.0, 800.0, "bias"), 0),
+                percent(at(50_000.0, 800.0, "bias"), 0),
+                percent(at(200_000.0, 800.0, "bias"), 0)
+            ),
+        );
+        // Claim 9: the best k at each photon count.
+        let best = |photons: f64| {
+            rows.iter()
+                .filter(|r| r["photons"] == photons)
+                .min_by(|a, b| a["rms_error"].total_cmp(&b["rms_error"]))
+                .unwrap()["k"]
+        };
+        has(
+            &t,
+            &format!(
+                "{} at 12 500 photons, {} at 50 000 and {} at 200 000",
+                best(12_500.0),
+                best(50_000.0),
+                best(200_000.0)
+            ),
+        );
+        assert_eq!(best(200_000.0), 800.0);
+        // The render's 50 000 photons: k = 200 against k = 50.
+        assert_eq!(best(50_000.0), 200.0);
+        let gather = at(50_000.0, 200.0, "gather_microseconds") / at(50_000.0, 50.0, "gather_microseconds");
+        has(
+            &t,
+            &format!(
+                "k = 200 has the lowest error per point ({} against {} at k = 50), for {:.1} times the gather time",
+                percent(at(50_000.0, 200.0, "rms_error"), 1),
+                percent(at(50_000.0, 50.0, "rms_error"), 1),
+                gather
+            ),
+        );
+    }
+
+    /// Claim 8's reason: with 12 500 photons the 800 nearest reach beyond the capped radius at
+    /// most points of the footprint, and with 200 000 at none (one traced map each).
+    #[test]
+    fn the_capped_radius_holds_fewer_than_800_photons_at_12_500() {
+        use hw3::render::{catalogue, photon};
+        let scene = catalogue::glass_ball_caustic().unwrap();
+        let (_, _, points) = catalogue::caustic_footprint(200);
+        let radius = photon::CAUSTIC_GATHER.max_radius();
+        let short_of_800 = |photons: usize| {
+            let map = photon::trace_caustic_photons(&scene, photons, 1).unwrap();
+            points
+                .iter()
+                .filter(|p| map.photons().iter().filter(|q| (q.position - **p).length() <= radius).count() < 800)
+                .count()
+        };
+        assert!(short_of_800(12_500) > 100, "at most points");
+        assert_eq!(short_of_800(200_000), 0);
+        has(&text(), "the 800 nearest photons reach beyond the capped radius at most points of the footprint");
+    }
+
+    /// The furnace table (`q5_photon_accuracy.csv`): the noise law within 13 %, the law's values,
+    /// the mean error within ±2.1 %, and the k form's 14 % at k = 8.
+    #[test]
+    fn the_furnace_table_says_what_the_chapter_says() {
+        let t = text();
+        let rows = csv("q5_photon_accuracy.csv");
+        let law = |k: f64| 1.0 / (k - 2.0).sqrt();
+        let worst = rows.iter().map(|r| (r["rms_error"] / law(r["k"]) - 1.0).abs()).fold(0.0, f64::max);
+        assert!(worst < 0.13 && worst > 0.10, "{worst}");
+        has(&t, "The RMS error follows $1/\\sqrt{k-2}$ within 13 % at every photon count");
+        let values: Vec<String> = [8.0, 32.0, 128.0, 512.0, 2048.0]
+            .iter()
+            .map(|&k| percent(law(k), if law(k) < 0.1 { 1 } else { 0 }))
+            .collect();
+        has(
+            &t,
+            &format!(
+                "(the law gives {}, {}, {}, {} and {} at k = 8, 32, 128, 512 and 2048)",
+                values[0], values[1], values[2], values[3], values[4]
+            ),
+        );
+        let mean = rows.iter().map(|r| r["mean_error"].abs()).fold(0.0, f64::max);
+        assert!(mean < 0.021 && mean > 0.02, "{mean}");
+        has(&t, "stays within ±2.1 % even at k = 8");
+        assert_eq!(percent(8.0 / 7.0 - 1.0, 0), "14 %");
+        has(&t, "(with k the estimate would be 14 % high there)");
+    }
+}
