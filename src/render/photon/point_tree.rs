@@ -413,7 +413,8 @@ mod tests {
 
     /// The walk prunes: among 10⁵ points spread evenly over the unit sphere, 1000 random queries on
     /// it compute on average 199.1 squared distances for the 50 nearest and 25.2 for the nearest
-    /// one (the renderer chapter quotes the first), not 10⁵; the bands allow a tenth either way.
+    /// one (the renderer's engineering notes quote the first), not 10⁵; the bands allow a tenth
+    /// either way.
     #[unit_test]
     fn the_walk_measures_a_few_hundred_distances_not_every_point() {
         let points = fibonacci_sphere(100_000);
