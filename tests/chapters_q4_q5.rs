@@ -1,12 +1,553 @@
 //! Claims of the chapters recomputed from first principles or from the committed data (one
-//! module per group of chapters; `tests/docs.rs` holds the older ones).
+//! module per group of chapters; `tests/docs.rs` holds the older ones). Here: the Q4 and Q5
+//! chapters' worked examples, worked cells and quoted measurements.
 
-#![allow(unused_imports)]
+use glam::{DVec2, DVec3};
+use hw3::envmap::{Probe, ProbeFormat, Texel, horizontal_camera};
+use hw3::geometry::sphere::{first_hit_stable, reflect, surface_hit};
+use hw3::geometry::{Ray, Sphere};
+use hw3::q4_light_probe::blind_spot;
+use hw3::q4_light_probe::irradiance::{centre_texels, equal_weight, unweighted_sum, weighted_sum};
+use hw3::q4_light_probe::maps::{AnalyticMap, Term};
+use hw3::q5_effect_tables::{ALGORITHMS, Algorithm, Effect, LightKind, Verdict, decide};
+use hw3::render::analysis::grammar::{Lang, shortest_word};
+use std::f64::consts::PI;
 use std::path::Path;
 
 const DOCS: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/docs");
 
-#[allow(dead_code)]
 fn chapter(name: &str) -> String {
     std::fs::read_to_string(Path::new(DOCS).join(name)).unwrap_or_else(|e| panic!("{name}: {e}"))
+}
+
+/// `text` with the typographic minus as ASCII, for parsing numbers and comparing them.
+fn ascii(text: &str) -> String {
+    text.replace('−', "-")
+}
+
+/// Asserts that `page` (compared with its minus signs as ASCII) says every one of `claims`.
+fn says(page: &str, claims: &[String]) {
+    let page = ascii(page);
+    let missing: Vec<&String> = claims.iter().filter(|c| !page.contains(&ascii(c))).collect();
+    assert!(missing.is_empty(), "the chapter must say: {missing:?}");
+}
+
+/// The cells of a markdown table row, trimmed, without the outer pipes.
+fn cells(row: &str) -> Vec<String> {
+    let inner = row.trim().trim_start_matches('|').trim_end_matches('|');
+    inner.split(" | ").map(|c| c.trim().to_string()).collect()
+}
+
+/// The numbers of a tuple cell `(a, b, c)` (or of a single number).
+fn numbers(cell: &str) -> Vec<f64> {
+    ascii(cell)
+        .trim_matches(|c| c == '(' || c == ')')
+        .split(',')
+        .map(|x| x.trim().parse().unwrap_or_else(|e| panic!("`{cell}`: {e}")))
+        .collect()
+}
+
+// ---------------------------------------------------------------------------------------------
+// Q4
+
+/// Part q4a's worked example: the sky 2.5 + 1.5 ω_z and a normal tilted 135°.
+const SKY: (f64, f64) = (2.5, 1.5);
+const TILT_DEG: f64 = 135.0;
+
+fn worked_normal() -> DVec3 {
+    let t = TILT_DEG.to_radians();
+    DVec3::new(t.sin(), 0.0, t.cos())
+}
+
+#[test]
+fn q4a_worked_sky_is_the_crates_irradiance_and_names_both_slips() {
+    let (a, b) = SKY;
+    let n = worked_normal();
+    let map = AnalyticMap::new(vec![Term::Linear { a, b, axis: DVec3::Z }]);
+    let e = map.irradiance(n);
+    assert!((e - (PI * a + 2.0 * PI / 3.0 * b * n.z)).abs() < 1e-12);
+    let no_cosine = 2.0 * PI * a + PI * b * n.z;
+    says(
+        &chapter("q4_light_probe.md"),
+        &[
+            format!("= {:.4} - {:.4} = {e:.4}", PI * a, -2.0 * PI / 3.0 * b * n.z),
+            format!("irradiance = {e:.4}"),
+            format!("({no_cosine:.3} here)"),
+            format!("({:.4} here)", e / PI),
+        ],
+    );
+}
+
+#[test]
+fn q4b_worked_blind_cone_and_its_slips() {
+    let d = 8.0;
+    let gamma = blind_spot::half_angle(d).unwrap();
+    let lost = blind_spot::lost_fraction(d, 0.0).unwrap();
+    assert!((lost - gamma.sin().powi(2)).abs() < 1e-15);
+    let share = blind_spot::solid_angle(d).unwrap() / (4.0 * PI);
+    says(
+        &chapter("q4_light_probe.md"),
+        &[
+            format!("\\arcsin(1/8) = {:.3}°", gamma.to_degrees()),
+            format!("(1/8)^2 = {lost:.6}"),
+            format!("blind_half_angle_deg = {:.3}", gamma.to_degrees()),
+            format!("lost_fraction = {lost:.6}"),
+            format!("({gamma:.4} here)"),
+            format!("({:.2}° here)", 2.0 * gamma.to_degrees()),
+            format!("({share:.4} here)"),
+        ],
+    );
+}
+
+/// The reflection of the camera ray at angle `beta` off the axis (camera at distance `d` from a
+/// unit ball), traced with the crate's sphere solver: where it crosses the camera's plane (its
+/// distance from the axis, infinite if it heads away) and its angle from the direction back to
+/// the camera.
+fn traced_to_camera_plane(d: f64, beta: f64) -> (f64, f64) {
+    let ray = Ray::<f64>::new(DVec3::new(0.0, 0.0, d), DVec3::new(beta.sin(), 0.0, -beta.cos())).unwrap();
+    let ball = Sphere::<f64>::new(DVec3::ZERO, 1.0).unwrap();
+    let hit = surface_hit(&ray, &ball, first_hit_stable(&ray, &ball).unwrap());
+    let out = reflect::<f64>(ray.dir, hit.normal);
+    let psi = out.z.clamp(-1.0, 1.0).acos();
+    if out.z <= 0.0 {
+        return (f64::INFINITY, psi);
+    }
+    let at = hit.point + out * ((d - hit.point.z) / out.z);
+    (at.truncate().length(), psi)
+}
+
+/// Error 5: the camera's hidden cone is not the far-camera arctan(r_c/D). Traced here without
+/// the crate's formula, and the chapter's numbers are the traced ones.
+#[test]
+fn q4b_camera_cone_is_the_traced_one() {
+    let q4 = chapter("q4_light_probe.md");
+    for (r_c, d, words) in [(1.0_f64, 10.0_f64, "at D = 10R hides"), (0.2, 3.0, "at D = 3R hides")] {
+        let (mut lo, mut hi) = (0.0, (1.0 / d).asin() * (1.0 - 1e-12));
+        for _ in 0..100 {
+            let mid = 0.5 * (lo + hi);
+            if traced_to_camera_plane(d, mid).0 <= r_c {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        let traced = traced_to_camera_plane(d, lo).1;
+        assert!((blind_spot::camera_half_angle(r_c, d).unwrap() - traced).abs() < 1e-9);
+        let far = (r_c / d).atan().to_degrees();
+        assert!(traced.to_degrees() - far > 0.3, "the far-camera cone is too narrow by more than 0.3°");
+        let sentence = q4.split(words).nth(1).unwrap_or_else(|| panic!("the chapter says `{words}`"));
+        let stated: String = sentence.chars().take_while(|c| *c != '°').collect();
+        assert_eq!(stated.trim(), format!("{:.2}", traced.to_degrees()), "{words}");
+        says(&q4, &[format!("{far:.2}°")]);
+    }
+    assert!(!q4.contains("hides a cone of half-angle arctan"), "the far-camera cone stated as the cone");
+}
+
+/// The worked 6 × 6 image of Part q4c: the sky of Part q4a photographed at each texel's centre,
+/// to one decimal, as the checker's homework image is; masked texels hold 0.
+fn worked_probe() -> (Probe, Vec<Texel>) {
+    let size = 6;
+    let blank = Probe::from_fn(ProbeFormat::MirrorBall, size, size, horizontal_camera(), |_| DVec3::ZERO).unwrap();
+    let (a, b) = SKY;
+    let radiance: Vec<DVec3> =
+        centre_texels(&blank)
+            .iter()
+            .map(|t| {
+                if t.centre_inside {
+                    DVec3::splat(((a + b * t.direction.z) * 10.0).round() / 10.0)
+                } else {
+                    DVec3::ZERO
+                }
+            })
+            .collect();
+    let probe = Probe::from_radiance(ProbeFormat::MirrorBall, size, size, horizontal_camera(), radiance).unwrap();
+    let texels = centre_texels(&probe);
+    (probe, texels)
+}
+
+/// A direction component as the chapter's answers file writes it: four decimals, 0 as `0.0`.
+fn toml(x: f64) -> String {
+    if x.abs() < 5e-5 { "0.0".into() } else { format!("{x:.4}") }
+}
+
+/// The area under the unit circle from 0 to x, the chapter's F.
+fn f(x: f64) -> f64 {
+    0.5 * (x * (1.0 - x * x).sqrt() + x.asin())
+}
+
+#[test]
+fn q4c_worked_image_is_the_crates_texel_by_texel() {
+    let q4 = chapter("q4_light_probe.md");
+    let (probe, texels) = worked_probe();
+    let n = worked_normal();
+    let size = 6;
+    // The image as the chapter shows it, in the template's form.
+    let image: Vec<&str> =
+        q4.lines().skip_while(|l| !l.starts_with("| row | 0 | 1 | 2 | 3 | 4 | 5 |")).skip(2).take(size).collect();
+    assert_eq!(image.len(), size, "the 6 × 6 image table");
+    for (row, line) in image.iter().enumerate() {
+        let shown = cells(line);
+        for column in 0..size {
+            let texel = probe.texels()[row * size + column];
+            let expected = if texel.centre_inside { format!("{}", texel.radiance.x) } else { "-".into() };
+            assert_eq!(shown[column + 1], expected, "texel ({row}, {column})");
+        }
+    }
+    // The texel table: centre, direction, solid angle, cosine, radiance and term of every texel
+    // it lists, to its four decimals.
+    let close =
+        |shown: f64, value: f64, what: &str| assert!((shown - value).abs() < 6e-5, "{what}: {shown} vs {value}");
+    let mut listed = 0;
+    let mut terms = 0.0;
+    for line in q4.lines().filter(|l| l.starts_with("| (") && cells(l).len() == 7) {
+        let c = cells(line);
+        let place = numbers(&c[0]);
+        let index = place[0] as usize * size + place[1] as usize;
+        let t = texels[index];
+        let rect_centre = DVec2::new(-1.0 + (2.0 * place[1] + 1.0) / 6.0, 1.0 - (2.0 * place[0] + 1.0) / 6.0);
+        for (shown, value) in numbers(&c[1]).iter().zip(rect_centre.to_array()) {
+            close(*shown, value, &format!("{} centre", c[0]));
+        }
+        for (shown, value) in numbers(&c[2]).iter().zip(t.direction.to_array()) {
+            close(*shown, value, &format!("{} direction", c[0]));
+        }
+        close(numbers(&c[3])[0], t.solid_angle, &format!("{} solid angle", c[0]));
+        close(numbers(&c[4])[0], n.dot(t.direction), &format!("{} cosine", c[0]));
+        assert_eq!(numbers(&c[5])[0], t.radiance.x, "{} radiance", c[0]);
+        let term = t.radiance.x * n.dot(t.direction).max(0.0) * t.solid_angle;
+        close(numbers(&c[6])[0], term, &format!("{} term", c[0]));
+        terms += term;
+        listed += 1;
+    }
+    assert_eq!(listed, 16, "the left half of the used texels");
+    // The sums, the ratio, the masked solid angle.
+    let weighted = weighted_sum(n, &texels).x;
+    assert!((2.0 * terms - weighted).abs() < 1e-12, "the image is symmetric: twice the left half");
+    let used = texels.iter().filter(|t| t.centre_inside).count();
+    assert_eq!(used, 32);
+    let share = equal_weight(&texels);
+    assert!((share - 4.0 * PI / 32.0).abs() < 1e-12);
+    let literal = unweighted_sum(n, &texels, 1.0).x;
+    let unweighted = unweighted_sum(n, &texels, share).x;
+    let masked: f64 = texels.iter().filter(|t| !t.centre_inside).map(|t| t.solid_angle).sum();
+    let exact = AnalyticMap::new(vec![Term::Linear { a: SKY.0, b: SKY.1, axis: DVec3::Z }]).irradiance(n);
+    // The slips' values, as the checker computes them.
+    let unclamped = weighted - weighted_sum(-n, &texels).x;
+    let unclamped_unweighted = unweighted - unweighted_sum(-n, &texels, share).x;
+    let full = (2.0_f64 / 6.0).powi(2);
+    let whole: Vec<Texel> =
+        texels.iter().map(|t| Texel { solid_angle: if t.centre_inside { 4.0 * full } else { 0.0 }, ..*t }).collect();
+    let rim_whole = weighted_sum(n, &whole).x;
+    says(
+        &q4,
+        &[
+            format!("$2 \\times {:.4} = {weighted:.4}$", weighted / 2.0),
+            format!("weighted_sum = {weighted:.4}"),
+            format!("$4\\pi/32 = {share:.4}$"),
+            format!("is {literal:.2}, and"),
+            format!("{literal:.2} \\times {share:.4} = {unweighted:.4}"),
+            format!("unweighted_sum = {unweighted:.4}"),
+            format!("bias_ratio = {:.4}", unweighted / weighted),
+            format!("${unweighted:.4} / {weighted:.4} = {:.4}$", unweighted / weighted),
+            format!("masked_solid_angle = {masked:.4}"),
+            format!("{:.1} % above the exact\n  $E = {exact:.4}$", (weighted / exact - 1.0) * 100.0),
+            format!("({unclamped:.3} weighted, {unclamped_unweighted:.3} unweighted)"),
+            format!("({:.2})", weighted_sum(-n, &texels).x),
+            format!("({:.3}) as the ratio", weighted / unweighted),
+            format!("moves the sum by\n  {:.1} %", (rim_whole / weighted - 1.0) * 100.0),
+            format!("({:.4})", 4.0 * PI / used as f64),
+        ],
+    );
+    // The three listed texels in the answers file, and their slips.
+    let camera = horizontal_camera();
+    for (k, (row, column)) in [(3, 2), (4, 1), (5, 2)].into_iter().enumerate() {
+        let t = texels[row * size + column];
+        let w = t.direction;
+        says(
+            &q4,
+            &[
+                format!("texel{}_direction = [{}, {}, {}]", k + 1, toml(w.x), toml(w.y), toml(w.z)),
+                format!("texel{}_solid_angle = {:.4}", k + 1, t.solid_angle),
+            ],
+        );
+        if k == 0 {
+            let in_camera = camera.transpose() * w;
+            let normal = (w + DVec3::X).normalize();
+            says(
+                &q4,
+                &[
+                    format!("$({:.4}, {:.4}, {:.4})$: that is ω written", in_camera.x, in_camera.y, in_camera.z),
+                    format!("$({:.4}, {:.4}, {:.4})$: the way the light travels", -w.x, -w.y, -w.z),
+                    format!("$\\mathbf{{N}} = ({:.4}, {:.4}, {:.4})$", normal.x, normal.y, normal.z),
+                ],
+            );
+        }
+        if k == 2 {
+            // The rim texel: the chord formula by hand, its whole-texel slip and its image area.
+            let area = f(1.0 / 3.0) - f(0.0) - 2.0 / 9.0;
+            assert!((4.0 * area - t.solid_angle).abs() < 1e-12);
+            says(
+                &q4,
+                &[
+                    format!("= {:.5} - {:.5} = {area:.5}$", f(1.0 / 3.0), 2.0 / 9.0),
+                    format!("(0.4444 for the rim texel ({row}, {column}))"),
+                    format!("({:.4}, or {:.4} for ({row}, {column}))", full, t.area),
+                ],
+            );
+        }
+    }
+    // The texel cut on both edges, and a masked corner, by the chord formula.
+    let (xa, xb) = ((5.0_f64).sqrt() / 3.0, (8.0_f64).sqrt() / 3.0);
+    let both = (xa - 2.0 / 3.0) / 3.0 + (f(xb) - xb / 3.0) - (f(xa) - xa / 3.0);
+    assert!((4.0 * both - texels[4 * size].solid_angle).abs() < 1e-12);
+    let corner = (f(xa) - 2.0 * xa / 3.0) - (f(2.0 / 3.0) - 4.0 / 9.0);
+    assert!((16.0 * corner - masked).abs() < 1e-12);
+    says(&q4, &[format!("= {both:.5}$, $\\Delta\\omega = {:.4}$", 4.0 * both), format!("= {corner:.5}$; four")]);
+    // The blind direction: where the rim points, in the world frame.
+    for rim in [DVec2::X, DVec2::Y, DVec2::new(-0.6, 0.8)] {
+        let behind = camera * ProbeFormat::MirrorBall.image_to_direction(rim).unwrap();
+        assert!((behind - DVec3::NEG_X).length() < 1e-12, "{rim}: {behind}");
+    }
+    says(&q4, &["blind_direction = [-1.0, 0.0, 0.0]".to_string()]);
+}
+
+/// The sun-map table's time column is the benchmark's CSV, relative to the 256² weighted sum, and
+/// so is "about 6500 times faster".
+#[test]
+fn q4_sun_table_times_are_the_csv_relative_to_the_weighted_sum() {
+    let q4 = chapter("q4_light_probe.md");
+    let csv = std::fs::read_to_string(Path::new(DOCS).join("data/q4_accuracy_time.csv")).unwrap();
+    let ns = |label: &str| -> f64 {
+        let row = csv.lines().find(|r| r.starts_with("sun,") && r.split(',').nth(2) == Some(label)).unwrap();
+        row.split(',').nth(7).unwrap().parse().unwrap()
+    };
+    let unit = ns("weighted 256²");
+    let mut checked = 0;
+    for line in q4.lines().filter(|l| l.starts_with("| ") && (l.contains('²') || l.contains("N="))) {
+        let c = cells(line);
+        if !csv.lines().any(|r| r.starts_with("sun,") && r.split(',').nth(2) == Some(c[0].as_str())) {
+            continue;
+        }
+        let shown: f64 = c[3].parse().unwrap();
+        let ratio = ns(&c[0]) / unit;
+        assert!((shown / ratio - 1.0).abs() < 0.05, "{}: {shown} against {ratio}", c[0]);
+        checked += 1;
+    }
+    assert_eq!(checked, 7);
+    let faster = unit / ns("sh9 256²");
+    assert!((6500.0 / faster - 1.0).abs() < 0.02, "{faster}");
+    says(&q4, &["about 6500 times faster".into()]);
+}
+
+/// The engineering page's "5700–6500 times faster" and "13–19 ns against 77–107 µs" are the
+/// committed table's summary lines.
+#[test]
+fn engineering_q4_speed_ranges_are_the_committed_summary() {
+    let table = std::fs::read_to_string(Path::new(DOCS).join("data/q4_accuracy_time.md")).unwrap();
+    let after = |line: &str, marker: &str| -> f64 {
+        let rest = line.split(marker).nth(1).unwrap();
+        rest.trim_start().split(|c: char| !(c.is_ascii_digit() || c == '.')).next().unwrap().parse().unwrap()
+    };
+    let (mut fast, mut sh9, mut weighted) = (Vec::new(), Vec::new(), Vec::new());
+    for line in table.lines().filter(|l| l.starts_with("- **")) {
+        fast.push(after(line, "SH9 is"));
+        sh9.push(after(line, "relative) in"));
+        weighted.push(after(line, "% in"));
+    }
+    assert_eq!(fast.len(), 4);
+    let range = |v: &[f64]| (v.iter().copied().fold(f64::INFINITY, f64::min), v.iter().copied().fold(0.0, f64::max));
+    let ((f0, f1), (s0, s1), (w0, w1)) = (range(&fast), range(&sh9), range(&weighted));
+    let hundreds = |x: f64| (x / 100.0).round() * 100.0;
+    says(
+        &chapter("engineering_q4.md"),
+        &[
+            format!("{}–{} times faster", hundreds(f0), hundreds(f1)),
+            format!("({}–{} ns against {}–{} µs", s0.round(), s1.round(), w0.round(), w1.round()),
+        ],
+    );
+}
+
+// ---------------------------------------------------------------------------------------------
+// Q5
+
+/// Error 6: the colour-bleeding bounce multiplies by the *receiving* (white) patch's reflectance,
+/// and every value it uses is given.
+#[test]
+fn q5_colour_bleeding_uses_the_receiving_patchs_reflectance() {
+    let q5 = chapter("q5_effect_tables.md");
+    let value_after = |marker: &str| -> String {
+        let rest = q5.split(marker).nth(1).unwrap_or_else(|| panic!("the chapter gives {marker}"));
+        rest.split('$').next().unwrap().trim().to_string()
+    };
+    let rho_w: f64 = value_after("$\\rho_w = ").parse().unwrap();
+    let f_wr: f64 = value_after("$F_{wr} = ").parse().unwrap();
+    let b_r = numbers(&value_after("$B_r = "));
+    let product = value_after("$B_w = \\rho_w F_{wr} B_r = ");
+    let factors: Vec<&str> = product.split(" = ").next().unwrap().split(" \\times ").collect();
+    assert_eq!(factors.len(), 3, "{product}");
+    assert_eq!(factors[0].parse::<f64>().unwrap(), rho_w, "the first factor is the white patch's reflectance");
+    assert_eq!(factors[1].parse::<f64>().unwrap(), f_wr);
+    assert_eq!(numbers(factors[2]), b_r);
+    let result = numbers(product.split(" = ").nth(1).unwrap());
+    for (got, b) in result.iter().zip(&b_r) {
+        assert!((got - rho_w * f_wr * b).abs() < 1e-12, "{got} vs {}", rho_w * f_wr * b);
+    }
+    assert!(result[0] > 5.0 * result[1], "the white patch comes out red");
+}
+
+/// The furnace box by hand: B = 1/(1 − ρ) and Jacobi's sweeps.
+#[test]
+fn q5_furnace_box_sweeps_are_jacobis() {
+    let rho = 0.6;
+    let mut sweeps = vec![1.0_f64];
+    for _ in 0..4 {
+        sweeps.push(1.0 + rho * sweeps.last().unwrap());
+    }
+    let shown: Vec<String> = sweeps.iter().map(|b| format!("{}", (b * 100.0).round() / 100.0)).collect();
+    says(
+        &chapter("q5_effect_tables.md"),
+        &[format!("give {}, …", shown.join(", ")), format!("= {}$", 1.0 / (1.0 - rho))],
+    );
+}
+
+fn method(id: &str) -> &'static Algorithm {
+    ALGORITHMS.iter().find(|m| m.id == id).unwrap()
+}
+
+fn effect(paths: &'static str) -> Effect {
+    Effect { id: "x", student_letter: 'x', name: "worked", paths, evidence: "" }
+}
+
+/// Whether two expressions are the same class of paths.
+fn same_paths(a: &str, b: &str) -> bool {
+    let langs = [Lang::parse(a).unwrap(), Lang::parse(b).unwrap()];
+    shortest_word(&langs, |x| x[0] != x[1]).unwrap().is_none()
+}
+
+/// The missed class as the checker keys it: the effect's paths outside the method's efficient
+/// language, compared as a language with `missed`.
+fn is_missed_class(effect: &str, method: &Algorithm, light: LightKind, missed: &str) -> bool {
+    let column = usize::from(light == LightKind::Point);
+    let langs =
+        [Lang::parse(effect).unwrap(), Lang::parse(method.efficient[column]).unwrap(), Lang::parse(missed).unwrap()];
+    shortest_word(&langs, |x| x[2] != (x[0] && !x[1])).unwrap().is_none()
+}
+
+#[test]
+fn q5_worked_cells_are_the_grammars() {
+    let q5 = chapter("q5_effect_tables.md");
+    let cell = |paths, id, light| decide(&effect(paths), method(id), light).unwrap().verdict;
+    // 1. Whitted on colour bleeding: No, all of it missed.
+    assert_eq!(cell("LDD+E", "whitted", LightKind::Area), Verdict::No);
+    assert!(is_missed_class("LDD+E", method("whitted"), LightKind::Area, "LDD+E"));
+    // 2. Path tracing on a caustic: No under a point light, Impractical under an area light.
+    assert_eq!(cell("LS+DE", "path_tracing", LightKind::Point), Verdict::No);
+    assert!(is_missed_class("LS+DE", method("path_tracing"), LightKind::Point, "LS+DE"));
+    assert_eq!(cell("LS+DE", "path_tracing", LightKind::Area), Verdict::Impractical);
+    assert!(is_missed_class("LS+DE", method("path_tracing"), LightKind::Area, "LS+DE"));
+    // 3. A part, not the whole: Whitted on L(D|S)*DE misses all but LDE.
+    assert_eq!(cell("L(D|S)*DE", "whitted", LightKind::Area), Verdict::No);
+    for missed in ["L(D|S)+DE", "L(D|S)(D|S)*DE"] {
+        assert!(is_missed_class("L(D|S)*DE", method("whitted"), LightKind::Area, missed), "{missed}");
+    }
+    // The q5paths examples' equivalent spellings.
+    assert!(same_paths("LS+DS+E", "LSS*DSS*E"));
+    assert!(!same_paths("LS+DE", "LSDE"));
+    says(
+        &q5,
+        &[
+            "`b = \"no\"`, `b_missed = \"LDD+E\"`".into(),
+            "**No**, missed class `LS+DE`".into(),
+            "**impractical**, missed class\n   `LS+DE`".into(),
+            "`L(D|S)+DE`; `L(D|S)(D|S)*DE` is the same answer".into(),
+            "`LS+DS+E`. Written `LSS*DSS*E` it is the same class".into(),
+            "`\"LS+DS+E\"` and `\"LD+GE\"`".into(),
+        ],
+    );
+}
+
+/// The chapter's table of the methods' languages is the crate's.
+#[test]
+fn q5_methods_languages_are_the_crates() {
+    let q5 = chapter("q5_effect_tables.md");
+    let rows = [
+        ("| radiosity |", "radiosity", 0),
+        ("| two-pass (the question's) |", "two_pass", 0),
+        ("| Whitted |", "whitted", 0),
+        ("| path tracing, area light |", "path_tracing", 0),
+        ("| path tracing, point light |", "path_tracing", 1),
+        ("| photon mapping (global + caustic map) |", "photon_mapping", 0),
+    ];
+    for (start, id, column) in rows {
+        let line = q5.lines().find(|l| l.starts_with(start)).unwrap_or_else(|| panic!("{start}"));
+        let c: Vec<String> = cells(&line.replace("\\|", "¦")).iter().map(|c| c.replace('¦', "|")).collect();
+        let code = |cell: &str| cell.trim_matches('`').replace(' ', "");
+        let m = method(id);
+        assert!(same_paths(&code(&c[1]), m.paths[column]), "{start} can produce");
+        let efficient = if c[2] == "the same" { code(&c[1]) } else { code(&c[2]) };
+        assert!(same_paths(&efficient, m.efficient[column]), "{start} efficient");
+    }
+}
+
+/// Every measured number the prose quotes is the committed measured table's.
+#[test]
+fn q5_quoted_measurements_are_the_committed_table() {
+    let q5 = chapter("q5_effect_tables.md");
+    let table = std::fs::read_to_string(Path::new(DOCS).join("figures/q5_measured_table.md")).unwrap();
+    let rows: Vec<Vec<String>> = table.lines().filter(|l| l.starts_with("| (")).map(cells).collect();
+    assert_eq!(rows.len(), 24);
+    let agree = rows.iter().filter(|r| r[5] == r[6]).count();
+    let row = |effect: &str, method: &str| {
+        rows.iter()
+            .find(|r| r[0] == format!("({effect})") && r[1] == method)
+            .unwrap_or_else(|| panic!("{effect} {method}"))
+    };
+    let fraction = |effect, method| -> f64 { row(effect, method)[4].parse().unwrap() };
+    let value = |effect, method, k: usize| -> f64 { row(effect, method)[k].parse().unwrap() };
+    let caustic_two_pass = value("d caustic", "two_pass", 2) / value("d caustic", "two_pass", 3);
+    says(
+        &q5,
+        &[
+            format!("all {agree} measured verdicts equal"),
+            format!("{:.2} % of the path-traced caustic", 100.0 * caustic_two_pass),
+            format!("measures {:.3} of the path-traced caustic", fraction("d caustic", "photon_mapping")),
+            format!("**{:.0}-fold**", value("d caustic", "radiosity", 3)),
+            format!("{:.0} % in bleeding", 100.0 * (1.0 - fraction("b", "radiosity"))),
+            format!("{:.0} % in the cosine falloff", 100.0 * (1.0 - fraction("c", "radiosity"))),
+            format!("(bleeding {:.2}, glow {:.2})", fraction("b", "two_pass"), fraction("e", "two_pass")),
+            format!("(Yes, {:.2})", fraction("e", "two_pass")),
+            format!("mirror ({:.2}\nagainst 0)", fraction("d mirror", "photon_mapping")),
+            format!(
+                "caustic ({:.3} against {:.3})",
+                fraction("d caustic", "photon_mapping"),
+                fraction("d caustic", "two_pass")
+            ),
+            format!("the reference's {:.2})", value("d mirror", "whitted", 3)),
+            format!(
+                "read 0.000–{:.3} or {:.3}",
+                fraction("d caustic", "radiosity"),
+                fraction("d caustic", "photon_mapping")
+            ),
+        ],
+    );
+    assert_eq!(agree, 24);
+}
+
+/// "4 times the patches (176 to 704) cost 17 times the time" and "50 % → 27 % → 8 %" are the mesh
+/// study's committed table.
+#[test]
+fn q5_mesh_lesson_is_the_committed_study() {
+    let table = std::fs::read_to_string(Path::new(DOCS).join("data/q5_radiosity_accuracy.md")).unwrap();
+    let rows: Vec<Vec<String>> =
+        table.lines().filter(|l| l.starts_with("| ") && !l.starts_with("| patches")).map(cells).collect();
+    let by_patches = |patches: &str| rows.iter().find(|r| r[1] == patches).unwrap();
+    let seconds = |patches| -> f64 { by_patches(patches)[2].parse().unwrap() };
+    let error = |patches| -> f64 { by_patches(patches)[4].parse().unwrap() };
+    says(
+        &chapter("q5_effect_tables.md"),
+        &[
+            format!("cost {:.0} times the time", seconds("704") / seconds("176")),
+            format!("{:.0} % → {:.0} % → {:.0} %", 100.0 * error("11"), 100.0 * error("44"), 100.0 * error("176")),
+        ],
+    );
 }

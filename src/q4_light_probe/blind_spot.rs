@@ -4,12 +4,14 @@
 //! `θ = π − γ` from the direction back to the camera, with `γ = arcsin(R/D)`: the cone of
 //! half-angle `γ` straight behind the ball is light that would have to pass *through* the ball to
 //! reach the eye. The camera (and photographer) hide a second cone around the direction toward the
-//! camera, of half-angle `arctan(r_c/D)` for a camera of radius `r_c`.
+//! camera: [`camera_half_angle`] traces it (about `(r_c/D)(1 + R/(2(D − R)))` for a camera of
+//! radius `r_c`, wider than the far-camera `arctan(r_c/D)` because the reflecting points sit in
+//! front of the ball's centre).
 
 use super::maps::cap_irradiance_per_radiance;
 use crate::envmap::ProbeFormat;
 use crate::geometry::InputError;
-use std::f64::consts::{PI, TAU};
+use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
 fn require_outside(distance_over_radius: f64) -> Result<f64, InputError> {
     ProbeFormat::perspective_ball(distance_over_radius).map(|_| distance_over_radius)
@@ -60,16 +62,30 @@ pub fn lost_fraction(distance_over_radius: f64, alpha: f64) -> Result<f64, Input
     Ok(cap_irradiance_per_radiance(alpha, gamma) / PI)
 }
 
-/// The half-angle `arctan(r_c/D)` of the cone hidden by a camera of radius `r_c` at distance `D`
+/// The half-angle of the cone of directions hidden by a camera of radius `r_c` at distance `D`
 /// (both in ball radii), centred on the direction back to the camera.
+///
+/// The camera is a disc of radius `r_c` facing the ball, centred on the axis at distance `D` from
+/// the ball's centre, with the pinhole at its centre. The camera ray that meets the ball where the
+/// normal makes the angle `α` with the axis leaves the pinhole at `β` off the axis,
+/// `tan β = R sin α / (D − R cos α)`, meets the surface at incidence `i = α + β` and is reflected
+/// to `ψ = 2α + β` from the direction back to the camera. It leaves from `P = R (sin α, cos α)`, not
+/// from the centre, so it reaches the camera's plane at the distance
+/// `x(α) = R sin α + (D − R cos α) tan ψ` from the axis. `x` grows with `α` (it is infinite once
+/// `ψ ≥ 90°`: the ray no longer heads toward the camera's plane), so the hidden cone is `ψ(α*)` with
+/// `x(α*) = r_c`, found by bisection. For small angles `x ≈ 2Dα`, so
+/// `ψ ≈ (r_c/D)(1 + R/(2(D − R)))`: wider than the far-camera `arctan(r_c/D)`.
 ///
 /// # Errors
 /// As [`half_angle`], and [`InputError::OutOfRange`] for a negative or non-finite camera radius.
 ///
 /// # Examples
 /// ```
-/// let cone = hw3::q4_light_probe::blind_spot::camera_half_angle(0.5, 10.0).unwrap();
-/// assert!((cone.to_degrees() - 2.862).abs() < 1e-3);
+/// use hw3::q4_light_probe::blind_spot::camera_half_angle;
+/// // A camera as wide as the ball, 10 radii away: 6.03°, not arctan(1/10) = 5.71°.
+/// let cone = camera_half_angle(1.0, 10.0).unwrap();
+/// assert!((cone.to_degrees() - 6.026).abs() < 1e-3);
+/// assert_eq!(camera_half_angle(0.0, 10.0).unwrap(), 0.0);
 /// ```
 pub fn camera_half_angle(camera_radius: f64, distance_over_radius: f64) -> Result<f64, InputError> {
     let d = require_outside(distance_over_radius)?;
@@ -80,7 +96,27 @@ pub fn camera_half_angle(camera_radius: f64, distance_over_radius: f64) -> Resul
             expected: "finite and ≥ 0",
         });
     }
-    Ok((camera_radius / d).atan())
+    // The reflected direction ψ(α) and where its ray meets the camera's plane, x(α).
+    let reflected = |alpha: f64| {
+        let beta = alpha.sin().atan2(d - alpha.cos());
+        let psi = 2.0 * alpha + beta;
+        let x = if psi < FRAC_PI_2 { alpha.sin() + (d - alpha.cos()) * psi.tan() } else { f64::INFINITY };
+        (psi, x)
+    };
+    // From the axis (x = 0) to the silhouette, where cos α = R/D and ψ = 180° − γ (x infinite).
+    let (mut lo, mut hi) = (0.0, (1.0 / d).acos());
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if reflected(mid).1 <= camera_radius {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+        if hi - lo <= f64::EPSILON * hi {
+            break;
+        }
+    }
+    Ok(reflected(lo).0)
 }
 
 #[cfg(feature = "unit-tests")]
@@ -157,6 +193,45 @@ mod tests {
             let probe = Probe::from_fn(format, 24, 24, glam::DMat3::IDENTITY, |_| DVec3::ONE).unwrap();
             let covered: f64 = probe.texels().iter().map(|t| t.solid_angle).sum();
             assert!((4.0 * PI - covered - solid_angle(d).unwrap()).abs() < 1e-9);
+        }
+    }
+
+    /// Where the traced reflection of the camera ray at angle β off the axis meets the camera's
+    /// plane (`z = D`): its distance from the axis (infinite if it heads away), and its angle from
+    /// the direction back to the camera.
+    fn traced_at_camera_plane(d: f64, beta: f64) -> (f64, f64) {
+        let ray = Ray::<f64>::new(DVec3::new(0.0, 0.0, d), DVec3::new(beta.sin(), 0.0, -beta.cos())).unwrap();
+        let ball = Sphere::<f64>::new(DVec3::ZERO, 1.0).unwrap();
+        let hit = surface_hit(&ray, &ball, first_hit_stable(&ray, &ball).unwrap());
+        let out = reflect::<f64>(ray.dir, hit.normal);
+        let psi = out.z.clamp(-1.0, 1.0).acos();
+        if out.z <= 0.0 {
+            return (f64::INFINITY, psi);
+        }
+        let at = hit.point + out * ((d - hit.point.z) / out.z);
+        (at.truncate().length(), psi)
+    }
+
+    #[unit_test]
+    fn the_camera_cone_is_where_traced_reflections_reach_the_camera() {
+        for (r_c, d) in [(1.0_f64, 10.0_f64), (0.2, 3.0), (0.5, 5.0), (1.0, 3.0), (0.2, 20.0)] {
+            // Bisection on the camera ray's angle: the last ray whose reflection hits the camera.
+            let (mut lo, mut hi) = (0.0, (1.0 / d).asin() * (1.0 - 1e-12));
+            for _ in 0..100 {
+                let mid = 0.5 * (lo + hi);
+                if traced_at_camera_plane(d, mid).0 <= r_c {
+                    lo = mid;
+                } else {
+                    hi = mid;
+                }
+            }
+            let traced = traced_at_camera_plane(d, lo).1;
+            let cone = camera_half_angle(r_c, d).unwrap();
+            assert!((cone - traced).abs() < 1e-9, "r_c {r_c}, D {d}: {cone} against traced {traced}");
+            // Wider than the far-camera estimate, and close to the small-angle form.
+            assert!(cone > (r_c / d).atan());
+            let small_angle = r_c / d * (1.0 + 1.0 / (2.0 * (d - 1.0)));
+            assert!((cone / small_angle - 1.0).abs() < 0.06, "r_c {r_c}, D {d}");
         }
     }
 

@@ -3,7 +3,7 @@
 //! the fraction of the path-traced effect it captured in [`measured_table`].
 
 use super::budget::Budget;
-use super::effect_scenes::{GLOSSY_FLOOR, WHITE_FLOOR, highlight_camera, lit_floor, mirror_room};
+use super::effect_scenes::{GLOSSY_FLOOR, WHITE_FLOOR, highlight_camera, lit_floor, mirror_room_framed};
 use super::error::ExperimentError;
 use super::experiments::{
     Measured, MeasuredCell, NEIGHBOURS, PHOTON_SEED, SPECULAR_DEPTH, measured_table, photon_eye, table_methods,
@@ -93,13 +93,14 @@ const ROWS: [Row; 6] = [
 ];
 
 /// The scene a row shows: the one whose probes measure the effect (for the highlight, seen from
-/// the probes' eye).
+/// the probes' eye), except the mirror's, which is its framed picture variant
+/// ([`mirror_room_framed`]) so that the mirror shows where a method sees it black.
 fn row_scene(effect: &str) -> Result<Scene, ExperimentError> {
     Ok(match effect {
         "a" => lit_floor(GLOSSY_FLOOR, false)?.with_camera(highlight_camera())?,
         "b" | "e" => cornell_box(true, CornellContents::Block)?,
         "c" => lit_floor(WHITE_FLOOR, false)?,
-        "d_mirror" => mirror_room()?,
+        "d_mirror" => mirror_room_framed()?,
         "d_caustic" => lit_floor(WHITE_FLOOR, true)?,
         _ => return Err(ExperimentError::UnknownId("a grid row")),
     })
@@ -247,6 +248,7 @@ pub fn figure(budget: &Budget) -> Result<Figure, PlotError> {
 
 #[cfg(feature = "unit-tests")]
 mod tests {
+    use super::super::effect_scenes::mirror_room;
     use super::super::experiments::EXPERIMENTS;
     use super::*;
 

@@ -210,6 +210,53 @@ pub fn mirror_room() -> Result<Scene, InputError> {
     Scene::new(camera, objects, vec![], None, DVec3::ZERO)
 }
 
+/// Radiance of the thin frame [`mirror_room_framed`] draws around the mirror: a light grey on the
+/// display, dim beside the panel's light (its power is under 1 % of the light's).
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::effect_scenes::{MIRROR_FRAME_RADIANCE, OPEN_LIGHT_RADIANCE};
+/// assert!(MIRROR_FRAME_RADIANCE < OPEN_LIGHT_RADIANCE / 50.0);
+/// ```
+pub const MIRROR_FRAME_RADIANCE: f64 = 0.6;
+
+/// The mirror room as the pictures show it ([`mirror_room`] is the one measured): the same panel,
+/// light and mirror, plus a thin frame that glows dimly around the mirror (four emitting strips
+/// 0.04 wide in the mirror's plane, facing the panel, radiance [`MIRROR_FRAME_RADIANCE`]), seen
+/// from behind the light's plane so that the whole mirror is in view. Without the frame the mirror
+/// is black wherever it reflects nothing (the background is black), so a picture shows a red
+/// shape on black and no mirror; the frame marks where the mirror is, in every method's picture,
+/// including those that see the mirror black. Its light on the panel is under 1 % of the lamp's.
+///
+/// # Errors
+/// Never for the built-in numbers.
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::effect_scenes::{mirror_room, mirror_room_framed};
+/// let (measured, pictured) = (mirror_room().unwrap(), mirror_room_framed().unwrap());
+/// // The measured scene's three objects come first, then the frame's four strips.
+/// assert_eq!(pictured.objects().len(), measured.objects().len() + 4);
+/// assert_eq!(pictured.objects()[..3], measured.objects()[..]);
+/// ```
+pub fn mirror_room_framed() -> Result<Scene, InputError> {
+    let room = mirror_room()?;
+    let (width, glow) = (0.04, Material::Emitter { radiance: DVec3::splat(MIRROR_FRAME_RADIANCE) });
+    // The mirror spans y ∈ [0.5, 1.5], z ∈ [−0.5, 0.5] at x = 1; each strip's edges (z, then y)
+    // make it face −x, toward the panel, as the mirror does.
+    let strip =
+        |corner: DVec3, along_z: f64, along_y: f64| Object::quad(corner, DVec3::Z * along_z, DVec3::Y * along_y, glow);
+    let mut objects = room.objects().to_vec();
+    objects.extend([
+        strip(DVec3::new(1.0, 1.5, -0.5 - width), 1.0 + 2.0 * width, width),
+        strip(DVec3::new(1.0, 0.5 - width, -0.5 - width), 1.0 + 2.0 * width, width),
+        strip(DVec3::new(1.0, 0.5, -0.5 - width), width, 1.0),
+        strip(DVec3::new(1.0, 0.5, 0.5), width, 1.0),
+    ]);
+    let camera = Camera::looking_at(DVec3::new(-0.3, 1.15, 0.35), DVec3::new(1.0, 1.0, 0.0), 60.0);
+    Scene::new(camera, objects, vec![], None, DVec3::ZERO)
+}
+
 /// The eye of the mirror probes, between the light's plane and the mirror.
 ///
 /// # Examples

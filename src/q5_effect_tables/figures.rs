@@ -3,7 +3,7 @@
 
 use super::budget::Budget;
 use super::cornell_published;
-use super::effect_scenes::{self, GLOSSY_FLOOR, WHITE_FLOOR, lit_floor, mirror_room};
+use super::effect_scenes::{self, GLOSSY_FLOOR, WHITE_FLOOR, lit_floor, mirror_room_framed};
 use super::error::ExperimentError;
 use super::experiments::{cornell_system, measured_table, measured_table_markdown, reference_passes};
 use super::grammar::grammar_table_markdown;
@@ -203,7 +203,8 @@ pub const CAUSTIC_SPP: u32 = Budget::PUBLISHED.caustic_spp;
 
 /// The four open experiment scenes of the montage, each with what its panel shows and its
 /// samples per pixel: the glossy floor's highlight, the white floor's cosine falloff, the red
-/// panel in the mirror, the caustic under the glass ball ([`PATH_SPP`] and [`CAUSTIC_SPP`] at
+/// panel in the mirror (the framed picture variant, [`mirror_room_framed`]: without its frame
+/// the mirror cannot be told from the black background), the caustic under the glass ball ([`PATH_SPP`] and [`CAUSTIC_SPP`] at
 /// [`Budget::PUBLISHED`]).
 fn montage_scenes(budget: &Budget) -> Result<[(Scene, &'static str, u32); 4], ExperimentError> {
     Ok([
@@ -213,7 +214,7 @@ fn montage_scenes(budget: &Budget) -> Result<[(Scene, &'static str, u32); 4], Ex
             budget.path_spp,
         ),
         (lit_floor(WHITE_FLOOR, false)?, "(c) direct light on a white floor", budget.path_spp),
-        (mirror_room()?, "(d) mirror image: the lit red panel", budget.path_spp),
+        (mirror_room_framed()?, "(d) mirror image: red panel, framed mirror", budget.path_spp),
         (lit_floor(WHITE_FLOOR, true)?, "(d) caustic under a glass ball", budget.caustic_spp),
     ])
 }
