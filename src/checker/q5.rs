@@ -5,8 +5,10 @@ use super::key::{Expected, Part, Variant};
 use crate::q5_effect_tables::{Cell, EFFECTS, LightKind, Verdict, grammar_table};
 use std::sync::OnceLock;
 
-/// The chapter's section on deciding a cell.
-const NOTES: &str = "hw3/q5_effect_tables/index.html#deciding-a-cell-from-light-paths";
+/// The chapter's sections on deciding a cell (and the paths a method misses), and on an effect's paths.
+const CELL_NOTES: &str =
+    "hw3/q5_effect_tables/index.html#parts-q5a-and-q5b-deciding-a-cell-and-the-paths-a-method-misses";
+const PATHS_NOTES: &str = "hw3/q5_effect_tables/index.html#part-q5paths-an-effects-class-of-light-paths";
 
 const CELL_METHOD: &str = "Write the effect as light paths and compare with the paths the method produces: all of them is yes, none is no, only by chance (noise) is impractical.";
 
@@ -74,7 +76,7 @@ pub(super) fn variant(seed: u64) -> Variant {
                 points: 1.0,
                 expected: Expected::Choice { value: word(cell.verdict), options: &VERDICTS },
                 mal_rules: vec![],
-                explained_in: NOTES,
+                explained_in: CELL_NOTES,
                 method: CELL_METHOD,
             });
             let name = format!("{table}.{}_missed", cell.effect);
@@ -87,7 +89,7 @@ pub(super) fn variant(seed: u64) -> Variant {
                 points: 0.5,
                 expected: Expected::Paths { value: missed.to_string() },
                 mal_rules: vec![],
-                explained_in: NOTES,
+                explained_in: CELL_NOTES,
                 method: "The effect's paths that are outside the method's language (or outside its efficient part), in Heckbert's notation.",
             });
         }
@@ -101,7 +103,7 @@ pub(super) fn variant(seed: u64) -> Variant {
             points: 0.5,
             expected: Expected::Paths { value: effect.paths.to_string() },
             mal_rules: vec![],
-            explained_in: NOTES,
+            explained_in: PATHS_NOTES,
             method: "Follow the light from L to E and name each surface it meets: D diffuse, G glossy, S specular, V a volume.",
         });
     }
