@@ -19,8 +19,9 @@ use student_solver::student_trace;
 
 pub use figures::figures;
 
-/// The notes' worked example: eye `(−5, 1, 0)`, direction `(1, 0, 0)`, sphere of radius 2 at the
-/// origin. Its numbers are round enough to check by hand: `A = 1`, `B = −10`, `C = 22`.
+/// The ray and sphere of variant 0 (the checker's seed 0): eye `(−5, 1, 0)`, direction
+/// `(1, 0, 0)`, sphere of radius 2 at the origin: `A = 1`, `B = −10`, `C = 22`. The chapter's
+/// worked example is [`notes_example`], which no variant draws.
 ///
 /// # Examples
 /// ```
@@ -31,6 +32,28 @@ pub use figures::figures;
 #[must_use]
 pub fn worked_example() -> (Ray<f64>, Sphere<f64>) {
     (Ray { origin: DVec3::new(-5.0, 1.0, 0.0), dir: DVec3::X }, Sphere { center: DVec3::ZERO, radius: 2.0 })
+}
+
+/// The chapter's worked example of the graded parts: eye `(−7, 5, −1)`, direction `(4, 0, 0)`, a
+/// sphere of radius 5 centred at `(1, 2, −1)`. Round by hand (`e − o = (−8, 3, 0)`, `A = 16`,
+/// `B = −64`, `C = 48`, roots 1 and 3, hit point `(−3, 5, −1)`), with `|d| ≠ 1` so that a
+/// parameter and a distance differ; and no variant's (variants draw radii 1 to 4 and direction
+/// components −3 to 3).
+///
+/// # Examples
+/// ```
+/// use hw3::q2_ray_sphere::{catalogue::{Precision, Solver}, notes_example, solve};
+/// let (ray, sphere) = notes_example();
+/// let answer = solve(&ray, &sphere, Solver::Stable, Precision::F64).unwrap();
+/// assert_eq!((answer.t, answer.closest_approach_t), (Some(1.0), 2.0));
+/// assert_eq!(answer.point, Some([-3.0, 5.0, -1.0]));
+/// ```
+#[must_use]
+pub fn notes_example() -> (Ray<f64>, Sphere<f64>) {
+    (
+        Ray { origin: DVec3::new(-7.0, 5.0, -1.0), dir: DVec3::new(4.0, 0.0, 0.0) },
+        Sphere { center: DVec3::new(1.0, 2.0, -1.0), radius: 5.0 },
+    )
 }
 
 /// Everything Q2 asks for one ray and sphere: the first hit, point, normal, reflection, and the
@@ -179,7 +202,7 @@ pub fn trace_cases() -> Vec<(&'static str, Ray<f64>, Sphere<f64>)> {
 /// ```
 #[must_use]
 pub fn answers() -> Answers {
-    let (ray, sphere) = worked_example();
+    let (ray, sphere) = notes_example();
     let mut text = String::new();
     let _ = writeln!(text, "(a) A = d.d, B = 2(e-o).d, C = |e-o|^2 - r^2; first hit = smallest root t > 0.");
     let _ = writeln!(text, "    The homework's case analysis is right, with two errata:");
@@ -208,8 +231,11 @@ pub fn answers() -> Answers {
             let count = self_hit_rate::<f32>(scenario, policy, 20_000, 11);
             100.0 * count.self_hits as f64 / count.reflected as f64
         };
-        let (near, moved) = (rate(Scenario::Near), rate(Scenario::Translated));
-        let _ = writeln!(text, "    {policy:?}: {near:.2} % near the origin, {moved:.2} % translated by 1e4");
+        let (near, huge, moved) = (rate(Scenario::Near), rate(Scenario::HugeSphere), rate(Scenario::Translated));
+        let _ = writeln!(
+            text,
+            "    {policy:?}: {near:.2} % near the origin, {huge:.2} % on a sphere of radius 1e6, {moved:.2} % translated by 1e4"
+        );
     }
     let t_alg = closest_approach::closest_approach_algebraic(&ray, sphere.center);
     let t_geo = closest_approach::closest_approach_geometric(&ray, sphere.center);
@@ -218,7 +244,8 @@ pub fn answers() -> Answers {
     let stable = first_hit_stable(&ray, &sphere).map_or("none".to_string(), |t| format!("{t:.6}"));
     let _ = write!(
         text,
-        "    The stable solver starts from this t and steps back by the half-chord: first hit = {stable}."
+        "    The stable solver starts from this t and steps back by the half-chord over |d|, \
+         sqrt(r^2 - |l|^2)/|d|: first hit = {stable}."
     );
     Answers { question: "q2", title: "Ray/sphere intersection, reflection, closest approach", text }
 }

@@ -90,7 +90,7 @@ fn accuracy_figures(rows: &[AccuracyRow]) -> Result<Vec<Figure>, PlotError> {
         )?,
         chart(
             "q1_accuracy_seconds.svg",
-            "Error vs render time (benchmark machine, 48×36 pixels)",
+            "Error vs render time (48×36 pixels)",
             ("seconds", "RMS luminance error"),
             (
                 ticked(

@@ -1,7 +1,8 @@
 //! Q1(a) clutter: a random forest of spheres in a slab, where the gap fraction, the depth
 //! complexity and the visible fraction follow the Boolean model's transmission law.
 
-use crate::geometry::{InputError, Ray};
+use crate::geometry::{InputError, Ray, Sphere};
+use crate::kdtree::{HitStats, KdTree};
 use crate::plot::markdown_table;
 use crate::render::catalogue::{self, CLUTTER_HALF_WIDTH, CLUTTER_RADIUS};
 use crate::render::sampling::Sampler;
@@ -88,7 +89,24 @@ pub struct ClutterRow {
     /// Fraction of the spheres inside a camera's view that at least one pixel sees (mean over
     /// cameras and forests).
     pub visible_fraction: f64,
+    /// Fraction of the pixels whose first-hit sphere (or sky) changes when the camera steps
+    /// sideways by [`CLUTTER_CAMERA_STEP`] (mean over cameras and forests).
+    pub changed_pixels: f64,
+    /// Ray/sphere tests per camera ray with the kd-tree of Q3 (mean over cameras and forests);
+    /// without an acceleration structure a ray is tested against all `count` spheres.
+    pub kd_tests_per_ray: f64,
 }
+
+/// How far the camera steps sideways (a fifth of a sphere's radius) for
+/// [`ClutterRow::changed_pixels`].
+///
+/// # Examples
+/// ```
+/// use hw3::q1_hard_scenes::CLUTTER_CAMERA_STEP;
+/// // Smaller than a sphere: what changes is which sphere a pixel sees, not the spheres.
+/// assert!(CLUTTER_CAMERA_STEP < 0.5);
+/// ```
+pub const CLUTTER_CAMERA_STEP: f64 = 0.1;
 
 /// Random forests per clutter row.
 ///
@@ -127,7 +145,7 @@ const VISIBILITY_SIZE: (u32, u32) = (64, 48);
 pub fn clutter_row(count: usize) -> Result<ClutterRow, InputError> {
     let mut gaps = Vec::new();
     let mut pierced_total = 0.0;
-    let mut visible_total = 0.0;
+    let mut cameras_total = CameraMeasures::default();
     for seed in 1..=CLUTTER_SEEDS {
         let scene = catalogue::clutter_forest(count, seed)?;
         let mut open = 0usize;
@@ -141,7 +159,7 @@ pub fn clutter_row(count: usize) -> Result<ClutterRow, InputError> {
         let rays = (PROBE_GRID * PROBE_GRID) as f64;
         gaps.push(open as f64 / rays);
         pierced_total += pierced as f64 / rays;
-        visible_total += visible_fraction(&scene, seed)?;
+        cameras_total = cameras_total.plus(camera_measures(&scene, seed)?);
     }
     let seeds = CLUTTER_SEEDS as f64;
     let gap_fraction = gaps.iter().sum::<f64>() / seeds;
@@ -156,41 +174,106 @@ pub fn clutter_row(count: usize) -> Result<ClutterRow, InputError> {
         gap_exact: self::gap_fraction(count as f64, CLUTTER_RADIUS, 2.0 * CLUTTER_HALF_WIDTH),
         gap_beer_lambert: (-optical_depth).exp(),
         depth_complexity: pierced_total / seeds,
-        visible_fraction: visible_total / seeds,
+        visible_fraction: cameras_total.visible_fraction / seeds,
+        changed_pixels: cameras_total.changed_pixels / seeds,
+        kd_tests_per_ray: cameras_total.kd_tests_per_ray / seeds,
     })
 }
 
-/// Fraction of the spheres whose centre is inside the view of a camera that at least one pixel
-/// (ray through the pixel centre) hits (spheres seen only by a sliver at the image border, with
-/// their centre outside, are not counted), averaged over [`VISIBILITY_CAMERAS`] cameras.
-fn visible_fraction(scene: &Scene, seed: u64) -> Result<f64, InputError> {
+/// What the cameras of one forest measure (each a mean over [`VISIBILITY_CAMERAS`] cameras).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+struct CameraMeasures {
+    visible_fraction: f64,
+    changed_pixels: f64,
+    kd_tests_per_ray: f64,
+}
+
+impl CameraMeasures {
+    fn plus(self, other: Self) -> Self {
+        Self {
+            visible_fraction: self.visible_fraction + other.visible_fraction,
+            changed_pixels: self.changed_pixels + other.changed_pixels,
+            kd_tests_per_ray: self.kd_tests_per_ray + other.kd_tests_per_ray,
+        }
+    }
+}
+
+/// The object each pixel of a [`VISIBILITY_SIZE`] image sees first through its centre (`None`:
+/// the sky), for `camera` in `scene`.
+fn id_buffer(scene: &Scene, camera: &Camera) -> Vec<Option<usize>> {
+    let (width, height) = VISIBILITY_SIZE;
+    let frame = CameraFrame::new(camera);
+    let aspect = f64::from(width) / f64::from(height);
+    (0..width * height)
+        .map(|k| {
+            let u = (f64::from(k % width) + 0.5) / f64::from(width);
+            let v = (f64::from(k / width) + 0.5) / f64::from(height);
+            scene.closest_hit(&frame.ray(u, v, aspect), 0.0, f64::INFINITY).map(|h| h.object)
+        })
+        .collect()
+}
+
+/// From [`VISIBILITY_CAMERAS`] cameras at random sideways offsets, 64×48 pixels each, rays through
+/// the pixel centres: the fraction of the spheres whose centre is inside a camera's view that at
+/// least one pixel sees (spheres seen only by a sliver at the image border, with their centre
+/// outside, are not counted); the fraction of pixels whose first hit changes when the camera steps
+/// [`CLUTTER_CAMERA_STEP`] sideways; and the ray/sphere tests per camera ray in the kd-tree of
+/// the forest's spheres. Each is the mean over the cameras.
+fn camera_measures(scene: &Scene, seed: u64) -> Result<CameraMeasures, InputError> {
+    let spheres: Vec<Sphere<f64>> = scene
+        .objects()
+        .iter()
+        .filter_map(|o| match o.shape {
+            Shape::Sphere { sphere, .. } => Some(sphere),
+            Shape::Quad { .. } => None,
+        })
+        .collect();
+    let tree = KdTree::build(&spheres).map_err(|_| InputError::OutOfRange {
+        name: "clutter forest",
+        value: spheres.len().to_string(),
+        expected: "spheres a kd-tree can hold",
+    })?;
     let mut sampler = Sampler::new(seed, 0, 7);
-    let mut total = 0.0;
+    let mut total = CameraMeasures::default();
     for _ in 0..VISIBILITY_CAMERAS {
         let offset = DVec3::new(8.0 * (2.0 * sampler.uniform() - 1.0), 8.0 * (2.0 * sampler.uniform() - 1.0), 0.0);
         let camera =
             Camera { eye: scene.camera().eye + offset, look_at: scene.camera().look_at + offset, ..*scene.camera() };
-        let view = scene.with_camera(camera)?;
+        let stepped = DVec3::X * CLUTTER_CAMERA_STEP;
+        let moved = Camera { eye: camera.eye + stepped, look_at: camera.look_at + stepped, ..camera };
         let (width, height) = VISIBILITY_SIZE;
         let frame = CameraFrame::new(&camera);
         let aspect = f64::from(width) / f64::from(height);
-        let seen: BTreeSet<usize> = (0..width * height)
-            .filter_map(|k| {
-                let u = (f64::from(k % width) + 0.5) / f64::from(width);
-                let v = (f64::from(k / width) + 0.5) / f64::from(height);
-                view.closest_hit(&frame.ray(u, v, aspect), 0.0, f64::INFINITY).map(|h| h.object)
-            })
-            .collect();
-        let in_view: BTreeSet<usize> = (0..view.objects().len())
-            .filter(|&i| match view.objects()[i].shape {
+        let ids = id_buffer(scene, &camera);
+        let seen: BTreeSet<usize> = ids.iter().flatten().copied().collect();
+        let in_view: BTreeSet<usize> = (0..scene.objects().len())
+            .filter(|&i| match scene.objects()[i].shape {
                 Shape::Sphere { sphere, .. } => frame.sees(sphere.center, aspect),
                 Shape::Quad { .. } => false,
             })
             .collect();
         let seen_in_view = seen.intersection(&in_view).count();
-        total += seen_in_view as f64 / in_view.len().max(1) as f64;
+        let moved_ids = id_buffer(scene, &moved);
+        let changed = ids.iter().zip(&moved_ids).filter(|(a, b)| a != b).count();
+        let mut stats = HitStats::default();
+        for k in 0..width * height {
+            let u = (f64::from(k % width) + 0.5) / f64::from(width);
+            let v = (f64::from(k / width) + 0.5) / f64::from(height);
+            let _ = tree.closest_hit_with_stats(&frame.ray(u, v, aspect), 0.0, f64::INFINITY, &mut stats);
+        }
+        let pixels = f64::from(width * height);
+        total = total.plus(CameraMeasures {
+            visible_fraction: seen_in_view as f64 / in_view.len().max(1) as f64,
+            changed_pixels: changed as f64 / pixels,
+            kd_tests_per_ray: stats.sphere_tests as f64 / pixels,
+        });
     }
-    Ok(total / VISIBILITY_CAMERAS as f64)
+    let cameras = VISIBILITY_CAMERAS as f64;
+    Ok(CameraMeasures {
+        visible_fraction: total.visible_fraction / cameras,
+        changed_pixels: total.changed_pixels / cameras,
+        kd_tests_per_ray: total.kd_tests_per_ray / cameras,
+    })
 }
 
 pub(super) fn clutter_table(rows: &[ClutterRow]) -> String {
@@ -209,6 +292,37 @@ pub(super) fn clutter_table(rows: &[ClutterRow]) -> String {
                 format!("{:.3}", r.depth_complexity),
                 format!("{:.3}", r.optical_depth),
                 format!("{:.3}", r.visible_fraction),
+            ]
+        }),
+    )
+}
+
+/// What makes the clutter scene hard, per sphere count: how many spheres a ray passes through
+/// against the one it can see, how many spheres in view no pixel sees, how much of the image
+/// changes for a small camera step, and how many spheres a ray is tested against without and with
+/// the kd-tree.
+pub(super) fn clutter_hardness_table(rows: &[ClutterRow]) -> String {
+    let step = format!("pixels whose sphere changes, camera step {CLUTTER_CAMERA_STEP}");
+    let header = [
+        "N",
+        "spheres a ray passes through",
+        "spheres a ray sees",
+        "spheres in view that no pixel sees",
+        step.as_str(),
+        "tests per ray, no structure",
+        "tests per ray, kd-tree",
+    ];
+    markdown_table(
+        &header,
+        rows.iter().map(|r| {
+            [
+                r.count.to_string(),
+                format!("{:.3}", r.depth_complexity),
+                format!("{:.3}", 1.0 - r.gap_fraction),
+                format!("{:.3}", 1.0 - r.visible_fraction),
+                format!("{:.3}", r.changed_pixels),
+                r.count.to_string(),
+                format!("{:.1}", r.kd_tests_per_ray),
             ]
         }),
     )
@@ -250,5 +364,11 @@ mod tests {
         }
         assert!(rows.windows(2).all(|w| w[1].visible_fraction < w[0].visible_fraction));
         snapshot("q1_clutter_metrics", &clutter_table(&rows));
+        // What makes the scene hard grows with the forest: more of the image changes for a small
+        // camera step, and the kd-tree's work per ray grows far slower than the sphere count.
+        assert!(rows.windows(2).all(|w| w[1].changed_pixels > w[0].changed_pixels));
+        let (first, last) = (rows[0], rows[rows.len() - 1]);
+        assert!(last.kd_tests_per_ray < 2.0 * first.kd_tests_per_ray && last.count >= 16 * first.count);
+        snapshot("q1_clutter_hardness", &clutter_hardness_table(&rows));
     }
 }

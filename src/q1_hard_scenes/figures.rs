@@ -3,8 +3,11 @@
 
 use super::accuracy::committed_accuracy_figures;
 use super::chart::{chart, series};
-use super::clutter::{CLUTTER_COUNTS, ClutterRow, clutter_row, clutter_table};
-use super::fog::{FOG_SIGMAS, FogRow, airlight_rows, airlight_table, fog_probe_direction, fog_rows, fog_table};
+use super::clutter::{CLUTTER_COUNTS, ClutterRow, clutter_hardness_table, clutter_row, clutter_table};
+use super::fog::{
+    FOG_SIGMAS, FogRow, airlight_convergence, airlight_convergence_table, airlight_rows, airlight_table,
+    fog_path_factor, fog_rows, fog_table,
+};
 use super::mirrors::{
     DIVERGENCE_TRIALS, MIRROR_SPP, MIRROR_STEPS, MirrorDivergence, divergence_table, mirror_divergence,
     mirror_sensitivity, mirror_table,
@@ -97,7 +100,11 @@ fn clutter_figures(rows: &[ClutterRow]) -> Result<Vec<Figure>, PlotError> {
             ),
         ],
     )?;
-    Ok(vec![gap, table_figure("q1_clutter_table.md", clutter_table(rows))])
+    Ok(vec![
+        gap,
+        table_figure("q1_clutter_table.md", clutter_table(rows)),
+        table_figure("q1_clutter_hardness.md", clutter_hardness_table(rows)),
+    ])
 }
 
 fn fog_figures(rows: &[FogRow]) -> Result<Vec<Figure>, PlotError> {
@@ -110,7 +117,7 @@ fn fog_figures(rows: &[FogRow]) -> Result<Vec<Figure>, PlotError> {
             false,
             PALETTE[k],
         ));
-        let path_factor = 1.0 / -fog_probe_direction().z;
+        let path_factor = fog_path_factor();
         plotted.push(series(
             format!("e^(−σ_t ℓ), σ_t = {sigma}"),
             (0..=80)
@@ -137,6 +144,10 @@ fn fog_figures(rows: &[FogRow]) -> Result<Vec<Figure>, PlotError> {
         table_figure(
             "q1_airlight_table.md",
             airlight_table(&airlight_rows().map_err(|e| input_error("q1_airlight_table.md", e))?),
+        ),
+        table_figure(
+            "q1_airlight_steps.md",
+            airlight_convergence_table(&airlight_convergence().map_err(|e| input_error("q1_airlight_steps.md", e))?),
         ),
     ])
 }
@@ -195,8 +206,9 @@ fn motion_figures(change: &MotionChange, noise: &MotionNoise) -> Result<Vec<Figu
 /// let first_two = &hw3::q1_hard_scenes::figure_jobs()[..2];
 /// let figures = hw3::plot::run_jobs(first_two).unwrap();
 /// let names: Vec<&str> = figures.iter().map(|f| f.file_name.as_str()).collect();
-/// let fog = ["q1_fog_transmittance.svg", "q1_fog_table.md", "q1_airlight_table.md"];
-/// assert_eq!(names, [&["q1_clutter_gap.svg", "q1_clutter_table.md"][..], &fog].concat());
+/// let clutter = ["q1_clutter_gap.svg", "q1_clutter_table.md", "q1_clutter_hardness.md"];
+/// let fog = ["q1_fog_transmittance.svg", "q1_fog_table.md", "q1_airlight_table.md", "q1_airlight_steps.md"];
+/// assert_eq!(names, [&clutter[..], &fog].concat());
 /// for figure in &figures {
 ///     let text = std::str::from_utf8(&figure.bytes).unwrap();
 ///     // Charts are SVG documents; tables are markdown with a header rule.

@@ -71,10 +71,98 @@ pub const FOG_DISTANCES: [f64; 6] = [1.0, 2.0, 5.0, 10.0, 20.0, 40.0];
 pub(super) const ROUNDING_LEVEL: f64 = 1e-13;
 /// Relative error of the traced airlight at the renderer's [`IN_SCATTER_STEPS`] steps, and at
 /// 4096 steps, against the closed form: the bounds [`airlight_rows`] meets (tested).
-pub(super) const AIRLIGHT_TOLERANCES: (f64, f64) = (1e-2, 1e-6);
+#[cfg(feature = "unit-tests")]
+const AIRLIGHT_TOLERANCES: (f64, f64) = (1e-2, 1e-6);
 /// Direction of the probe ray: off axis, so the path length is `d / cos θ`, not `d`.
 pub(super) fn fog_probe_direction() -> DVec3 {
     DVec3::new(0.1, 0.05, -1.0).normalize()
+}
+
+/// The fog measurement's path length per unit of target distance, `ℓ/d = 1/cos θ`: the probe ray
+/// runs slightly off the axis (`(0.1, 0.05, −1)`), so its path to a target at distance `d` is
+/// `ℓ = 1.0062 d` and the measured dimming is `e^(−σ_t ℓ)`, not `e^(−σ_t d)`.
+///
+/// # Examples
+/// ```
+/// use hw3::q1_hard_scenes::fog_path_factor;
+/// assert!((fog_path_factor() - 1.0125f64.sqrt()).abs() < 1e-15);
+/// ```
+#[must_use]
+pub fn fog_path_factor() -> f64 {
+    1.0 / -fog_probe_direction().z
+}
+
+/// Step counts of the airlight convergence table ([`airlight_convergence`]): each step is one
+/// shadow ray to the lamp per view ray.
+///
+/// # Examples
+/// ```
+/// use hw3::q1_hard_scenes::AIRLIGHT_STEPS;
+/// // Doubling counts, through the renderer's 32.
+/// assert!(AIRLIGHT_STEPS.windows(2).all(|w| w[1] == 2 * w[0]));
+/// assert!(AIRLIGHT_STEPS.contains(&hw3::render::integrator::IN_SCATTER_STEPS));
+/// ```
+pub const AIRLIGHT_STEPS: [usize; 9] = [1, 2, 4, 8, 16, 32, 64, 128, 256];
+
+/// The lamps of the convergence table, `(β, D, γ in degrees)` as in [`airlight_rows`]: a lamp far
+/// from the ray in dense fog, a lamp 2 units off at 30° in the fog street's density, and a lamp
+/// close beside the ray in thin fog.
+///
+/// # Examples
+/// ```
+/// use hw3::q1_hard_scenes::AIRLIGHT_CONVERGENCE_LAMPS;
+/// assert_eq!(AIRLIGHT_CONVERGENCE_LAMPS.len(), 3);
+/// ```
+pub const AIRLIGHT_CONVERGENCE_LAMPS: [(f64, f64, f64); 3] = [(1.0, 5.0, 90.0), (0.08, 2.0, 30.0), (0.05, 1.0, 5.0)];
+
+/// The airlight's relative error against Sun et al.'s closed form for each step count of
+/// [`AIRLIGHT_STEPS`] and each lamp of [`AIRLIGHT_CONVERGENCE_LAMPS`]: what computing the glow
+/// costs (one shadow ray per step) against what it gets right. A view ray of length 20, as in
+/// [`airlight_rows`].
+///
+/// # Errors
+/// [`InputError`] never for the built-in cases.
+///
+/// # Examples
+/// ```
+/// let rows = hw3::q1_hard_scenes::airlight_convergence().unwrap();
+/// // Far from the lamp the midpoint rule's error falls about fourfold per doubling of the steps.
+/// let (at_16, at_32) = (rows[4].1[0], rows[5].1[0]);
+/// assert!(at_16 / at_32 > 3.5 && at_16 / at_32 < 4.5);
+/// ```
+pub fn airlight_convergence() -> Result<Vec<(usize, [f64; 3])>, InputError> {
+    let exact = AIRLIGHT_CONVERGENCE_LAMPS
+        .iter()
+        .map(|&(beta, d, gamma)| airlight_closed_form(beta, 1.0, d, gamma.to_radians(), 20.0))
+        .collect::<Result<Vec<_>, _>>()?;
+    AIRLIGHT_STEPS
+        .iter()
+        .map(|&steps| {
+            let mut errors = [0.0; 3];
+            for (k, &(beta, d, gamma)) in AIRLIGHT_CONVERGENCE_LAMPS.iter().enumerate() {
+                let traced = airlight_traced(beta, d, gamma.to_radians(), 20.0, steps)?;
+                errors[k] = (traced / exact[k] - 1.0).abs();
+            }
+            Ok((steps, errors))
+        })
+        .collect()
+}
+
+pub(super) fn airlight_convergence_table(rows: &[(usize, [f64; 3])]) -> String {
+    let lamp = |(beta, d, gamma): (f64, f64, f64)| format!("rel. err, β = {beta}, D = {d}, γ = {gamma}°");
+    let [a, b, c] = AIRLIGHT_CONVERGENCE_LAMPS.map(lamp);
+    let header = ["steps (shadow rays per lamp per view ray)", a.as_str(), b.as_str(), c.as_str()];
+    markdown_table(
+        &header,
+        rows.iter().map(|(steps, errors)| {
+            [
+                steps.to_string(),
+                format!("{:.1e}", errors[0]),
+                format!("{:.1e}", errors[1]),
+                format!("{:.1e}", errors[2]),
+            ]
+        }),
+    )
 }
 
 /// One measurement of the fog experiment.
@@ -309,6 +397,13 @@ mod tests {
         }
         snapshot("q1_fog_metrics", &fog_table(&rows));
         snapshot("q1_airlight_metrics", &airlight_table(&airlight));
+        // The glow's quadrature: error falls with the steps, fourfold per doubling far from the lamp.
+        let steps = airlight_convergence().unwrap();
+        for pair in steps.windows(2).skip(3) {
+            let ratio = pair[0].1[0] / pair[1].1[0];
+            assert!((3.5..4.5).contains(&ratio), "{ratio} at {} steps", pair[1].0);
+        }
+        snapshot("q1_airlight_steps", &airlight_convergence_table(&steps));
     }
 
     #[unit_test]

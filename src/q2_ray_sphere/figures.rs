@@ -3,7 +3,7 @@
 
 use super::catalogue::{self, Outcome, VARIANTS, variant_label};
 use super::reflection::{Scenario, SpawnPolicy, self_hit_rate};
-use super::{closest_approach, worked_example};
+use super::{closest_approach, notes_example};
 use crate::geometry::sphere::{first_hit_stable, roots_stable};
 use crate::plot::{
     self, Axis, Chart, Dots, Figure, Legend, LegendMark, Mesh, PALETTE, PlotError, Series, Shape, Stroke, err,
@@ -27,8 +27,8 @@ use plotters::prelude::*;
 /// ```
 pub fn figures() -> Result<Vec<Figure>, PlotError> {
     let mut figures = vec![
-        plot::svg_figure("q2_reflection.svg", (560, 360), draw_reflection)?,
-        plot::svg_figure("q2_closest_approach.svg", (560, 360), draw_closest_approach)?,
+        plot::svg_figure("q2_reflection.svg", (560, 400), draw_reflection)?,
+        plot::svg_figure("q2_closest_approach.svg", (560, 400), draw_closest_approach)?,
         plot::svg_figure("q2_cases.svg", (900, 520), draw_cases)?,
         Figure { file_name: "q2_catalogue.md".into(), bytes: catalogue::catalogue_table().into_bytes() },
         Figure {
@@ -47,11 +47,11 @@ pub fn figures() -> Result<Vec<Figure>, PlotError> {
 /// and tick labels but no grid: the sphere, its centre `o`, and what `shapes` add on top.
 fn cross_section(root: &DrawingArea<SVGBackend<'_>, Shift>, caption: &str, shapes: Vec<Shape>) -> Result<(), String> {
     let area = root.titled(caption, ("sans-serif", 16)).map_err(err)?;
-    let (_, sphere) = worked_example();
+    let (_, sphere) = notes_example();
     let mut sphere_shapes = vec![
-        Shape::line(circle(sphere.radius), PALETTE[7], 2),
+        Shape::line(circle(sphere.center, sphere.radius), PALETTE[7], 2),
         dot(sphere.center, PALETTE[7]),
-        label((0.1, -0.15), "o", PALETTE[7]),
+        label((sphere.center.x + 0.25, sphere.center.y - 0.4), "o", PALETTE[7]),
     ];
     sphere_shapes.extend(shapes);
     let ticks = |axis: Axis<'static>, labels| Axis { labels: Some(labels), ..axis };
@@ -63,24 +63,25 @@ fn cross_section(root: &DrawingArea<SVGBackend<'_>, Shift>, caption: &str, shape
         equal_scale: true,
         shapes: sphere_shapes,
         legend: None,
-        ..Chart::new("", ticks(Axis::linear(-6.0, 3.0, ""), 10), ticks(Axis::linear(-2.5, -2.5, ""), 6))
+        ..Chart::new("", ticks(Axis::linear(-10.0, 9.5, ""), 10), ticks(Axis::linear(-4.2, -4.2, ""), 7))
     }
     .draw(&area)
 }
 
-/// The circle of `radius` about the origin, as 181 points (the first repeated last).
-fn circle(radius: f64) -> Vec<(f64, f64)> {
+/// The circle of `radius` about `center`'s `x` and `y`, as 181 points (the first repeated last).
+fn circle(center: DVec3, radius: f64) -> Vec<(f64, f64)> {
     (0..=180)
         .map(|i| {
             let a = f64::from(i) / 180.0 * std::f64::consts::TAU;
-            (radius * a.cos(), radius * a.sin())
+            (center.x + radius * a.cos(), center.y + radius * a.sin())
         })
         .collect()
 }
 
-/// An arrow from `from` to `to` (their `x` and `y`): a 2 px shaft and a filled head 0.25 units long.
+/// An arrow from `from` to `to` (their `x` and `y`): a 2 px shaft and a filled head [`HEAD`]
+/// units long.
 fn arrow(from: DVec3, to: DVec3, color: RGBColor) -> [Shape; 2] {
-    let back = (from - to).normalize() * 0.25;
+    let back = (from - to).normalize() * HEAD;
     let side = DVec3::new(-back.y, back.x, 0.0) * 0.4;
     let head = [to, to + back + side, to + back - side].map(|p| (p.x, p.y));
     [
@@ -88,6 +89,9 @@ fn arrow(from: DVec3, to: DVec3, color: RGBColor) -> [Shape; 2] {
         Shape::Polygon { points: head.to_vec(), colour: color },
     ]
 }
+
+/// The length of an arrow's head, in the diagrams' units (the worked example's sphere has radius 5).
+const HEAD: f64 = 0.6;
 
 /// A 13 px label in `color` with its top-left corner at `at`.
 fn label(at: (f64, f64), text: &str, color: RGBColor) -> Shape {
@@ -105,22 +109,23 @@ const CASE_TITLE_PX: u32 = 17;
 /// Font size of a case panel's roots line and its eye label.
 const CASE_TEXT_PX: u32 = 16;
 
-/// The cases of the homework's root analysis, one panel each: (name, eye, direction), all
-/// against the worked example's sphere (centre 0, radius 2).
+/// The cases of the homework's root analysis, one panel each, named by the template's case words:
+/// (name, eye, direction), all against the sphere of the chapter's worked example (centre
+/// `(1, 2, −1)`, radius 5) with its direction `(4, 0, 0)`.
 const CASES: [(&str, [f64; 3], [f64; 3]); 6] = [
-    ("outside, two roots", [-5.0, 1.0, 0.0], [1.0, 0.0, 0.0]),
-    ("inside", [-0.5, 0.5, 0.0], [1.0, 0.0, 0.0]),
-    ("behind", [4.0, 1.0, 0.0], [1.0, 0.0, 0.0]),
-    ("tangent", [-5.0, 2.0, 0.0], [1.0, 0.0, 0.0]),
-    ("miss", [-5.0, 3.0, 0.0], [1.0, 0.0, 0.0]),
-    ("eye e on the surface", [-2.0, 0.0, 0.0], [1.0, 0.0, 0.0]),
+    ("outside", [-7.0, 5.0, -1.0], [4.0, 0.0, 0.0]),
+    ("inside", [-2.0, 5.0, -1.0], [4.0, 0.0, 0.0]),
+    ("behind", [9.0, 5.0, -1.0], [4.0, 0.0, 0.0]),
+    ("tangent", [-7.0, 7.0, -1.0], [4.0, 0.0, 0.0]),
+    ("miss", [-7.0, 8.0, -1.0], [4.0, 0.0, 0.0]),
+    ("on_surface", [-3.0, -1.0, -1.0], [4.0, 0.0, 0.0]),
 ];
 
 /// The six cases of the root analysis as a small multiple: in each panel the sphere, the ray
 /// from its eye (the part with t < 0 dashed grey), both roots as computed by
 /// [`roots_stable`], and the first hit with t ≥ 0 by [`first_hit_stable`] (ringed).
 fn draw_cases(root: &DrawingArea<SVGBackend<'_>, Shift>) -> Result<(), String> {
-    let (_, sphere) = worked_example();
+    let (_, sphere) = notes_example();
     for (area, &(name, origin, dir)) in root.split_evenly((2, 3)).iter().zip(CASES.iter()) {
         let ray = crate::geometry::Ray::<f64>::new(DVec3::from(origin), DVec3::from(dir)).map_err(err)?;
         let roots = roots_stable(&ray, &sphere);
@@ -135,18 +140,18 @@ fn draw_cases(root: &DrawingArea<SVGBackend<'_>, Shift>) -> Result<(), String> {
             .margin(4, 4, 4, 4)
             .titled(&format!("{name}: {verdict}"), ("sans-serif", CASE_TITLE_PX))
             .map_err(err)?;
-        let (behind, ahead) = (ray.at(-12.0), ray.at(12.0));
+        let (behind, ahead) = (ray.at(-8.0), ray.at(8.0));
         let mut shapes = vec![
-            Shape::line(circle(sphere.radius), PALETTE[7], 2),
+            Shape::line(circle(sphere.center, sphere.radius), PALETTE[7], 2),
             Shape::Series(Series {
                 line: Some(Stroke { width: 1, dash: Some((4, 4)) }),
                 ..Series::line("", vec![(behind.x, behind.y), (ray.origin.x, ray.origin.y)], RGBColor(150, 150, 150), 1)
             }),
             Shape::line(vec![(ray.origin.x, ray.origin.y), (ahead.x, ahead.y)], PALETTE[0], 1),
         ];
-        shapes.extend(arrow(ray.origin, ray.at(1.2), PALETTE[0]));
+        shapes.extend(arrow(ray.origin, ray.at(0.75), PALETTE[0]));
         shapes.push(dot(ray.origin, PALETTE[0]));
-        shapes.push(Shape::text("e", (ray.origin.x - 0.3, ray.origin.y + 0.9), CASE_TEXT_PX, PALETTE[0]));
+        shapes.push(Shape::text("e", (ray.origin.x - 0.75, ray.origin.y + 2.25), CASE_TEXT_PX, PALETTE[0]));
         if let Some(r) = roots {
             for t in [r.near, r.far] {
                 shapes.push(dot(ray.at(t), if t < 0.0 { PALETTE[5] } else { PALETTE[1] }));
@@ -168,7 +173,7 @@ fn draw_cases(root: &DrawingArea<SVGBackend<'_>, Shift>) -> Result<(), String> {
             equal_scale: true,
             shapes,
             legend: None,
-            ..Chart::new("", Axis::linear(-6.0, 6.0, ""), Axis::linear(-3.5, -3.5, ""))
+            ..Chart::new("", Axis::linear(-14.0, 16.0, ""), Axis::linear(-6.75, -6.75, ""))
         }
         .draw(&area)?;
         let height = area.dim_in_pixel().1;
@@ -179,50 +184,56 @@ fn draw_cases(root: &DrawingArea<SVGBackend<'_>, Shift>) -> Result<(), String> {
 }
 
 fn draw_reflection(root: &DrawingArea<SVGBackend<'_>, Shift>) -> Result<(), String> {
-    let (ray, sphere) = worked_example();
-    let roots = roots_stable(&ray, &sphere).ok_or("worked example must hit")?;
-    let t_hit = first_hit_stable(&ray, &sphere).ok_or("worked example must hit")?;
+    let (ray, sphere) = notes_example();
+    let roots = roots_stable(&ray, &sphere).ok_or("the worked example must hit")?;
+    let t_hit = first_hit_stable(&ray, &sphere).ok_or("the worked example must hit")?;
     let (near, far) = (ray.at(roots.near), ray.at(roots.far));
-    let mut shapes = vec![Shape::line(vec![(ray.origin.x, ray.origin.y), (2.8, ray.origin.y)], PALETTE[0], 1)];
-    shapes.extend(arrow(ray.origin, ray.at(1.0), PALETTE[0]));
+    let mut shapes = vec![Shape::line(vec![(ray.origin.x, ray.origin.y), (7.0, ray.origin.y)], PALETTE[0], 1)];
+    shapes.extend(arrow(ray.origin, ray.at(0.5), PALETTE[0]));
     shapes.extend([
         dot(ray.origin, PALETTE[0]),
-        label((ray.origin.x, ray.origin.y + 0.45), "e", PALETTE[0]),
-        label((ray.at(0.35).x, ray.origin.y - 0.2), "d", PALETTE[0]),
+        label((ray.origin.x - 0.2, ray.origin.y + 1.1), "e", PALETTE[0]),
+        label((ray.at(0.2).x, ray.origin.y - 0.4), "d", PALETTE[0]),
         dot(near, PALETTE[1]),
         dot(far, PALETTE[2]),
-        label((near.x + 0.1, near.y - 0.1), &format!("t2 = {:.3} (hit)", roots.near), PALETTE[1]),
-        label((far.x - 0.3, far.y + 0.35), &format!("t1 = {:.3}", roots.far), PALETTE[2]),
+        label((near.x + 0.25, near.y - 0.25), &format!("t = {} (first hit)", roots.near), PALETTE[1]),
+        label((far.x - 0.75, far.y + 0.9), &format!("t = {}", roots.far), PALETTE[2]),
     ]);
     let hit = ray.at(t_hit);
     let normal = (hit - sphere.center) / sphere.radius;
-    shapes.extend(arrow(hit, hit + normal * 1.3, PALETTE[3]));
-    shapes.push(label(((hit + normal * 1.3).x - 0.4, (hit + normal * 1.3).y + 0.1), "n", PALETTE[3]));
-    let reflected = crate::geometry::sphere::reflect::<f64>(ray.dir, normal);
-    shapes.extend(arrow(hit, hit + reflected * 1.8, PALETTE[4]));
-    let tip = hit + reflected * 1.8;
-    shapes.push(label((tip.x + 0.15, tip.y + 0.15), "r = d - 2(n.d)n", PALETTE[4]));
-    cross_section(root, "Q2a/b: e + d t meets the sphere at t2 and t1; reflection at the first hit", shapes)
+    let normal_tip = hit + normal * 2.5;
+    shapes.extend(arrow(hit, normal_tip, PALETTE[3]));
+    shapes.push(label((normal_tip.x - 0.9, normal_tip.y + 0.3), "n", PALETTE[3]));
+    let reflected = crate::geometry::sphere::reflect::<f64>(ray.dir.normalize(), normal);
+    let tip = hit + reflected * 2.8;
+    shapes.extend(arrow(hit, tip, PALETTE[4]));
+    shapes.push(label((tip.x + 0.4, tip.y + 0.3), "r = dhat - 2(n.dhat)n", PALETTE[4]));
+    cross_section(root, "Q2a/b: e + d t meets the sphere at t = 1 and t = 3; reflection at the first hit", shapes)
 }
 
 fn draw_closest_approach(root: &DrawingArea<SVGBackend<'_>, Shift>) -> Result<(), String> {
-    let (ray, sphere) = worked_example();
+    let (ray, sphere) = notes_example();
     let t = closest_approach::closest_approach_algebraic(&ray, sphere.center);
     let foot = ray.at(t);
-    let mut shapes = vec![Shape::line(vec![(ray.origin.x, ray.origin.y), (2.8, ray.origin.y)], PALETTE[0], 1)];
-    shapes.extend(arrow(ray.origin, ray.at(1.0), PALETTE[0]));
-    shapes.push(label((ray.origin.x, ray.origin.y + 0.45), "e", PALETTE[0]));
+    let mut shapes = vec![Shape::line(vec![(ray.origin.x, ray.origin.y), (7.0, ray.origin.y)], PALETTE[0], 1)];
+    shapes.extend(arrow(ray.origin, ray.at(0.5), PALETTE[0]));
+    shapes.push(label((ray.origin.x - 0.2, ray.origin.y + 1.1), "e", PALETTE[0]));
     shapes.push(Shape::Series(Series {
         line: Some(Stroke { width: 2, dash: Some((6, 4)) }),
-        ..Series::line("", vec![(0.0, 0.0), (foot.x, foot.y)], PALETTE[1], 2)
+        ..Series::line("", vec![(sphere.center.x, sphere.center.y), (foot.x, foot.y)], PALETTE[1], 2)
     }));
     shapes.push(dot(foot, PALETTE[1]));
-    shapes.push(label((foot.x + 0.1, foot.y + 0.4), &format!("p(t) with t = {t}"), PALETTE[1]));
+    shapes.push(label((foot.x + 0.3, foot.y - 0.4), &format!("e + d t with t = {t}"), PALETTE[1]));
+    // The half-chord is a length; along the ray it spans sqrt(r² − |l|²)/|d| of the parameter t.
     let half_chord = (sphere.radius.powi(2) - (foot - sphere.center).length_squared()).sqrt();
-    let chord = [foot - ray.dir * half_chord, foot + ray.dir * half_chord];
+    let unit = ray.dir.normalize();
+    let chord = [foot - unit * half_chord, foot + unit * half_chord];
     shapes.push(Shape::line(chord.iter().map(|p| (p.x, p.y)).collect(), PALETTE[2], 3));
-    shapes.push(label((-5.9, 0.75), "green: half-chord sqrt(r^2 - |l|^2)", PALETTE[2]));
-    shapes.push(label((0.1, 0.6), "l", PALETTE[1]));
+    let at = |dx: f64, dy: f64| (sphere.center.x + dx, sphere.center.y + dy);
+    shapes.push(label(at(-10.8, -3.8), "green: the half-chords, each", PALETTE[2]));
+    shapes.push(label(at(-10.8, -4.6), "sqrt(r^2 - |l|^2) long, that is", PALETTE[2]));
+    shapes.push(label(at(-10.8, -5.4), "sqrt(r^2 - |l|^2)/|d| in t", PALETTE[2]));
+    shapes.push(label(at(-0.9, 1.8), "l", PALETTE[1]));
     cross_section(root, "Q2c: t = -(e - o).d / |d|^2 is the foot of the perpendicular from o", shapes)
 }
 
@@ -306,7 +317,9 @@ impl CostTable {
         });
         out.push('\n');
         out.push_str(&markdown_table(&header, spawns));
-        out.push_str(&format!("\nMeasured by `cargo bench -p hw3-benches --bench q2_cost`: {}\n", self.meta));
+        // The CSV's comment is the benchmark's method; how many runs wrote the file is not part of it.
+        let method = self.meta.replace("one run, ", "");
+        out.push_str(&format!("\nMeasured by `cargo bench -p hw3-benches --bench q2_cost`: {method}\n"));
         out
     }
 
@@ -345,10 +358,10 @@ impl CostTable {
             legend: Some(Legend { position: Some(SeriesLabelPosition::LowerRight), font: 11, opacity: 0.9 }),
             ..Chart::new(
                 "Q2: catalogue error vs time per intersection",
-                Axis::linear(0.0, max_ns, "median ns per call (one run)"),
+                Axis::linear(0.0, max_ns, "median ns per call"),
                 Axis {
                     format: Some(|y| format!("{y:.0e}")),
-                    ..Axis::log(1e-17, 1e-2, "relative error of t (0 drawn at 1e-17)")
+                    ..Axis::log(1e-17, 10.0, "relative error of t (0 drawn at 1e-17)")
                 },
             )
         }
