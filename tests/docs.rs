@@ -385,8 +385,13 @@ fn every_error_table_states_the_accuracy_of_its_reference() {
                 continue;
             };
             let table = std::fs::read_to_string(Path::new(DOCS).join(target)).unwrap();
-            let header_lines: Vec<String> =
-                table.lines().filter(|l| l.starts_with('|')).map(str::to_lowercase).collect();
+            // A table's header rows: the rows right above a `|---` separator.
+            let rows: Vec<&str> = table.lines().collect();
+            let header_lines: Vec<String> = rows
+                .windows(2)
+                .filter(|pair| pair[0].starts_with('|') && pair[1].starts_with("|---"))
+                .map(|pair| pair[0].to_lowercase())
+                .collect();
             let is_error_table = header_lines.iter().any(|l| {
                 ["err", "rmse", "rel. diff", "reference"].iter().any(|w| l.contains(w)) && !l.starts_with("|---")
             });
