@@ -578,8 +578,9 @@ pub fn answers() -> crate::answers::Answers {
     let mut text = String::from(
         "tree (reconstructed from (d), (e)): root x = 3; child x<3 splits y = 1, child x>=3 \
          splits y = 3; four half-open leaves.\n\
-         (b)/(c) rule: t = (split - e_a)/d_a; near child by the sign of d_a (by the origin's side \
-         when d_a = 0, no division); far only if t <= tmin, near only if t >= tmax.\n",
+         (b)/(c) rule: t = (split - e_a)/d_a (a ray parallel to the plane has no t and stays on its \
+         origin's side); first the child the ray is in just after tmin, with [tmin, t], then the other \
+         with [t, tmax]; only the second if t <= tmin, only the first if t >= tmax.\n",
     );
     for case in student::cases() {
         let trace = traverse(&tree, &case.ray);
