@@ -33,7 +33,7 @@ pub use reports::{report_gradescope, report_text};
 pub use template::{answers_key, answers_key_for, template};
 pub use variants::{QUESTIONS, variant};
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 pub(crate) use q1::numbers as q1_numbers;
 /// Q1's key numbers, for the worked solution (which computes each step from them).
 pub(crate) use q1::{Numbers as Q1Numbers, SCENES as Q1_SCENES, difficulty_of, key as q1_key};

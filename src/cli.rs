@@ -294,11 +294,11 @@ pub fn check_hdr_file(path: &std::path::Path, allow_large: bool) -> Result<(), S
     Ok(())
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::*;
 
-    #[unit_test]
+    #[test]
     fn limits_name_the_flag_that_lifts_them() {
         let message = RENDER_SAMPLES.check("--spp", RENDER_SAMPLES.max + 1, false).unwrap_err();
         assert!(message.contains("--allow-large"), "{message}");
@@ -306,7 +306,7 @@ mod tests {
         assert!(PROBE_SIZE.check("--size", 1, false).unwrap_err().contains("at least 16"));
     }
 
-    #[unit_test]
+    #[test]
     fn parse_unsigned_refuses_signs_spaces_and_overflow() {
         for bad in ["", "+1", "-0", " 1", "1e3", "0x10", "18446744073709551616", "١"] {
             assert!(parse_unsigned(bad, u64::MAX).is_err(), "{bad:?}");
@@ -315,7 +315,7 @@ mod tests {
         assert_eq!(parse_unsigned("007", 10), Ok(7));
     }
 
-    #[unit_test]
+    #[test]
     fn one_line_never_carries_a_control_character() {
         let line = one_line("a\u{7}b\u{9b}c\u{7f}d\r\ne");
         assert!(!line.chars().any(char::is_control), "{line:?}");

@@ -72,11 +72,11 @@ pub fn csv(text: &str) -> Csv<'_> {
     Csv { comments, header, records: lines.collect() }
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::*;
 
-    #[unit_test]
+    #[test]
     fn committed_files_have_a_header_and_records() {
         for (text, first) in [
             (Q1_ACCURACY, "scene"),

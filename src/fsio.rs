@@ -108,7 +108,7 @@ pub fn io_reason(error: &std::io::Error) -> String {
     text.split(" (os error").next().unwrap_or(&text).to_owned()
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::*;
 
@@ -118,7 +118,7 @@ mod tests {
         dir
     }
 
-    #[unit_test]
+    #[test]
     fn a_failed_write_leaves_the_old_file_and_no_temporary() {
         let dir = scratch("failed");
         let target = dir.join("out.bin");
@@ -138,7 +138,7 @@ mod tests {
         std::fs::remove_dir_all(&dir).unwrap();
     }
 
-    #[unit_test]
+    #[test]
     fn writable_dir_refuses_a_file_and_a_missing_folder() {
         let dir = scratch("writable");
         let file = dir.join("a_file");

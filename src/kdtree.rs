@@ -312,19 +312,19 @@ pub(crate) fn split_pieces(axis: impl AxisLine, split: f64, t_min: f64, t_max: f
     SplitPieces { near, t_plane, near_live: t_plane > t_min, far_live: t_plane < t_max }
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::*;
 
     const INF: f64 = f64::INFINITY;
 
-    #[unit_test]
+    #[test]
     fn crossing_gives_near_then_far() {
         let d = split_interval(QuotientAxis::new(0.0, 1.0), 1.0, 0.0, INF);
         assert_eq!(d.visit, Visit::NearThenFar { near: Side::Lower, t_plane: 1.0 });
     }
 
-    #[unit_test]
+    #[test]
     fn parallel_ray_goes_by_origin_for_both_signs_of_zero() {
         for dir in [0.0, -0.0] {
             assert_eq!(split_interval(QuotientAxis::new(2.0, dir), 3.0, 0.0, INF).visit, Visit::Only(Side::Lower));
@@ -333,13 +333,13 @@ mod tests {
         }
     }
 
-    #[unit_test]
+    #[test]
     fn origin_on_plane_goes_where_the_ray_goes() {
         assert_eq!(split_interval(QuotientAxis::new(3.0, -1.0), 3.0, 0.0, INF).visit, Visit::Only(Side::Lower));
         assert_eq!(split_interval(QuotientAxis::new(3.0, 1.0), 3.0, 0.0, INF).visit, Visit::Only(Side::Upper));
     }
 
-    #[unit_test]
+    #[test]
     fn crossing_exactly_at_an_end_of_the_interval_visits_one_child() {
         // t = 2 = t_max: the far piece [2, 2] is a point, skipped.
         assert_eq!(split_interval(QuotientAxis::new(0.0, 1.0), 2.0, 0.0, 2.0).visit, Visit::Only(Side::Lower));
@@ -347,14 +347,14 @@ mod tests {
         assert_eq!(split_interval(QuotientAxis::new(0.0, 1.0), 2.0, 2.0, 5.0).visit, Visit::Only(Side::Upper));
     }
 
-    #[unit_test]
+    #[test]
     fn overflowing_plane_parameter_is_infinite_not_nan() {
         let d = split_interval(QuotientAxis::new(-1e308, 1e-300), 1e308, 0.0, INF);
         assert_eq!(d.t_plane, Some(INF));
         assert_eq!(d.visit, Visit::Only(Side::Lower));
     }
 
-    #[unit_test]
+    #[test]
     fn subnormal_direction_on_the_plane_is_parallel_not_nan() {
         // 1/5e-324 overflows to ∞, and (s − e)·∞ would be 0·∞ = NaN for an origin on the plane.
         for dir in [5e-324, -5e-324] {

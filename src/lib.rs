@@ -122,51 +122,9 @@ pub fn figure_jobs() -> Vec<plot::FigureJob> {
     jobs
 }
 
-/// `cargo test --lib` compiles the library with `rustc --test`, whose harness sees no unit test:
-/// they carry `#[unit_test]`, not `#[test]`, and only `tests/unit.rs` runs them (`testing` says
-/// why). This one ignored test tells whoever runs it where they are.
+/// What the unit tests share: snapshot settings.
 #[cfg(test)]
-#[test]
-#[ignore = "hw3's unit tests run with `cargo test --test unit` (or a plain `cargo test`)"]
-fn unit_tests_run_with_cargo_test_test_unit() {}
-
-// `#[unit_test]`, for every unit test of the crate (`testing` says why it is not `#[test]`).
-#[cfg(feature = "unit-tests")]
-#[macro_use]
-extern crate hw3_macros;
-
-/// The unit tests' registry and shared settings; only with the `unit-tests` feature, which
-/// `cargo test` turns on.
-///
-/// A `#[test]` function exists only when its crate is compiled by `rustc --test`: unit tests
-/// written that way would cost a second compilation of the whole library (Cargo's "lib test"
-/// build) beside the one that the binary, the integration tests and the doctests link. So hw3's
-/// unit tests are compiled into the library under the feature, each carries `#[unit_test]` (the
-/// `hw3-macros` crate), which adds it to the registry [`UNIT_TESTS`], and `tests/unit.rs` runs the
-/// registry with libtest's command line (`cargo test --test unit -- --list`, a filter,
-/// `--ignored`).
-#[cfg(feature = "unit-tests")]
-#[doc(hidden)]
-pub mod testing {
-    /// One unit test, as `#[unit_test]` registers it.
-    #[derive(Debug)]
-    pub struct UnitTest {
-        /// The test function's path in the crate, `hw3::module::tests::name`.
-        pub name: &'static str,
-        /// The test: passes if it returns (or, with `should_panic`, if it panics).
-        pub run: fn(),
-        /// `#[ignore = "reason"]`: run only with `--ignored`.
-        pub ignore: Option<&'static str>,
-        /// `#[should_panic(expected = "text")]` or `#[should_panic = "text"]`: passes only if it
-        /// panics with `text` in its message (`""`, a bare `#[should_panic]`: any panic).
-        pub should_panic: Option<&'static str>,
-    }
-
-    /// The registry: every unit test of the crate, in no particular order (the runner sorts them by
-    /// name). A linkme distributed slice, filled by the linker from `#[unit_test]`'s entries.
-    #[linkme::distributed_slice]
-    pub static UNIT_TESTS: [UnitTest];
-
+mod testing {
     /// insta settings shared by every snapshot test in the crate: snapshots live in the top-level
     /// `snapshots/` folder, named by the snapshot name alone.
     pub(crate) fn insta_settings() -> insta::Settings {

@@ -420,7 +420,7 @@ pub const PALETTE: [RGBColor; 8] = [
     RGBColor(0, 0, 0),       // black
 ];
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::*;
 
@@ -437,7 +437,7 @@ mod tests {
         Ok(())
     }
 
-    #[unit_test]
+    #[test]
     fn svg_with_text_is_byte_identical_across_runs() {
         let a = svg_figure("t.svg", (200, 150), sample).unwrap();
         let b = svg_figure("t.svg", (200, 150), sample).unwrap();
@@ -446,7 +446,7 @@ mod tests {
         assert!(text.contains("α √ test"), "caption text is laid out with the embedded font");
     }
 
-    #[unit_test]
+    #[test]
     fn png_with_text_is_byte_identical_and_decodes() {
         let draw = |root: &DrawingArea<BitMapBackend<'_>, plotters::coord::Shift>| {
             root.draw(&Text::new("abc", (10, 10), ("sans-serif", 14))).map_err(err)
@@ -458,7 +458,7 @@ mod tests {
         assert!(decoded.pixels().any(|p| p.0 != [255, 255, 255]), "text drew some pixels");
     }
 
-    #[unit_test]
+    #[test]
     fn panel_grid_is_byte_identical_and_labels_every_panel() {
         let panel = |v| Panel { image: RgbImage::from_pixel(80, 60, Rgb([v; 3])), label: "a\nb".into() };
         let panels = [panel(255), panel(255), panel(255)];

@@ -96,11 +96,11 @@ pub fn answers() -> Answers {
     Answers { question: "q1", title: "Four scenes that are hard to render, and why (measured)", text }
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::*;
 
-    #[unit_test]
+    #[test]
     fn chapter_includes_every_generated_table() {
         let chapter = include_str!("../docs/q1_hard_scenes.md");
         for table in [
@@ -119,7 +119,7 @@ mod tests {
 
     /// The numbers [`answers`] prints are the findings the chapter prints (the tables they are
     /// read from are compared with today's measurements by `tests/docs.rs`).
-    #[unit_test]
+    #[test]
     fn answers_print_the_shared_findings() {
         let text = answers().text;
         for phrase in findings().shared_phrases() {

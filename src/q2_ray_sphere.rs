@@ -279,11 +279,11 @@ pub fn parse_sphere_args(
     Ok((ray, sphere))
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::*;
 
-    #[unit_test]
+    #[test]
     fn worked_traces_snapshot() {
         let text: String = trace_cases()
             .into_iter()
@@ -292,7 +292,7 @@ mod tests {
         crate::testing::insta_settings().bind(|| insta::assert_snapshot!("q2_worked_traces", text));
     }
 
-    #[unit_test]
+    #[test]
     fn worked_example_by_hand() {
         let (ray, sphere) = worked_example();
         let answer = solve(&ray, &sphere, Solver::Naive, Precision::F64).unwrap();
@@ -307,7 +307,7 @@ mod tests {
         );
     }
 
-    #[unit_test]
+    #[test]
     fn all_four_variants_agree_on_easy_rays() {
         let (ray, sphere) = worked_example();
         let answers: Vec<f64> =
@@ -317,7 +317,7 @@ mod tests {
         }
     }
 
-    #[unit_test]
+    #[test]
     fn zero_radius_is_refused() {
         let ray = Ray { origin: DVec3::ZERO, dir: DVec3::Z };
         let point = Sphere { center: DVec3::new(0.0, 0.0, 5.0), radius: 0.0 };

@@ -623,7 +623,7 @@ pub fn figures() -> Result<Vec<crate::plot::Figure>, crate::plot::PlotError> {
     Ok(figures)
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::*;
     use proptest::prelude::*;
@@ -645,7 +645,7 @@ mod tests {
             .collect()
     }
 
-    #[unit_test]
+    #[test]
     fn case_d_and_e_traces_are_pinned() {
         let _guard = crate::testing::insta_settings().bind_to_scope();
         for case in student::cases() {
@@ -656,7 +656,7 @@ mod tests {
 
     /// Each leaf interval of (d) and (e) is where the ray really is: sampled points of every
     /// interval lie in that leaf's cell, and consecutive intervals meet (no gap, no overlap).
-    #[unit_test]
+    #[test]
     fn every_leaf_interval_holds_the_ray_for_cases_d_and_e() {
         let tree = Node2::homework();
         for case in student::cases() {
@@ -678,7 +678,7 @@ mod tests {
         }
     }
 
-    #[unit_test]
+    #[test]
     fn general_ray_visits_all_four_leaves_in_order() {
         assert_eq!(
             leaf_strings(&Node2::homework(), &ray([0.0, 0.0], [1.0, 0.5])),
@@ -686,7 +686,7 @@ mod tests {
         );
     }
 
-    #[unit_test]
+    #[test]
     fn parallel_ray_lying_in_a_split_plane_takes_the_upper_cell_without_nan() {
         let tree = Node2::homework();
         // On x = 3, moving up: lies in x >= 3 (half-open cells); never a 0/0.
@@ -702,7 +702,7 @@ mod tests {
         assert_eq!(leaf_strings(&tree, &ray([2.0, 1.0], [-1.0, -0.0])), ["x<3,y>=1 [0, inf]"]);
     }
 
-    #[unit_test]
+    #[test]
     fn parallel_ray_off_the_plane_stays_on_its_side_for_both_zero_signs() {
         let tree = Node2::homework();
         for dx in [0.0, -0.0] {
@@ -710,14 +710,14 @@ mod tests {
         }
     }
 
-    #[unit_test]
+    #[test]
     fn origin_on_a_plane_goes_to_the_side_the_ray_enters() {
         let tree = Node2::homework();
         assert_eq!(leaf_strings(&tree, &ray([3.0, 0.0], [-1.0, 0.0])), ["x<3,y<1 [0, inf]"]);
         assert_eq!(leaf_strings(&tree, &ray([3.0, 0.0], [1.0, 0.0])), ["x>=3,y<3 [0, inf]"]);
     }
 
-    #[unit_test]
+    #[test]
     fn crossing_exactly_at_a_cell_corner_skips_the_zero_length_cell() {
         // Through (3, 3) at t = 2: the x>=3, y>=3 cell is touched at one point only.
         assert_eq!(
@@ -726,7 +726,7 @@ mod tests {
         );
     }
 
-    #[unit_test]
+    #[test]
     fn huge_and_tiny_coordinates_keep_exact_intervals() {
         let tree = Node2::homework();
         // Huge origin: t = (3 - 1e300)/(-1e300) rounds to 1.
@@ -738,7 +738,7 @@ mod tests {
         assert_eq!(t, ["x<3,y<1 [0, 1]", "x<3,y>=1 [1, inf]"]);
     }
 
-    #[unit_test]
+    #[test]
     fn non_finite_or_zero_input_is_a_typed_error() {
         assert!(matches!(Ray2::new([f64::NAN, 0.0], [1.0, 0.0]), Err(InputError::NonFinite { name: "origin", .. })));
         assert!(matches!(
@@ -775,7 +775,7 @@ mod tests {
 
     /// A case proptest once shrank to (kept as a test, since the crate keeps no regression files
     /// at its top level): a nested split outside its parent's range, and a ray parallel to x.
-    #[unit_test]
+    #[test]
     fn regression_nested_split_outside_parent_range_with_ray_parallel_to_x() {
         let tree = Node2::split(Axis2::Y, 0.0, Node2::Leaf, Node2::split(Axis2::Y, -1.0, Node2::Leaf, Node2::Leaf));
         let r = Ray2::new([0.0, -1.5215972897508008], [0.0, 0.8636510274222519]).unwrap();
@@ -785,13 +785,13 @@ mod tests {
     proptest! {
         #![proptest_config(ProptestConfig { cases: 2000, failure_persistence: None, ..ProptestConfig::default() })]
 
-        #[unit_test]
+        #[test]
         fn homework_tree_traversal_equals_brute_force(r in arb_ray()) {
             let tree = Node2::homework();
             prop_assert_eq!(traverse(&tree, &r).leaves(), brute_force_leaves(&tree, &r));
         }
 
-        #[unit_test]
+        #[test]
         fn random_tree_traversal_equals_brute_force_and_tiles_the_ray(
             tree in arb_tree(), r in arb_ray()
         ) {

@@ -6,7 +6,7 @@ pub mod irradiance;
 pub mod maps;
 mod normals;
 pub mod study;
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests;
 
 pub use figures::{figure_jobs, figures};

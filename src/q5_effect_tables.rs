@@ -185,12 +185,12 @@ pub fn figures(budget: &Budget) -> Result<Vec<Figure>, PlotError> {
     Ok(figures)
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::*;
     use crate::render::analysis::grammar::{Lang, shortest_word};
 
-    #[unit_test]
+    #[test]
     fn every_built_in_expression_parses() {
         for effect in &EFFECTS {
             assert!(Lang::parse(effect.paths).is_ok(), "{}", effect.paths);
@@ -209,7 +209,7 @@ mod tests {
         }
     }
 
-    #[unit_test]
+    #[test]
     fn grammar_agrees_with_every_transcribed_student_cell() {
         let cells = grammar_table().unwrap();
         let disagreements: Vec<String> = cells
@@ -224,7 +224,7 @@ mod tests {
         assert!(STUDENT_ANSWERS.contains(&('b', 'e', StudentAnswer::Yes)));
     }
 
-    #[unit_test]
+    #[test]
     fn light_type_changes_the_path_tracer_caustic_cell() {
         let caustic = EFFECTS.iter().find(|e| e.id == "d_caustic").unwrap();
         let pt = ALGORITHMS.iter().find(|m| m.id == "path_tracing").unwrap();
@@ -234,7 +234,7 @@ mod tests {
         assert_eq!((point.verdict, point.witness.as_deref()), (Verdict::No, Some("LSDE")));
     }
 
-    #[unit_test]
+    #[test]
     fn effect_tables_json_has_every_cell_with_its_student_answer() {
         let measured = experiments::measured_table(&Budget::PUBLISHED).unwrap();
         let value: serde_json::Value = serde_json::from_str(&effect_tables_command(true, &measured).unwrap()).unwrap();
@@ -248,7 +248,7 @@ mod tests {
         assert!(text.contains("No `LGE` (student: No)") && text.contains("measured verdict"));
     }
 
-    #[unit_test]
+    #[test]
     fn grammar_tables_snapshot() {
         crate::testing::insta_settings().bind(|| {
             insta::assert_snapshot!("q5_grammar_tables", grammar_table_markdown().unwrap());
@@ -259,7 +259,7 @@ mod tests {
 
     /// The caustic percentages [`answers`] prints are the measured table's, and every radiosity
     /// cell is measured as the student answers it ("all five measured so").
-    #[unit_test]
+    #[test]
     fn printed_caustic_fractions_are_the_measured_ones() {
         let cells = experiments::measured_table(&Budget::PUBLISHED).unwrap();
         let fraction = |method: &str| {
@@ -274,7 +274,7 @@ mod tests {
 
     /// The verdict words and missed paths that [`answers`] prints for radiosity are the grammar's
     /// (area light), and the two-pass ones for (a)–(c) and the mirror image too.
-    #[unit_test]
+    #[test]
     fn printed_verdicts_are_the_grammar_ones() {
         let cells = grammar_table().unwrap();
         let cell = |method: &str, effect: &str| {

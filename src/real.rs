@@ -190,18 +190,18 @@ impl Real for f64 {
     }
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::*;
 
-    #[unit_test]
+    #[test]
     fn max_documents_its_nan_rule() {
         assert_eq!(Real::max(2.0f32, 1.0), 2.0);
         assert_eq!(Real::max(f32::NAN, 1.0), 1.0);
         assert!(Real::max(1.0f64, f64::NAN).is_nan());
     }
 
-    #[unit_test]
+    #[test]
     fn dot_matches_glam_without_fma() {
         let a = Vec3::new(1.5, -2.0, 0.25);
         let b = Vec3::new(4.0, 0.5, -8.0);

@@ -267,7 +267,7 @@ pub fn render_with(
     Ok(Image { width, height, pixels: rows.into_iter().flatten().collect() })
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::*;
     use super::{analysis::analyze, passes::Pass};
@@ -280,7 +280,7 @@ mod tests {
         rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap().install(f)
     }
 
-    #[unit_test]
+    #[test]
     fn image_bytes_are_identical_for_one_and_two_threads() {
         for scene in [
             catalogue::moving_ball(2.0).unwrap(),
@@ -295,7 +295,7 @@ mod tests {
         }
     }
 
-    #[unit_test]
+    #[test]
     fn path_tracer_is_deterministic_across_thread_counts() {
         let scene = catalogue::cornell_mirror().unwrap();
         let settings = Settings {
@@ -309,7 +309,7 @@ mod tests {
     /// For every scene and every pass the plan skips, forcing it on gives the same image bit for
     /// bit (Whitted, and the path tracer); for every pass the plan runs, forcing it off changes
     /// the mean luminance by more than 1 % of the image's mean.
-    #[unit_test]
+    #[test]
     fn the_plan_skips_only_passes_that_change_nothing_and_keeps_those_that_matter() {
         let scenes = [
             catalogue::mirror_spheres(true).unwrap(),
@@ -384,7 +384,7 @@ mod tests {
     /// - the k-nearest estimate blurs the spot but keeps its flux: averaged over the disc it is
     ///   within 2 % of the photons' own histogram, the stored power inside the disc over its
     ///   area (no blur at all; the 2 % is light moved across the disc's rim by the 0.1 gather).
-    #[unit_test]
+    #[test]
     fn the_caustic_pass_lights_the_shadow_under_the_glass_ball_as_the_path_tracer_does() {
         let scene = catalogue::glass_ball_caustic().unwrap();
         let plan = analyze(&scene).plan;
@@ -415,7 +415,7 @@ mod tests {
 
     /// Every built-in scene renders to the same linear radiances with the kd-tree and with the
     /// brute-force loop, for both integrators (so every closest-hit and shadow query agreed).
-    #[unit_test]
+    #[test]
     fn kd_tree_renders_are_identical_to_brute_force_on_every_built_in_scene() {
         for (name, _) in catalogue::CATALOGUE {
             let scene = catalogue::by_name(name).unwrap();
@@ -431,7 +431,7 @@ mod tests {
         }
     }
 
-    #[unit_test]
+    #[test]
     fn bad_sizes_and_sample_counts_are_refused() {
         let scene = catalogue::moving_ball(0.0).unwrap();
         let plan = analyze(&scene).plan;
@@ -451,7 +451,7 @@ mod tests {
 
     /// A point light inside a closed sphere lights nothing outside it, and a camera inside a
     /// mirror sphere sees a finite, black image (light cannot get in; recursion stops at depth 8).
-    #[unit_test]
+    #[test]
     fn enclosed_lights_and_cameras_stay_dark_and_finite() {
         use crate::geometry::Sphere;
         use camera::Camera;
@@ -471,7 +471,7 @@ mod tests {
         assert!(image.pixels.iter().all(|p| *p == DVec3::ZERO));
     }
 
-    #[unit_test]
+    #[test]
     fn thumbnail_averages_blocks() {
         let image = Image {
             width: 4,

@@ -124,11 +124,11 @@ pub fn uniform_in<R: Rng + ?Sized>(generator: &mut R, low: f64, high: f64) -> f6
     low + (high - low) * uniform(generator)
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::*;
 
-    #[unit_test]
+    #[test]
     fn value_stability_vector() {
         // Pins the generator's output: a change here silently changes every figure and snapshot.
         let mut g = seeded(42, 0);
@@ -141,7 +141,7 @@ mod tests {
         });
     }
 
-    #[unit_test]
+    #[test]
     fn sample_streams_are_the_renderers_original_construction() {
         // The per-pixel construction the committed renders were made with, written out: a change
         // in `sample_stream` changes every render.
@@ -159,7 +159,7 @@ mod tests {
         assert_eq!(unit_f64(bits), (bits >> 11) as f64 / (1u64 << 53) as f64);
     }
 
-    #[unit_test]
+    #[test]
     fn uniform_mean_is_one_half() {
         let mut g = seeded(3, 0);
         let n = 100_000;

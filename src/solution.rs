@@ -250,11 +250,11 @@ pub fn command(question: Option<&str>, seed: u64, format: Format) -> Result<Stri
     Ok(texts.join("\n").trim_end().to_owned())
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::*;
 
-    #[unit_test]
+    #[test]
     fn every_question_has_a_solution() {
         for question in QUESTIONS {
             let s = solution(question, 0).unwrap();
@@ -262,7 +262,7 @@ mod tests {
         }
     }
 
-    #[unit_test]
+    #[test]
     fn unknown_question_is_an_error_naming_it() {
         assert_eq!(solution("q9", 0), Err(SolutionError::UnknownQuestion("q9".into())));
         assert!(command(Some("Q2"), 0, Format::Text).unwrap_err().to_string().contains("`Q2`"));
@@ -270,7 +270,7 @@ mod tests {
 
     /// Seed 0 of every question, as text and as markdown, pinned (a change here changes the
     /// printed key).
-    #[unit_test]
+    #[test]
     fn seed_zero_solutions_are_pinned() {
         let text = command(None, 0, Format::Text).unwrap();
         let markdown = command(None, 0, Format::Markdown).unwrap();

@@ -61,11 +61,11 @@ pub fn median(values: &mut [f64]) -> f64 {
     values[values.len() / 2]
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::*;
 
-    #[unit_test]
+    #[test]
     fn sd_and_standard_error_of_a_known_sample() {
         // 2, 4, 4, 4, 5, 5, 7, 9: mean 5, squared deviations sum to 32, so SD = √(32/7).
         let sample = [2.0, 4.0, 4.0, 4.0, 5.0, 5.0, 7.0, 9.0];

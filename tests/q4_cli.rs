@@ -137,11 +137,7 @@ fn a_built_in_map_is_read_from_any_working_directory() {
     let png = std::fs::read(dir.join("lit.png")).expect("the PNG was written in the working directory");
     assert!(png.starts_with(b"\x89PNG"), "a PNG");
     std::fs::remove_dir_all(&dir).unwrap();
-    // The CLI's code names no path to the maps' directory: none is baked in for it to read. This
-    // binary is not quite what `cargo build` makes: it also carries the unit tests (the
-    // `unit-tests` feature, which `cargo test` turns on), with paths into the source tree; the
-    // one that reads the committed maps builds its path from components, so that this check still
-    // sees only the CLI's own strings.
+    // The CLI's code names no path to the maps' directory: none is baked in for it to read.
     let binary = std::fs::read(env!("CARGO_BIN_EXE_hw3")).unwrap();
     let needle = b"docs/data/q4";
     assert!(!binary.windows(needle.len()).any(|w| w == needle), "the binary names docs/data/q4");

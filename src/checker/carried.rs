@@ -49,14 +49,14 @@ fn leaves_of(descents: &[ExpectedLeaf]) -> Vec<ExpectedLeaf> {
         .collect()
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::*;
     use crate::checker::variant;
 
     /// Each derivation applied to the key's own earlier answer gives the key's later answer: the
     /// dependency is the one the key itself is computed by.
-    #[unit_test]
+    #[test]
     fn derivations_reproduce_the_key_from_the_keys_own_answers() {
         let mut checked = 0;
         for question in ["q2", "q3", "q4"] {

@@ -420,7 +420,7 @@ fn round2(x: f64) -> f64 {
     (x * 100.0).round() / 100.0
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::*;
     use crate::checker::answers_key;
@@ -430,7 +430,7 @@ mod tests {
         check_class(&files, None)
     }
 
-    #[unit_test]
+    #[test]
     fn statistics_count_each_status_and_the_commonest_mistake() {
         let key = answers_key(0).unwrap();
         let with_t = |t: f64| {
@@ -458,7 +458,7 @@ mod tests {
         assert!(report.submissions[5].error.as_deref().unwrap().starts_with("not valid TOML"));
     }
 
-    #[unit_test]
+    #[test]
     fn a_class_of_keys_is_all_correct() {
         let keys: Vec<String> = (0..4).map(|s| answers_key(s).unwrap()).collect();
         let report = class(&keys.iter().map(String::as_str).collect::<Vec<_>>());
@@ -467,14 +467,14 @@ mod tests {
         assert!(report.parts.iter().all(|p| p.correct == 4 && p.most_common_mistake.is_none()));
     }
 
-    #[unit_test]
+    #[test]
     fn csv_fields_are_quoted_only_when_needed() {
         assert_eq!(csv_field("plain"), "plain");
         assert_eq!(csv_field("a,b"), "\"a,b\"");
         assert_eq!(csv_field("say \"x\""), "\"say \"\"x\"\"\"");
     }
 
-    #[unit_test]
+    #[test]
     fn bounds_are_checked_before_reading() {
         let dir = std::env::temp_dir().join(format!("hw3-class-bounds-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();

@@ -434,7 +434,7 @@ pub(super) fn compare_formulas(
     )
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::*;
 
@@ -456,7 +456,7 @@ mod tests {
         Formula::parse(text, &SYMBOLS).unwrap().eval(&point())
     }
 
-    #[unit_test]
+    #[test]
     fn precedence_and_associativity() {
         assert_eq!(value("1 + 2 * 3"), Value::Scalar(7.0));
         assert_eq!(value("8 / 4 / 2"), Value::Scalar(1.0));
@@ -465,7 +465,7 @@ mod tests {
         assert_eq!(value("(1 + 2) * 3"), Value::Scalar(9.0));
     }
 
-    #[unit_test]
+    #[test]
     fn vectors_components_and_functions() {
         assert_eq!(value("e + d * t"), Value::Vector(DVec3::new(1.0, 1.5, 4.0)));
         assert_eq!(value("d_y"), Value::Scalar(-1.0));
@@ -476,7 +476,7 @@ mod tests {
         assert_eq!(value("e / r"), Value::Vector(DVec3::new(0.5, 1.0, 1.5)));
     }
 
-    #[unit_test]
+    #[test]
     fn errors_say_what_and_where() {
         for (text, words) in [
             ("e * d", "dot(a, b) or cross(a, b)"),
@@ -501,7 +501,7 @@ mod tests {
         assert!(Formula::parse(&minus, &SYMBOLS).is_err());
     }
 
-    #[unit_test]
+    #[test]
     fn agreement_is_relative_and_nan_never_agrees() {
         assert!(agree(Value::Scalar(1e6), Value::Scalar(1e6 + 0.5)));
         assert!(!agree(Value::Scalar(1.0), Value::Scalar(1.001)));

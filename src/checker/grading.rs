@@ -389,20 +389,20 @@ fn round2(x: f64) -> f64 {
     (x * 100.0).round() / 100.0
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::*;
     use crate::checker::{Kind, answers_key, report_text};
     use proptest::prelude::*;
 
-    #[unit_test]
+    #[test]
     fn blank_file_scores_zero_with_every_part_missing() {
         let report = check("", None).unwrap();
         assert_eq!(report.score, 0.0);
         assert!(report.parts.iter().all(|p| p.status == "missing"));
     }
 
-    #[unit_test]
+    #[test]
     fn malformed_and_hostile_files_are_errors_not_panics() {
         let deep = format!("x = {}1{}", "[".repeat(10_000), "]".repeat(10_000));
         for text in [
@@ -422,7 +422,7 @@ mod tests {
         }
     }
 
-    #[unit_test]
+    #[test]
     fn trace_feedback_names_the_first_divergence() {
         let key = answers_key(0).unwrap();
         // Edit case (d)'s leaves only (its descents come first and hold the same intervals).
@@ -448,7 +448,7 @@ mod tests {
         assert!(d.feedback.contains("leaf 2 missing"), "{}", d.feedback);
     }
 
-    #[unit_test]
+    #[test]
     fn malformed_traces_are_errors() {
         for text in [
             "[q3d]\nleaves = 3",
@@ -465,7 +465,7 @@ mod tests {
         #![proptest_config(ProptestConfig::with_cases(64))]
 
         /// The key of any variant scores 100 %.
-        #[unit_test]
+        #[test]
         fn key_scores_full_marks(seed in 0u64..1_000_000) {
             let report = check(&answers_key(seed).unwrap(), None).unwrap();
             prop_assert!(report.all_correct(), "{}", report_text(&report));
@@ -473,7 +473,7 @@ mod tests {
         }
 
         /// Perturbing one answer beyond its tolerance loses exactly that part's points.
-        #[unit_test]
+        #[test]
         fn perturbing_one_part_loses_exactly_its_points(seed in 0u64..1_000_000, question in 0usize..QUESTIONS.len(), which in 0usize..64) {
             let variant = variant(QUESTIONS[question], seed).unwrap();
             let part = &variant.parts[which % variant.parts.len()];
@@ -529,7 +529,7 @@ mod tests {
         }
 
         /// Arbitrary text never panics the checker.
-        #[unit_test]
+        #[test]
         fn arbitrary_text_never_panics(text in ".{0,200}") {
             let _ = check(&text, None);
         }

@@ -33,11 +33,11 @@ pub(super) fn compare_paths(key: &str, given: &str) -> (bool, String) {
     }
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::*;
 
-    #[unit_test]
+    #[test]
     fn equivalent_spellings_are_the_same_answer() {
         assert!(compare_paths("LD+E", "LDD*E").0);
         assert!(compare_paths("LD+E", "L(D)+E").0);
@@ -45,7 +45,7 @@ mod tests {
         assert!(compare_paths("L(D|G)E", "L[GD]E").0);
     }
 
-    #[unit_test]
+    #[test]
     fn a_different_class_names_a_path_that_tells_them_apart() {
         let (ok, words) = compare_paths("LDD+E", "LD*E");
         assert!(!ok);

@@ -282,7 +282,7 @@ pub(super) fn variant(seed: u64) -> Variant {
     Variant { question: "q1", seed, statement, parts, follows: vec![] }
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::*;
     use std::f64::consts::PI;
@@ -294,7 +294,7 @@ mod tests {
         }
     }
 
-    #[unit_test]
+    #[test]
     fn seed_zero_is_the_renderers_scenes() {
         let v = variant(0);
         assert!(v.statement.contains("1500 spheres of radius a = 0.5"), "{}", v.statement);
@@ -304,7 +304,7 @@ mod tests {
         assert!((value(&v, "q1b.visual_range") - 48.9).abs() < 0.01);
     }
 
-    #[unit_test]
+    #[test]
     fn the_four_scenes_are_the_four_difficulties() {
         let v = variant(0);
         let letters: Vec<&str> = SCENES
@@ -318,7 +318,7 @@ mod tests {
     }
 
     /// The renderer's fog follows the transmittance law the key uses (measured by the Q1 code).
-    #[unit_test]
+    #[test]
     fn the_renderers_fog_has_the_keys_transmittance() {
         let row = crate::q1_hard_scenes::fog_row(0.1, 5.0).unwrap();
         assert!((row.transmittance - row.law).abs() < 1e-9, "{row:?}");

@@ -494,17 +494,17 @@ pub(super) fn variant(seed: u64) -> Variant {
     Variant { question: "q2", seed, statement, parts, follows }
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::*;
 
-    #[unit_test]
+    #[test]
     fn seed_zero_is_the_worked_example() {
         let variant = variant(0);
         assert!(variant.statement.contains("e = (-5, 1, 0)"), "{}", variant.statement);
     }
 
-    #[unit_test]
+    #[test]
     fn every_seed_is_in_its_case() {
         for seed in 1..300 {
             let (ray, sphere, case) = scene(seed);
@@ -523,7 +523,7 @@ mod tests {
         }
     }
 
-    #[unit_test]
+    #[test]
     fn every_variant_asks_the_same_parts_and_none_is_an_answer() {
         let keys = |seed| variant(seed).parts.iter().map(|p| p.key).collect::<Vec<_>>();
         for seed in 2..=6 {

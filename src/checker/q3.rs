@@ -240,18 +240,18 @@ pub(super) fn variant(seed: u64) -> Variant {
     Variant { question: "q3", seed, statement, parts, follows }
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::*;
 
-    #[unit_test]
+    #[test]
     fn seed_zero_is_the_homeworks_cases() {
         let v = variant(0);
         assert!(v.statement.contains("(d) e = (5, 0), d = (-1, 1)"), "{}", v.statement);
         assert!(v.statement.contains("(e) e = (2, 0), d = (-1, -1)"), "{}", v.statement);
     }
 
-    #[unit_test]
+    #[test]
     fn second_rays_cover_the_tie_cases() {
         for seed in 1..60 {
             let v = variant(seed);

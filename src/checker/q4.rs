@@ -579,11 +579,11 @@ fn term_points() -> Vec<Point> {
         .collect()
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::*;
 
-    #[unit_test]
+    #[test]
     fn seed_zero_by_hand() {
         // E = πA + (2π/3) B cos 60° = π + π/3; γ = arcsin(1/3) = 19.47°; lost = (R/D)² = 1/9.
         let v = variant(0);
@@ -617,7 +617,7 @@ mod tests {
     /// Every slip the probe parts name is reachable: answering its value is graded wrong (or
     /// partial) with a recognised message, never correct, unless the slip coincides with the key
     /// (4 × a whole texel's area *is* the solid angle of a texel wholly inside the disc).
-    #[unit_test]
+    #[test]
     fn every_probe_slip_is_recognised() {
         use crate::checker::check;
         for seed in 0..12 {
@@ -645,7 +645,7 @@ mod tests {
 
     /// The classic slips of seed 0, by name: the solid angle forgotten, the clamp forgotten, the
     /// light's travel direction for the direction it comes from, a corner for the centre.
-    #[unit_test]
+    #[test]
     fn seed_zero_names_the_classic_slips() {
         use crate::checker::check;
         let v = variant(0);
@@ -685,7 +685,7 @@ mod tests {
     /// Images drawn from 60 generator states are physical and well posed: radiances ≥ 0 inside the
     /// disc and 0 outside, two listed texels wholly inside the disc and one cut by its rim; and
     /// every variant's weighted sum is positive.
-    #[unit_test]
+    #[test]
     fn every_probe_image_is_physical_and_lists_interior_and_rim_texels() {
         for seed in 0..60 {
             let mut g = rng::seeded(seed, STREAM);
@@ -705,7 +705,7 @@ mod tests {
         }
     }
 
-    #[unit_test]
+    #[test]
     fn every_variant_sky_is_physical_and_its_key_matches_the_clamped_integral() {
         for seed in 0..60 {
             let v = variant(seed);

@@ -126,7 +126,7 @@ pub(super) fn variant(seed: u64) -> Variant {
     Variant { question: "q5", seed, statement, parts, follows: vec![] }
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::*;
     use crate::q5_effect_tables::ALGORITHMS;
@@ -135,7 +135,7 @@ mod tests {
     /// The reason key is the effect's paths outside the method's language (Impractical: outside
     /// its efficient language), decided by the grammar: for the built-in effects that is all of
     /// the effect or none of it.
-    #[unit_test]
+    #[test]
     fn reason_keys_are_the_grammars_difference() {
         let v = variant(0);
         for (table, method) in [("q5a", "radiosity"), ("q5b", "two_pass")] {

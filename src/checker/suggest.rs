@@ -75,12 +75,12 @@ fn edit_distance(a: &str, b: &str) -> usize {
     row[b.len()]
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::*;
     use crate::checker::check;
 
-    #[unit_test]
+    #[test]
     fn misspelt_key_gets_a_suggestion() {
         let report = check("[q2a]\npiont = [1, 2, 3]\n[q2c]\nt_closet = 5.0\nwhatever = 1", None).unwrap();
         // Both misspellings are close to one unanswered part each: graded there, with a warning.
@@ -95,7 +95,7 @@ mod tests {
         assert!(part("q2a.point").feedback.starts_with("graded `q2a.point` for `q2a.piont`"));
     }
 
-    #[unit_test]
+    #[test]
     fn ambiguous_far_or_answered_keys_stay_unknown() {
         // `q2a.D` is one edit from t, A, B and C; `q2a.pointt` is one from a part already
         // answered; `q1a.share_of_gaps` is far from every part; two spellings of one part are both
@@ -116,7 +116,7 @@ mod tests {
         assert_eq!(report.parts.iter().find(|p| p.key == "q2c.t_closest").unwrap().status, "missing");
     }
 
-    #[unit_test]
+    #[test]
     fn a_misspelt_key_of_the_wrong_shape_stays_unknown() {
         // `t_closet` is close to `t_closest`, but a string is no number: not graded, not an error.
         let report = check("[q2c]\nt_closet = \"five\"", None).unwrap();
@@ -124,7 +124,7 @@ mod tests {
         assert_eq!(report.unknown_keys, ["`q2c.t_closet` (did you mean `q2c.t_closest`?)"]);
     }
 
-    #[unit_test]
+    #[test]
     fn edit_distance_basics() {
         assert_eq!(edit_distance("kitten", "sitting"), 3);
         assert_eq!(edit_distance("", "abc"), 3);

@@ -82,7 +82,7 @@ pub fn variant(question: &str, seed: u64) -> Result<Variant, CheckError> {
 }
 
 /// Runs `f` with the cache of [`variant`] bypassed on this thread (every variant built afresh).
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 pub(crate) fn uncached<T>(f: impl FnOnce() -> T) -> T {
     /// Restores the bypass flag even when `f` panics: the unit tests' runner reuses its threads.
     struct Restore(bool);
@@ -106,14 +106,14 @@ fn build(index: usize, seed: u64) -> Variant {
     }
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::*;
     use crate::checker::answers_key_for;
 
     /// Value stability: seeds 1–5 of every question, statement and key, pinned (a change here
     /// changes every student's variant).
-    #[unit_test]
+    #[test]
     fn variants_are_pinned_for_seeds_1_to_5() {
         for question in QUESTIONS {
             let text: String = (1..=5)
@@ -133,7 +133,7 @@ mod tests {
     /// The cache changes no report: files of several seeds (blank templates, the full keys, the
     /// homework's own answers) graded through the cache, twice, and with it bypassed, give equal
     /// reports; and more seeds than the cache holds leave it at its bound.
-    #[unit_test]
+    #[test]
     fn cached_and_uncached_reports_are_equal() {
         let homework = include_str!("../../tests/answers/seed_hw3.toml");
         for seed in [0, 1, 7, 1 << 40, i64::MAX as u64] {

@@ -88,12 +88,12 @@ impl BuiltinMap {
     }
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::*;
     use crate::envmap::luminance;
 
-    #[unit_test]
+    #[test]
     fn compiled_in_maps_equal_the_committed_files() {
         for map in BuiltinMap::ALL {
             // In components: the binary `cargo test` builds carries the unit tests, and an
@@ -111,7 +111,7 @@ mod tests {
     /// The hardness quoted on the variants (and in `docs/data/q4/README.md`): the share of
     /// `luminance × Δω` in the brightest 0.1 % of solid angle, measured: courtyard 2.5 %,
     /// sunrise 61 %.
-    #[unit_test]
+    #[test]
     fn the_soft_map_is_soft_and_the_hard_map_is_hard() {
         let share = |map: BuiltinMap| {
             let probe = map.probe().unwrap();

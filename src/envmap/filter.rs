@@ -101,12 +101,12 @@ impl Probe {
     }
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::*;
     use glam::DMat3;
 
-    #[unit_test]
+    #[test]
     fn bilinear_equals_nearest_at_texel_centres_and_interpolates_between() {
         let texels: Vec<DVec3> = (0..32).map(|i| DVec3::new(f64::from(i), 0.0, 1.0)).collect();
         let map = Probe::from_radiance(ProbeFormat::LatLong, 8, 4, DMat3::IDENTITY, texels).unwrap();
@@ -119,7 +119,7 @@ mod tests {
         assert!((between.x - 9.5).abs() < 1e-12);
     }
 
-    #[unit_test]
+    #[test]
     fn a_lat_long_map_has_no_seam_at_phi_zero() {
         let map = Probe::from_fn(ProbeFormat::LatLong, 64, 32, DMat3::IDENTITY, |w| {
             DVec3::new(w.x.max(0.0), (w.y + 1.0) * 0.5, w.z * w.z)
@@ -133,7 +133,7 @@ mod tests {
         }
     }
 
-    #[unit_test]
+    #[test]
     fn disk_formats_use_only_texels_inside_the_disk_and_stay_black_in_the_blind_cone() {
         let ball = ProbeFormat::perspective_ball(3.0).unwrap();
         let probe = Probe::from_fn(ball, 32, 32, DMat3::IDENTITY, |_| DVec3::splat(2.0)).unwrap();

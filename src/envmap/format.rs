@@ -552,7 +552,7 @@ pub(crate) fn disk_rect_area(rect: Rect) -> f64 {
         .sum()
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::*;
     use proptest::prelude::*;
@@ -567,7 +567,7 @@ mod tests {
         ]
     }
 
-    #[unit_test]
+    #[test]
     fn gauss_legendre_integrates_degree_31_exactly() {
         let rule = GaussLegendre::new(16);
         let integral = rule.integrate(-1.0, 2.0, |x| x.powi(31));
@@ -575,7 +575,7 @@ mod tests {
         assert!((integral / exact - 1.0).abs() < 1e-13);
     }
 
-    #[unit_test]
+    #[test]
     fn disk_rect_area_matches_the_whole_disk_and_quadrants() {
         let whole = Rect { min: DVec2::splat(-2.0), max: DVec2::splat(2.0) };
         assert!((disk_rect_area(whole) - PI).abs() < 1e-14);
@@ -585,7 +585,7 @@ mod tests {
         assert!((disk_rect_area(inside) - 0.12).abs() < 1e-15);
     }
 
-    #[unit_test]
+    #[test]
     fn texel_solid_angles_sum_to_the_visible_sphere() {
         let rule = GaussLegendre::new(16);
         for format in all_formats() {
@@ -606,7 +606,7 @@ mod tests {
         }
     }
 
-    #[unit_test]
+    #[test]
     fn polar_solid_angle_agrees_with_the_exact_mirror_ball_area() {
         // The mirror ball has a closed form; the polar quadrature must reproduce it texel by texel.
         let rule = GaussLegendre::new(16);
@@ -627,7 +627,7 @@ mod tests {
     /// and their neighbours, where a guess lands on a cell's edge) and on a low-discrepancy sweep,
     /// for cameras from the nearest that skips (`D/R = 1.1`) to a far one, and for one nearer that
     /// bisects in full. The guess is verified on nearly every sweep angle, or nothing is saved.
-    #[unit_test]
+    #[test]
     fn perspective_rho_of_theta_is_the_full_bisection_bit_for_bit() {
         let cells = (1_u64 << SKIPPED_STEPS) as f64;
         for k in [1.05, 1.1, 1.1000001, 1.5, 2.0, 3.0, 4.0, 10.0, 1e3, 1e6, 1e12] {
@@ -658,7 +658,7 @@ mod tests {
         }
     }
 
-    #[unit_test]
+    #[test]
     fn perspective_ball_tends_to_the_orthographic_ball() {
         let far = ProbeFormat::perspective_ball(1e6).unwrap();
         for rho in [0.0, 0.3, 0.7, 0.95] {
@@ -669,7 +669,7 @@ mod tests {
         }
     }
 
-    #[unit_test]
+    #[test]
     fn jacobian_integrates_to_the_visible_sphere() {
         // Independent of the texel quadrature: a radial integral of J ρ dρ dφ.
         let rule = GaussLegendre::new(16);
@@ -692,7 +692,7 @@ mod tests {
     }
 
     proptest! {
-        #[unit_test]
+        #[test]
         fn image_round_trips(x in -1.0_f64..1.0, y in -1.0_f64..1.0, which in 0_usize..5) {
             let format = all_formats()[which];
             let p = if format == ProbeFormat::LatLong {
@@ -712,7 +712,7 @@ mod tests {
             }
         }
 
-        #[unit_test]
+        #[test]
         fn direction_round_trips(z in -1.0_f64..1.0, phi in 0.0_f64..TAU, which in 0_usize..5) {
             let format = all_formats()[which];
             let s = (1.0 - z * z).sqrt();

@@ -597,12 +597,12 @@ fn texel_rect(format: ProbeFormat, width: usize, height: usize, column: usize, r
     Rect { min: DVec2::new(x0, y0), max: DVec2::new(x0 + step.x, y1) }
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::*;
     use std::f64::consts::PI;
 
-    #[unit_test]
+    #[test]
     fn every_texel_is_found_by_its_own_direction() {
         for format in [
             ProbeFormat::MirrorBall,
@@ -622,14 +622,14 @@ mod tests {
         }
     }
 
-    #[unit_test]
+    #[test]
     fn one_by_one_probe_covers_the_sphere() {
         let probe = Probe::from_fn(ProbeFormat::MirrorBall, 1, 1, DMat3::IDENTITY, |_| DVec3::ONE).unwrap();
         assert_eq!(probe.texels().len(), 1);
         assert!((probe.texels()[0].solid_angle - 4.0 * PI).abs() < 1e-12);
     }
 
-    #[unit_test]
+    #[test]
     fn bad_texels_are_typed_errors() {
         for bad in [f64::NAN, f64::INFINITY, -1.0] {
             let error = Probe::from_fn(ProbeFormat::LatLong, 4, 2, DMat3::IDENTITY, |omega| {
@@ -644,7 +644,7 @@ mod tests {
         assert!(matches!(error, ProbeError::WrongLength { .. }));
     }
 
-    #[unit_test]
+    #[test]
     fn unreadable_and_truncated_files_are_typed_errors() {
         let dir = std::env::temp_dir().join(format!("hw3-envmap-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
@@ -659,7 +659,7 @@ mod tests {
         std::fs::remove_dir_all(&dir).unwrap();
     }
 
-    #[unit_test]
+    #[test]
     fn an_hdr_file_round_trips_through_the_reader() {
         let dir = std::env::temp_dir().join(format!("hw3-envmap-rt-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
@@ -676,7 +676,7 @@ mod tests {
     /// The size bound is read from the header: a 16-byte file declaring 2¹⁵ × 2¹⁵ texels (a
     /// 12 GB decode) is refused as too large before any allocation, at the default bound and at
     /// a caller's; a map within the bound still reads; a PNG renamed `.hdr` is not decoded.
-    #[unit_test]
+    #[test]
     fn a_header_over_the_texel_bound_is_refused_before_decoding() {
         let dir = std::env::temp_dir().join(format!("hw3-envmap-bound-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();

@@ -218,7 +218,7 @@ fn read_scanline<R: Read>(reader: &mut R, row: &mut [[u8; 4]], y: usize) -> Resu
 
 /// A flat (uncompressed) Radiance file of `width` × `height` pixels, for tests: each value
 /// rounded down to 8 mantissa bits, as Ward's `float2rgbe`.
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 pub(crate) fn flat_file(width: u32, height: u32, rgb: &[[f32; 3]]) -> Vec<u8> {
     let mut bytes = format!("#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y {height} +X {width}\n").into_bytes();
     for &[r, g, b] in rgb {
@@ -235,7 +235,7 @@ pub(crate) fn flat_file(width: u32, height: u32, rgb: &[[f32; 3]]) -> Vec<u8> {
     bytes
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::*;
 
@@ -246,7 +246,7 @@ mod tests {
     }
 
     /// Test vectors worked by hand from the rule `c · 2^(e − 136)`.
-    #[unit_test]
+    #[test]
     fn rgbe_values_follow_wards_rule_at_both_ends_of_the_exponent() {
         assert_eq!(rgbe_to_rgb([128, 64, 255, 129]), [1.0, 0.5, 255.0 / 128.0]);
         assert_eq!(rgbe_to_rgb([200, 1, 0, 0]), [0.0; 3], "e = 0 is black whatever the mantissas");
@@ -261,7 +261,7 @@ mod tests {
         }
     }
 
-    #[unit_test]
+    #[test]
     fn the_three_scanline_forms_decode_to_the_same_pixels() {
         let header = b"#?RADIANCE\n# a comment\nFORMAT=32-bit_rle_rgbe\nEXPOSURE=2\n\n-Y 1 +X 4\n".to_vec();
         let (a, b) = ([128u8, 128, 128, 129], [64u8, 0, 255, 130]);
@@ -278,7 +278,7 @@ mod tests {
         }
     }
 
-    #[unit_test]
+    #[test]
     fn broken_files_are_refused_with_a_reason() {
         type Check = fn(&RadianceError) -> bool;
         let cases: [(&[u8], Check); 8] = [
@@ -301,7 +301,7 @@ mod tests {
         assert!(matches!(decode(&markers), Err(RadianceError::Scanline { .. })), "chained markers overrun");
     }
 
-    #[unit_test]
+    #[test]
     fn the_test_writer_round_trips_representable_values() {
         let rgb = [[0.25, 1.0, 2.0], [1.75, 0.0, 0.5], [0.0; 3], [3.0, 96.0, 1e-3]];
         let (w, h, back) = decode(&flat_file(2, 2, &rgb)).unwrap();

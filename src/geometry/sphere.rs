@@ -371,7 +371,7 @@ pub fn offset_along<T: Real>(point: T::Vec3, normal: T::Vec3, with_normal: bool)
     point + normal * if with_normal { push } else { -push }
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::*;
     use glam::{DVec3, Vec3};
@@ -384,7 +384,7 @@ mod tests {
     /// rounding, which the square root amplifies by `r/h` near a silhouette. Over random grazing
     /// rays the `f32` near root stays within that bound of the exact root of the rounded input, and
     /// its mean error is a few ulps (measured 1.1e-7 at distance 5, 7e-8 at 1000).
-    #[unit_test]
+    #[test]
     fn grazing_roots_match_the_f64_reference_statistically() {
         let mut generator = crate::rng::seeded(7, 0);
         let mut uniform = |low, high| crate::rng::uniform_in(&mut generator, low, high);
@@ -414,7 +414,7 @@ mod tests {
         }
     }
 
-    #[unit_test]
+    #[test]
     fn documents_policy_root_at_zero_is_not_a_hit() {
         let sphere = Sphere::<f64>::new(DVec3::ZERO, 1.0).unwrap();
         let outward = ray64([0.0, 0.0, 1.0], [0.0, 0.0, 1.0]);
@@ -423,7 +423,7 @@ mod tests {
         assert_eq!(first_hit_stable(&inward, &sphere), Some(2.0));
     }
 
-    #[unit_test]
+    #[test]
     fn documents_policy_tangent_is_a_hit_and_tangent_on_surface_is_not() {
         let sphere = Sphere::<f64>::new(DVec3::ZERO, 1.0).unwrap();
         let tangent = ray64([-3.0, 1.0, 0.0], [1.0, 0.0, 0.0]);
@@ -433,7 +433,7 @@ mod tests {
         assert_eq!(first_hit_stable(&on_surface, &sphere), None);
     }
 
-    #[unit_test]
+    #[test]
     fn documents_policy_sphere_behind_is_a_miss() {
         let sphere = Sphere::<f64>::new(DVec3::new(0.0, 0.0, -5.0), 1.0).unwrap();
         let ray = ray64([0.0; 3], [0.0, 0.0, 1.0]);
@@ -442,7 +442,7 @@ mod tests {
         assert_eq!(first_hit_stable(&ray, &sphere), None);
     }
 
-    #[unit_test]
+    #[test]
     fn surface_hit_puts_the_point_on_the_sphere_for_accurate_and_inaccurate_t() {
         let sphere = Sphere::<f64>::new(DVec3::new(1.0, -2.0, 3.0), 2.5).unwrap();
         let ray = ray64([-10.0, -1.0, 2.0], [1.0, 0.05, 0.1]);
@@ -456,7 +456,7 @@ mod tests {
         }
     }
 
-    #[unit_test]
+    #[test]
     fn reflect_is_unit_and_preserves_angle() {
         let n = DVec3::new(0.0, 1.0, 0.0);
         let d = DVec3::new(3.0, -4.0, 0.0);
@@ -465,7 +465,7 @@ mod tests {
         assert!((r.dot(n) + d.normalize().dot(n)).abs() < 1e-15);
     }
 
-    #[unit_test]
+    #[test]
     fn spawn_origin_pushes_at_least_256_ulps_of_the_largest_coordinate() {
         let p = Vec3::new(-3.0e3, 20.0, 0.5);
         let n = Vec3::new(0.0, 0.6, 0.8);
@@ -478,7 +478,7 @@ mod tests {
         assert_eq!(near_origin.x, 0.01 - 128.0 * f32::EPSILON);
     }
 
-    #[unit_test]
+    #[test]
     fn spawn_origin_leaves_the_surface_in_f32_far_from_world_origin() {
         let p = Vec3::new(1.0e4, 2.0e4, -3.0e4);
         let n = Vec3::new(0.6, 0.0, 0.8);

@@ -774,7 +774,7 @@ impl Binner {
     }
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::*;
     use glam::DVec3;
@@ -804,7 +804,7 @@ mod tests {
         }
     }
 
-    #[unit_test]
+    #[test]
     fn vector_bins_equal_the_scalar_formula() {
         let (lo, bins) = ([0.0, -1.0, 2.5], 32);
         // The last axis has no extent: its scale is +∞ and a coordinate at its start gives NaN.
@@ -824,7 +824,7 @@ mod tests {
     /// The face counts are the closed tests counted one by one, NaN, ±∞, ±0 and faces on a box's
     /// start or end included (the closed tests count a face on the plane on both sides; NaN on
     /// neither), for every width and box count, in the baseline build and compiled for AVX2.
-    #[unit_test]
+    #[test]
     fn face_counts_equal_the_closed_tests_counted_one_by_one() {
         let values = [f64::NEG_INFINITY, -1.0, 0.0, 0.25, 0.5, 0.75, 1.0, f64::INFINITY, f64::NAN, -0.0];
         let mut state = 3u64;
@@ -870,7 +870,7 @@ mod tests {
 
     /// The branch-free pass gives each child the boxes the closed tests send it, in order, and
     /// leaves the rest of the list as it was: boxes on the plane go to both sides, NaN to neither.
-    #[unit_test]
+    #[test]
     fn partition_sends_each_box_where_the_closed_tests_say_in_order() {
         for (seed, split) in (0..30).zip([0.5, 0.0, 1.0, 0.25].into_iter().cycle()) {
             let mut list = boxes(300, seed);
@@ -903,7 +903,7 @@ mod tests {
 
     /// The parallel levels' pass (fresh upper lists) and the serial one (one scratch list) build
     /// the same subtree.
-    #[unit_test]
+    #[test]
     fn parallel_and_serial_levels_build_the_same_subtree() {
         let builder = Builder { costs: SahCosts::default(), max_depth: max_depth(40_000), exact_max: EXACT_MAX };
         for seed in 0..2 {
@@ -921,7 +921,7 @@ mod tests {
 
     /// From the parallel threshold on, the boxes are made on the pool; an invalid sphere is still
     /// reported by the lowest invalid index, and valid input gives the serial pass's list.
-    #[unit_test]
+    #[test]
     fn parallel_sphere_pass_names_the_lowest_invalid_index() {
         let n = PARALLEL_MIN + 3 * PARALLEL_CHUNK;
         let mut spheres: Vec<Sphere<f64>> =
@@ -939,7 +939,7 @@ mod tests {
         ));
     }
 
-    #[unit_test]
+    #[test]
     fn every_search_path_picks_the_same_plane() {
         let cell = Aabb { min: DVec3::ZERO, max: DVec3::ONE };
         let flat = Aabb { min: DVec3::ZERO, max: DVec3::new(1.0, 1.0, 0.0) };
@@ -960,14 +960,14 @@ mod tests {
         }
     }
 
-    #[unit_test]
+    #[test]
     fn max_depth_follows_pbrt() {
         assert_eq!(max_depth(1), 8);
         assert_eq!(max_depth(1 << 10), 21);
         assert_eq!(max_depth(usize::MAX), MAX_DEPTH);
     }
 
-    #[unit_test]
+    #[test]
     fn invalid_spheres_are_typed_errors_naming_the_index() {
         let ok = Sphere { center: DVec3::ZERO, radius: 1.0 };
         let nan = Sphere { center: DVec3::new(f64::NAN, 0.0, 0.0), radius: 1.0 };
@@ -976,7 +976,7 @@ mod tests {
         assert!(matches!(sphere_prims(&[overflow]), Err(BuildError::InvalidSphere { index: 0, .. })));
     }
 
-    #[unit_test]
+    #[test]
     fn out_of_range_costs_are_rejected() {
         let bad = SahCosts { empty_bonus: 1.0, ..SahCosts::default() };
         assert!(check_costs(&bad).is_err());

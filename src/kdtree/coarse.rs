@@ -476,7 +476,7 @@ pub(super) const LANES: usize = 4;
 /// The mask of all [`LANES`] lanes.
 const ALL_LANES: u32 = (1 << LANES) - 1;
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::*;
     use crate::geometry::sphere::roots_stable;
@@ -492,7 +492,7 @@ mod tests {
     /// scales and offsets, in tree boxes from the sphere's own box (the finest grid) to one 3 000
     /// times wider (a step of a tenth of the radius): whenever the exact test keeps a sphere, the
     /// coarse test keeps it.
-    #[unit_test]
+    #[test]
     fn coarse_test_never_rejects_a_sphere_the_exact_test_keeps() {
         let mut rng = seeded(0xC0A5, 0);
         for &widen in &[1.0, 30.0, 3_000.0] {
@@ -552,7 +552,7 @@ mod tests {
     /// grid's extremes (counts 0 and 65 535), and disabled rays, which keep every copy. (The wider
     /// tests run where the CPU has them: AVX2, and AVX-512F with AVX-512BW; the test prints on
     /// how many groups the sixteen-wide one ran.)
-    #[unit_test]
+    #[test]
     fn survivors_equal_the_scalar_test_lane_by_lane() {
         let mut rng = seeded(0x5EED, 4);
         let grid = Grid::new(&Aabb { min: DVec3::splat(-1.0), max: DVec3::splat(1.0) });
@@ -611,7 +611,7 @@ mod tests {
         eprintln!("sixteen-wide test compared on {widest} of {groups} groups (0 on a CPU without AVX-512BW)");
     }
 
-    #[unit_test]
+    #[test]
     fn out_of_range_rays_keep_every_sphere() {
         let grid = Grid::new(&Aabb { min: DVec3::splat(-1.0), max: DVec3::splat(1.0) });
         let sphere = grid.pack(&Sphere::new(DVec3::ZERO, 1.0).unwrap()).unwrap();
@@ -653,7 +653,7 @@ mod tests {
     /// The inline rounding packs every sphere as the library's `round` and `ceil` did: random
     /// spheres in and around boxes of several scales (some off the grid, some of radius 10⁻³⁰⁰), and
     /// centres exactly on grid points, on half steps and half a step outside either end.
-    #[unit_test]
+    #[test]
     fn inline_rounding_packs_as_round_and_ceil() {
         let mut rng = seeded(0x9ac4, 0);
         for (lo, size) in [(0.0, 1.0), (-3.0, 8.0), (1e4, 0.01), (-1e-3, 2e-3), (-0.0, 1e6)] {
@@ -685,7 +685,7 @@ mod tests {
         }
     }
 
-    #[unit_test]
+    #[test]
     fn spheres_in_the_box_fit_and_others_do_not() {
         let grid = Grid::new(&Aabb { min: DVec3::new(-3.0, 0.0, 1e4), max: DVec3::new(5.0, 8.0, 1e4 + 8.0) });
         let whole = grid.pack(&Sphere::new(DVec3::new(1.0, 4.0, 1e4 + 4.0), 4.0).unwrap()).unwrap();

@@ -117,13 +117,13 @@ impl ExactLists {
     }
 
     /// Whether the copies are `f32` (16 bytes each).
-    #[cfg(feature = "unit-tests")]
+    #[cfg(test)]
     pub fn is_f32(&self) -> bool {
         matches!(self, Self::F32(_))
     }
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::*;
 
@@ -133,7 +133,7 @@ mod tests {
 
     /// `f32` copies only when all four numbers of every sphere are `f32` values, and then the
     /// widened copy is the sphere itself, bit for bit.
-    #[unit_test]
+    #[test]
     fn f32_copies_only_when_nothing_rounds() {
         let exact =
             [sphere(0.5, -3.25, f64::from(1e30f32), f64::from(0.1f32)), sphere(-0.0, 2.0f64.powi(-140), 7.0, 1.5)];

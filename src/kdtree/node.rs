@@ -131,12 +131,12 @@ pub(crate) fn visit_cells(nodes: &[Node], bounds: Aabb, mut visit: impl FnMut(No
     }
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::*;
 
     /// The chapter's memory figures assume 8-byte nodes.
-    #[unit_test]
+    #[test]
     fn nodes_are_8_bytes_and_round_trip() {
         assert_eq!(std::mem::size_of::<Node>(), 8);
         let interior = Node::interior(0.375, 2, MAX_PACKED - 1);

@@ -81,11 +81,11 @@ impl<T: Copy> FarStack<T> {
     }
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::*;
 
-    #[unit_test]
+    #[test]
     fn pushes_pop_in_reverse_and_a_kept_slot_only_when_asked() {
         let mut stack = FarStack::<f64>::new();
         assert!(stack.top().is_none() && stack.pop().is_none());
@@ -101,7 +101,7 @@ mod tests {
         assert!(stack.top().is_none());
     }
 
-    #[unit_test]
+    #[test]
     #[should_panic(expected = "index out of bounds")]
     fn a_push_past_the_capacity_panics_instead_of_writing_beyond() {
         let mut stack = FarStack::<f32>::new();

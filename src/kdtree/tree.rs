@@ -917,7 +917,7 @@ pub fn brute_force_closest_hit(
     best
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::*;
     use crate::rng::{Generator, seeded, uniform_in as uniform};
@@ -973,7 +973,7 @@ mod tests {
     /// tree's box), with four, eight and (where the CPU has AVX-512) sixteen copies per coarse
     /// test, and with the exact lists in `f64` and (every other scene rounded to `f32` values) in
     /// `f32`.
-    #[unit_test]
+    #[test]
     fn closest_hit_equals_brute_force_on_random_rays() {
         let mut rng = seeded(0x4b44, 0);
         let mut inside = 0;
@@ -1023,7 +1023,7 @@ mod tests {
     /// 300 rays (fewer and more than the rays in flight), ranges that are empty, reversed, NaN or
     /// bounded, unvalidated rays with NaN or infinite components, and a tree of moving spheres;
     /// exact copies in `f64` and (every other scene rounded to `f32` values) in `f32`.
-    #[unit_test]
+    #[test]
     fn closest_hits_equal_closest_hit_ray_by_ray() {
         let mut rng = seeded(0xBA7C, 0);
         let (mut rays_checked, mut hits) = (0, 0);
@@ -1086,7 +1086,7 @@ mod tests {
     }
 
     /// Every width of the interleaved walk gives the single-ray answers (the public query uses one).
-    #[unit_test]
+    #[test]
     fn every_flight_width_answers_alike() {
         let mut rng = seeded(0xBA7D, 0);
         let spheres = scene(&mut rng, 500);
@@ -1105,7 +1105,7 @@ mod tests {
         assert!(expected.iter().filter(|h| h.is_some()).count() > 200);
     }
 
-    #[unit_test]
+    #[test]
     #[should_panic(expected = "one answer slot per ray")]
     fn closest_hits_refuses_a_short_output() {
         let tree = KdTree::build(&[Sphere::new(DVec3::ZERO, 1.0).unwrap()]).unwrap();
@@ -1114,7 +1114,7 @@ mod tests {
 
     /// Trying every box face in small nodes (instead of only the binned planes) lowers the tree's
     /// SAH cost on random scenes of the benchmark's kind, and the tree still answers exactly.
-    #[unit_test]
+    #[test]
     fn exact_candidates_in_small_nodes_lower_the_sah_cost() {
         let mut rng = seeded(11, 0);
         for n in [200, 2_000, 20_000] {
@@ -1151,7 +1151,7 @@ mod tests {
     /// lists (index and sphere), the same quantised copies and box. 120 000 small spheres, a
     /// quarter of them snapped to a grid (shared faces, planes on them), so that several levels
     /// lie above the parallel threshold and their planes see ties.
-    #[unit_test]
+    #[test]
     fn builds_on_one_and_on_four_threads_are_identical() {
         let mut rng = seeded(0x5eed, 6);
         let n = 120_000;
@@ -1180,7 +1180,7 @@ mod tests {
         assert_eq!(leaves(&one), leaves(&four));
     }
 
-    #[unit_test]
+    #[test]
     fn tree_prunes_work_on_a_large_scene() {
         let mut rng = seeded(7, 0);
         let spheres: Vec<_> = (0..2_000)
@@ -1201,7 +1201,7 @@ mod tests {
         assert!(stats.nodes_visited > 0);
     }
 
-    #[unit_test]
+    #[test]
     fn negative_zero_direction_hits_like_positive_zero() {
         let spheres: Vec<_> = (0..64)
             .map(|i| {
@@ -1219,7 +1219,7 @@ mod tests {
         }
     }
 
-    #[unit_test]
+    #[test]
     fn degenerate_scenes_build_and_answer() {
         let empty = KdTree::build(&[]).unwrap();
         let ray = Ray::new(DVec3::ZERO, DVec3::X).unwrap();
@@ -1238,7 +1238,7 @@ mod tests {
         );
     }
 
-    #[unit_test]
+    #[test]
     fn empty_or_nan_parameter_range_is_a_miss() {
         let tree = KdTree::build(&[Sphere::new(DVec3::ZERO, 1.0).unwrap()]).unwrap();
         let ray = Ray::new(DVec3::new(0.0, 0.0, -5.0), DVec3::Z).unwrap();
@@ -1250,7 +1250,7 @@ mod tests {
     /// moving fast, queried by 2000 random rays at times inside the build interval (through the
     /// tree) and outside it (every sphere tested): the same answers as testing every moved
     /// sphere, bit for bit. Mismatched velocity counts are a typed error.
-    #[unit_test]
+    #[test]
     fn moving_spheres_are_found_at_every_time() {
         let mut rng = crate::rng::seeded(5, 0);
         let mut uniform = |lo: f64, hi: f64| crate::rng::uniform_in(&mut rng, lo, hi);
@@ -1285,7 +1285,7 @@ mod tests {
     /// [−2, 2] × [−1, 1] × [−1, 1] split at x = 0 into two cells of area 24 each; the lower leaf
     /// lists a ball of radius 1 (area 4π), the upper one a ball of radius ½ (area π) and one of
     /// radius 2 (area 16π, more than its cell's 24, so counted as 24): (4π + π + 24) / 48.
-    #[unit_test]
+    #[test]
     fn survivors_per_leaf_visit_caps_a_sphere_at_its_cell_and_weighs_leaves_by_area() {
         let spheres = [
             Sphere::new(DVec3::new(-1.0, 0.0, 0.0), 1.0).unwrap(),
@@ -1306,7 +1306,7 @@ mod tests {
     /// listings, 0.4 MB). A tree that asks answers as brute force does, rays from inside its box
     /// (the walk that asks) and from outside, with its lists in `f64` and, for the same scene
     /// rounded to `f32` values, in `f32`.
-    #[unit_test]
+    #[test]
     fn only_large_spheres_in_large_lists_are_asked_for_ahead() {
         let mut rng = seeded(0x5EED, 1);
         let n = 80_000;

@@ -227,7 +227,7 @@ fn clip(bounds: ([f32; 3], [f32; 3]), o: [f32; 3], d: [f32; 3], t_min: f32, t_ma
     (t0 <= t1).then_some((t0, t1))
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::*;
     use crate::kdtree::brute_force_closest_hit;
@@ -237,7 +237,7 @@ mod tests {
     /// Spheres and rays exactly representable in `f32` (coordinates on a 2⁻¹⁰ grid): the `f32`
     /// tree names the same sphere as `f64` brute force on all but the rays where two hits lie
     /// within `f32` rounding, which must stay rare (under 1 in 2 000 here).
-    #[unit_test]
+    #[test]
     fn f32_tree_agrees_with_f64_brute_force_on_nearly_every_ray() {
         let mut rng = seeded(0x4b45, 0);
         let grid = |x: f64| (x * 1024.0).round() / 1024.0;
@@ -279,7 +279,7 @@ mod tests {
         assert!(differ * 2_000 < rays, "{differ} of {rays} rays differ");
     }
 
-    #[unit_test]
+    #[test]
     fn parallel_and_negative_zero_directions_hit() {
         let spheres: Vec<_> = (0..64)
             .map(|i| {

@@ -707,7 +707,7 @@ fn legend_mark<DB: DrawingBackend>(annotation: &mut SeriesAnno<'_, DB>, mark: Le
 /// it (Q1's chart, Q4's Pareto charts, Q5's log-log chart, Q2's and Q3's diagrams; same calls,
 /// small data) and demands the same bytes from a [`Chart`], so that converting a chart to it is a
 /// change of code, not of figures.
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::*;
     use crate::plot::PALETTE;
@@ -720,7 +720,7 @@ mod tests {
     }
 
     /// Q1's `chart`: log x, linear y, light grid off, tick counts and formats, line and dot series.
-    #[unit_test]
+    #[test]
     fn reproduces_the_q1_chart() {
         let by_hand = svg_figure("q1.svg", (640, 420), |root| {
             let mut chart = ChartBuilder::on(root)
@@ -784,7 +784,7 @@ mod tests {
     }
 
     /// Q4's Pareto charts: an unlabelled line, then labelled dots, text notes, the Q4 legend box.
-    #[unit_test]
+    #[test]
     fn reproduces_the_q4_pareto_chart() {
         let by_hand = svg_figure("q4.svg", (680, 440), |root| {
             let mut chart = ChartBuilder::on(root)
@@ -833,7 +833,7 @@ mod tests {
 
     /// Q5's `LogLogChart`: the area filled again, marked lines, a dashed reference line, the legend
     /// at plotters' default corner.
-    #[unit_test]
+    #[test]
     fn reproduces_the_q5_log_log_chart() {
         let by_hand = svg_figure("q5.svg", (640, 400), |root| {
             root.fill(&WHITE).map_err(err)?;
@@ -889,7 +889,7 @@ mod tests {
     /// Q2's and Q3's diagrams: a titled area, equal scales, an axes-only or bare mesh, a grid
     /// colour, and lines, dots, rings, coloured labels, an arrow head and a shaded box drawn in
     /// the order given.
-    #[unit_test]
+    #[test]
     fn reproduces_a_diagram() {
         let (x_min, x_max, y_min) = (-6.0, 3.0, -2.5);
         let by_hand = svg_figure("d.svg", (560, 360), |root| {
@@ -974,7 +974,7 @@ mod tests {
         assert!(by_hand == helper, "the helper draws a diagram byte for byte");
     }
 
-    #[unit_test]
+    #[test]
     fn equal_scales_refuse_a_caption_and_log_axes() {
         let chart = Chart {
             equal_scale: true,
@@ -986,7 +986,7 @@ mod tests {
         assert!(Chart { x: Axis::linear(0.0, 1.0, "x"), ..chart }.svg("e.svg", (200, 200)).is_ok());
     }
 
-    #[unit_test]
+    #[test]
     fn png_backend_draws_the_same_chart_deterministically() {
         let chart = Chart {
             series: vec![Series::line("l", LINE.to_vec(), PALETTE[0], 2)],

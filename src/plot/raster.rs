@@ -274,11 +274,11 @@ pub fn decode_png(bytes: &[u8]) -> Result<RgbImage, PngError> {
     RgbImage::from_raw(info.width, info.height, rgb).ok_or_else(|| PngError::Decode("wrong buffer size".into()))
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::*;
 
-    #[unit_test]
+    #[test]
     fn paste_cuts_at_the_edges_and_round_trips_through_png() {
         let mut canvas = RgbImage::from_pixel(5, 4, Rgb([1, 2, 3]));
         let patch = RgbImage::from_raw(2, 2, (0..12).collect()).unwrap();

@@ -112,11 +112,11 @@ pub(super) fn committed_accuracy_figures() -> Result<Vec<Figure>, PlotError> {
     accuracy_figures(&rows)
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::*;
 
-    #[unit_test]
+    #[test]
     fn accuracy_csv_parses_and_bad_rows_are_errors() {
         let rows = parse_accuracy("scene,integrator,spp,seconds,rmse\nfog,path,4,1e-2,3e-2\n").unwrap();
         assert_eq!(rows.len(), 1);

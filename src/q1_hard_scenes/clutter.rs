@@ -328,7 +328,7 @@ pub(super) fn clutter_hardness_table(rows: &[ClutterRow]) -> String {
     )
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::*;
     use crate::q1_hard_scenes::metric::snapshot;
@@ -336,7 +336,7 @@ mod tests {
     /// The law against the numbers it has always given: the closed form the clutter table used,
     /// `(1 − π a²/(W + 2a)²)^N` with `W + 2a = 41`, and the checker's seed-1 slab as worked by
     /// `tests/answers/fixtures/keys.py`.
-    #[unit_test]
+    #[test]
     fn gap_fraction_is_the_closed_form_the_table_used() {
         let side = 2.0 * (CLUTTER_HALF_WIDTH + CLUTTER_RADIUS);
         let p = PI * CLUTTER_RADIUS * CLUTTER_RADIUS / (side * side);
@@ -351,7 +351,7 @@ mod tests {
 
     /// The gap fraction and depth complexity follow the exact law within 3 standard errors of
     /// the mean over forests (a z-test), and the visible fraction falls as the forest grows.
-    #[unit_test]
+    #[test]
     fn clutter_follows_the_transmission_law() {
         let rows: Vec<ClutterRow> = CLUTTER_COUNTS.iter().map(|&n| clutter_row(n).unwrap()).collect();
         for r in &rows {

@@ -392,13 +392,13 @@ fn mirror_figure_camera() -> Camera {
     Camera::looking_at(DVec3::new(2.45, 5.4, -0.55), DVec3::new(0.0, 0.45, -3.0), 40.0)
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::*;
 
     /// The labelled pairs are the same bytes on one thread and on two (per-pixel seeds), at a
     /// size the test profile renders quickly, through the code path of the notes' renders.
-    #[unit_test]
+    #[test]
     fn labelled_renders_are_byte_identical_across_thread_counts() {
         let moving = catalogue::moving_ball(MOTION_SPEED).unwrap();
         let still = catalogue::moving_ball(0.0).unwrap();
@@ -413,7 +413,7 @@ mod tests {
         assert_eq!(image.dimensions(), (96, 36));
     }
 
-    #[unit_test]
+    #[test]
     fn charts_are_deterministic() {
         let rows = [(0.01, 0.5, 0.3), (0.1, 0.3, 0.25)];
         let divergence = MirrorDivergence { trials: 2, trapped: 1, median_factor: 2.5, flat: vec![(10, 1e-11, 1e-11)] };

@@ -207,13 +207,13 @@ impl Findings {
     }
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::*;
 
     /// The findings are read from tables whose rows are those of today's measurements: the
     /// clutter table's exact law, the fog probe's path factor, and the motion table's counts.
-    #[unit_test]
+    #[test]
     fn findings_are_the_tables_numbers() {
         let found = findings();
         assert_eq!(found.clutter_counts, (250, 4000));

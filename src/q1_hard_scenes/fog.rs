@@ -71,7 +71,7 @@ pub const FOG_DISTANCES: [f64; 6] = [1.0, 2.0, 5.0, 10.0, 20.0, 40.0];
 pub(super) const ROUNDING_LEVEL: f64 = 1e-13;
 /// Relative error of the traced airlight at the renderer's [`IN_SCATTER_STEPS`] steps, and at
 /// 4096 steps, against the closed form: the bounds [`airlight_rows`] meets (tested).
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 const AIRLIGHT_TOLERANCES: (f64, f64) = (1e-2, 1e-6);
 /// Direction of the probe ray: off axis, so the path length is `d / cos θ`, not `d`.
 pub(super) fn fog_probe_direction() -> DVec3 {
@@ -363,7 +363,7 @@ pub(super) fn fog_rows() -> Result<Vec<FogRow>, InputError> {
     FOG_SIGMAS.iter().flat_map(|&s| FOG_DISTANCES.iter().map(move |&d| fog_row(s, d))).collect()
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::*;
     use crate::q1_hard_scenes::metric::snapshot;
@@ -372,7 +372,7 @@ mod tests {
 
     /// The laws against the numbers they have always given (the checker's seeds 0 and 1, as
     /// worked by `tests/answers/fixtures/keys.py`), and against the traced fog.
-    #[unit_test]
+    #[test]
     fn transmittance_and_visual_range_are_the_numbers_they_were() {
         assert!((transmittance(0.08, 10.0) - 0.449_328_964_117_221_56).abs() < 1e-15);
         assert!((transmittance(0.2, 2.0) - 0.670_320_046_035_639_3).abs() < 1e-15);
@@ -383,7 +383,7 @@ mod tests {
         assert!((row.transmittance / transmittance(0.1, path) - 1.0).abs() < 1e-12, "{row:?}");
     }
 
-    #[unit_test]
+    #[test]
     fn fog_transmittance_is_beer_lambert_and_the_airlight_is_sun_et_al() {
         let rows = fog_rows().unwrap();
         for r in &rows {
@@ -406,7 +406,7 @@ mod tests {
         snapshot("q1_airlight_steps", &airlight_convergence_table(&steps));
     }
 
-    #[unit_test]
+    #[test]
     fn zero_density_fog_renders_exactly_like_no_fog() {
         let clear = catalogue::fog_street(0.0).unwrap();
         let zero = Scene::new(
@@ -421,7 +421,7 @@ mod tests {
         assert_eq!(render(&zero, &settings, &|_| {}).unwrap(), render(&clear, &settings, &|_| {}).unwrap());
     }
 
-    #[unit_test]
+    #[test]
     fn extreme_fog_hides_everything_but_stays_finite() {
         let scene = catalogue::fog_street(1e6).unwrap();
         let image = render(&scene, &Settings::whitted(16, 12, 1, analyze(&scene).plan), &|_| {}).unwrap();

@@ -23,18 +23,18 @@ pub(super) fn render_metric(scene: &Scene, spp: u32, seed: u64) -> Result<Image,
 }
 
 /// Pins `text` as the snapshot `name` in the crate's `snapshots/` folder.
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 pub(super) fn snapshot(name: &str, text: &str) {
     crate::testing::insta_settings().bind(|| insta::assert_snapshot!(name, text));
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::*;
     use crate::render::catalogue;
     use std::fmt::Write as _;
 
-    #[unit_test]
+    #[test]
     fn render_thumbnails() {
         let mut text = String::new();
         for (name, scene) in [

@@ -270,7 +270,7 @@ pub(super) fn divergence_table(result: &MirrorDivergence) -> String {
     )
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::*;
     use crate::q1_hard_scenes::metric::snapshot;
@@ -278,7 +278,7 @@ mod tests {
     /// The first-order law against an exact reflection: a camera looking along `−z` at a ball of
     /// radius R steps sideways by δ; its central ray now meets the ball where the normal is
     /// `(δ/R, 0, √(1 − δ²/R²))`, and the reflected ray turns by `2 arcsin(δ/R)`.
-    #[unit_test]
+    #[test]
     fn reflection_turn_is_twice_the_normals_turn() {
         for (step, radius) in [(0.01, 1.0), (0.02, 0.5), (0.05, 2.0)] {
             let s = step / radius;
@@ -291,14 +291,14 @@ mod tests {
         assert!((reflection_turn(0.01, 1.0).to_degrees() - 1.145_915_590_261_646_5).abs() < 1e-15);
     }
 
-    #[unit_test]
+    #[test]
     fn mirrors_change_faster_than_the_same_scene_made_diffuse() {
         let rows = mirror_sensitivity(&MIRROR_STEPS, MIRROR_SPP).unwrap();
         assert!(rows.iter().all(|&(_, mirror, diffuse)| mirror > diffuse));
         snapshot("q1_mirror_metrics", &mirror_table(&rows));
     }
 
-    #[unit_test]
+    #[test]
     fn rays_separate_exponentially_between_curved_mirrors_and_linearly_between_flat_ones() {
         let result = mirror_divergence(DIVERGENCE_TRIALS).unwrap();
         assert!(result.trapped >= 100, "{} trapped", result.trapped);

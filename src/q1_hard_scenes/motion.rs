@@ -273,14 +273,14 @@ pub(super) fn motion_tables(change: &MotionChange, noise: &MotionNoise) -> Strin
     text
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::*;
     use crate::q1_hard_scenes::metric::snapshot;
 
     /// The projection against the numbers it has always given (the checker's seeds 0 and 1, as
     /// worked by `tests/answers/fixtures/keys.py`), and against the moving ball's own camera.
-    #[unit_test]
+    #[test]
     fn image_shift_is_the_numbers_it_was() {
         let shift = pixels_per_frame(2.0 / 24.0, 5.0, focal_length_pixels(480.0, 60.0));
         assert!((shift - 6.928_203_230_275_509).abs() < 1e-12);
@@ -294,7 +294,7 @@ mod tests {
         assert!((ball_pixels_per_frame().unwrap() / by_hand - 1.0).abs() < 1e-12);
     }
 
-    #[unit_test]
+    #[test]
     fn motion_changes_every_frame_and_blur_costs_samples() {
         let change = motion_change().unwrap();
         assert!(change.mean_change.iter().all(|&c| c > 0.0));
@@ -307,7 +307,7 @@ mod tests {
         snapshot("q1_motion_metrics", &motion_tables(&change, &noise));
     }
 
-    #[unit_test]
+    #[test]
     fn still_frames_do_not_change() {
         let frames: Vec<Image> = [0.0, 0.5]
             .iter()

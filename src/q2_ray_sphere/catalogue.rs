@@ -541,14 +541,14 @@ pub fn camera_batch(n: usize, seed: u64) -> Vec<(Ray<f64>, Sphere<f64>)> {
 /// ```
 pub const SWEEP_DISTANCES: [f64; 5] = [1e2, 1e3, 4096.0, 1e4, 1e5];
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::*;
 
     /// The rescue bar: wherever the homework's f32 formula is off by more than 1 % (or gets hit/miss
     /// wrong), the stable f32 solver is within 1e-5 — except on the cases marked `beyond_f32`, where
     /// f64 must deliver instead.
-    #[unit_test]
+    #[test]
     fn stable_f32_rescues_every_case_naive_f32_gets_wrong() {
         let mut rescued = Vec::new();
         for row in score_catalogue() {
@@ -571,7 +571,7 @@ mod tests {
         // Not vacuous: the far sphere at 1e5, 0.9 r off-centre is missed by the homework in f32.
         assert!(!rescued.is_empty(), "the catalogue must contain a case the stable form rescues");
     }
-    #[unit_test]
+    #[test]
     fn far_spheres_get_hit_or_miss_wrong_with_the_homework_formula_in_f32() {
         let near = far_sphere_sweep(1e2, 2000, 2);
         let far = far_sphere_sweep(1e4, 2000, 2);
@@ -585,7 +585,7 @@ mod tests {
         assert_eq!(far.wrong_hit_or_miss[3], 0.0);
     }
 
-    #[unit_test]
+    #[test]
     fn reference_agrees_with_textbook_numbers() {
         // Eye at origin, unit sphere at z = 5: t = 4 exactly; inside: far root; behind: none.
         assert_eq!(reference_first_hit(DVec3::ZERO, DVec3::Z, DVec3::new(0.0, 0.0, 5.0), 1.0), Some(4.0));
@@ -595,12 +595,12 @@ mod tests {
         assert_eq!(reference_first_hit(DVec3::Y, DVec3::X, DVec3::ZERO, 1.0), None);
     }
 
-    #[unit_test]
+    #[test]
     fn catalogue_table_snapshot() {
         crate::testing::insta_settings().bind(|| insta::assert_snapshot!("q2_catalogue", catalogue_table()));
     }
 
-    #[unit_test]
+    #[test]
     fn degenerate_inputs_are_typed_errors_in_both_precisions() {
         let sphere = Sphere::<f64> { center: DVec3::new(0.0, 0.0, 5.0), radius: 1.0 };
         for (e, d) in [

@@ -65,7 +65,7 @@ pub fn distance_squared_at<T: Real>(ray: &Ray<T>, center: T::Vec3, t: T) -> T {
     T::dot(v, v)
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::*;
     use crate::geometry::sphere::closest_approach_t;
@@ -73,7 +73,7 @@ mod tests {
     use proptest::prelude::*;
 
     proptest! {
-        #[unit_test]
+        #[test]
         fn both_derivations_agree_and_match_the_stable_solvers_first_line(
             e in prop::array::uniform3(-1e3f64..1e3),
             d in prop::array::uniform3(-10f64..10.0),
@@ -91,7 +91,7 @@ mod tests {
             prop_assert!((algebraic - closest_approach_t(&ray, center)).abs() <= 4.0 * f64::EPSILON * scale);
         }
 
-        #[unit_test]
+        #[test]
         fn closest_approach_minimises_distance(
             e in prop::array::uniform3(-100f64..100.0),
             d in prop::array::uniform3(-10f64..10.0),
@@ -114,7 +114,7 @@ mod tests {
         }
     }
 
-    #[unit_test]
+    #[test]
     fn closest_approach_behind_the_eye_is_negative() {
         let ray = Ray::<f64>::new(DVec3::ZERO, DVec3::X).unwrap();
         assert_eq!(closest_approach_algebraic(&ray, DVec3::new(-3.0, 1.0, 0.0)), -3.0);

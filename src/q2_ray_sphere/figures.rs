@@ -369,11 +369,11 @@ impl CostTable {
     }
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::*;
 
-    #[unit_test]
+    #[test]
     fn diagrams_snapshot() {
         let settings = crate::testing::insta_settings();
         for name in ["q2_reflection.svg", "q2_closest_approach.svg"] {

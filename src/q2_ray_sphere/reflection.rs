@@ -247,12 +247,12 @@ pub fn self_hit_rate<T: Real>(scenario: Scenario, policy: SpawnPolicy, rays: u64
     count
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::*;
 
     /// The robustness bar: 0 self-intersections over 10⁶ random hits per scenario, in both precisions.
-    #[unit_test]
+    #[test]
     fn robust_spawn_never_self_intersects_in_a_million_hits_per_scenario() {
         for scenario in Scenario::ALL {
             let f32_count = self_hit_rate::<f32>(scenario, SpawnPolicy::ReprojectAndOffset, 1_000_000, 7);
@@ -263,7 +263,7 @@ mod tests {
         }
     }
 
-    #[unit_test]
+    #[test]
     fn homework_spawn_self_intersects_about_half_the_time_in_every_precision() {
         for scenario in [Scenario::Near, Scenario::Far] {
             for count in [
@@ -279,7 +279,7 @@ mod tests {
     /// Shirley's fixed `t_min = 0.001` removes the self-hits near the world origin, in both
     /// precisions; in `f32` it is too small once coordinates are large: a huge sphere, a scene
     /// translated by 10⁴.
-    #[unit_test]
+    #[test]
     fn fixed_epsilon_fails_once_the_scene_is_translated() {
         let rate = |c: SelfHitCount| c.self_hits as f64 / c.reflected as f64;
         for near in [

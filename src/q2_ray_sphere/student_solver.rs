@@ -146,7 +146,7 @@ impl<T: Real> fmt::Display for StudentTrace<T> {
     }
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::*;
     use glam::DVec3;
@@ -160,7 +160,7 @@ mod tests {
         Sphere::new(DVec3::ZERO, 1.0).unwrap()
     }
 
-    #[unit_test]
+    #[test]
     fn erratum_tangent_branch_accepts_t_equal_zero_but_two_root_branch_does_not() {
         // Eye on the sphere, ray tangent to it: B = 0 and C = 0, so 4AC = B² exactly and the student's
         // "−B/2A ≥ 0" accepts t = 0 — the eye's own position. The two-root branch uses "> 0".
@@ -173,7 +173,7 @@ mod tests {
         assert_eq!(leaving.chosen, None);
     }
 
-    #[unit_test]
+    #[test]
     fn student_cases_eye_inside_and_sphere_behind() {
         let inside = student_trace(&ray([0.0; 3], [0.0, 0.0, 2.0]), &unit_sphere());
         assert_eq!((inside.t1, inside.t2, inside.chosen), (0.5, -0.5, Some(0.5)));
@@ -183,7 +183,7 @@ mod tests {
         assert_eq!(miss.branch, StudentBranch::NoRealRoots);
     }
 
-    #[unit_test]
+    #[test]
     fn tangent_with_negative_root_is_no_intersection() {
         let trace = student_trace(&ray([3.0, 1.0, 0.0], [1.0, 0.0, 0.0]), &unit_sphere());
         assert_eq!(trace.branch, StudentBranch::Tangent);
@@ -194,7 +194,7 @@ mod tests {
         /// Erratum: the student's `t1 < t2` sub-branch can never run, because `A > 0` and `√disc ≥ 0`
         /// make `t1 = (−B + √disc)/2A ≥ t2 = (−B − √disc)/2A` in exact *and* rounded arithmetic
         /// (division by a positive number and rounding are both monotone).
-        #[unit_test]
+        #[test]
         fn erratum_t1_is_never_smaller_than_t2(
             e in prop::array::uniform3(-1e3f64..1e3),
             d in prop::array::uniform3(-1e2f64..1e2),

@@ -116,11 +116,11 @@ fn step_value(step: &Step) -> Value {
     }
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::*;
 
-    #[unit_test]
+    #[test]
     fn json_contract_for_case_d() {
         let out = kd_trace_command("5,0", "-1,1", true).unwrap();
         let v: Value = serde_json::from_str(&out).unwrap();
@@ -136,14 +136,14 @@ mod tests {
         assert_eq!(v["steps"][0]["t"], json!(2.0));
     }
 
-    #[unit_test]
+    #[test]
     fn parallel_plane_step_has_null_t() {
         let out = kd_trace_command("3,0", "0,1", true).unwrap();
         let v: Value = serde_json::from_str(&out).unwrap();
         assert_eq!(v["steps"][0]["t"], Value::Null);
     }
 
-    #[unit_test]
+    #[test]
     fn bad_input_is_rejected_with_a_typed_error() {
         assert!(matches!(kd_trace_command("5", "-1,1", false), Err(TraceInputError::Parse { name: "origin", .. })));
         assert!(matches!(

@@ -293,11 +293,11 @@ fn tuple(p: [f64; 2]) -> (f64, f64) {
     (p[0], p[1])
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::*;
 
-    #[unit_test]
+    #[test]
     fn diagrams_are_pinned() {
         let _guard = crate::testing::insta_settings().bind_to_scope();
         for figure in figures().unwrap() {
@@ -306,14 +306,14 @@ mod tests {
         }
     }
 
-    #[unit_test]
+    #[test]
     fn split_lines_stop_at_their_cells() {
         let mut lines = Vec::new();
         split_lines(&Node2::homework(), WINDOW, &mut lines);
         assert_eq!(lines, [[(3.0, -3.0), (3.0, 7.0)], [(-2.0, 1.0), (3.0, 1.0)], [(3.0, 3.0), (8.0, 3.0)]]);
     }
 
-    #[unit_test]
+    #[test]
     fn window_exit_is_where_the_ray_leaves_the_drawing() {
         // Case (d): from (5, 0) along (−1, 1), the top edge y = 7 is reached at t = 7.
         assert_eq!(window_exit(&student::cases()[0].ray), 7.0);

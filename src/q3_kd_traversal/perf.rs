@@ -174,11 +174,11 @@ fn panel<DB: DrawingBackend>(
     .draw(area)
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::*;
 
-    #[unit_test]
+    #[test]
     fn committed_csv_parses_into_both_densities() {
         let rows = rows(CSV);
         for density in ["fixed_k", "fixed_volume"] {
@@ -192,7 +192,7 @@ mod tests {
     /// in the same run as the kd-tree), so the plot shows no silently missing series. Embree's
     /// columns need the benchmark's `embree` feature: the committed data come from
     /// `HW3_Q3_MAX_N=1000000 cargo bench -p hw3-benches --bench q3_kdtree --features embree`.
-    #[unit_test]
+    #[test]
     fn committed_csv_has_every_peer_for_every_row() {
         for row in rows(CSV) {
             for method in STRUCTURES.iter().filter(|m| m.label != "brute force") {
@@ -202,7 +202,7 @@ mod tests {
         }
     }
 
-    #[unit_test]
+    #[test]
     fn cost_plot_is_pinned() {
         let _guard = crate::testing::insta_settings().bind_to_scope();
         let figure = figure().unwrap();

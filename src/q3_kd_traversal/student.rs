@@ -192,7 +192,7 @@ pub fn literal_leaves(ray: &Ray2) -> Vec<LeafVisit> {
     leaves
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::super::{Cell, Node2, traverse};
     use super::*;
@@ -209,7 +209,7 @@ mod tests {
         (0..64).all(|k| cell.contains(ray.at(t_min + (end - t_min) * (f64::from(k) + 0.5) / 64.0)))
     }
 
-    #[unit_test]
+    #[test]
     fn comparison_tables_are_pinned() {
         let _guard = crate::testing::insta_settings().bind_to_scope();
         for case in cases() {
@@ -219,7 +219,7 @@ mod tests {
         }
     }
 
-    #[unit_test]
+    #[test]
     fn case_d_differs_exactly_at_the_x_lower_branch_and_the_student_is_wrong_there() {
         let case = &cases()[0];
         let rows = compare(&traverse(&Node2::homework(), &case.ray), &case.handwritten);
@@ -238,7 +238,7 @@ mod tests {
         assert!(!cell.contains(case.ray.at(2.0 - 1e-9)));
     }
 
-    #[unit_test]
+    #[test]
     fn case_e_agrees_step_by_step() {
         let case = &cases()[1];
         let rows = compare(&traverse(&Node2::homework(), &case.ray), &case.handwritten);
@@ -246,7 +246,7 @@ mod tests {
         assert!(rows.iter().all(StepComparison::agrees));
     }
 
-    #[unit_test]
+    #[test]
     fn literal_rules_agree_with_ours_on_both_cases() {
         for case in cases() {
             assert_eq!(literal_leaves(&case.ray), traverse(&Node2::homework(), &case.ray).leaves());
@@ -255,7 +255,7 @@ mod tests {
 
     /// Origin on x = 3 heading to x < 3: rule (b) computes t = −0, fails `t > 0`, and sends the ray
     /// into x ≥ 3 for ever, though it is in x < 3 for every t > 0.
-    #[unit_test]
+    #[test]
     fn literal_rule_b_misroutes_an_origin_on_the_root_plane() {
         let ray = Ray2::new([3.0, 0.0], [-1.0, 0.5]).unwrap();
         let literal = literal_leaves(&ray);
@@ -267,7 +267,7 @@ mod tests {
     /// d_y = +0 under y = 3: rule (c)'s `else // dy < 0` branch gets t = +inf, which is neither
     /// `< tmin` nor `> tmax = inf`, so it descends y ≥ 3 over the whole interval — a cell the
     /// ray (at y = 0) never enters — and adds an empty [inf, inf] visit of y < 3.
-    #[unit_test]
+    #[test]
     fn literal_rule_c_misroutes_a_horizontal_ray_with_positive_zero() {
         let ray = Ray2::new([5.0, 0.0], [1.0, 0.0]).unwrap();
         let literal = literal_leaves(&ray);
@@ -282,7 +282,7 @@ mod tests {
     }
 
     /// Away from ties (random real coordinates) the literal rules and ours agree exactly.
-    #[unit_test]
+    #[test]
     fn literal_rules_agree_with_ours_on_generic_rays() {
         let mut rng = crate::rng::seeded(3, 0);
         let mut uniform = |lo: f64, hi: f64| crate::rng::uniform_in(&mut rng, lo, hi);

@@ -119,7 +119,7 @@ pub fn camera_half_angle(camera_radius: f64, distance_over_radius: f64) -> Resul
     Ok(reflected(lo).0)
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::*;
     use crate::geometry::sphere::{first_hit_stable, reflect, surface_hit};
@@ -136,7 +136,7 @@ mod tests {
         Some(reflect::<f64>(ray.dir, hit.normal))
     }
 
-    #[unit_test]
+    #[test]
     fn the_perspective_mapping_matches_traced_reflections() {
         for d in [1.5, 3.0, 10.0] {
             let format = ProbeFormat::perspective_ball(d).unwrap();
@@ -151,7 +151,7 @@ mod tests {
         }
     }
 
-    #[unit_test]
+    #[test]
     fn no_traced_ray_reaches_into_the_blind_cone() {
         // The student's claim: what is missing is the light that would pass through the ball.
         for d in [3.0, 5.0, 10.0, 20.0] {
@@ -170,7 +170,7 @@ mod tests {
         }
     }
 
-    #[unit_test]
+    #[test]
     fn the_reference_table_is_reproduced() {
         // The chapter's table: D/R, half-angle (deg), solid angle (sr), loss at n = away.
         for (d, degrees, sr, loss) in [
@@ -185,7 +185,7 @@ mod tests {
         }
     }
 
-    #[unit_test]
+    #[test]
     fn the_blind_cone_is_the_gap_in_the_texel_solid_angles() {
         use crate::envmap::Probe;
         for d in [3.0, 10.0] {
@@ -212,7 +212,7 @@ mod tests {
         (at.truncate().length(), psi)
     }
 
-    #[unit_test]
+    #[test]
     fn the_camera_cone_is_where_traced_reflections_reach_the_camera() {
         for (r_c, d) in [(1.0_f64, 10.0_f64), (0.2, 3.0), (0.5, 5.0), (1.0, 3.0), (0.2, 20.0)] {
             // Bisection on the camera ray's angle: the last ray whose reflection hits the camera.
@@ -235,7 +235,7 @@ mod tests {
         }
     }
 
-    #[unit_test]
+    #[test]
     fn invalid_distances_are_typed_errors() {
         for d in [1.0, 0.5, -3.0, f64::NAN, f64::INFINITY] {
             assert!(half_angle(d).is_err(), "{d}");

@@ -526,7 +526,7 @@ fn method_name(method: &str) -> String {
     }
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::*;
 
@@ -539,7 +539,7 @@ mod tests {
     /// is uniform in both panels (every seen pixel equals the map), while the splatting
     /// resampler leaves the texel noise that drew a grid over the ball and lines through the
     /// blind cone.
-    #[unit_test]
+    #[test]
     fn a_uniform_map_unwraps_to_a_uniform_picture_with_no_seam() {
         let flat = Probe::from_fn(ProbeFormat::LatLong, 256, 128, DMat3::IDENTITY, |_| DVec3::ONE).unwrap();
         let pixels = unwrap_pixels(&flat).unwrap();
@@ -566,7 +566,7 @@ mod tests {
 
     /// The lat-long panel of a map that varies with longitude is continuous across the φ = 0
     /// meridian: its first and last columns differ by no more than neighbouring columns do.
-    #[unit_test]
+    #[test]
     fn the_unwrap_is_continuous_across_the_meridian() {
         let source = Probe::from_fn(ProbeFormat::LatLong, 256, 128, DMat3::IDENTITY, |w| {
             DVec3::new(1.0 + w.y, 1.0 + w.x, 1.0 + w.z)
@@ -583,7 +583,7 @@ mod tests {
         }
     }
 
-    #[unit_test]
+    #[test]
     fn error_map_labels_state_the_mean_and_largest_error_over_the_sphere() {
         let row = RenderRow {
             title: "t",
@@ -596,7 +596,7 @@ mod tests {
         assert_eq!(row.error_of(&row.mis), (0.25, 0.5));
     }
 
-    #[unit_test]
+    #[test]
     fn the_committed_csv_parses() {
         let rows = parse_csv(ACCURACY_CSV);
         assert!(!rows.is_empty(), "run cargo bench -p hw3-benches --bench q4_irradiance");

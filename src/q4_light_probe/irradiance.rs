@@ -613,14 +613,14 @@ impl<'a> Irradiance<'a> {
     }
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::*;
 
     /// Why Q4 keeps its own cosine map: from the same two draws it gives the core's direction to
     /// within 10⁻¹⁵ (same formula, same generator use), but summed normal first and without
     /// renormalising, so their last bits differ for most draws.
-    #[unit_test]
+    #[test]
     fn cosine_direction_unnormalised_is_the_core_map_up_to_its_last_bits() {
         let mut differ = 0;
         for k in 0..1000u64 {
@@ -639,7 +639,7 @@ mod tests {
     use crate::q4_light_probe::maps::{AnalyticMap, Term};
     use crate::q4_light_probe::normals::fibonacci_normals;
 
-    #[unit_test]
+    #[test]
     fn sh_constants_match_ramamoorthi_hanrahan() {
         // c1..c5 of the paper, as products of the kernel and the basis normalisations.
         let y = |omega: DVec3, index: usize| sh_basis(omega)[index];
@@ -654,7 +654,7 @@ mod tests {
         }
     }
 
-    #[unit_test]
+    #[test]
     fn sh_basis_is_orthonormal() {
         // Fine weighted texel quadrature on a lat-long grid.
         let probe = Probe::from_fn(ProbeFormat::LatLong, 256, 128, glam::DMat3::IDENTITY, |_| DVec3::ONE).unwrap();
@@ -675,7 +675,7 @@ mod tests {
         }
     }
 
-    #[unit_test]
+    #[test]
     fn one_by_one_probe_gives_finite_answers_for_every_method() {
         let probe = AnalyticMap::constant(1.0).rasterise(ProbeFormat::MirrorBall, 1, horizontal_camera()).unwrap();
         let prepared = Irradiance::new(&probe);
@@ -691,7 +691,7 @@ mod tests {
         assert!((e.x - PI).abs() < 1e-12);
     }
 
-    #[unit_test]
+    #[test]
     fn bad_normals_and_zero_samples_are_typed_errors() {
         let probe = AnalyticMap::sky().rasterise(ProbeFormat::MirrorBall, 4, horizontal_camera()).unwrap();
         let prepared = Irradiance::new(&probe);
@@ -702,7 +702,7 @@ mod tests {
         assert!(prepared.estimate(DVec3::Z, Estimator::Cosine, 0, &mut rng).is_err());
     }
 
-    #[unit_test]
+    #[test]
     fn black_map_gives_zero_everywhere() {
         let probe = AnalyticMap::constant(0.0).rasterise(ProbeFormat::AngularMap, 8, horizontal_camera()).unwrap();
         let prepared = Irradiance::new(&probe);
@@ -712,7 +712,7 @@ mod tests {
         }
     }
 
-    #[unit_test]
+    #[test]
     fn map_pdf_integrates_to_one() {
         // ∫ p_map dω over the sphere, by the weighted texel sum on a fine lat-long grid of
         // directions, for a probe in each disk format: checks p_t/(A_t J) is a density.

@@ -413,7 +413,7 @@ pub fn sun_direction() -> DVec3 {
     DVec3::new(elevation.cos(), 0.0, elevation.sin())
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::*;
     use crate::envmap::horizontal_camera;
@@ -440,7 +440,7 @@ mod tests {
         sum * dz * dphi
     }
 
-    #[unit_test]
+    #[test]
     fn oracles_match_brute_force_quadrature() {
         let axis = DVec3::new(0.3, -0.5, 0.8).normalize();
         let terms = [
@@ -460,7 +460,7 @@ mod tests {
         }
     }
 
-    #[unit_test]
+    #[test]
     fn cap_oracle_matches_quadrature_across_the_horizon() {
         let half_angle = 10f64.to_radians();
         for alpha_deg in [0.0, 45.0, 80.0, 85.0, 90.0, 95.0, 99.0, 100.5] {
@@ -476,7 +476,7 @@ mod tests {
         }
     }
 
-    #[unit_test]
+    #[test]
     fn cap_oracle_reduces_to_the_hemisphere_at_ninety_degrees() {
         for normal in fibonacci_normals(16) {
             let cap = Term::Cap { radiance: 1.0, centre: DVec3::Z, half_angle: FRAC_PI_2 };
@@ -485,7 +485,7 @@ mod tests {
         }
     }
 
-    #[unit_test]
+    #[test]
     fn splatted_caps_keep_their_energy() {
         let map = AnalyticMap::sun();
         let probe = map.rasterise(ProbeFormat::MirrorBall, 32, horizontal_camera()).unwrap();

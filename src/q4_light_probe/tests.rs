@@ -48,7 +48,7 @@ fn deterministic_error(map: &AnalyticMap, probe: &Probe, method: Estimator) -> s
     study::analytic_error(map, &Irradiance::new(probe), method, 1, &[0], &fibonacci_normals(64))
 }
 
-#[unit_test]
+#[test]
 fn weighted_texel_sum_matches_every_oracle() {
     // Second order in the texel size away from the horizon; measured max 0.05 % (quadratic) at 128².
     for (name, map) in oracle_maps() {
@@ -57,7 +57,7 @@ fn weighted_texel_sum_matches_every_oracle() {
     }
 }
 
-#[unit_test]
+#[test]
 fn unweighted_sum_is_right_on_the_orthographic_ball_only() {
     // The ideal ball is equal-area, so equal weights are nearly right; what is left is the partial
     // rim texels (measured 0.55 % max at 128²). Every other format is badly biased.
@@ -82,7 +82,7 @@ fn unweighted_sum_is_right_on_the_orthographic_ball_only() {
     }
 }
 
-#[unit_test]
+#[test]
 fn sh9_is_exact_on_low_order_maps_up_to_the_projection() {
     // On these maps SH9 has no truncation error: what remains is the texel quadrature of the
     // projection, which shrinks with the probe size (≥ 2× from 64² to 128²) and is ≤ 0.06 % at 128².
@@ -94,7 +94,7 @@ fn sh9_is_exact_on_low_order_maps_up_to_the_projection() {
     }
 }
 
-#[unit_test]
+#[test]
 fn sh9_truncation_error_plateaus_on_higher_order_maps() {
     // The clamped lobe, the overcast sky and a 15° cap have l ≥ 4 content that nine coefficients
     // cannot hold: the error does not fall with resolution. Measured at 128²: lobe 0.16 / 0.57 %,
@@ -118,7 +118,7 @@ fn seed_statistics(prepared: &Irradiance<'_>, n: DVec3, method: Estimator, sampl
     (crate::stats::mean(&values), crate::stats::sample_sd(&values))
 }
 
-#[unit_test]
+#[test]
 fn monte_carlo_is_unbiased_on_every_oracle() {
     // The mean of 200 seeds must sit within 4 standard errors of the exact value, plus the probe's
     // own discretisation (the MC estimators integrate the 64² texel radiance; the weighted sum
@@ -143,7 +143,7 @@ fn monte_carlo_is_unbiased_on_every_oracle() {
     }
 }
 
-#[unit_test]
+#[test]
 fn cosine_sampling_has_zero_variance_on_a_constant_map() {
     let map = AnalyticMap::constant(2.5);
     let probe = ball(&map, 16);
@@ -164,7 +164,7 @@ fn log_log_slope(points: &[(f64, f64)]) -> f64 {
     num / den
 }
 
-#[unit_test]
+#[test]
 fn monte_carlo_error_falls_as_one_over_root_n() {
     // RMS error over 64 seeds at N = 16 … 1024 on a smooth (linear) map: log–log slope −½ ± 0.1.
     let map = AnalyticMap::new(vec![Term::Linear { a: 1.0, b: 0.9, axis: tilted_axis() }]);
@@ -186,7 +186,7 @@ fn monte_carlo_error_falls_as_one_over_root_n() {
     }
 }
 
-#[unit_test]
+#[test]
 fn only_map_sampling_finds_a_real_sun() {
     // Sky + 0.27° sun at 64²: the sun is one texel. RMS over 64 seeds at N = 256, as % of peak E,
     // at the normal facing the sun. Cosine and uniform sampling mostly miss the sun (heavy-tailed
@@ -209,7 +209,7 @@ fn only_map_sampling_finds_a_real_sun() {
     }
 }
 
-#[unit_test]
+#[test]
 fn sh9_fails_near_a_sun_as_the_order_two_fit_predicts() {
     // For one small source the SH9 irradiance is the order-2 fit of max(0, c), c = n·s:
     // peak × (3/32 + c/2 + 15c²/32). So +6.25 % facing it, 9.4 % at the terminator, −4 % at
@@ -233,7 +233,7 @@ fn sh9_fails_near_a_sun_as_the_order_two_fit_predicts() {
     assert!(sh9.irradiance_unclamped(sun * -0.53 + t1 * 0.848).x < -0.03);
 }
 
-#[unit_test]
+#[test]
 fn sub_texel_sun_straddling_the_horizon_is_all_or_nothing() {
     // Texel sums switch a sub-texel sun fully on or off at n's horizon, where the truth is half:
     // the error there is a large fraction of the sun's (small) contribution, while facing the sun
@@ -253,7 +253,7 @@ fn sub_texel_sun_straddling_the_horizon_is_all_or_nothing() {
     assert!(error < 0.02 * map.irradiance(sun));
 }
 
-#[unit_test]
+#[test]
 fn a_normal_into_the_blind_cone_loses_the_cap_the_ball_cannot_see() {
     // Perspective ball at D/R = 3, constant map: the probe holds πL minus the blind cap's
     // irradiance, exactly the cap oracle, 11 % for n pointing straight away from the camera.
@@ -276,7 +276,7 @@ fn a_normal_into_the_blind_cone_loses_the_cap_the_ball_cannot_see() {
     assert!((prepared.weighted(away).x / PI - (1.0 - 1.0 / 9.0)).abs() < 2e-3);
 }
 
-#[unit_test]
+#[test]
 fn grazing_normals_have_small_peak_normalised_error() {
     // Where E → 0 (n opposite the clamped lobe's axis) relative error is meaningless; every method
     // stays within 0.5 % of the peak there.
@@ -293,7 +293,7 @@ fn grazing_normals_have_small_peak_normalised_error() {
     }
 }
 
-#[unit_test]
+#[test]
 fn answers_are_pinned() {
     // The printed answers: unweighted-sum bias per format, blind-spot table, SH9 near a sun.
     let answers = super::answers();
@@ -302,7 +302,7 @@ fn answers_are_pinned() {
     });
 }
 
-#[unit_test]
+#[test]
 fn the_answers_constants_are_the_ones_their_words_assume() {
     // "one as wide as the ball (r_c = R)": the camera's radius is one ball radius.
     assert_eq!(super::CAMERA_RADIUS, 1.0);
@@ -326,7 +326,7 @@ fn real_maps() -> Vec<(&'static str, Probe, Vec<f64>)> {
         .collect()
 }
 
-#[unit_test]
+#[test]
 fn real_maps_resampled_into_a_ball_keep_their_irradiance() {
     // The 128² ball is resampled (nearest texel) from the 256×128 lat-long file; its weighted sum
     // stays close to the file's own (the splat conserves energy; what is left is the direction of
@@ -339,7 +339,7 @@ fn real_maps_resampled_into_a_ball_keep_their_irradiance() {
     }
 }
 
-#[unit_test]
+#[test]
 fn sh9_meets_the_target_on_the_soft_real_map_and_not_on_the_sunrise() {
     // The 3 % bar, ≤ 3 % mean error on the soft map, holds peak-normalised (measured
     // 1.6 % mean / 3.8 % max on the courtyard) but not relative to each normal's own irradiance
@@ -363,7 +363,7 @@ fn sh9_meets_the_target_on_the_soft_real_map_and_not_on_the_sunrise() {
     assert!(sun.max_percent > 5.0, "{sun:?}");
 }
 
-#[unit_test]
+#[test]
 fn a_sun_inside_the_blind_cone_is_lost_entirely() {
     // D/R = 3 hides 19.5° around the direction away from the camera. A sun 10° from it is never
     // photographed: the probe holds the constant background minus the blind cap, and none of the
@@ -392,7 +392,7 @@ fn a_sun_inside_the_blind_cone_is_lost_entirely() {
 /// in expectation; the texel sum differs from that integral by < 0.2 % (unit mean texel
 /// directions, texels cut by the horizon), so the bound is 5 standard errors (about 0.5 % of the
 /// value with 20 000 one-pixel estimates of 8 environment samples) plus 0.2 % of the reference.
-#[unit_test]
+#[test]
 fn diffuse_ball_under_a_real_map_matches_the_renderer() {
     use crate::envmap::BuiltinMap;
     use crate::geometry::{Ray, Sphere};

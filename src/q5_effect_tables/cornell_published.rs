@@ -472,13 +472,13 @@ pub fn validation_table(budget: &Budget) -> Result<String, ExperimentError> {
     Ok(out)
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::*;
 
     /// Every face of the box and the blocks faces the inside of the box (so radiosity meshes the
     /// lit side), and the light faces down.
-    #[unit_test]
+    #[test]
     fn faces_point_into_the_box() {
         let scene = scene().unwrap();
         let centre = mm(278.0, 274.4, 279.6);
@@ -495,7 +495,7 @@ mod tests {
     }
 
     /// Each probe lands on the wall [`PROBE_WALLS`] names.
-    #[unit_test]
+    #[test]
     fn probe_walls_name_the_wall_each_probe_hits() {
         let scene = scene().unwrap();
         let walls = ["floor", "ceiling", "back", "green", "red"];
@@ -511,7 +511,7 @@ mod tests {
     /// beside and behind the tall block, where the radiance changes within one patch, and it
     /// falls with the patch width. The reference is at least ten times more accurate than the
     /// finest row's mean error, so the table measures radiosity, not the reference's noise.
-    #[unit_test]
+    #[test]
     fn radiosity_matches_the_path_tracer_on_the_published_box() {
         let reference = converged_reference().unwrap();
         let mean = |e: &[f64]| e.iter().map(|x| x.abs()).sum::<f64>() / e.len() as f64;
@@ -526,7 +526,7 @@ mod tests {
     /// The committed reference is what it says: [`REFERENCE_SPP`] samples per probe, and an
     /// independent cheap reference (4096 samples, seed 7, up to 2.5 % standard error) lies within
     /// four combined standard errors of it at every probe.
-    #[unit_test]
+    #[test]
     fn committed_reference_agrees_with_an_independent_cheap_one() {
         let committed = converged_reference().unwrap();
         let comments = crate::data::csv(crate::data::Q5_CORNELL_REFERENCE).comments.join(" ");
@@ -562,7 +562,7 @@ mod tests {
     /// Computes the converged reference and writes it to `docs/data/q5_cornell_reference.csv`
     /// (or to `HW3_REFERENCE_OUT`), with `HW3_REFERENCE_SPP` samples per probe if set (for a
     /// timing run) and [`REFERENCE_SPP`] otherwise.
-    #[unit_test]
+    #[test]
     #[ignore = "about 10 CPU-minutes; rewrites committed data"]
     fn write_converged_reference() {
         let spp = std::env::var("HW3_REFERENCE_SPP").ok().and_then(|v| v.parse().ok()).unwrap_or(REFERENCE_SPP);

@@ -246,7 +246,7 @@ pub fn figure(budget: &Budget) -> Result<Figure, PlotError> {
     plot::panel_grid_labels_beside(GRID_PNG, &panels, COLUMNS, LABEL_WIDTH, ROWS_PER_EFFECT)
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::super::effect_scenes::mirror_room;
     use super::super::experiments::EXPERIMENTS;
@@ -254,7 +254,7 @@ mod tests {
 
     /// The reuse in [`render_methods`] is exact: in a scene with nothing specular, photon
     /// mapping's eye pass renders the two-pass image bit for bit (a small photon pass here).
-    #[unit_test]
+    #[test]
     fn photon_mapping_is_the_two_pass_image_where_nothing_is_specular() {
         let scene = cornell_box(true, CornellContents::Block).unwrap();
         assert!(!has_specular(&scene));
@@ -269,7 +269,7 @@ mod tests {
         assert!(has_specular(&lit_floor(WHITE_FLOOR, true).unwrap()) && has_specular(&mirror_room().unwrap()));
     }
 
-    #[unit_test]
+    #[test]
     fn labels_name_the_cost_and_the_measured_cell() {
         assert_eq!(
             (power_of_ten(200_000), power_of_ten(250_000), power_of_ten(10)),

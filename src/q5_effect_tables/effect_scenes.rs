@@ -293,14 +293,14 @@ pub(super) fn mirror_probes() -> Vec<Ray<f64>> {
     rays_from(MIRROR_EYE, DVec3::new(1.0, 1.0, 0.0), DVec3::Y, DVec3::Z, 0.1)
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::*;
 
     /// The probes hit what the experiments claim: the highlight probes the glossy floor near the
     /// mirror point of the light's centre, the mirror probes the mirror and then the red panel,
     /// the caustic probes the floor inside the ball's shadow (no direct light).
-    #[unit_test]
+    #[test]
     fn probes_hit_the_surfaces_the_measurements_need() {
         let floor = lit_floor(GLOSSY_FLOOR, false).unwrap();
         for ray in highlight_probes() {

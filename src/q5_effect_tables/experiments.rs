@@ -612,7 +612,7 @@ pub fn cornell_system(n: usize, samples: usize) -> Result<(Scene, System), Exper
     Ok((scene, system))
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::*;
     use crate::render::{camera::Camera, scene::Object};
@@ -623,7 +623,7 @@ mod tests {
     /// `LS+D` photons that make a caustic never reach it (the grammar's No), and the focus
     /// measures as dark as the ball's shadow; photon mapping, which reads its caustic map at the
     /// same first hit, captures it.
-    #[unit_test]
+    #[test]
     fn measured_cells_agree_with_the_grammar_and_are_pinned() {
         let cells = measured_table(&Budget::PUBLISHED).unwrap();
         assert_eq!(cells.len(), EXPERIMENTS.len() * TABLE_METHODS.len());
@@ -648,7 +648,7 @@ mod tests {
     /// `L = ρ/π · (I cosθ/r² + ρI/(1 − ρ))`. Unlike the centred light (pbrt's test, exact to
     /// rounding in `render::integrator::tests`), the bounces now vary; 2·10⁴ paths per probe put
     /// the standard error near 0.2 %: within 1 % and within 4 standard errors at five probes.
-    #[unit_test]
+    #[test]
     fn path_tracer_furnace_with_an_off_centre_light_is_within_one_percent() {
         let albedo = 0.5;
         let shell = Object::sphere(
@@ -682,7 +682,7 @@ mod tests {
         }
     }
 
-    #[unit_test]
+    #[test]
     fn the_glow_region_gets_no_direct_light() {
         // Direct light only (Whitted) sees nothing on the ceiling: the region is lit indirectly.
         assert_eq!(glow(Measured::Whitted, &Budget::PUBLISHED).unwrap(), 0.0);

@@ -247,7 +247,7 @@ fn effect_scenes_figure(budget: &Budget) -> Result<Figure, PlotError> {
     plot::panel_grid_labels_below(EFFECT_SCENES_PNG, &panels, 2)
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::*;
     use crate::render::noise::noise_level;
@@ -269,7 +269,7 @@ mod tests {
     /// name contains a word): each path-traced picture's noise ([`noise_level`]) at its figure's
     /// size and the CPU seconds of one render; the published box also without Russian roulette, and
     /// its radiosity panel's seconds.
-    #[unit_test]
+    #[test]
     #[ignore = "slow: prints the pictures' noise for choosing their samples"]
     fn q5_picture_noise() {
         let spps: Vec<u32> = std::env::var("HW3_NOISE_SPP")
@@ -308,7 +308,7 @@ mod tests {
     /// 256-sample panel agree, the mean of each face (over a rectangle well inside it, in the
     /// figure's own display levels) within 1 level in every channel. Reads the committed PNG, which
     /// CI's release run regenerates and compares byte for byte.
-    #[unit_test]
+    #[test]
     fn published_figure_faces_agree_between_radiosity_and_256_spp() {
         let bytes =
             std::fs::read(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/figures/q5_cornell_published.png")).unwrap();

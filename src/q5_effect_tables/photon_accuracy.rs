@@ -182,14 +182,14 @@ impl LogLogChart<'_> {
     }
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::*;
 
     /// The committed measurement obeys the estimate's noise law: the RMS error is within 25 % of
     /// 1/√(k − 2) on every row (the furnace has no gradient, so no blur adds to it), and the bias
     /// stays within ±3 %.
-    #[unit_test]
+    #[test]
     fn committed_photon_accuracy_follows_the_noise_law() {
         let rows = read_committed(crate::data::Q5_PHOTON_ACCURACY, "test", parse).unwrap();
         assert!(rows.len() >= 12);

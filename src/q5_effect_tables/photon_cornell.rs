@@ -387,7 +387,7 @@ pub fn figure() -> Result<Figure, PlotError> {
     .draw()
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::*;
     use crate::render::photon::trace_photons;
@@ -396,7 +396,7 @@ mod tests {
     /// judges; the noise stays above half the floor 1/√(k − 2) that k sets, whatever the photon
     /// count; and with the best k per count the error falls as photons are added (slope between −0.7 and −0.15, around the
     /// −1/3 that the bias–variance balance of a 2-D density estimate predicts).
-    #[unit_test]
+    #[test]
     fn committed_cornell_accuracy_is_judged_by_a_converged_reference_and_falls_with_photons() {
         let rows =
             super::super::photon_accuracy::read_committed(crate::data::Q5_PHOTON_CORNELL, "test", parse).unwrap();
@@ -412,7 +412,7 @@ mod tests {
     /// The pipeline end to end at a small size: two 2·10⁴-photon maps at k = 32 land within 40 %
     /// RMS of a 256-sample reference (whose own error is up to about 15 % per probe), and the
     /// split adds up (rms² = bias² + noise² when the bias is not clamped).
-    #[unit_test]
+    #[test]
     fn small_run_is_consistent() {
         let (scene, probes) = scene_and_probes().unwrap();
         let truth = reference(&scene, &probes, 256);

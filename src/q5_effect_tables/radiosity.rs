@@ -521,12 +521,12 @@ pub fn relative_errors(history: &[Vec<DVec3>], reference: &[DVec3]) -> Vec<f64> 
         .collect()
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::*;
     use crate::render::catalogue::{CornellContents, cornell_box, furnace_box};
 
-    #[unit_test]
+    #[test]
     fn point_to_polygon_matches_the_disc_and_the_closed_cube() {
         // From any floor point of a closed cube the five other faces sum to 1.
         let faces = [
@@ -549,7 +549,7 @@ mod tests {
         assert_eq!(point_to_polygon(DVec3::new(0.0, 0.0, 1.5), DVec3::Z, &faces[0]), 0.0);
     }
 
-    #[unit_test]
+    #[test]
     fn white_furnace_closed_box_matches_the_analytic_radiance() {
         // Every wall emits L_e = 1 and reflects ρ = 0.6: L = L_e/(1 − ρ) = 2.5 everywhere.
         let scene = furnace_box(DVec3::splat(0.6)).unwrap();
@@ -570,7 +570,7 @@ mod tests {
         }
     }
 
-    #[unit_test]
+    #[test]
     fn solvers_reach_the_same_fixed_point_and_gauss_seidel_is_faster_than_jacobi() {
         let scene = cornell_box(true, CornellContents::Block).unwrap();
         let system = System::new(&scene, Mesh::new(&scene, 2).unwrap(), 1).unwrap();
@@ -583,7 +583,7 @@ mod tests {
         assert!(errors[1][8] < errors[0][8], "Gauss–Seidel beats Jacobi");
     }
 
-    #[unit_test]
+    #[test]
     fn zero_counts_and_patchless_scenes_are_typed_errors() {
         let scene = cornell_box(true, CornellContents::Block).unwrap();
         assert_eq!(Mesh::new(&scene, 0), Err(RadiosityError::ZeroCount { name: "subdivisions" }));

@@ -304,5 +304,5 @@ fn quad_samples(corner: DVec3, edge_u: DVec3, edge_v: DVec3) -> impl Iterator<It
     })
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests;

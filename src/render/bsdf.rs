@@ -156,11 +156,11 @@ pub(crate) fn specular_bounce(
     }
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::*;
 
-    #[unit_test]
+    #[test]
     fn refraction_obeys_snell_and_total_internal_reflection() {
         let hit = Hit { t: 1.0, point: DVec3::ZERO, normal: DVec3::Z, object: 0 };
         let incoming = |angle: f64, from_inside: bool| {

@@ -545,11 +545,11 @@ pub fn furnace_sphere(albedo: f64, intensity: f64) -> Result<Scene, InputError> 
     Scene::new(camera, vec![shell], vec![lamp], None, DVec3::ZERO)
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::*;
 
-    #[unit_test]
+    #[test]
     fn every_catalogued_name_builds_and_unknown_names_list_them() {
         for (name, _) in CATALOGUE {
             assert!(by_name(name).is_ok(), "{name}");
@@ -560,7 +560,7 @@ mod tests {
         assert!(known.starts_with("clutter, fog"));
     }
 
-    #[unit_test]
+    #[test]
     fn bad_parameters_are_typed_errors() {
         assert!(fog_street(-0.1).is_err());
         assert!(fog_street(f64::NAN).is_err());

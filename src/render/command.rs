@@ -192,11 +192,11 @@ pub fn render_scene_to(
     })
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::*;
 
-    #[unit_test]
+    #[test]
     fn effects_text_shows_classes_and_plan() {
         let text = effects_text("mirrors", false).unwrap();
         assert!(text.contains("yes L(D|G)?S+E"));
@@ -210,14 +210,14 @@ mod tests {
     }
 
     /// The analysis of every built-in scene, as `hw3 paths` prints it.
-    #[unit_test]
+    #[test]
     fn effects_of_every_built_in_scene() {
         let text: String =
             catalogue::CATALOGUE.iter().map(|(name, _)| effects_text(name, false).unwrap() + "\n").collect();
         crate::testing::insta_settings().bind(|| insta::assert_snapshot!("render_effects_of_built_in_scenes", text));
     }
 
-    #[unit_test]
+    #[test]
     fn render_scene_refuses_bad_input_before_working() {
         assert!(matches!(render_scene("still", 1, (0, 4), EffectsMode::Auto), Err(RenderError::ImageSize { .. })));
         assert!(matches!(render_scene("still", 0, (4, 4), EffectsMode::Auto), Err(RenderError::SamplesPerPixel(0))));
@@ -268,7 +268,7 @@ mod tests {
     }
 
     /// On a terminal a long render draws the bar (with its row count); a short one draws nothing.
-    #[unit_test]
+    #[test]
     fn long_renders_draw_a_progress_bar_on_a_terminal_and_short_ones_do_not() {
         let draw = |size: (u32, u32)| {
             let terminal = RecordingTerminal::default();
@@ -283,7 +283,7 @@ mod tests {
         assert_eq!(draw((64, 48)), "");
     }
 
-    #[unit_test]
+    #[test]
     fn sizes_and_modes_parse_or_explain() {
         assert_eq!(parse_size("8X6"), Ok((8, 6)));
         assert!(parse_size("8x").is_err());

@@ -268,5 +268,5 @@ impl Environment {
     }
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests;

@@ -451,7 +451,7 @@ impl<'a> Tracer<'a> {
     }
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::*;
     use crate::geometry::Sphere;
@@ -483,7 +483,7 @@ mod tests {
         tracer.radiance(Integrator::Whitted { max_depth: 0 }, &ray, 0.0, &mut Sampler::new(0, 0, 0)).x
     }
 
-    #[unit_test]
+    #[test]
     fn single_scattering_matches_the_closed_form_and_the_note_anchor() {
         // Anchors of an independent implementation (β, D, γ, d) → airlight.
         let anchors = [
@@ -518,7 +518,7 @@ mod tests {
         (scene, Ray { origin: DVec3::new(0.1, 0.0, 0.0), dir: DVec3::new(0.3, 0.4, -0.5).normalize() })
     }
 
-    #[unit_test]
+    #[test]
     fn camera_inside_a_diffuse_sphere_with_a_light_at_its_centre_sees_the_furnace_value() {
         // pbrt-v4's integrator test: albedo 0.5, point light I = π at the centre, all bounces
         // → radiance 0.5/(1 − 0.5) = 1; direct light alone gives 0.5.
@@ -547,7 +547,7 @@ mod tests {
     /// Russian roulette keeps the furnace's mean: from [`ROULETTE_FROM`] on a path survives with
     /// probability equal to its throughput (0.5⁴ at the first draw, 0.5 at the later ones), so
     /// the samples now spread, and their mean is 1 within four standard errors.
-    #[unit_test]
+    #[test]
     fn russian_roulette_keeps_the_furnace_value() {
         let (scene, ray) = furnace();
         let tracer = Tracer::new(&scene, Passes::default().with(Pass::IndirectBounces, true));
@@ -566,7 +566,7 @@ mod tests {
     /// A glass sphere in front of a uniform background: every path ends in the background, so
     /// Whitted's reflect-and-refract tree must return the background (energy conservation), up to
     /// the weight still inside the sphere at depth 8.
-    #[unit_test]
+    #[test]
     fn glass_sphere_against_a_uniform_background_conserves_energy() {
         let glass =
             Object::sphere(Sphere::new(DVec3::new(0.0, 0.0, -3.0), 1.0).unwrap(), Material::Glass { index: 1.5 });
@@ -584,7 +584,7 @@ mod tests {
     /// The indirect-map option reads the map exactly as a photon-map gather at the diffuse hit
     /// would, and with a radius of [`f64::MAX`] that is the plain `k`-nearest estimate; without
     /// lights the direct part is exactly zero, so the radiances are compared bit for bit.
-    #[unit_test]
+    #[test]
     fn the_indirect_map_option_equals_a_photon_map_gather_at_a_diffuse_hit() {
         let grey = Material::Diffuse { albedo: DVec3::splat(0.5) };
         let floor =
@@ -624,7 +624,7 @@ mod tests {
     /// The light-samples option is the mean of that many direct-light-only radiances drawn one
     /// after the other from one sampler (an eye pass that averaged Whitted depth-0 calls, bit for
     /// bit, in a scene without fog), and it reduces the area light's noise.
-    #[unit_test]
+    #[test]
     fn light_samples_average_direct_light_estimates_from_one_stream() {
         let scene = crate::render::catalogue::cornell_mirror().unwrap();
         let tracer = Tracer::new(&scene, Passes::default());

@@ -150,5 +150,5 @@ pub fn airlight_closed_form(
     Ok(a0 * (f(a1, v_end) - f(a1, gamma / 2.0)))
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests;

@@ -44,7 +44,7 @@ pub fn noise_between(a: &crate::plot::RgbImage, b: &crate::plot::RgbImage) -> f6
     crate::plot::rms_difference(a, b) / std::f64::consts::SQRT_2
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::*;
     use crate::render::{analysis::analyze, catalogue};
@@ -53,7 +53,7 @@ mod tests {
     /// `cargo test --release --test unit figure_scene_noise -- --ignored --nocapture`): each figure
     /// scene's noise at half its figure's width and height (the noise per pixel does not depend
     /// on the image size) for the given samples per pixel, Whitted with the scene's plan.
-    #[unit_test]
+    #[test]
     #[ignore = "slow: prints the figures' noise for choosing their samples"]
     fn figure_scene_noise() {
         let sizes = [

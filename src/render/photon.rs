@@ -30,5 +30,5 @@ pub use global::{PhotonMaps, trace_photons};
 pub use map::{CAUSTIC_GATHER, Gather, MAX_BOUNCES, MAX_PHOTONS, Photon, PhotonError, PhotonMap};
 pub use point_tree::{LEAF_SIZE, Neighbour, PointTree};
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests;

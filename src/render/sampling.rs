@@ -131,11 +131,11 @@ pub fn fibonacci_sphere(n: usize) -> Vec<DVec3> {
         .collect()
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::*;
 
-    #[unit_test]
+    #[test]
     fn cosine_directions_stay_in_the_hemisphere_and_average_to_two_thirds() {
         let normal = DVec3::new(0.0, 0.6, 0.8);
         let mut sampler = Sampler::new(7, 0, 0);

@@ -658,5 +658,5 @@ fn require_unit_interval(name: &'static str, v: DVec3) -> Result<(), InputError>
     Ok(())
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests;

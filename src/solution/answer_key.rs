@@ -172,11 +172,11 @@ pub fn figures() -> Result<Vec<Figure>, PlotError> {
     Ok(vec![Figure { file_name, bytes: table.into_bytes() }])
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::*;
 
-    #[unit_test]
+    #[test]
     fn every_linked_section_is_a_heading_of_its_chapter() {
         for question in QUESTIONS {
             for part in checker::variant(question, 0).unwrap().parts {
@@ -193,13 +193,13 @@ mod tests {
         }
     }
 
-    #[unit_test]
+    #[test]
     fn anchors_are_rustdocs() {
         assert_eq!(anchor("(c) The closest approach, two ways"), "c-the-closest-approach-two-ways");
         assert_eq!(anchor("The student's answer, checked"), "the-students-answer-checked");
     }
 
-    #[unit_test]
+    #[test]
     fn the_key_carries_the_students_grade_for_every_part() {
         let table = answer_key_table().unwrap();
         let report = checker::check(STUDENT_ANSWERS, Some(0)).unwrap();

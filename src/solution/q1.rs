@@ -152,11 +152,11 @@ fn significant(x: f64) -> String {
     text.trim_end_matches('0').to_owned()
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::*;
 
-    #[unit_test]
+    #[test]
     fn small_probabilities_keep_their_digits() {
         assert_eq!(significant(0.0017811224), "0.00178112");
         assert_eq!(significant(0.028295), "0.028295");

@@ -154,11 +154,11 @@ pub(super) fn answers_toml(s: &Solution) -> String {
     toml::to_string(&file).expect("a table of numbers, strings and arrays serialises")
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::*;
 
-    #[unit_test]
+    #[test]
     fn numbers_read_as_a_student_writes_them() {
         assert_eq!(num(5.0), "5");
         assert_eq!(num(5.0 - 3f64.sqrt()), "3.267949");

@@ -113,12 +113,12 @@ pub(super) fn q4(variant: &Variant) -> Result<Q4Setting, SolutionError> {
     Ok(Q4Setting { a, b, tilt_deg, distance_over_radius })
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::*;
     use crate::checker::variant;
 
-    #[unit_test]
+    #[test]
     fn seed_zero_reads_back_the_homeworks_numbers() {
         let (ray, sphere) = q2(&variant("q2", 0).unwrap()).unwrap();
         assert_eq!((ray, sphere), crate::q2_ray_sphere::worked_example());
@@ -129,7 +129,7 @@ mod tests {
         assert_eq!(setting, Q4Setting { a: 1.0, b: 1.0, tilt_deg: 60.0, distance_over_radius: 3.0 });
     }
 
-    #[unit_test]
+    #[test]
     fn q1_reads_back_the_drawn_numbers() {
         for seed in 0..=20 {
             let numbers = q1(&variant("q1", seed).unwrap()).unwrap();
@@ -137,14 +137,14 @@ mod tests {
         }
     }
 
-    #[unit_test]
+    #[test]
     fn a_changed_statement_is_an_error_not_a_guess() {
         let mut v = variant("q2", 1).unwrap();
         v.statement = v.statement.replace("radius r", "size");
         assert_eq!(q2(&v), Err(SolutionError::Statement { question: "q2", seed: 1, what: "the radius r" }));
     }
 
-    #[unit_test]
+    #[test]
     fn negative_gradients_read_with_their_sign() {
         let negative = (1..=200).map(|s| variant("q4", s).unwrap()).find(|v| v.statement.contains(" - 1 w_z"));
         let v = negative.expect("some variant has a sky darkening upwards");

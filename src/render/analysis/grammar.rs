@@ -395,7 +395,7 @@ pub fn common_word(a: &Lang, b: &Lang) -> Result<Option<Vec<Letter>>, GrammarErr
     shortest_word(&[a.clone(), b.clone()], |acc| acc[0] && acc[1])
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::Letter::*;
     use super::*;
@@ -410,7 +410,7 @@ mod tests {
         shortest_word(&[parse(a), parse(b)], |x| x[0] != x[1]).unwrap().is_none()
     }
 
-    #[unit_test]
+    #[test]
     fn parser_reads_heckbert_forms_and_rejects_garbage() {
         assert!(equivalent("L(D|G)?S+E", "LS+E|LDS+E|LGS+E"));
         assert!(!equivalent("L(D|G)?S+E", "L(D|G)S+E"));
@@ -423,7 +423,7 @@ mod tests {
         }
     }
 
-    #[unit_test]
+    #[test]
     fn shortest_missed_paths_are_the_ones_the_note_prints() {
         let radiosity = parse("LD*E");
         let missed = |effect: &str| {
@@ -453,7 +453,7 @@ mod tests {
     proptest! {
         #![proptest_config(ProptestConfig { cases: 64, failure_persistence: None, ..ProptestConfig::default() })]
         /// The search agrees with brute-force enumeration of all words up to 4 letters.
-        #[unit_test]
+        #[test]
         fn inclusion_search_agrees_with_enumeration(a in 0usize..8, b in 0usize..8) {
             const FORMS: [&str; 8] = ["LD*E", "L(D|G)?S*E", "LS+DE", "L(D|G|S)*E", "LDD+E", "L(D|G)E|L(D|S)*DE", "LGE", "L[DG][DGS]*E"];
             let (la, lb) = (parse(FORMS[a]), parse(FORMS[b]));

@@ -9,7 +9,7 @@ fn carried(analysis: &Analysis) -> Vec<&'static str> {
     analysis.classes.iter().filter(|c| c.carries_energy).map(|c| c.notation).collect()
 }
 
-#[unit_test]
+#[test]
 fn each_built_in_scene_gets_the_classes_its_contents_imply() {
     let mirrors = analyze(&catalogue::mirror_spheres(true).unwrap());
     assert!(carried(&mirrors).contains(&"L(D|G)?S+E"));
@@ -32,7 +32,7 @@ fn each_built_in_scene_gets_the_classes_its_contents_imply() {
     assert!(!still.moving && !still.plan.time_sampling);
 }
 
-#[unit_test]
+#[test]
 fn a_mirror_hidden_from_every_light_carries_no_caustic() {
     let scene = catalogue::mirror_behind_wall().unwrap();
     let analysis = analyze(&scene);
@@ -44,7 +44,7 @@ fn a_mirror_hidden_from_every_light_carries_no_caustic() {
 /// The environment is a light derived from the scene: a non-black map lights the probe-lit
 /// scene (LE, LDE, reflections, caustics through the mirror), a black one lights nothing, and
 /// its glow in fog is reported as not rendered while an area light's glow is planned.
-#[unit_test]
+#[test]
 fn the_environment_is_a_light_and_area_lights_glow_in_fog() {
     use crate::render::environment::Environment;
     let lit = analyze(&catalogue::probe_lit().unwrap());
@@ -64,7 +64,7 @@ fn the_environment_is_a_light_and_area_lights_glow_in_fog() {
     assert_eq!(with_sky.not_rendered, vec!["LV(D|G|S)*E (environment)"]);
 }
 
-#[unit_test]
+#[test]
 fn passes_all_sets_every_flag_and_with_clears_one() {
     let all = Passes::all();
     assert!(Pass::ALL.iter().all(|&p| all.get(p)));

@@ -32,7 +32,7 @@ fn estimate(scene: &Scene, integrator: Integrator, normal: DVec3, count: u64) ->
     (mean, (variance / n).powf(0.5))
 }
 
-#[unit_test]
+#[test]
 fn frames_are_inverse_rotations() {
     for d in [DVec3::X, DVec3::Y, DVec3::Z, DVec3::new(0.3, -0.5, 0.8).normalize()] {
         assert!((from_probe_frame(to_probe_frame(d)) - d).length() < 1e-15);
@@ -47,7 +47,7 @@ fn frames_are_inverse_rotations() {
 /// 0.0032·a·L, and the bound is 5 of the measured standard errors (measured: 0.0026 for
 /// `a·L = 0.8`, deviations within 2 of them). Whitted and the path
 /// tracer agree (bounce rays from a lone convex object escape and add nothing).
-#[unit_test]
+#[test]
 fn diffuse_ball_under_a_constant_environment_reflects_albedo_times_radiance() {
     let (albedo, radiance) = (DVec3::new(0.8, 0.5, 0.2), DVec3::new(1.0, 2.0, 3.0));
     let scene = ball_under(Environment::constant(radiance).unwrap(), Material::Diffuse { albedo });
@@ -62,7 +62,7 @@ fn diffuse_ball_under_a_constant_environment_reflects_albedo_times_radiance() {
     }
 }
 
-#[unit_test]
+#[test]
 fn escaping_eye_and_mirror_rays_see_the_environment() {
     let environment = Environment::from_probe(BuiltinMap::Courtyard.probe().unwrap());
     let reflectance = DVec3::splat(0.9);
@@ -81,7 +81,7 @@ fn escaping_eye_and_mirror_rays_see_the_environment() {
 
 /// What the camera sees of a probe is the light's radiance at every texel centre and, between
 /// centres, within the range of the texels around it (a blend, not a new value).
-#[unit_test]
+#[test]
 fn the_seen_radiance_is_a_blend_of_the_lights_texels() {
     let environment = Environment::from_probe(BuiltinMap::Courtyard.probe().unwrap());
     let probe = environment.probe().unwrap();
@@ -113,7 +113,7 @@ fn the_seen_radiance_is_a_blend_of_the_lights_texels() {
     }
 }
 
-#[unit_test]
+#[test]
 fn sampled_pdfs_match_the_pdf_function_and_integrate_to_one() {
     let environment = Environment::from_probe(BuiltinMap::Sunrise.probe().unwrap());
     let mut sampler = Sampler::new(3, 0, 0);
@@ -128,7 +128,7 @@ fn sampled_pdfs_match_the_pdf_function_and_integrate_to_one() {
     assert!((total - 1.0).abs() < 1e-3, "{total}");
 }
 
-#[unit_test]
+#[test]
 fn black_environments_are_no_light_and_bad_maps_are_typed_errors() {
     let black = Environment::constant(DVec3::ZERO).unwrap();
     assert!(black.is_black() && black.sample(&mut || 0.5).is_none() && black.pdf(DVec3::Y) == 0.0);

@@ -77,7 +77,7 @@ fn rendered(scene: &Scene, count: u64) -> (f64, f64) {
 /// A 1.5 × 1.5 light 1.2 units from the ray: the renderer's estimate agrees with the
 /// midpoint double integral within 5 standard errors plus the reference's own error, which
 /// is bounded by the change from (400 steps, 24² light cells) to (800, 48²).
-#[unit_test]
+#[test]
 fn area_light_airlight_matches_a_midpoint_double_integral() {
     let (side, centre) = (1.5, DVec3::new(1.2, 0.3, -4.0));
     let coarse = midpoint_reference(side, centre, 400, 24);
@@ -93,7 +93,7 @@ fn area_light_airlight_matches_a_midpoint_double_integral() {
 /// divided out), the airlight per unit area tends to the point-light integral with the small
 /// flat emitter's intensity `L_e A cos θ_l`: the relative gap falls at least 8-fold per
 /// 4-fold shrink (it is second order in the side) and ends below 0.1 %.
-#[unit_test]
+#[test]
 fn a_shrinking_area_light_converges_to_the_point_light_limit() {
     let centre = DVec3::new(1.0, 0.0, -3.0);
     // The limit uses the same x grid as the references, so their x errors cancel.
@@ -118,7 +118,7 @@ fn a_shrinking_area_light_converges_to_the_point_light_limit() {
     );
 }
 
-#[unit_test]
+#[test]
 fn a_light_behind_an_occluder_adds_no_glow_and_no_fog_draws_no_numbers() {
     let (side, centre) = (1.0, DVec3::new(1.2, 0.0, -4.0));
     let base = scene(side, centre);

@@ -267,7 +267,7 @@ impl Candidates {
     }
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use super::*;
     use crate::render::sampling::{Sampler, fibonacci_sphere, uniform_sphere};
@@ -313,7 +313,7 @@ mod tests {
     /// Random queries (inside, outside and on the points), with k from 1 to past the point count
     /// and limits from none to tiny: the tree's answer equals brute force exactly (indices,
     /// squared distances and order) on every point set.
-    #[unit_test]
+    #[test]
     fn nearest_equals_brute_force_on_every_point_set() {
         let mut sampler = Sampler::new(11, 0, 0);
         for (name, points) in point_sets() {
@@ -345,7 +345,7 @@ mod tests {
     /// give the same neighbours (by position: no two of these random points lie at equal distance
     /// from a query, so index order never decides), and building on one thread gives the same
     /// arrays as on two (50 000 points: the build splits its top ranges in parallel).
-    #[unit_test]
+    #[test]
     fn the_tree_does_not_depend_on_input_order_or_threads() {
         let mut sampler = Sampler::new(3, 0, 0);
         let points: Vec<DVec3> = (0..50_000).map(|_| in_unit_cube(&mut sampler)).collect();
@@ -371,7 +371,7 @@ mod tests {
     /// Hard inputs: no points, k = 0, a NaN or infinite query, a NaN limit, huge and tiny
     /// coordinates (squared distances overflow to ∞ or underflow to 0 and still sort), points
     /// all at one place.
-    #[unit_test]
+    #[test]
     fn hard_inputs_give_an_answer_or_nothing_never_a_panic() {
         let empty = PointTree::new(&[]);
         assert!(empty.is_empty() && empty.nearest(DVec3::ZERO, 5, f64::INFINITY).is_empty());
@@ -415,7 +415,7 @@ mod tests {
     /// it compute on average 199.1 squared distances for the 50 nearest and 25.2 for the nearest
     /// one (the renderer's engineering notes quote the first), not 10⁵; the bands allow a tenth
     /// either way.
-    #[unit_test]
+    #[test]
     fn the_walk_measures_a_few_hundred_distances_not_every_point() {
         let points = fibonacci_sphere(100_000);
         let tree = PointTree::new(&points);
@@ -428,7 +428,7 @@ mod tests {
         assert!((20.0..=30.0).contains(&one), "k = 1: {one} distances per query");
     }
 
-    #[unit_test]
+    #[test]
     #[should_panic = "must not be NaN"]
     fn a_nan_point_is_refused() {
         let _ = PointTree::new(&[DVec3::ZERO, DVec3::new(0.0, f64::NAN, 0.0)]);

@@ -24,7 +24,7 @@ fn closed_sphere(albedo: f64, intensity: f64) -> Scene {
 /// holds ≥ 8·10⁴, a relative spread ≈ 1/√(8·10⁴) ≈ 0.35 % (measured over seeds 1–4 at
 /// 6·10⁴ photons: within 1.3 %, as that size predicts); the 1000 query points at k = 100
 /// cover the sphere about once, so the kNN estimate adds little on top: tolerance 1 %.
-#[unit_test]
+#[test]
 fn photon_map_furnace_gives_the_analytic_irradiance_within_one_percent() {
     for albedo in [0.3, 0.7] {
         let intensity = 2.0;
@@ -45,7 +45,7 @@ fn photon_map_furnace_gives_the_analytic_irradiance_within_one_percent() {
 /// once before any bounce, so the first-hit powers (the `all` map less the `indirect` one)
 /// sum to `Φ = πLA` for a quad light and `Φ = 4πI` for a point light, per channel, to
 /// rounding.
-#[unit_test]
+#[test]
 fn first_hit_powers_sum_to_the_light_flux() {
     let camera = Camera::looking_at(DVec3::new(0.0, 0.0, 0.5), DVec3::ZERO, 40.0);
     let grey = Object::sphere(Sphere::new(DVec3::ZERO, 5.0).unwrap(), Material::Diffuse { albedo: DVec3::splat(0.5) });
@@ -69,7 +69,7 @@ fn first_hit_powers_sum_to_the_light_flux() {
     }
 }
 
-#[unit_test]
+#[test]
 fn traces_are_identical_for_one_and_two_threads() {
     let scene = crate::render::catalogue::cornell_mirror().unwrap();
     let run = |threads| {
@@ -85,7 +85,7 @@ fn traces_are_identical_for_one_and_two_threads() {
     assert!(!one.caustic.is_empty(), "the mirror makes caustic photons");
 }
 
-#[unit_test]
+#[test]
 fn bad_counts_and_neighbour_numbers_are_typed_errors() {
     let scene = closed_sphere(0.5, 1.0);
     assert_eq!(trace_photons(&scene, 0, 1).unwrap_err(), PhotonError::PhotonCount(0));
@@ -110,7 +110,7 @@ fn bad_counts_and_neighbour_numbers_are_typed_errors() {
 /// point plus a ring around it: the k nearest are found, and a query whose k nearest all
 /// coincide with it is a typed error, not an infinite irradiance; a query point that is not
 /// finite is refused.
-#[unit_test]
+#[test]
 fn duplicate_photon_positions_are_handled() {
     let photon = |position| Photon { position, direction: DVec3::NEG_Z, normal: DVec3::Z, power: DVec3::ONE };
     let mut photons = vec![photon(DVec3::ZERO); 5000];
@@ -135,7 +135,7 @@ fn duplicate_photon_positions_are_handled() {
 /// The (k−1)/(πr²) estimate is unbiased for uniformly scattered photons; k/(πr²) is high by
 /// k/(k−1). 400 independent maps of 2000 unit photons on the unit square (density 2000),
 /// queried at the centre with k = 4: mean of (k−1) form within 3σ of 2000, k form ≈ 4/3 high.
-#[unit_test]
+#[test]
 fn bias_correction_removes_the_k_over_k_minus_one_factor() {
     let k = 4;
     let trials = 400;
@@ -159,7 +159,7 @@ fn bias_correction_removes_the_k_over_k_minus_one_factor() {
     assert!((uncorrected - 2000.0).abs() > 3.0 * 71.0, "k/(πr²) would be visibly high: {uncorrected}");
 }
 
-#[unit_test]
+#[test]
 fn phong_directions_follow_the_lobe() {
     let axis = DVec3::new(0.0, 0.6, 0.8);
     let mut sampler = Sampler::new(3, 0, 0);
@@ -204,7 +204,7 @@ fn directional_albedo(material: &Material, theta: f64, steps: usize) -> f64 {
 /// hemisphere), less towards grazing where the horizon clips it, for exponents 1 to 10⁴.
 /// Glass: Fresnel reflectance plus the transmittance computed from the transmission
 /// amplitudes, `T = (n₂cosθ_t)/(n₁cosθ_i)·(t_s² + t_p²)/2`, is 1 (from either side).
-#[unit_test]
+#[test]
 fn every_material_reflects_at_most_what_arrives() {
     let diffuse = Material::Diffuse { albedo: DVec3::splat(0.8) };
     for degrees in [0.0, 30.0, 60.0, 85.0] {
@@ -250,7 +250,7 @@ fn every_material_reflects_at_most_what_arrives() {
 /// in the ball's cone (half-angle asin(1/3)) hits the ball, glass absorbs nothing and a ray
 /// leaving a sphere is never totally reflected, so every photon lands on the shell, and
 /// their powers add up to `I · 2π(1 − cos α)` to rounding.
-#[unit_test]
+#[test]
 fn caustic_photons_carry_the_flux_into_the_target_cone() {
     let camera = Camera::looking_at(DVec3::new(0.0, 0.0, 0.5), DVec3::ZERO, 40.0);
     let shell = Object::sphere(Sphere::new(DVec3::ZERO, 5.0).unwrap(), Material::Diffuse { albedo: DVec3::splat(0.5) });
@@ -274,7 +274,7 @@ fn caustic_photons_carry_the_flux_into_the_target_cone() {
 /// [`trace_caustic_photons`] equals that of the untargeted [`trace_photons`]' caustic map,
 /// whose photons each carry `Φ/N` and of which a binomial number land: within 4 of that
 /// count's standard deviations.
-#[unit_test]
+#[test]
 fn aimed_and_untargeted_caustic_maps_carry_the_same_power() {
     let scene = crate::render::catalogue::glass_ball_caustic().unwrap();
     let aimed: f64 = trace_caustic_photons(&scene, 20_000, 5).unwrap().photons().iter().map(|p| p.power.x).sum();
@@ -291,7 +291,7 @@ fn aimed_and_untargeted_caustic_maps_carry_the_same_power() {
 /// map's irradiance exceeds the unobstructed direct irradiance `I/h²` fifty times over (the
 /// ball gathers the light of its cross-section π into a small spot), while in the open
 /// floor beside it the caustic map is empty of photons nearby: only `LS+D` photons are in it.
-#[unit_test]
+#[test]
 fn a_glass_ball_focuses_photons_into_the_caustic_map() {
     let camera = Camera::looking_at(DVec3::new(0.0, 3.0, 6.0), DVec3::ZERO, 40.0);
     let floor = Object::quad(

@@ -319,7 +319,7 @@ pub(super) fn offer(best: &mut Option<(f64, usize)>, object: usize, t: f64) {
     }
 }
 
-#[cfg(feature = "unit-tests")]
+#[cfg(test)]
 mod tests {
     use crate::geometry::Ray;
     use crate::render::catalogue;
@@ -329,7 +329,7 @@ mod tests {
     /// Plane-first rejection changes no answer: on the Cornell box (quads and spheres) with a
     /// quad duplicated bit for bit and one sharing an edge (exact ties, decided by object index),
     /// every query equals the brute-force loop's over rays from inside and outside the box.
-    #[unit_test]
+    #[test]
     fn prepared_quads_answer_every_query_as_the_brute_force_loop() {
         let cornell = catalogue::cornell_mirror().unwrap();
         let mut objects = cornell.objects().to_vec();
@@ -367,7 +367,7 @@ mod tests {
     /// brute-force loop's over rays from inside and outside the scene, from far away (where the
     /// origin's share of the padding matters), along the axes (a direction component of exactly
     /// zero) and grazing the boxes' faces.
-    #[unit_test]
+    #[test]
     fn boxed_runs_answer_every_query_as_the_brute_force_loop() {
         let block = catalogue::cornell_box(true, catalogue::CornellContents::Block).unwrap();
         let floor = catalogue::mirror_spheres(true).unwrap();

@@ -15,7 +15,7 @@ fn ray(origin: [f64; 3], dir: [f64; 3]) -> Ray<f64> {
     Ray::new(DVec3::from(origin), DVec3::from(dir)).unwrap()
 }
 
-#[unit_test]
+#[test]
 fn quad_is_hit_inside_and_missed_outside_and_behind() {
     let quad = unit_quad();
     assert_eq!(intersect(&quad, &ray([0.5, 0.5, 3.0], [0.0, 0.0, -1.0]), 0.0), Some(3.0));
@@ -23,7 +23,7 @@ fn quad_is_hit_inside_and_missed_outside_and_behind() {
     assert_eq!(intersect(&quad, &ray([0.0, 0.0, 3.0], [0.0, 0.0, 1.0]), 0.0), None);
 }
 
-#[unit_test]
+#[test]
 fn grazing_ray_in_the_plane_of_a_quad_is_a_miss_not_a_nan() {
     let quad = unit_quad();
     assert_eq!(intersect(&quad, &ray([-5.0, 0.0, 0.0], [1.0, 0.0, 0.0]), 0.0), None);
@@ -31,7 +31,7 @@ fn grazing_ray_in_the_plane_of_a_quad_is_a_miss_not_a_nan() {
     assert_eq!(intersect(&quad, &nearly, 0.0), None);
 }
 
-#[unit_test]
+#[test]
 fn moving_sphere_is_where_its_velocity_puts_it() {
     let shape = Shape::Sphere { sphere: Sphere::new(DVec3::ZERO, 1.0).unwrap(), velocity: DVec3::new(2.0, 0.0, 0.0) };
     let probe = ray([2.0, 0.0, 5.0], [0.0, 0.0, -1.0]);
@@ -41,7 +41,7 @@ fn moving_sphere_is_where_its_velocity_puts_it() {
 
 /// Random rays from inside and outside a 400-sphere forest with a moving sphere and a quad
 /// added: closest hits, shadow tests and pierce counts agree with the brute-force loop.
-#[unit_test]
+#[test]
 fn kd_tree_queries_equal_brute_force_on_a_mixed_scene() {
     let forest = crate::render::catalogue::clutter_forest(400, 3).unwrap();
     let mut objects = forest.objects().to_vec();
@@ -75,7 +75,7 @@ fn kd_tree_queries_equal_brute_force_on_a_mixed_scene() {
 
 /// The documented exception of the hit-by-hit walk: a sphere duplicated bit for bit is crossed
 /// at the same `t` as its twin, and the tree reports one sphere per `t`.
-#[unit_test]
+#[test]
 fn duplicated_sphere_is_pierced_once_through_the_tree_and_twice_by_brute_force() {
     let ball = Object::sphere(Sphere::new(DVec3::ZERO, 1.0).unwrap(), Material::Diffuse { albedo: DVec3::ONE });
     let camera = Camera::looking_at(DVec3::new(0.0, 0.0, 5.0), DVec3::ZERO, 40.0);
@@ -86,7 +86,7 @@ fn duplicated_sphere_is_pierced_once_through_the_tree_and_twice_by_brute_force()
     assert_eq!(scene.closest_hit(&probe, 0.0, 9.0).map(|h| h.object), Some(0), "ties go to the lower index");
 }
 
-#[unit_test]
+#[test]
 fn invalid_scenes_are_typed_errors_naming_the_value() {
     let camera = Camera { shutter: (0.0, 1.0), ..Camera::looking_at(DVec3::new(0.0, 0.0, 5.0), DVec3::ZERO, 40.0) };
     let name = |r: Result<Scene, InputError>| match r.unwrap_err() {
