@@ -17,6 +17,8 @@ mod reading;
 mod reports;
 mod suggest;
 mod template;
+#[cfg(test)]
+mod tests;
 mod traces;
 mod variants;
 

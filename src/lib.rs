@@ -8,15 +8,18 @@
 pub mod answers;
 pub mod cli;
 pub mod data;
-pub mod envmap;
-pub mod fsio;
-pub mod geometry;
-pub mod kdtree;
-pub mod plot;
-pub mod real;
-pub mod render;
-pub mod rng;
-pub mod stats;
+
+#[doc(inline)]
+pub use hw3_core::{fsio, geometry, plot, real, rng, stats};
+#[doc(inline)]
+pub use hw3_render::{envmap, kdtree};
+
+/// The renderer chapter: how the renderer produces each effect that Q1 and Q5 ask about.
+pub mod render {
+    #![doc = include_str!(concat!(env!("OUT_DIR"), "/render.md"))]
+    #[doc(inline)]
+    pub use hw3_render::render::*;
+}
 
 pub mod q1_hard_scenes;
 pub mod q2_ray_sphere;
@@ -129,7 +132,7 @@ mod testing {
     /// `snapshots/` folder, named by the snapshot name alone.
     pub(crate) fn insta_settings() -> insta::Settings {
         let mut settings = insta::Settings::clone_current();
-        settings.set_snapshot_path(concat!(env!("CARGO_MANIFEST_DIR"), "/snapshots"));
+        settings.set_snapshot_path(hw3_core::SNAPSHOTS);
         settings.set_prepend_module_to_snapshot(false);
         settings
     }

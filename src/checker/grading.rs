@@ -392,7 +392,7 @@ fn round2(x: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::checker::{Kind, answers_key, report_text};
+    use crate::checker::{Kind, answers_key};
     use proptest::prelude::*;
 
     #[test]
@@ -468,7 +468,7 @@ mod tests {
         #[test]
         fn key_scores_full_marks(seed in 0u64..1_000_000) {
             let report = check(&answers_key(seed).unwrap(), None).unwrap();
-            prop_assert!(report.all_correct(), "{}", report_text(&report));
+            prop_assert!(report.all_correct(), "{:?}", report);
             prop_assert_eq!(report.score, report.max_score);
         }
 
@@ -522,7 +522,7 @@ mod tests {
             let report = check(&toml::to_string(&doc).unwrap(), None).unwrap();
             let lost = report.max_score - report.score;
             let wrong: Vec<_> = report.parts.iter().filter(|p| p.status != "correct").collect();
-            prop_assert_eq!(wrong.len(), 1, "{}", report_text(&report));
+            prop_assert_eq!(wrong.len(), 1, "{:?}", report);
             prop_assert_eq!(wrong[0].key, part.key);
             prop_assert!(wrong[0].score < part.points);
             prop_assert!((lost - (part.points - wrong[0].score)).abs() < 1e-9);

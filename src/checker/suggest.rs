@@ -78,51 +78,6 @@ fn edit_distance(a: &str, b: &str) -> usize {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::checker::check;
-
-    #[test]
-    fn misspelt_key_gets_a_suggestion() {
-        let report = check("[q2a]\npiont = [1, 2, 3]\n[q2c]\nt_closet = 5.0\nwhatever = 1", None).unwrap();
-        // Both misspellings are close to one unanswered part each: graded there, with a warning.
-        assert_eq!(
-            report.warnings,
-            ["graded `q2a.point` for `q2a.piont`", "graded `q2c.t_closest` for `q2c.t_closet`"]
-        );
-        assert_eq!(report.unknown_keys, vec!["`q2c.whatever`".to_string()]);
-        let part = |key: &str| report.parts.iter().find(|p| p.key == key).unwrap();
-        assert_eq!((part("q2c.t_closest").status, part("q2c.t_closest").score), ("correct", 2.0));
-        assert_eq!(part("q2a.point").status, "wrong");
-        assert!(part("q2a.point").feedback.starts_with("graded `q2a.point` for `q2a.piont`"));
-    }
-
-    #[test]
-    fn ambiguous_far_or_answered_keys_stay_unknown() {
-        // `q2a.D` is one edit from t, A, B and C; `q2a.pointt` is one from a part already
-        // answered; `q1a.share_of_gaps` is far from every part; two spellings of one part are both
-        // a guess.
-        let text = "[q2a]\nD = \"1\"\npoint = [1, 2, 3]\npointt = [1, 2, 3]\n[q1a]\nshare_of_gaps = 0.5\n[q2c]\nt_closet = 5.0\nt_closeste = 5.0";
-        let report = check(text, None).unwrap();
-        assert!(report.warnings.is_empty(), "{:?}", report.warnings);
-        assert_eq!(
-            report.unknown_keys,
-            [
-                "`q1a.share_of_gaps`",
-                "`q2a.D` (did you mean `q2a.t`?)",
-                "`q2a.pointt` (did you mean `q2a.point`?)",
-                "`q2c.t_closeste` (did you mean `q2c.t_closest`?)",
-                "`q2c.t_closet` (did you mean `q2c.t_closest`?)",
-            ]
-        );
-        assert_eq!(report.parts.iter().find(|p| p.key == "q2c.t_closest").unwrap().status, "missing");
-    }
-
-    #[test]
-    fn a_misspelt_key_of_the_wrong_shape_stays_unknown() {
-        // `t_closet` is close to `t_closest`, but a string is no number: not graded, not an error.
-        let report = check("[q2c]\nt_closet = \"five\"", None).unwrap();
-        assert!(report.warnings.is_empty());
-        assert_eq!(report.unknown_keys, ["`q2c.t_closet` (did you mean `q2c.t_closest`?)"]);
-    }
 
     #[test]
     fn edit_distance_basics() {
