@@ -285,8 +285,8 @@ pub fn split_interval(axis: impl AxisLine, split: f64, t_min: f64, t_max: f64) -
 /// The interval rule as flags rather than an enum: [`split_interval`] is this function with the
 /// flags turned into a [`Visit`] (for the traces), and the 3-D traversal branches on the flags
 /// directly. It branches rather than selecting with conditional moves: a predicted branch lets the
-/// CPU start loading the next node early, and the branch-free walk measured slower on camera rays
-/// (engineering notes for Q3, "What did not help").
+/// CPU start loading the next node early; the branch-free walk is slower on camera rays (the Q3
+/// engineering notes measure both).
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct SplitPieces {
     /// The child the ray is in just after `t_min`.

@@ -3,10 +3,9 @@
 //!
 //! The crate needs a pixel buffer, a PNG encoder and (for its tests and examples) a PNG decoder,
 //! and nothing else of an image library: the `png` crate does the format, this file the buffer.
-//! (The `image` crate did both until it began to compile a colour-management library, moxcms,
-//! that nothing here uses; the README's build section has the measured build cost.)
-//! The encoder settings are `image` 0.25's defaults (fast deflate, adaptive filtering), so the
-//! committed PNG figures kept their bytes when the crate changed.
+//! (The `image` crate would do both, but compiles a colour-management library, moxcms, that
+//! nothing here uses.) The encoder settings are `image` 0.25's defaults (fast deflate, adaptive
+//! filtering), so the PNG figures are the bytes that crate would write.
 
 use std::io::Cursor;
 

@@ -14,7 +14,7 @@
 //! followed by that many bytes).
 //!
 //! Why here and not a crate: `image` 0.25 reads this format but compiles a colour-management
-//! library with it that nothing here uses (the README's build section has the measured cost);
+//! library with it that nothing here uses;
 //! `zune-hdr` 0.5.2 computes `2^(e − 128)` with a shift masked to 5 bits, so an exponent below
 //! 2⁻³¹ or above 2³¹ comes out wrong; `radiant` 0.3 divides the mantissa by 255 instead of 256.
 //! The header's `EXPOSURE` is not applied (as `image` did not): every map here is stored in

@@ -51,25 +51,17 @@ pub struct SahCosts {
 }
 
 impl Default for SahCosts {
-    /// `K_T = 1`, `K_I = 0.075`, `b = 0.2`, 32 bins. The constants are *measured* costs, not
-    /// textbook ones: on the Q3 benchmark workload a node step costs about thirteen times a
-    /// ray/sphere test (a node step is a dependent load from a tree that outgrows the cache, a
-    /// sphere test mostly an 8-byte conservative reject, eight or sixteen at a time, on data that
-    /// sits next to its leaf's other spheres), so a ray should rather test a few more spheres than
-    /// walk many small cells. A first sweep of `K_I` over 0.2, 0.3, 0.5 and 1.5 found 0.2–0.5 alike and all
-    /// far ahead of 1.5; once the leaves' quantised copies and the prefetches had made tests and
-    /// waits cheaper, a second found 0.3 faster than 0.5 by about 12 % on random rays at N = 10⁵;
-    /// on a machine with half that machine's second-level cache per core (512 KB), a
-    /// third, timing two trees in turns in one process, found 0.15 faster than 0.3 on every ray
-    /// set from N = 10³ to 10⁶, by 0.5–3 % at 10³ and 5–13 % at 10⁶, and up to 9 % slower at 10²
-    /// (a tree of a dozen nodes); a fourth, the same way on an AMD Zen 4 once a leaf's coarse test
-    /// took sixteen copies at once (AVX-512), found 0.075 faster than 0.15 by 7–9 % on random rays
-    /// at N = 10⁴ and 10⁵ with fixed k and 13 % at 10⁶, by 2–3 % with fixed volume at 10⁴ and 10⁵
-    /// and 10 % at 10⁶, within 3 % on camera rays at 10⁴ and 10⁵ (11 % faster at 10⁶), but 11 %
-    /// slower at 10² (5 nodes against 15); with that machine's eight-wide (AVX2) walk, 4 % faster
-    /// on random rays at 10⁵ with fixed k, 7 % with fixed volume, 24 % at 10⁶, 1 % slower on camera
-    /// rays and 6 % at 10². The Q3 engineering notes, What made it fast, steps 1, 12, 20 and 24.
-    /// Textbook defaults for comparison: pbrt `(1, 80)` for expensive shapes, Mitsuba `(15, 20)`.
+    /// `K_T = 1`, `K_I = 0.075`, `b = 0.2`, 32 bins.
+    ///
+    /// The costs are this tree's, measured, not a textbook's: a node step is a dependent load from
+    /// a tree that outgrows the cache, while a sphere test is mostly an 8-byte conservative reject
+    /// made several at a time on data beside its leaf's other spheres, so a step costs about
+    /// thirteen tests, and a ray should rather test a few more spheres than walk many small cells.
+    /// With these costs any node of up to 13 spheres is a leaf (`13 × 0.075 < 1`). The Q3
+    /// benchmark's `ab` mode times trees of two `K_I` in turns in one process; the Q3 engineering
+    /// notes give the current comparison. The textbooks' (traversal, intersection) costs:
+    /// pbrt-v4's `KdTreeAggregate` (1, 5), pbrt-v3's `KdTreeAccel` (1, 80), Mitsuba 0.5 (15, 20),
+    /// each with an empty-space bonus.
     fn default() -> Self {
         Self { traversal: 1.0, intersection: 0.075, empty_bonus: 0.2, bins: 32 }
     }
@@ -223,14 +215,10 @@ impl Subtree {
 }
 
 /// Spheres up to which a node tries every box face as its plane instead of binned planes: `2n`
-/// faces are then fewer than the binned planes, and sorting them is cheap. On random sphere scenes
-/// of 200 to 20 000 spheres this lowered the SAH cost by 0.3–0.9 % with `K_I = 0.3` (8 lowered it
-/// less; 32, with the face lists on the heap, cost about 30 % more build instructions under
-/// callgrind). With `K_I = 0.15` nodes of up to six spheres are leaves without a search and few
-/// small nodes split: the two candidate sets then built trees of the same SAH cost at 200 and 2 000
-/// spheres and differed by 5·10⁻⁶ of it at 20 000. With the default `K_I = 0.075` nodes of up to 13
-/// spheres are leaves without a search, so only nodes of 14 to 16 spheres take the exact set. A
-/// test pins that the exact set is never worse at the default and strictly better at `K_I = 0.3`.
+/// faces are then fewer than the binned planes, sorting them is cheap, and the face lists fit on
+/// the stack. With the default `K_I = 0.075` nodes of up to 13 spheres are leaves without a
+/// search, so only nodes of 14 to 16 spheres take the exact set. A test pins that the exact set is
+/// never worse than the binned one at the default, and strictly better at `K_I = 0.3`.
 pub(super) const EXACT_MAX: usize = 16;
 
 /// The largest `exact_max` a [`Builder`] accepts (its face arrays live on the stack).
@@ -482,7 +470,7 @@ impl Builder {
     /// cheap planes of an axis the lowest wins, as in a sweep in plane order.
     #[inline(never)] // one call per node: a profile names it, and its callers stay small
     fn best_exact_split(&self, cell: &Aabb, prims: &[Prim]) -> Option<Candidate> {
-        #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+        #[cfg(x86_simd)]
         if std::arch::is_x86_feature_detected!("avx2") {
             // SAFETY: the CPU has AVX2 (checked just above).
             return unsafe { self.best_exact_split_avx2(cell, prims) };
@@ -494,7 +482,7 @@ impl Builder {
     /// for x86-64's SSE2 baseline), so that the side counts take four faces per instruction instead
     /// of two. The same planes: a compare gives the same answer in any width, and nothing else
     /// changes width.
-    #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+    #[cfg(x86_simd)]
     #[target_feature(enable = "avx2")]
     fn best_exact_split_avx2(&self, cell: &Aabb, prims: &[Prim]) -> Option<Candidate> {
         self.exact_split(cell, prims)
@@ -587,7 +575,7 @@ impl Builder {
     /// costs a few flops.
     #[inline(never)] // one call per node: a profile names it, and its callers stay small
     fn best_split(&self, cell: &Aabb, prims: &[Prim]) -> Option<Candidate> {
-        #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+        #[cfg(x86_simd)]
         if std::arch::is_x86_feature_detected!("avx2") {
             // SAFETY: the CPU has AVX2 (checked just above).
             return unsafe { self.best_split_avx2(cell, prims) };
@@ -598,7 +586,7 @@ impl Builder {
     /// [`Builder::best_split`] compiled for AVX2 (checked at run time), so that the candidates'
     /// costs take four planes per instruction instead of two. The same planes and costs: each
     /// lane does the same operations in the same order.
-    #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+    #[cfg(x86_simd)]
     #[target_feature(enable = "avx2")]
     fn best_split_avx2(&self, cell: &Aabb, prims: &[Prim]) -> Option<Candidate> {
         self.binned_search(cell, prims)
@@ -708,15 +696,15 @@ impl Builder {
 /// The bin of each of a box's six coordinates (min x, y, z, max x, y, z):
 /// `⌊clamp((x − lo) · scale, 0, bins − 1)⌋`, NaN (an axis without extent) in bin 0.
 struct Binner {
-    #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+    #[cfg(x86_simd)]
     pairs: [(std::arch::x86_64::__m128d, std::arch::x86_64::__m128d); 3],
-    #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+    #[cfg(x86_simd)]
     last: std::arch::x86_64::__m128d,
-    #[cfg(not(all(target_arch = "x86_64", target_feature = "sse2")))]
+    #[cfg(not(x86_simd))]
     lo: [f64; 6],
-    #[cfg(not(all(target_arch = "x86_64", target_feature = "sse2")))]
+    #[cfg(not(x86_simd))]
     scale: [f64; 6],
-    #[cfg(not(all(target_arch = "x86_64", target_feature = "sse2")))]
+    #[cfg(not(x86_simd))]
     last: f64,
 }
 
@@ -724,7 +712,7 @@ impl Binner {
     fn new(lo: [f64; 3], scale: [f64; 3], last: f64) -> Self {
         let lo = [lo[0], lo[1], lo[2], lo[0], lo[1], lo[2]];
         let scale = [scale[0], scale[1], scale[2], scale[0], scale[1], scale[2]];
-        #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+        #[cfg(x86_simd)]
         {
             use std::arch::x86_64::_mm_set_pd;
             // SAFETY: SSE2 is part of every x86-64 CPU (the baseline the crate is compiled for), and
@@ -732,7 +720,7 @@ impl Binner {
             let pair = |v: &[f64; 6], j: usize| unsafe { _mm_set_pd(v[2 * j + 1], v[2 * j]) };
             Self { pairs: [0, 1, 2].map(|j| (pair(&lo, j), pair(&scale, j))), last: unsafe { _mm_set_pd(last, last) } }
         }
-        #[cfg(not(all(target_arch = "x86_64", target_feature = "sse2")))]
+        #[cfg(not(x86_simd))]
         Self { lo, scale, last }
     }
 
@@ -740,7 +728,7 @@ impl Binner {
     /// instructions per box, most of them on the six saturating conversions' NaN and range fixes,
     /// which the clamp already makes unnecessary. The same bins: `maxpd(v, 0)` sends NaN to 0 as
     /// the scalar path does, and the truncation of a value in `[0, bins − 1]` is the same.
-    #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+    #[cfg(x86_simd)]
     #[inline(always)]
     fn bins(&self, b: &Aabb) -> [usize; 6] {
         use std::arch::x86_64::{
@@ -763,7 +751,7 @@ impl Binner {
         out
     }
 
-    #[cfg(not(all(target_arch = "x86_64", target_feature = "sse2")))]
+    #[cfg(not(x86_simd))]
     #[inline(always)]
     fn bins(&self, b: &Aabb) -> [usize; 6] {
         let c = [b.min.x, b.min.y, b.min.z, b.max.x, b.max.y, b.max.z];
@@ -832,7 +820,7 @@ mod tests {
             state = state.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1_442_695_040_888_963_407);
             values[(state >> 33) as usize % values.len()]
         };
-        #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+        #[cfg(x86_simd)]
         #[target_feature(enable = "avx2")]
         fn counts_avx2<const W: usize>(
             splits: &[f64; 2 * EXACT_MAX_LIMIT],
@@ -853,7 +841,7 @@ mod tests {
                     let upper = ends[..m].iter().filter(|&&x| x >= splits[f]).count();
                     assert_eq!((lowers[f], uppers[f]), (lower as f64, upper as f64), "W = {W}, m = {m}, face {f}");
                 }
-                #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+                #[cfg(x86_simd)]
                 if std::arch::is_x86_feature_detected!("avx2") {
                     // SAFETY: the CPU has AVX2 (checked just above).
                     let wide = unsafe { counts_avx2::<W>(&splits, &starts, &ends, m) };

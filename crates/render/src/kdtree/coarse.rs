@@ -3,16 +3,13 @@
 //! answers stay bit for bit those of [`roots_stable`](hw3_core::geometry::sphere::roots_stable).
 //!
 //! # Why
-//! Under callgrind (N = 10⁵, fixed k, random rays) a random ray read about 20 leaf cache lines of
-//! `f64` spheres and missed a (simulated) 2 MB second-level cache on about 13 of them, against
-//! about 2 misses for its 61 node steps: the leaf spheres, not the nodes, waited on memory. Fewer than one
-//! sphere per ray passes the discriminant test, so the test that rejects needs only enough
-//! precision to reject safely, and the exact sphere is read only for the few it keeps. A 16-byte
-//! `f32` copy halved those misses; at 8 bytes (`u16` counts on a grid, below) the copies of
-//! 123 k references take 1 MB and fit a 2 MB cache beside the 0.7 MB of nodes, and the walk's
-//! misses halve again. This machine's second-level cache is 1 MB per core, where each step cuts
-//! the misses by about a third instead (23.9 → 16.5 → 11.0 per random ray; the Q3 engineering
-//! page has the table).
+//! A random ray's time goes to waiting for leaf spheres, not nodes: in a tree of 10⁵ spheres it
+//! reads about 20 leaf cache lines of `f64` spheres, most of them not in the cache, against a few
+//! misses for its many node steps. Fewer than one sphere per ray passes the discriminant test, so
+//! the test that rejects needs only enough precision to reject safely, and the exact sphere is
+//! read only for the few it keeps. At 8 bytes a copy (`u16` counts on a grid, below) the copies
+//! of a leaf take a quarter of the exact spheres' lines, and far more of them stay in the cache;
+//! the Q3 engineering notes give the cache misses per ray of each layout.
 //!
 //! A leaf's copies lie side by side, so the walk tests four at a time
 //! ([`CoarseRay::survivors`], SSE2 on x86-64, one sphere at a time elsewhere), eight at a time on
@@ -194,7 +191,7 @@ const MIN_DIRECTION: f64 = 1.0 / 16_777_216.0; // 2⁻²⁴
 /// with the width's intrinsics `$sub`, `$mul`, `$add` and `$set1`. Evaluates to `(lhs, rhs)`: a lane
 /// survives where `lhs <= rhs`. Each caller is a function compiled for its width, which the
 /// expanded intrinsics need.
-#[cfg(target_arch = "x86_64")]
+#[cfg(x86_simd)]
 macro_rules! lane_sides {
     ($ray:expr, $q:expr, $radius:expr, $sub:ident, $mul:ident, $add:ident, $set1:ident) => {{
         let (ray, q, radius) = ($ray, $q, $radius);
@@ -265,21 +262,21 @@ impl CoarseRay {
         if !self.enabled {
             return ALL_LANES;
         }
-        #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+        #[cfg(x86_simd)]
         return self.survivors_sse2(four);
-        #[cfg(not(all(target_arch = "x86_64", target_feature = "sse2")))]
+        #[cfg(not(x86_simd))]
         return self.survivors_scalar(four);
     }
 
     /// [`CoarseRay::survivors`] one sphere at a time: the reference the vector code is tested
     /// against, and the code of other targets.
-    #[cfg_attr(all(target_arch = "x86_64", target_feature = "sse2", not(test)), allow(dead_code))]
+    #[cfg_attr(all(x86_simd, not(test)), allow(dead_code))]
     fn survivors_scalar(&self, four: &[CoarseSphere; LANES]) -> u32 {
         four.iter().enumerate().fold(0, |mask, (k, sphere)| mask | (u32::from(self.may_hit(sphere)) << k))
     }
 
     /// [`CoarseRay::survivors`] in SSE2, x86-64's baseline: no run-time check.
-    #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+    #[cfg(x86_simd)]
     #[inline]
     fn survivors_sse2(&self, four: &[CoarseSphere; LANES]) -> u32 {
         use std::arch::x86_64::{
@@ -322,7 +319,7 @@ impl CoarseRay {
     ///
     /// # Panics
     /// If `spheres` holds fewer than [`WIDE_LANES`] copies.
-    #[cfg(target_arch = "x86_64")]
+    #[cfg(x86_simd)]
     #[target_feature(enable = "avx2")]
     #[inline]
     pub unsafe fn survivors_wide(&self, spheres: &[CoarseSphere]) -> u32 {
@@ -381,7 +378,7 @@ impl CoarseRay {
     ///
     /// # Panics
     /// If `spheres` holds fewer than [`WIDEST_LANES`] copies.
-    #[cfg(target_arch = "x86_64")]
+    #[cfg(x86_simd)]
     #[target_feature(enable = "avx512f,avx512bw")]
     #[inline]
     pub unsafe fn survivors_widest(&self, spheres: &[CoarseSphere]) -> u32 {
@@ -429,10 +426,10 @@ impl CoarseRay {
     pub unsafe fn survivors_of<const GROUP: usize>(&self, spheres: &[CoarseSphere]) -> u32 {
         const { assert!(GROUP == LANES || GROUP == WIDE_LANES || GROUP == WIDEST_LANES, "4, 8 or 16 copies") };
         match GROUP {
-            #[cfg(target_arch = "x86_64")]
+            #[cfg(x86_simd)]
             // SAFETY: the caller guarantees AVX-512F and AVX-512BW when `GROUP` is 16.
             WIDEST_LANES => unsafe { self.survivors_widest(spheres) },
-            #[cfg(target_arch = "x86_64")]
+            #[cfg(x86_simd)]
             // SAFETY: the caller guarantees AVX2 when `GROUP` is 8.
             WIDE_LANES => unsafe { self.survivors_wide(spheres) },
             LANES => self.survivors(spheres),
@@ -445,7 +442,7 @@ impl CoarseRay {
 /// bytes of sixteen copies (the first 64-byte half's 32 words, then the second's) is count `j` of
 /// copy `k`; word `p` of a shuffle's result is count `first` of copy `p` for `p < 16` and count
 /// `second` of copy `p − 16` above.
-#[cfg(target_arch = "x86_64")]
+#[cfg(x86_simd)]
 const fn shuffle_words(first: i16, second: i16) -> [i16; 32] {
     let mut words = [0; 32];
     let mut p = 0;
@@ -457,11 +454,11 @@ const fn shuffle_words(first: i16, second: i16) -> [i16; 32] {
 }
 
 /// The x counts of sixteen copies, then their y counts ([`shuffle_words`]).
-#[cfg(target_arch = "x86_64")]
+#[cfg(x86_simd)]
 const XY_WORDS: [i16; 32] = shuffle_words(0, 1);
 
 /// The z counts of sixteen copies, then their radii ([`shuffle_words`]).
-#[cfg(target_arch = "x86_64")]
+#[cfg(x86_simd)]
 const ZR_WORDS: [i16; 32] = shuffle_words(2, 3);
 
 /// How many coarse copies [`CoarseRay::survivors_widest`] tests at once.
@@ -557,7 +554,7 @@ mod tests {
         let mut rng = seeded(0x5EED, 4);
         let grid = Grid::new(&Aabb { min: DVec3::splat(-1.0), max: DVec3::splat(1.0) });
         let (mut groups, mut kept, mut lanes) = (0, 0, 0);
-        #[cfg_attr(not(target_arch = "x86_64"), allow(unused_mut))]
+        #[cfg_attr(not(x86_simd), allow(unused_mut))]
         let mut widest = 0;
         for round in 0..20_000 {
             let spheres: Vec<Sphere<f64>> = (0..WIDEST_LANES)
@@ -588,13 +585,13 @@ mod tests {
             assert_eq!(mask, coarse.survivors_scalar(group[..LANES].try_into().unwrap()), "{ray:?} {group:?}");
             let scalar = group.iter().enumerate().fold(0, |m, (k, c)| m | (u32::from(coarse.may_hit(c)) << k));
             assert_eq!(mask, scalar & ALL_LANES, "four at once: {ray:?} {group:?}");
-            #[cfg(target_arch = "x86_64")]
+            #[cfg(x86_simd)]
             if std::arch::is_x86_feature_detected!("avx2") {
                 // SAFETY: the CPU has AVX2 (checked just above).
                 let eight = unsafe { coarse.survivors_wide(&group) };
                 assert_eq!(eight, scalar & 0xff, "eight at once: {ray:?} {group:?}");
             }
-            #[cfg(target_arch = "x86_64")]
+            #[cfg(x86_simd)]
             if std::arch::is_x86_feature_detected!("avx512f") && std::arch::is_x86_feature_detected!("avx512bw") {
                 // SAFETY: the CPU has AVX-512F and AVX-512BW (checked just above).
                 assert_eq!(unsafe { coarse.survivors_widest(&group) }, scalar, "sixteen at once: {ray:?} {group:?}");

@@ -27,13 +27,13 @@ pub(super) fn prefetch_lines<T>(items: &[T]) {
 /// Asks the CPU to start loading the cache line holding `at`.
 #[inline]
 fn prefetch_address(at: *const i8) {
-    #[cfg(target_arch = "x86_64")]
+    #[cfg(x86_simd)]
     {
         use std::arch::x86_64::{_MM_HINT_T0, _mm_prefetch};
         // SAFETY: a prefetch is only a hint: it never faults, whatever the address, and changes no
         // memory; SSE is part of every x86-64 CPU.
         unsafe { _mm_prefetch::<_MM_HINT_T0>(at) };
     }
-    #[cfg(not(target_arch = "x86_64"))]
+    #[cfg(not(x86_simd))]
     let _ = at;
 }

@@ -6,7 +6,7 @@
 use super::build::{
     Builder, EXACT_MAX, PARALLEL_CHUNK, PARALLEL_MIN, Prim, SahCosts, Subtree, check_costs, max_depth, sphere_prims,
 };
-#[cfg(target_arch = "x86_64")]
+#[cfg(x86_simd)]
 use super::coarse::WIDE_LANES;
 use super::coarse::{CoarseRay, CoarseSphere, Grid, LANES, WIDEST_LANES};
 use super::exact::ExactLists;
@@ -345,7 +345,8 @@ impl KdTree {
     /// and stop at their first hit, so for them it is an estimate.
     ///
     /// The tree asks for a leaf's exact spheres ahead when this is at least one half and its
-    /// exact lists are large (the Q3 engineering notes, What made it fast, step 23).
+    /// exact lists are too large for the cache: then a leaf visit is likely to need them, and the
+    /// wait for them is likely to be long.
     ///
     /// # Examples
     /// A ball alone in its bounding cube, one leaf: `4π r² / 24 r² = π/6 ≈ 0.52`.
@@ -509,7 +510,7 @@ impl KdTree {
     /// a load and a test.)
     #[inline]
     fn traverse<C: Counter>(&self, query: Query<'_>, counter: &mut C) -> Option<(usize, f64)> {
-        #[cfg(target_arch = "x86_64")]
+        #[cfg(x86_simd)]
         {
             use std::arch::is_x86_feature_detected as has;
             if has!("avx512f") && has!("avx512bw") {
@@ -529,7 +530,7 @@ impl KdTree {
     ///
     /// # Safety
     /// The CPU must have AVX2.
-    #[cfg(target_arch = "x86_64")]
+    #[cfg(x86_simd)]
     #[target_feature(enable = "avx2")]
     unsafe fn traverse_avx2<C: Counter>(&self, query: Query<'_>, counter: &mut C) -> Option<(usize, f64)> {
         // SAFETY: the caller guarantees AVX2 (this function's contract).
@@ -537,13 +538,12 @@ impl KdTree {
     }
 
     /// [`KdTree::traverse_with`] compiled for AVX-512 (and AVX2, which it includes), sixteen
-    /// copies per coarse test. (On processors that slow their clock for 512-bit instructions, as
-    /// some Intel ones before Ice Lake do, this may not pay; the Q3 engineering notes measured it
-    /// on an AMD Zen 4.)
+    /// copies per coarse test. A processor that lowers its clock for 512-bit instructions may run
+    /// the eight-wide walk faster; the walk is chosen by the features alone.
     ///
     /// # Safety
     /// The CPU must have AVX-512F and AVX-512BW.
-    #[cfg(target_arch = "x86_64")]
+    #[cfg(x86_simd)]
     #[target_feature(enable = "avx2,avx512f,avx512bw")]
     unsafe fn traverse_avx512<C: Counter>(&self, query: Query<'_>, counter: &mut C) -> Option<(usize, f64)> {
         // SAFETY: the caller guarantees AVX-512F and AVX-512BW (this function's contract).
@@ -581,10 +581,9 @@ impl KdTree {
         // and go varies from ray to ray and the processor's guesses at those branches fail about
         // every other time; a ray from outside (a camera's) takes the branching step, whose
         // guesses consecutive rays make right and which lets the next node's load start early.
-        // That step asks for no lines ahead: its rays find their nodes in the cache, so the
-        // prefetches were work for nothing (step 22; the gain is below this machine's noise).
-        // The same nodes either way (the Q3 engineering notes, What made it fast, steps 19 and
-        // 22, give the measured costs, and the price for coherent rays that start inside).
+        // That step asks for no lines ahead: its rays find their nodes in the cache already. The
+        // same nodes either way; the Q3 engineering notes give the price of each step, and what
+        // coherent rays that start inside pay.
         let scattered = cell_min == t_min;
         loop {
             counter.node();
@@ -679,12 +678,11 @@ impl KdTree {
     /// of branching (a wrong guess would flush the other rays' work too), the next node is
     /// prefetched when it is chosen, and a ray that ends is replaced by the next one of the batch.
     ///
-    /// For scattered rays (random origins and directions) at N = 10⁶ this is faster than calling
-    /// [`KdTree::closest_hit`] ray by ray (15–20 % less time in the Q3 benchmark); at
-    /// N = 10⁵, since the single-ray walk stopped zeroing its stack per ray, it is no faster
-    /// (1.04–1.17× the time); for coherent rays in order (a camera's), which find their nodes in
-    /// the cache and whose branches are well guessed, it is slower (1.3–1.7× the time). The Q3
-    /// engineering notes (step 16, and the Results for the latest run) have the measurements.
+    /// It pays for scattered rays (random origins and directions) in trees too large for the
+    /// cache, where many rays wait for memory at once; for coherent rays in order (a camera's),
+    /// which find their nodes in the cache and whose branches are well guessed, calling
+    /// [`KdTree::closest_hit`] ray by ray is faster. The Q3 engineering notes give the current
+    /// times of both.
     ///
     /// Preconditions: as [`KdTree::closest_hit`] (a ray or range it answers `None` for gets
     /// `None` here). A tree of moving spheres answers ray by ray.
@@ -1000,7 +998,7 @@ mod tests {
                 // SAFETY: four copies per test need no feature beyond the target's baseline.
                 let four = unsafe { tree.traverse_with::<(), LANES>(query, &mut ()) };
                 assert_eq!(four, expected, "four-wide: {ray:?}");
-                #[cfg(target_arch = "x86_64")]
+                #[cfg(x86_simd)]
                 if std::arch::is_x86_feature_detected!("avx2") {
                     // SAFETY: the CPU has AVX2 (checked just above).
                     assert_eq!(unsafe { tree.traverse_avx2(query, &mut ()) }, expected, "eight-wide: {ray:?}");
