@@ -165,20 +165,6 @@ fn command_listing(text: &str) -> Vec<(String, String)> {
     commands
 }
 
-#[test]
-fn readme_lists_exactly_the_commands_and_descriptions_of_hw3_help() {
-    let help = String::from_utf8(hw3(&["--help"]).stdout).unwrap();
-    let readme = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md")).unwrap();
-    let from_help = command_listing(&help);
-    assert!(from_help.len() >= 10, "{from_help:?}");
-    assert_eq!(command_listing(&readme), from_help);
-    for (name, _) in &from_help {
-        let sub = hw3(&[name, "--help"]);
-        assert!(sub.status.success(), "{name} --help");
-        assert!(readme.contains(&format!("$ hw3 {name}")), "README has no example of `hw3 {name}`");
-    }
-}
-
 /// `paths` and `effect-tables` were `effects` and `effects-table`: the old names still run the
 /// same commands (same help, same output) but `--help` no longer lists them.
 #[test]

@@ -33,6 +33,8 @@ mod layering;
 mod notes;
 #[path = "q4_cli.rs"]
 mod q4_cli;
+#[path = "readme.rs"]
+mod readme;
 #[path = "solution_cli.rs"]
 mod solution_cli;
 #[path = "threads.rs"]

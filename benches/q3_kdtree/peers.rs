@@ -14,10 +14,9 @@
 use bvh::aabb::{Aabb as BvhAabb, Bounded};
 use bvh::bounding_hierarchy::BHShape;
 use bvh::bvh::{Bvh, BvhNode};
-// obvhs's glam (0.33; benches/Cargo.toml says why it is not hw3's 0.34): every `f32` vector here
-// is its `Vec3A`, so the peers' hot loops convert nothing; the `f32` kd-tree's and Embree's calls
-// convert once per ray, as before.
-use glam_obvhs::Vec3A;
+// Every `f32` vector here is hw3's glam `Vec3A`; obvhs's (whichever glam it resolves to) is met
+// through arrays, `to_array()` and `.into()`, which compile to plain moves of the same layout.
+use glam::Vec3A;
 use hw3::geometry::{Ray, Sphere};
 use nalgebra::Point3;
 use obvhs::BvhBuildParams;
@@ -59,7 +58,7 @@ pub fn rays_f32(rays: &[Ray<f64>]) -> Vec<RayF32> {
         .collect()
 }
 
-/// A `glam` 0.34 `DVec3` as obvhs's `Vec3A`, each component rounded to `f32`.
+/// A `DVec3` as a `Vec3A`, each component rounded to `f32`.
 fn narrow(v: glam::DVec3) -> Vec3A {
     Vec3A::from_array(v.as_vec3().to_array())
 }
@@ -186,13 +185,16 @@ impl Peer {
 }
 
 fn obvhs_ray(ray: &RayF32, t_min: f32) -> ObvhsRay {
-    ObvhsRay::new(ray.origin, ray.dir, t_min, f32::INFINITY)
+    ObvhsRay::new(ray.origin.to_array().into(), ray.dir.to_array().into(), t_min, f32::INFINITY)
 }
 
 /// `obvhs` hands the intersection callback an index into its `primitive_indices` (its builders
 /// reorder primitives); the callback maps it back to the input sphere.
 fn obvhs_test<'a>(spheres: &'a [SphereF32], order: &'a [u32]) -> impl FnMut(&ObvhsRay, usize) -> f32 + 'a {
-    move |r, id| sphere_t(&spheres[order[id] as usize], r.origin, r.direction, r.tmin, r.tmax)
+    move |r, id| {
+        let (origin, dir) = (Vec3A::from_array(r.origin.to_array()), Vec3A::from_array(r.direction.to_array()));
+        sphere_t(&spheres[order[id] as usize], origin, dir, r.tmin, r.tmax)
+    }
 }
 
 fn obvhs_answer(found: bool, hit: &RayHit, order: &[u32]) -> HitF32 {
@@ -269,6 +271,6 @@ impl BHShape<f32, 3> for SphereF32 {
 
 impl obvhs::Boundable for SphereF32 {
     fn aabb(&self) -> ObvhsAabb {
-        ObvhsAabb::new(self.center - self.radius, self.center + self.radius)
+        ObvhsAabb::new((self.center - self.radius).to_array().into(), (self.center + self.radius).to_array().into())
     }
 }
