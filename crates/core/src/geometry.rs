@@ -80,6 +80,12 @@ pub fn require_direction<T: Real>(name: &'static str, v: T::Vec3) -> Result<T::V
 
 /// A ray `origin + t·dir`, in the homework's notation `e + d t`. `dir` need not be unit length:
 /// `t` is then measured in multiples of `|dir|`, exactly as in the homework.
+///
+/// Plain data, like glam's vectors: the fields are public, and the renderer writes the rays it
+/// spawns straight into them. Values from outside the program (the command line, a scene, an
+/// answers file) are checked where they come in, by [`Ray::new`]: a finite origin and a usable
+/// direction. The solvers assume a valid ray; given a non-finite one they report no hit, never a
+/// NaN parameter ([`sphere`] says how).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Ray<T: Real> {
     /// The eye point `e`.
@@ -115,6 +121,11 @@ impl<T: Real> Ray<T> {
 }
 
 /// A sphere `|p − o|² = r²` with centre `o = (a, b, c)` and radius `r`.
+///
+/// Plain data, as [`Ray`]: values from outside the program are checked where they come in, by
+/// [`Sphere::new`] (a finite centre, a finite radius > 0); the kd-tree's build and the renderer's
+/// scenes check every sphere they are given. The solvers assume a valid sphere: non-finite values
+/// give no hit, and a radius ≤ 0 gives answers without meaning.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Sphere<T: Real> {
     /// The centre `o`.

@@ -380,6 +380,25 @@ mod tests {
         Ray::new(DVec3::from(e), DVec3::from(d)).unwrap()
     }
 
+    /// `Ray` and `Sphere` are plain data: a non-finite value written into one is a miss for the
+    /// first-hit solver, never a NaN or infinite parameter.
+    #[test]
+    fn non_finite_rays_and_spheres_are_misses() {
+        let ray = Ray { origin: DVec3::new(-5.0, 0.5, 0.0), dir: DVec3::X };
+        let sphere = Sphere { center: DVec3::ZERO, radius: 1.0 };
+        for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+            let cases = [
+                (Ray { origin: DVec3::new(bad, 0.5, 0.0), ..ray }, sphere),
+                (Ray { dir: DVec3::new(1.0, bad, 0.0), ..ray }, sphere),
+                (ray, Sphere { center: DVec3::new(0.0, bad, 0.0), ..sphere }),
+                (ray, Sphere { radius: bad, ..sphere }),
+            ];
+            for (ray, sphere) in cases {
+                assert_eq!(first_hit_stable(&ray, &sphere), None, "{ray:?} {sphere:?}");
+            }
+        }
+    }
+
     /// The discriminant's error model: the perpendicular vector `f × d` carries `ε|f||d|` of
     /// rounding, which the square root amplifies by `r/h` near a silhouette. Over random grazing
     /// rays the `f32` near root stays within that bound of the exact root of the rounded input, and
