@@ -86,7 +86,7 @@ fn main() {
     }
     let mut csv = format!(
         "# {BATCH} camera rays (about 55 % hits), median over {rounds} interleaved rounds of the best of {repeats} passes; \
-         ratio = median of per-round ratios to the baseline (naive f32 / AtComputedPoint); one run, release build, 1 thread.\n"
+         ratio = median of per-round ratios to the baseline (naive f32 / AtComputedPoint); release build, 1 thread.\n"
     );
     csv.push_str("kind,variant,median_ns,ratio\n");
     for (i, (kind, label, _, _)) in jobs.iter().enumerate() {

@@ -131,15 +131,7 @@ fn time_per_normal(prepared: &Irradiance<'_>, config: Config, normals: &[DVec3])
     }
 }
 
-/// The machine's load while measuring, for the table's header: the 1-minute load average at the
-/// start and the end of the sweep (Linux `/proc/loadavg`), or nothing where it is not readable.
-fn load_average() -> Option<String> {
-    let text = std::fs::read_to_string("/proc/loadavg").ok()?;
-    text.split_whitespace().next().map(str::to_string)
-}
-
 fn sweep() {
-    let load_at_start = load_average();
     let normals = fibonacci_normals(64);
     let seeds: Vec<u64> = (1..=8).collect();
     let mut csv =
@@ -221,12 +213,8 @@ fn sweep() {
             human_time(projection)
         );
     }
-    let load = match (load_at_start, load_average()) {
-        (Some(start), Some(end)) => format!("1-minute load average {start} at the start, {end} at the end"),
-        _ => "load not recorded".to_string(),
-    };
     let markdown = format!(
-        "Measured by `cargo bench -p hw3-benches --bench q4_irradiance` (release, one thread, 2-core shared VM; {load}). Error: % of the peak exact irradiance over 64 Fibonacci normals; \
+        "Measured by `cargo bench -p hw3-benches --bench q4_irradiance` (release, one thread). Error: % of the peak exact irradiance over 64 Fibonacci normals; \
          Relative error: per normal, against that normal's own reference, normals below 1 % of the peak left out. \
          Time per normal: the median of 101 samples of at least 50 µs of consecutive calls over the 64 \
          normals, each method in its own monomorphised loop (no per-call dispatch or input check is \

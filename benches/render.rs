@@ -9,8 +9,8 @@
 //!   plotted by `hw3::q1_hard_scenes::figures`). `cargo test --benches` runs each divan bench once
 //!   and skips that measurement.
 //! - `cargo bench -p hw3-benches --bench render` also writes `docs/data/render_speed.md`: the kd-tree's speed-up
-//!   and the 1→2 thread scaling on the clutter scene, with the CPU time the process actually got
-//!   and the machine's load average, so that a shared machine's contention is visible.
+//!   and the 1→2 thread scaling on the clutter scene, with the CPU time the process actually got,
+//!   so that a shared machine's contention shows as cores used below the threads asked for.
 //! - divan: the cost of the caustic pass on the `caustic` scene (Whitted with the pass planned
 //!   and forced off, and tracing the caustic map alone).
 //! - The tables are written only by a run without a name filter: `cargo bench -p hw3-benches --bench render --
@@ -109,14 +109,6 @@ fn process_cpu_seconds() -> Option<f64> {
     Some(ticks / 100.0) // USER_HZ is 100 on Linux
 }
 
-/// The 1-minute load average (`/proc/loadavg`), or NaN where it is absent.
-fn load_average() -> f64 {
-    std::fs::read_to_string("/proc/loadavg")
-        .ok()
-        .and_then(|text| text.split_whitespace().next()?.parse().ok())
-        .unwrap_or(f64::NAN)
-}
-
 /// Times Whitted renders of the 1500-sphere clutter scene: with the kd-tree on 1 and 2 threads
 /// and by brute force on 1 thread, interleaved over [`SPEED_ROUNDS`] rounds; writes the medians
 /// of wall time and of the cores the process got (CPU time / wall time) to
@@ -133,7 +125,6 @@ fn write_speed_tables() {
         .collect();
     let mut walls = vec![Vec::new(); configurations.len()];
     let mut cores = vec![Vec::new(); configurations.len()];
-    let load_before = load_average();
     for _ in 0..SPEED_ROUNDS {
         for (k, &(_, scene, _)) in configurations.iter().enumerate() {
             let (cpu_start, start) = (process_cpu_seconds(), Instant::now());
@@ -145,10 +136,9 @@ fn write_speed_tables() {
             }
         }
     }
-    let load_after = load_average();
     let samples = f64::from(width * height * spp);
     let mut table = format!(
-        "Whitted tracing of the clutter scene (1500 spheres), {width}×{height} pixels at {spp} spp, median of {SPEED_ROUNDS} interleaved runs; load average {load_before:.2} before, {load_after:.2} after, on a machine with {} logical CPUs.\n\n| queries | threads | wall time (s) | camera samples/s | cores used (CPU time / wall) |\n|---|---|---|---|---|\n",
+        "Whitted tracing of the clutter scene (1500 spheres), {width}×{height} pixels at {spp} spp, median of {SPEED_ROUNDS} interleaved runs, on a machine with {} logical CPUs.\n\n| queries | threads | wall time (s) | camera samples/s | cores used (CPU time / wall) |\n|---|---|---|---|---|\n",
         std::thread::available_parallelism().map_or(0, std::num::NonZero::get)
     );
     for (k, &(queries, _, threads)) in configurations.iter().enumerate() {
