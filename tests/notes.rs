@@ -601,3 +601,49 @@ fn the_student_pages_show_no_key_and_no_variant_design() {
     }
     assert!(found.is_empty(), "the grader's pages hold these:\n{}", found.join("\n"));
 }
+
+// ---------------------------------------------------------------------------------------------
+// The student pages' links to a chapter's section land on a heading of that chapter.
+
+/// The `(qN_…/index.html#anchor)` and `(crate::qN_…#anchor)` links of `text` whose chapter has
+/// no heading with that anchor.
+fn dangling_section_links(text: &str) -> Vec<String> {
+    let mut dangling = Vec::new();
+    for (marker, end) in [("/index.html#", ')'), ("#", ')')] {
+        for (at, _) in text.match_indices(marker) {
+            let before = &text[..at];
+            let start = before.rfind('(').map_or(0, |i| i + 1);
+            let target = &before[start..];
+            let module = target.trim_start_matches("crate::");
+            let is_chapter = module.starts_with('q') && module.as_bytes().get(2) == Some(&b'_') || module == "render";
+            if !is_chapter || (marker == "#" && target.contains('/')) {
+                continue;
+            }
+            let anchor = text[at + marker.len()..].split(end).next().unwrap_or("");
+            let Ok(chapter) = std::fs::read_to_string(Path::new(DOCS).join(format!("{module}.md"))) else {
+                dangling.push(format!("{module}: no such chapter"));
+                continue;
+            };
+            let headings: Vec<String> = chapter.lines().filter_map(heading).map(|(_, t)| anchor(t)).collect();
+            if !headings.iter().any(|h| h == anchor) {
+                dangling.push(format!("{module}#{anchor}"));
+            }
+        }
+    }
+    dangling
+}
+
+#[test]
+fn links_to_a_chapters_section_land_on_a_heading() {
+    let dangling: Vec<String> = STUDENT_PAGES
+        .iter()
+        .flat_map(|name| dangling_section_links(&page(name)).into_iter().map(move |d| format!("{name}: {d}")))
+        .collect();
+    assert!(dangling.is_empty(), "links to no heading:\n{}", dangling.join("\n"));
+}
+
+#[test]
+fn a_dangling_section_link_is_found() {
+    let text = "[x](q2_ray_sphere/index.html#no-such-section) and [y](crate::q3_kd_traversal#the-answer)";
+    assert_eq!(dangling_section_links(text), ["q2_ray_sphere#no-such-section"]);
+}
