@@ -619,14 +619,14 @@ fn dangling_section_links(text: &str) -> Vec<String> {
             if !is_chapter || (marker == "#" && target.contains('/')) {
                 continue;
             }
-            let anchor = text[at + marker.len()..].split(end).next().unwrap_or("");
+            let wanted = text[at + marker.len()..].split(end).next().unwrap_or("");
             let Ok(chapter) = std::fs::read_to_string(Path::new(DOCS).join(format!("{module}.md"))) else {
                 dangling.push(format!("{module}: no such chapter"));
                 continue;
             };
             let headings: Vec<String> = chapter.lines().filter_map(heading).map(|(_, t)| anchor(t)).collect();
-            if !headings.iter().any(|h| h == anchor) {
-                dangling.push(format!("{module}#{anchor}"));
+            if !headings.iter().any(|h| h == wanted) {
+                dangling.push(format!("{module}#{wanted}"));
             }
         }
     }
