@@ -243,9 +243,16 @@ mod q3 {
                 "the ray is parallel to this plane, so there is no t (write",
                 "the ray is not parallel to this plane: t =",
                 "sign error: t = (s - e_a)/d_a =",
-                "comes first: the child the ray is in just after tmin",
+                "comes first: it is the child the ray is in just after tmin",
+                "before tmin, so",
+                "the ray reaches",
+                "not before this node's tmax",
+                "the side it moves into",
+                "and stays on its origin's side",
+                "and a point on the plane belongs to the >= side",
+                "more planes right (each node met earns its own share)",
             ],
-            &[&traces, &grading],
+            &[&traces, &grading, &rules],
         );
     }
 
