@@ -133,9 +133,10 @@ mod q3 {
     }
 
     /// The worked examples of parts q3d and q3e: each TOML block whose first line names its ray
-    /// (`[q3d]  # e = (x, y), d = (x, y)`) holds exactly the lists the traversal gives for that ray, in
-    /// the answers file's form; the examples cover a ray parallel to a split, one lying in a
-    /// split, one starting on a split (t = 0), and one through a corner; and none is a variant's.
+    /// (`[q3d]  # e = (x, y), d = (x, y)`) holds all three lists (planes, descents, leaves), exactly
+    /// as the traversal gives them for that ray, in the answers file's form; the examples cover a
+    /// ray parallel to a split, one lying in the root's split and one lying in a child's split, two
+    /// starting on a split (t = 0), and one through a corner; and none is a variant's.
     #[test]
     fn worked_traces_are_the_traversals_and_no_variants() {
         let text = section(&chapter("q3_kd_traversal.md"), "Parts q3d and q3e: tracing a ray through the tree");
@@ -151,19 +152,26 @@ mod q3 {
             assert!(table == "q3d" || table == "q3e", "{table}");
             let (key_planes, key_descents, key_leaves) = key(&ray);
             let lists = lists.as_table().unwrap();
-            assert!(lists.contains_key("planes") && lists.contains_key("leaves"), "{first}");
+            let mut names: Vec<&str> = lists.keys().map(String::as_str).collect();
+            names.sort_unstable();
+            assert_eq!(names, ["descents", "leaves", "planes"], "{first}: all three lists, nothing else");
             assert_eq!(planes(&lists["planes"]), key_planes, "{first}: planes");
-            if let Some(descents) = lists.get("descents") {
-                assert_eq!(pieces(descents), key_descents, "{first}: descents");
-            }
+            assert_eq!(pieces(&lists["descents"]), key_descents, "{first}: descents");
             assert_eq!(pieces(&lists["leaves"]), key_leaves, "{first}: leaves");
             rays.push((ray, key_planes, key_leaves));
         }
-        assert!(rays.len() >= 5, "{} worked traces", rays.len());
+        assert!(rays.len() >= 7, "{} worked traces", rays.len());
         let parallel = rays.iter().any(|(_, planes, _)| planes.iter().any(|p| p.1.is_none()));
-        let lying_in_a_plane = rays.iter().any(|(ray, planes, _)| {
-            planes[0].1.is_none() && (ray.origin[0] == 3.0 || ray.origin[1] == 1.0 || ray.origin[1] == 3.0)
+        let lying_in_the_root_plane =
+            rays.iter().any(|(ray, planes, _)| planes[0].1.is_none() && ray.origin[0] == 3.0);
+        // Lying in a child's plane: y = 1 inside x < 3, or y = 3 inside x >= 3, and that child reached.
+        let lying_in_a_child_plane = rays.iter().any(|(ray, planes, _)| {
+            ray.dir[1] == 0.0
+                && [("x<3", 1.0), ("x>=3", 3.0)].iter().any(|&(child, split)| {
+                    ray.origin[1] == split && planes.iter().any(|p| p.0 == [child] && p.1.is_none())
+                })
         });
+        let lying_in_a_plane = lying_in_the_root_plane && lying_in_a_child_plane;
         let starting_on_a_plane = rays.iter().filter(|(_, planes, _)| planes.iter().any(|p| p.1 == Some(0.0))).count();
         // A ray through a corner: two planes crossed at the same t, where one leaf ends.
         let corner = rays.iter().any(|(_, planes, leaves)| {
@@ -181,6 +189,28 @@ mod q3 {
                 assert!(!statement.contains(&shown), "seed {seed} asks {shown}");
             }
         }
+    }
+
+    /// The opening names each child with its split, as the homework tree has them, and never lists
+    /// the two splits in an order that reads as the other assignment.
+    #[test]
+    fn the_opening_says_which_child_splits_where() {
+        let q3 = chapter("q3_kd_traversal.md");
+        let opening = section(&q3, "The question (reconstructed where terse)");
+        let opening = opening.split_whitespace().collect::<Vec<_>>().join(" ");
+        let Node2::Split { axis, split, lower, upper } = Node2::homework() else { panic!("the root splits") };
+        let child = |node: &Node2| match node {
+            Node2::Split { axis, split, .. } => format!("{axis} = {split}"),
+            Node2::Leaf => panic!("both children split"),
+        };
+        let stated = format!(
+            "Its root splits at {axis} = {split}; its left child, the cell {axis} < {split}, splits at {}, and its right \
+             child, the cell {axis} ≥ {split}, splits at {}",
+            child(&lower),
+            child(&upper)
+        );
+        assert!(opening.contains(&stated), "{stated}");
+        assert!(!opening.contains("split at y = 3 and y = 1") && !opening.contains("split at y = 1 and y = 3"));
     }
 
     /// The worked numbers of parts q3b and q3c: the formulas' checks on the example ray.
