@@ -460,15 +460,47 @@ mod render {
         // Fresnel at normal incidence, n = 1.5.
         assert!((((1.5f64 - 1.0) / (1.5 + 1.0)).powi(2) - 0.04).abs() < 1e-15);
         has(&t, "$R = ((n - 1)/(n + 1))^2 = 0.04$: 4 % of the light is reflected and 96 % goes through");
-        // The ball lens of the caustic scene.
+        // The ball lens of the caustic scene: the light's image by the lens law, against the floor
+        // point on the line from the light through the centre.
         let center = hw3::render::catalogue::CAUSTIC_BALL_CENTER;
+        let light = hw3::render::catalogue::CAUSTIC_LIGHT_CENTER;
         let (focus, _, _) = hw3::render::catalogue::caustic_footprint(1);
-        let focal = 1.5 * 1.0 / (2.0 * (1.5 - 1.0));
+        let glass = hw3::render::catalogue::glass_ball_caustic().unwrap();
+        let ball = glass
+            .objects()
+            .iter()
+            .find_map(|o| match (o.shape, o.material) {
+                (hw3::render::scene::Shape::Sphere { sphere, .. }, hw3::render::scene::Material::Glass { index }) => {
+                    Some((sphere.center, sphere.radius, index))
+                }
+                _ => None,
+            })
+            .unwrap();
+        assert_eq!(ball, (center, 1.0, 1.5), "the ball the chapter describes");
+        let (radius, n) = (ball.1, ball.2);
+        let focal = n * radius / (2.0 * (n - 1.0));
         assert_eq!(focal, 1.5);
-        assert_eq!(format!("{:.2}", (focus - center).length()), "1.60");
+        let s = (light - center).length();
+        assert_eq!((light - center).x.powi(2) + (light - center).y.powi(2), 73.0);
+        let image = 1.0 / (1.0 / focal - 1.0 / s);
+        let floor = (focus - center).length();
+        // The floor point lies on the line from the light through the centre.
+        assert!(((focus - light).normalize() - (center - light).normalize()).length() < 1e-12);
+        assert_eq!(
+            [format!("{s:.2}"), format!("{image:.2}"), format!("{floor:.2}"), format!("{:.2}", image - floor)],
+            ["8.54", "1.82", "1.60", "0.22"]
+        );
         assert_eq!(format!("{:.2}", focus.x), "0.56");
-        has(&t, "$nR/(2(n-1)) = 1.5 \\times 1/(2 \\times 0.5) = 1.5$");
-        has(&t, "(0.56, 0, 0), lies 1.60 from the centre");
+        has(&t, "centred at (0, 1.5, 0), over the floor y = 0, with a small light centred at (−3, 9.5, 0)");
+        has(&t, "$f = nR/(2(n-1)) = 1.5 \\times 1/(2 \\times 0.5) = 1.5$");
+        has(&t, "$s = \\sqrt{3^2 + 8^2} = \\sqrt{73} = 8.54$");
+        has(&t, "$1/s + 1/s' = 1/f$");
+        has(&t, "$1/s' = 1/1.5 - 1/8.54$, so the light's image lies $s' = 1.82$ beyond the centre");
+        has(
+            &t,
+            "(0.56, 0, 0), lies only 1.60 from the centre: the floor cuts the converging light 0.22 before its focus",
+        );
+        assert!(!t.contains("nearly in focus"), "the parallel-light focus is not the comparison");
         // The photon estimate: 5 nearest of 0.002 W, the 5th at 0.05.
         let disc = PI * 0.05 * 0.05;
         let (k_minus_1, k) = (4.0 * 0.002 / disc, 5.0 * 0.002 / disc);
