@@ -587,6 +587,51 @@ mod render {
         assert!(engineering.contains("against a reference of 4·10⁶ photons at k = 400"));
     }
 
+    /// A figure the renderer chapter shares with another page says what to look at for this
+    /// chapter's lesson; the Q5 montage's caption names its panels where the figure draws them.
+    #[test]
+    fn shared_figures_say_what_to_look_at_here() {
+        let own = chapter("render.md");
+        let figures = |text: &str| -> Vec<(String, String)> {
+            text.split("{{figure:")
+                .skip(1)
+                .map(|rest| {
+                    let (name, caption) = rest.split_once('|').unwrap();
+                    (name.to_string(), caption[..caption.find("}}").unwrap()].to_string())
+                })
+                .collect()
+        };
+        let others: Vec<String> = std::fs::read_dir(DOCS)
+            .unwrap()
+            .map(|e| e.unwrap().path())
+            .filter(|p| p.extension().is_some_and(|e| e == "md") && !p.ends_with("render.md"))
+            .map(|p| std::fs::read_to_string(p).unwrap())
+            .collect();
+        let mut shared = 0;
+        for (name, caption) in figures(&own) {
+            if others.iter().any(|o| o.contains(&format!("{{{{figure:{name}|"))) {
+                shared += 1;
+                assert!(caption.contains("For this chapter, look at"), "{name}: {caption}");
+            }
+        }
+        assert!(shared >= 6, "{shared} shared figures");
+        // The montage is a 2 × 2 grid filled row by row in the order of its scenes.
+        let montage = source("src/q5_effect_tables/figures.rs");
+        let at = |label: &str| montage.find(label).unwrap_or_else(|| panic!("{label}"));
+        assert!(montage.contains("as a\n/// labelled 2 × 2 grid") || montage.contains("2 × 2 grid"));
+        let order = [
+            at("\"(a) highlight on a glossy floor\""),
+            at("\"(c) direct light on a white floor\""),
+            at("\"(d) mirror image: red panel, framed mirror\""),
+            at("\"(d) caustic under a glass ball\""),
+        ];
+        assert!(order.windows(2).all(|w| w[0] < w[1]), "{order:?}");
+        let (_, caption) = figures(&own).into_iter().find(|(n, _)| n == "q5_effect_scenes.png").unwrap();
+        for place in ["(c) top right", "(a) top left", "(d) bottom left", "(d) bottom right"] {
+            assert!(caption.contains(place), "{place}");
+        }
+    }
+
     /// The caustic k table (`render_caustic_k.csv`): the noise law and its one exception (claim
     /// 8), the bias at k = 800, the best k per photon count (claim 9), and the render's k.
     #[test]
