@@ -607,7 +607,8 @@ pub fn answers() -> crate::answers::Answers {
 
 /// Q3's figures: the homework tree with the ray of case (d), of case (e), and of a general ray that
 /// visits all four leaves; and the 3-D kd-tree's time per ray against N, drawn from the committed
-/// benchmark CSV.
+/// benchmark CSV, against testing every sphere (the chapter's) and with the peer libraries too
+/// (the engineering notes').
 ///
 /// # Errors
 /// [`crate::plot::PlotError`] if a diagram cannot be drawn.
@@ -616,9 +617,11 @@ pub fn answers() -> crate::answers::Answers {
 /// ```
 /// let figures = hw3::q3_kd_traversal::figures().unwrap();
 /// assert!(figures.iter().any(|f| f.file_name == "q3_kdtree_cost.svg"));
+/// assert!(figures.iter().any(|f| f.file_name == "q3_kdtree_scaling.svg"));
 /// ```
 pub fn figures() -> Result<Vec<crate::plot::Figure>, crate::plot::PlotError> {
     let mut figures = diagram::figures()?;
+    figures.push(perf::scaling_figure()?);
     figures.push(perf::figure()?);
     Ok(figures)
 }

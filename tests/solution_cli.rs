@@ -28,7 +28,7 @@ fn equals_key(value: &Value, expected: &Expected) -> bool {
         (value, Expected::OrNone { value: inner, none: false }) => equals_key(value, inner),
         (Value::Formula(formula), Expected::Formula { source, .. }) => formula == source,
         (Value::Paths(paths), Expected::Paths { value }) => paths == value,
-        (Value::Planes(given), Expected::Planes { steps }) => given == steps,
+        (Value::Planes(given), Expected::Planes { steps, .. }) => given == steps,
         _ => false,
     }
 }

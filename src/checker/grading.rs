@@ -274,8 +274,8 @@ fn compare(expected: &Expected, given: &Given) -> (bool, String) {
             let graded = grade_trace(leaves, planes, given, *descents);
             (graded.exact, graded.words)
         }
-        (Expected::Planes { steps }, Given::Planes(given)) => {
-            let (credit, words) = grade_planes(steps, given);
+        (Expected::Planes { steps, why_first }, Given::Planes(given)) => {
+            let (credit, words) = grade_planes(steps, why_first, given);
             (credit == 1.0, words)
         }
         (Expected::Choice { value, options }, Given::Choice { answer, why }) => {
@@ -312,7 +312,7 @@ fn show_expected(expected: &Expected) -> String {
             show_vector(*value)
         }
         Expected::Trace { leaves, .. } => leaves.iter().map(show_leaf).collect::<Vec<_>>().join("; "),
-        Expected::Planes { steps } => steps.iter().map(show_plane).collect::<Vec<_>>().join("; "),
+        Expected::Planes { steps, .. } => steps.iter().map(show_plane).collect::<Vec<_>>().join("; "),
         Expected::Choice { value, .. } => (*value).to_string(),
         Expected::Flag { value } => value.to_string(),
         Expected::Formula { source, .. } => (*source).to_string(),
@@ -358,7 +358,7 @@ fn grade(part: &Part, given: Option<&Given>) -> PartResult {
             let graded = grade_trace(leaves, planes, g, *descents);
             Some((graded.credit, (graded.carried > 0).then_some(Rule::CarriedForward)))
         }
-        (Expected::Planes { steps }, Given::Planes(g)) => Some((grade_planes(steps, g).0, None)),
+        (Expected::Planes { steps, why_first }, Given::Planes(g)) => Some((grade_planes(steps, why_first, g).0, None)),
         _ => None,
     };
     let mal_rule = part.mal_rules.iter().find(|rule| compare(&rule.value, given).0);

@@ -97,10 +97,13 @@ pub enum Expected {
         value: String,
     },
     /// The planes met in a kd-tree traversal, in order: at each node, the plane parameter (or
-    /// parallel) and the child descended first. Graded step by step up to the first divergence.
+    /// parallel) and the child descended first. Graded node by node (`checker::traces`).
     Planes {
         /// The key's steps.
         steps: Vec<ExpectedPlane>,
+        /// Why each step's first child comes first, by the question's rule, one per step (the
+        /// feedback on a wrong `first`).
+        why_first: Vec<String>,
     },
     /// Any vector pointing within `angle_tol` radians of `value`, whatever its length (for
     /// recognising wrong answers whose length is also off).
@@ -297,7 +300,7 @@ pub enum Derivation {
 /// use hw3::checker::Expected;
 /// let q3 = hw3::checker::variant("q3", 0).unwrap();
 /// let planes = q3.parts.iter().find(|p| p.key == "q3d.planes").unwrap();
-/// let Expected::Planes { steps } = &planes.expected else { panic!() };
+/// let Expected::Planes { steps, .. } = &planes.expected else { panic!() };
 /// assert_eq!((steps[0].node.len(), steps[0].t, steps[0].first.as_str()), (0, Some(2.0), "x>=3"));
 /// ```
 #[derive(Debug, Clone, PartialEq)]

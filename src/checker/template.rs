@@ -135,7 +135,7 @@ fn key_value(expected: &Expected) -> String {
         Expected::Flag { value } => value.to_string(),
         Expected::Formula { source, .. } => format!("{source:?}"),
         Expected::Paths { value } => format!("{value:?}"),
-        Expected::Planes { steps } => {
+        Expected::Planes { steps, .. } => {
             let rows: Vec<String> = steps
                 .iter()
                 .map(|p| {

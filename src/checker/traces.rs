@@ -1,5 +1,6 @@
-//! Grading a kd-tree traversal: its leaves, every descent with its interval, and the planes met,
-//! each up to the first divergence, with the reason it diverged.
+//! Grading a kd-tree traversal: its leaves and every descent with its interval, each up to the
+//! first divergence (with the error carried forward), and the planes met, node by node; the
+//! feedback names the first divergence and why.
 
 use super::key::{ExpectedLeaf, ExpectedPlane};
 use super::policy::Rule;
@@ -125,8 +126,54 @@ pub(super) fn show_plane(step: &ExpectedPlane) -> String {
     format!("[{node}] t = {} first {}", show_t(step.t), step.first)
 }
 
-/// Credit for the planes of a trace: the share right before the first divergence, and why.
-pub(super) fn grade_planes(expected: &[ExpectedPlane], given: &[ExpectedPlane]) -> (f64, String) {
+/// The key's planes in the depth-first order the answer's own `first`s give: at each node the
+/// child the answer names first (the key's first where the answer lists no such node) comes with
+/// its whole subtree before its sibling. With the answer's firsts right, this is the key's order.
+fn order_by_answer<'a>(expected: &'a [ExpectedPlane], given: &[ExpectedPlane]) -> Vec<&'a ExpectedPlane> {
+    let first_at =
+        |node: &[String]| given.iter().chain(expected).find(|p| p.node.as_slice() == node).map(|p| p.first.as_str());
+    // A node's place in the order: at each level of its path, 0 for the first child, 1 for the second.
+    let rank = |plane: &ExpectedPlane| -> Vec<u8> {
+        (0..plane.node.len())
+            .map(|level| u8::from(first_at(&plane.node[..level]) != Some(&plane.node[level])))
+            .collect()
+    };
+    let mut order: Vec<&ExpectedPlane> = expected.iter().collect();
+    order.sort_by_key(|p| rank(p));
+    order
+}
+
+/// How many of `given`'s entries are right and stand in the order `order`: the largest number of
+/// entries, each the same node as an entry of `order` with the same `t` and the same first child,
+/// that appear in both lists in the same order.
+fn right_in_order(
+    order: &[&ExpectedPlane],
+    given: &[ExpectedPlane],
+    right: impl Fn(&ExpectedPlane, &ExpectedPlane) -> bool,
+) -> usize {
+    // best[j]: the most right entries matched among the key's entries so far and given[..j].
+    let mut best = vec![0usize; given.len() + 1];
+    for e in order {
+        let mut next = vec![0usize; given.len() + 1];
+        for (j, g) in given.iter().enumerate() {
+            let matched = if right(e, g) { best[j] + 1 } else { 0 };
+            next[j + 1] = next[j].max(best[j + 1]).max(matched);
+        }
+        best = next;
+    }
+    best[given.len()]
+}
+
+/// Credit for the planes of a trace, and the feedback: the first divergence and why.
+///
+/// Each plane is a node the ray meets, with its own `t` and its own first child, so each is graded
+/// on its own: an entry earns its share (of the larger of the key's and the answer's counts) when
+/// it names a node the ray meets, with that node's `t` and first child, in depth-first order. The
+/// order is the key's, or the one the answer's own firsts give: a wrong `first` changes the order
+/// of the nodes after it, and it is charged once, at its node. An extra node, a missing one or one
+/// out of order earns nothing. `why_first` holds the reason each key step's first child is first
+/// (the question's rule in that node's numbers), for the feedback on a wrong `first`.
+pub(super) fn grade_planes(expected: &[ExpectedPlane], why_first: &[String], given: &[ExpectedPlane]) -> (f64, String) {
     let same_t = |a: Option<f64>, b: Option<f64>| match (a, b) {
         (None, None) => true,
         (Some(a), Some(b)) => same_bound(a, b),
@@ -134,10 +181,16 @@ pub(super) fn grade_planes(expected: &[ExpectedPlane], given: &[ExpectedPlane]) 
     };
     let agree = |e: &ExpectedPlane, g: &ExpectedPlane| e.node == g.node && same_t(g.t, e.t) && e.first == g.first;
     let prefix = expected.iter().zip(given).take_while(|(e, g)| agree(e, g)).count();
-    let credit = prefix as f64 / expected.len().max(given.len()).max(1) as f64;
     if prefix == expected.len() && prefix == given.len() {
         return (1.0, format!("all {prefix} planes right"));
     }
+    let key_order: Vec<&ExpectedPlane> = expected.iter().collect();
+    let right = [key_order, order_by_answer(expected, given)]
+        .iter()
+        .map(|order| right_in_order(order, given, agree))
+        .max()
+        .unwrap_or(0);
+    let credit = right as f64 / expected.len().max(given.len()).max(1) as f64;
     let n = prefix + 1;
     let reason = match (expected.get(prefix), given.get(prefix)) {
         (Some(e), None) => format!("plane {n} missing: the traversal goes on to {}", show_plane(e)),
@@ -157,12 +210,16 @@ pub(super) fn grade_planes(expected: &[ExpectedPlane], given: &[ExpectedPlane]) 
             }
             (Some(t), Some(_)) => format!("plane {n}: t = (s - e_a)/d_a = {}", show_bound(t)),
         },
-        (Some(e), Some(_)) => format!(
-            "plane {n}: {} comes first: the child the ray is in just after tmin (d_a > 0: the lower side; d_a < 0: the \
-             upper; a ray starting on the plane goes where it moves; a parallel ray stays on its origin's side, >= on the plane)",
-            e.first
-        ),
+        (Some(e), Some(_)) => match why_first.get(prefix) {
+            Some(why) => format!("plane {n}: {why}"),
+            None => format!("plane {n}: {} comes first: it is the child the ray is in just after tmin", e.first),
+        },
         (None, None) => unreachable!("a divergence exists when the lengths or a step differ"),
     };
-    (credit, format!("first {prefix} planes right; {reason}"))
+    let more = match right.saturating_sub(prefix) {
+        0 => String::new(),
+        1 => "; 1 more plane right (each node met earns its own share)".to_string(),
+        k => format!("; {k} more planes right (each node met earns its own share)"),
+    };
+    (credit, format!("first {prefix} planes right; {reason}{more}"))
 }

@@ -1,6 +1,9 @@
-//! The cost-versus-N plot of the 3-D kd-tree, drawn from the committed benchmark CSV
+//! The cost-versus-N plots of the 3-D kd-tree, drawn from the committed benchmark CSV
 //! (`docs/data/q3_kdtree_perf.csv`, written by `cargo bench -p hw3-benches --bench q3_kdtree`), so that
-//! `cargo run` stays deterministic: timings come only from the benchmark.
+//! `cargo run` stays deterministic: timings come only from the benchmark. The chapter's plot
+//! (`q3_kdtree_scaling.svg`) shows the crate's tree against testing every sphere, what an
+//! acceleration structure buys; the engineering notes' plot (`q3_kdtree_cost.svg`) adds the peer
+//! libraries measured in the same run.
 
 use crate::data;
 use crate::plot::{Axis, Chart, Dots, Figure, LegendMark, PALETTE, PlotError, Series, Stroke, legend_grid, svg_figure};
@@ -105,24 +108,50 @@ const WIDTH: u32 = 936;
 const PANEL_HEIGHT: u32 = 430;
 const LEGEND_HEIGHT: u32 = 88;
 
+/// Which methods a plot shows.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Shown {
+    /// The crate's kd-tree and testing every sphere (the chapter's plot).
+    TreeAndBruteForce,
+    /// Every method of [`STRUCTURES`] (the engineering notes' plot).
+    WithPeers,
+}
+
+/// Height of the chapter's legend strip: its three entries fit one row.
+const SCALING_LEGEND_HEIGHT: u32 = 36;
+
+/// The engineering notes' plot: every method, both ray sets.
 pub(super) fn figure() -> Result<Figure, PlotError> {
+    draw("q3_kdtree_cost.svg", Shown::WithPeers, LEGEND_HEIGHT)
+}
+
+/// The chapter's plot: the crate's kd-tree at both densities against testing every sphere.
+pub(super) fn scaling_figure() -> Result<Figure, PlotError> {
+    draw("q3_kdtree_scaling.svg", Shown::TreeAndBruteForce, SCALING_LEGEND_HEIGHT)
+}
+
+fn draw(name: &str, shown: Shown, legend_height: u32) -> Result<Figure, PlotError> {
     let rows = rows(CSV);
     let n_max = rows.iter().map(|r| r.n).fold(100.0, f64::max);
-    svg_figure("q3_kdtree_cost.svg", (WIDTH, PANEL_HEIGHT + LEGEND_HEIGHT), |root| {
+    svg_figure(name, (WIDTH, PANEL_HEIGHT + legend_height), |root| {
         let (panels, legend) = root.split_vertically(PANEL_HEIGHT);
         let (left, right) = panels.split_horizontally(WIDTH / 2);
-        panel(&left, &rows, n_max, Rays::Camera)?;
-        panel(&right, &rows, n_max, Rays::Random)?;
+        panel(&left, &rows, n_max, Rays::Camera, shown)?;
+        panel(&right, &rows, n_max, Rays::Random, shown)?;
         // One legend for both panels, below them, so that it hides no line.
-        legend_grid(&legend, &series(&rows, Rays::Camera), 3, 13)
+        legend_grid(&legend, &series(&rows, Rays::Camera, shown), 3, 13)
     })
 }
 
-/// µs per ray against N for every method, on one ray set: every method at fixed k (the main
+/// µs per ray against N for the methods shown, on one ray set: each at fixed k (the main
 /// workload), and the kd-tree also at fixed volume fraction, dashed and in sky blue, to show the
 /// density scaling.
-fn series(rows: &[Row], rays: Rays) -> Vec<Series> {
-    let methods = STRUCTURES.iter().map(|m| (m, "fixed_k")).chain(std::iter::once((&STRUCTURES[0], "fixed_volume")));
+fn series(rows: &[Row], rays: Rays, shown: Shown) -> Vec<Series> {
+    let methods = STRUCTURES
+        .iter()
+        .filter(|m| shown == Shown::WithPeers || m.camera_column == "camera_mrays" || m.label == "brute force")
+        .map(|m| (m, "fixed_k"))
+        .chain(std::iter::once((&STRUCTURES[0], "fixed_volume")));
     methods
         .map(|(method, density)| {
             let column = match rays {
@@ -148,22 +177,25 @@ fn series(rows: &[Row], rays: Rays) -> Vec<Series> {
         .collect()
 }
 
-/// One log-log panel: µs per ray against N for every method.
+/// One log-log panel: µs per ray against N for the methods shown.
 fn panel<DB: DrawingBackend>(
     area: &DrawingArea<DB, plotters::coord::Shift>,
     rows: &[Row],
     n_max: f64,
     rays: Rays,
+    shown: Shown,
 ) -> Result<(), String> {
-    let title = match rays {
-        Rays::Camera => "camera rays 512×512 (1 thread)",
-        Rays::Random => "10⁶ random rays (1 thread)",
+    let title = match (rays, shown) {
+        (Rays::Camera, Shown::WithPeers) => "camera rays 512×512 (1 thread)",
+        (Rays::Random, Shown::WithPeers) => "10⁶ random rays (1 thread)",
+        (Rays::Camera, Shown::TreeAndBruteForce) => "rays from a camera outside the scene",
+        (Rays::Random, Shown::TreeAndBruteForce) => "rays from random points inside the scene",
     };
     Chart {
         caption_size: 16,
         label_areas: (40, 56),
         label_size: 13,
-        series: series(rows, rays),
+        series: series(rows, rays, shown),
         legend: None,
         ..Chart::new(
             title,
@@ -207,5 +239,20 @@ mod tests {
         let _guard = crate::testing::insta_settings().bind_to_scope();
         let figure = figure().unwrap();
         insta::assert_snapshot!("q3_kdtree_cost", String::from_utf8(figure.bytes).unwrap());
+    }
+
+    /// The chapter's plot shows the crate's tree at both densities and testing every sphere, and
+    /// no peer library.
+    #[test]
+    fn the_chapters_plot_shows_no_peer() {
+        let svg = String::from_utf8(scaling_figure().unwrap().bytes).unwrap();
+        for label in
+            ["kd-tree (this crate, f64), fixed k", "kd-tree (this crate, f64), fixed volume", "brute force, fixed k"]
+        {
+            assert!(svg.contains(label), "{label}");
+        }
+        for peer in ["bvh", "obvhs", "Embree", "thread"] {
+            assert!(!svg.contains(peer), "{peer}");
+        }
     }
 }

@@ -432,18 +432,27 @@ pub const CAUSTIC_LIGHT_CENTER: DVec3 = DVec3::new(-3.0, 9.5, 0.0);
 /// A glass ball (radius 1, index 1.5, centre [`CAUSTIC_BALL_CENTER`]) over a white diffuse floor,
 /// lit by one small area light ([`CAUSTIC_LIGHT_CENTER`], 0.8 × 0.8, radiance 250) up and to
 /// the side, so that the ball focuses the light into a bright spot inside its own shadow. A ball
-/// lens of index n and radius R focuses parallel light at `nR/(2(n − 1)) = 1.5` from its centre;
-/// the floor point on the line from the light through the centre, (0.56, 0, 0), lies 1.60 from
-/// it, so the spot is nearly in focus. Eye rays with shadow rays cannot find it (the shadow ray
-/// from the floor to the light is blocked by the glass): the scene of the caustic pass.
+/// lens of index n and radius R focuses parallel light at `f = nR/(2(n − 1)) = 1.5` from its
+/// centre; the light's centre, `s = √73 ≈ 8.54` from the ball's, is imaged by the lens law
+/// `1/s + 1/s′ = 1/f` (both distances from the centre, where a ball's principal planes lie) at
+/// `s′ ≈ 1.82` beyond it. The floor point on the line from the light through the centre,
+/// (0.56, 0, 0), lies 1.60 from the centre, so the floor catches the converging light 0.22 before
+/// its focus: a small bright disc. Eye rays with shadow rays cannot find it (the shadow ray from
+/// the floor to the light is blocked by the glass): the scene of the caustic pass.
 ///
 /// # Errors
 /// Never for the built-in numbers.
 ///
 /// # Examples
 /// ```
+/// use hw3_render::render::catalogue::{CAUSTIC_BALL_CENTER, CAUSTIC_LIGHT_CENTER, caustic_footprint};
 /// let scene = hw3_render::render::catalogue::glass_ball_caustic().unwrap();
 /// assert_eq!(scene.objects().len(), 3);
+/// // The lens law puts the light's image 1.82 beyond the centre; the floor's spot is at 1.60.
+/// let (f, s) = (1.5 * 1.0 / (2.0 * 0.5), (CAUSTIC_LIGHT_CENTER - CAUSTIC_BALL_CENTER).length());
+/// let image = 1.0 / (1.0 / f - 1.0 / s);
+/// let floor = (caustic_footprint(1).0 - CAUSTIC_BALL_CENTER).length();
+/// assert_eq!((format!("{s:.2}"), format!("{image:.2}"), format!("{floor:.2}")), ("8.54".into(), "1.82".into(), "1.60".into()));
 /// ```
 pub fn glass_ball_caustic() -> Result<Scene, InputError> {
     let floor = Object::quad(
@@ -464,7 +473,7 @@ pub fn glass_ball_caustic() -> Result<Scene, InputError> {
     Scene::new(camera, vec![floor, light, ball], vec![], None, DVec3::ZERO)
 }
 
-/// The `caustic` scene's footprint: the disc of radius 0.3 about the focus (0.5625, 0, 0), the
+/// The `caustic` scene's footprint: the disc of radius 0.3 about the spot's centre (0.5625, 0, 0), the
 /// floor point on the line from the light's centre through the ball's centre, all of it in the
 /// ball's umbra; with `n` floor points spread evenly over its area (a sunflower pattern). The
 /// caustic pass's tests and accuracy table measure there.
