@@ -5,7 +5,9 @@
 //! A traversal keeps the part `[t_min, t_max]` of the ray `e + d t` that lies inside the current
 //! node. At a node split by the plane `p_a = s` (axis `a`), the ray meets the plane at
 //! `t = (s − e_a) / d_a`, and the interval divides into at most two pieces: the **near** child
-//! (where the ray is just after `t_min`) over `[t_min, t]` and the **far** child over `[t, t_max]`.
+//! (the side the ray moves from, by the sign of `d_a`) over `[t_min, t]` and the **far** child over
+//! `[t, t_max]`. The child visited first, the one the ray is in just after `t_min`, is the near
+//! child when the crossing lies ahead of `t_min`, and the far child when it lies behind.
 //! The rule is written once, against [`AxisLine`]; how `t` is evaluated is the axis's business:
 //! [`QuotientAxis`] divides, exactly as the homework writes it (the Q3 traces), and
 //! [`ReciprocalAxis`] multiplies by `1/d_a` taken once per ray (the 3-D tree, where a division at
@@ -289,7 +291,8 @@ pub fn split_interval(axis: impl AxisLine, split: f64, t_min: f64, t_max: f64) -
 /// engineering notes measure both).
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct SplitPieces {
-    /// The child the ray is in just after `t_min`.
+    /// The side the ray moves from (by the sign of `d_a`; for a parallel ray, its origin's side):
+    /// the child the ray is in just after `t_min` when `near_live`, the other one when not.
     pub near: Side,
     /// Where the ray crosses the plane; NaN for a parallel axis (then `far_live` is false).
     pub t_plane: f64,
