@@ -896,3 +896,119 @@ fn q1_keeps_lessons_and_leaves_the_lab_report_to_the_engineering_page() {
     let notes = chapter("engineering_q1.md");
     assert!(notes.contains("## Hard cases") && notes.contains("z-test"));
 }
+
+// ---------------------------------------------------------------------------------------------
+// Q2: the far-sphere threshold, the chapter free of test names and time tables, `hw3 answers`.
+
+/// 2^k in `f32`, exactly (k within the normal exponents).
+fn pow2(k: i32) -> f32 {
+    f32::from_bits(((k + 127) as u32) << 23)
+}
+
+/// Whether `ff − rr` rounds back to `ff` in `f32`: r² lost.
+fn r_squared_lost(ff: f32, rr: f32) -> bool {
+    ff - rr == ff
+}
+
+/// TA 6: between 2¹² r and 2^12.5 r, r² is lost above the power of two that lies in between when
+/// r² is not a power of two, and by ties-to-even parity when it is (r = 1: 2²⁴ + 2 keeps it,
+/// 2²⁴ + 4 loses it). Checked in `f32` over a sweep, and the chapter says exactly that.
+#[test]
+fn q2_far_sphere_loss_is_the_power_of_two_in_between_or_ties_to_even() {
+    // r = 1: every |f|² in (2²⁴, 2²⁵) is a tie; the even ones lose r².
+    let two24 = 16_777_216.0_f32;
+    assert!(!r_squared_lost(two24 + 2.0, 1.0) && two24 + 2.0 - 1.0 == two24);
+    assert!(r_squared_lost(two24 + 4.0, 1.0));
+    let mut ff = two24 + 2.0;
+    while ff < 2.0 * two24 {
+        let even = ff.to_bits() & 1 == 0;
+        assert_eq!(r_squared_lost(ff, 1.0), even, "{ff}");
+        // An odd stride, so that both parities are visited.
+        ff = f32::from_bits(ff.to_bits() + 1671);
+    }
+    // r = 1.3: kept below |f|² = 2²⁵, lost above it (|f| ≈ 5793).
+    let r = 1.3_f32;
+    for f in (5400..7500).map(|f| f as f32) {
+        assert_eq!(r_squared_lost(f * f, r * r), f * f > 2.0 * two24, "|f| = {f}");
+    }
+    assert!(!r_squared_lost(5792.0 * 5792.0, r * r) && r_squared_lost(5793.0 * 5793.0, r * r));
+    // Every r of a sweep: kept up to 2¹² r, and between 2¹² r and 2^12.5 r decided by the rule.
+    for i in 0..2000_u32 {
+        let r = (0.01 + 50.0 * f64::from(i) / 2000.0) as f32;
+        let rr = r * r;
+        let m = ((rr.to_bits() >> 23) & 0xff) as i32 - 127;
+        let power_of_two = rr == pow2(m);
+        for j in 0..200_u32 {
+            let f = (2.0_f64.powf(12.0 + 0.5 * f64::from(j) / 200.0) * f64::from(r)) as f32;
+            let ff = f * f;
+            if f64::from(ff) <= 2.0_f64.powi(24) * f64::from(rr) || f64::from(ff) >= 2.0_f64.powi(25) * f64::from(rr) {
+                continue;
+            }
+            let expected = if power_of_two { ff.to_bits() & 1 == 0 } else { ff > pow2(25 + m) };
+            assert_eq!(r_squared_lost(ff, rr), expected, "r = {r}, |f| = {f}");
+        }
+    }
+    let text = prose("q2_ray_sphere.md");
+    for claim in [
+        "when $r^2$ is less than half the [ulp](crate::notes::glossary#ulp) of $|\\mathbf{f}|^2$",
+        "an exact half is a tie, rounded to the neighbour whose last significand bit is 0 (ties to even)",
+        "If $r^2$ is not a power of two, one power of two lies between $2^{24} r^2$ and $2^{25} r^2$, where the ulp of $|\\mathbf{f}|^2$ doubles: $r^2$ is kept below it and lost above it (for r = 1.3 the loss starts at $|\\mathbf{f}|^2 = 2^{25}$, $|\\mathbf{f}| \\approx 5793$)",
+        "If $r^2$ is a power of two, as for r = 1, the ulp is the same, $2r^2$, over the whole range",
+        "with r = 1, $|\\mathbf{f}|^2 = 2^{24} + 2$ keeps $r^2$ (the difference rounds down to $2^{24}$) while $2^{24} + 4$ loses it",
+    ] {
+        assert!(text.contains(claim), "Q2 does not say: {claim}");
+    }
+    assert!(!text.contains("depends on where $|\\mathbf{f}|^2$ falls between two powers of two"));
+}
+
+/// The names of the `#[test]` functions in the files under `dir` (recursively).
+fn test_names(dir: &Path) -> Vec<String> {
+    let mut names = Vec::new();
+    for entry in std::fs::read_dir(dir).unwrap() {
+        let path = entry.unwrap().path();
+        if path.is_dir() {
+            names.extend(test_names(&path));
+        } else if path.extension().is_some_and(|e| e == "rs") {
+            let source = std::fs::read_to_string(&path).unwrap();
+            let mut lines = source.lines();
+            while let Some(line) = lines.next() {
+                if line.trim() == "#[test]" {
+                    let next = lines.find(|l| l.trim_start().starts_with("fn ")).unwrap_or("");
+                    names.push(next.trim_start()[3..].split('(').next().unwrap().to_string());
+                }
+            }
+        }
+    }
+    names
+}
+
+/// TA "Q2": the chapter cites no test by name and shows no time per call; the benchmark's table
+/// and chart are on the engineering page, and the chapter keeps the lesson in relative terms.
+#[test]
+fn q2_chapter_names_no_test_and_shows_no_time_table() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut names = test_names(&root.join("src/q2_ray_sphere"));
+    names.extend(test_names(&root.join("src/checker")));
+    names.extend(test_names(&root.join("crates/core/src/geometry")));
+    names.extend(test_names(&root.join("tests")));
+    assert!(names.iter().any(|n| n == "erratum_t1_is_never_smaller_than_t2"), "{names:?}");
+    let text = chapter("q2_ray_sphere.md");
+    for name in &names {
+        assert!(!text.contains(&format!("`{name}`")), "Q2 cites the test {name}");
+    }
+    for timing in ["{{include:figures/q2_cost.md}}", "q2_cost.svg", "ns / call", "time per call", "ns/call"] {
+        assert!(!text.contains(timing), "Q2 shows {timing}");
+    }
+    let notes = chapter("engineering_q2.md");
+    assert!(notes.contains("{{include:figures/q2_cost.md}}") && notes.contains("{{figure:q2_cost.svg|"));
+    assert!(prose("q2_ray_sphere.md").contains("Here accuracy is nearly free."));
+}
+
+/// `hw3 answers --question q2` prints the chapter's numbers, and no others.
+#[test]
+fn q2_hw3_answers_prints_only_the_chapters_numbers() {
+    let answers = hw3::q2_ray_sphere::answers().text;
+    assert_answers_print_only_the_chapters_numbers("q2", "q2_ray_sphere.md", &answers);
+    assert!(answers.contains("case outside, t = 1, point (-3, 5, -1)."), "{answers}");
+    assert!(answers.contains("n = (-0.8, 0.6, 0), reflected (-0.28, 0.96, 0)"), "{answers}");
+}
