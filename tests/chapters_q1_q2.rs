@@ -1012,3 +1012,178 @@ fn q2_hw3_answers_prints_only_the_chapters_numbers() {
     assert!(answers.contains("case outside, t = 1, point (-3, 5, -1)."), "{answers}");
     assert!(answers.contains("n = (-0.8, 0.6, 0), reflected (-0.28, 0.96, 0)"), "{answers}");
 }
+
+// ---------------------------------------------------------------------------------------------
+// The staff pages: what seed 0 is, the manual's example file, its grading rules as the code has
+// them; and the hand-in page's advice on checking.
+
+/// TA 8: seed 0 of Q2 and Q4 is not the chapters' worked example; the grader's manual, the
+/// answer key and the glossary say what it is, and it is what the checker draws.
+#[test]
+fn seed_zero_is_described_as_the_checker_draws_it() {
+    for page in ["checker.md", "answer_key.md", "glossary.md"] {
+        let text = prose(page);
+        for stale in ["notes' worked example", "the notes' worked examples", "the worked example for Q2"] {
+            assert!(!text.contains(stale), "{page}: {stale}");
+        }
+    }
+    let q2 = variant("q2", 0).unwrap();
+    assert!(q2.statement.contains("e = (-5, 1, 0), d = (1, 0, 0); sphere with centre o = (0, 0, 0), radius r = 2."));
+    let t = q2.parts.iter().find(|p| p.key == "q2a.t").unwrap();
+    let Expected::OrNone { value, .. } = &t.expected else { panic!() };
+    let Expected::Number { value: t, .. } = **value else { panic!() };
+    assert!((t - (5.0 - 3f64.sqrt())).abs() < 1e-12);
+    let (ray, sphere) = hw3::q2_ray_sphere::notes_example();
+    assert_ne!(sphere.radius, 2.0, "the chapter's example is not seed 0's");
+    assert_ne!(ray.origin, glam::DVec3::new(-5.0, 1.0, 0.0));
+    assert_says(
+        "checker.md",
+        &[
+            "seed 0 is the eye `e = (−5, 1, 0)` looking along `d = (1, 0, 0)` at a sphere of radius 2 centred at the origin: an eye outside, `A = 1`, `B = −10`, `C = 22`, first hit `t = 5 − √3 = 3.267949`".into(),
+            "Seed 0 is L = 1 + ω_z, a 60° tilt and D = 3R, with a 5 × 5 image in part (c); like Q2's, it is not the chapter's worked example.".into(),
+        ],
+    );
+    assert_says(
+        "answer_key.md",
+        &[
+            "for Q2 the eye e = (−5, 1, 0) looking along d = (1, 0, 0) at a sphere of radius 2 centred at the origin (an eye outside, first hit t = 5 − √3)".into(),
+            "for Q4 the sky L = 1 + ω_z, a normal tilted 60° from up, a ball photographed from D = 3R and a 5 × 5 image of it".into(),
+        ],
+    );
+    let q4 = variant("q4", 0).unwrap().statement;
+    for fact in ["L(w) = 1 + 1 w_z", "tilted 60 degrees", "D = 3 R", "as a 5 x 5 image"] {
+        assert!(q4.contains(fact), "Q4 seed 0: {fact}");
+    }
+    let q1 = variant("q1", 0).unwrap().statement;
+    assert!(q1.contains("1500 spheres of radius a = 0.5") && q1.contains("sigma_t = 0.08"));
+    assert_says("glossary.md", &["Seed 0 uses the homework's own numbers where the homework gives numbers (the rays of Q3) and fixed numbers of its own elsewhere; like every seed, it is not a chapter's worked example.".into()]);
+}
+
+/// TA 9: the manual's example file is a true seed-0 file, and `hw3 check` grades every value it
+/// holds correct, as the manual says.
+#[test]
+fn the_manuals_example_file_is_graded_as_it_says() {
+    let text = chapter("checker.md");
+    let start = text.find("## The file").unwrap();
+    let block = &text[start..];
+    let toml_start = block.find("```toml\n").unwrap() + "```toml\n".len();
+    let file = &block[toml_start..toml_start + block[toml_start..].find("```").unwrap()];
+    assert!(file.contains("[meta]\nseed = 0 "), "{file}");
+    assert!(
+        squash(&block[..toml_start]).contains("every value below is right, and `hw3 check` grades each one correct")
+    );
+    let report = hw3::checker::check(file, None).unwrap();
+    assert_eq!(report.seed, 0);
+    assert!(report.unknown_keys.is_empty() && report.warnings.is_empty(), "{report:?}");
+    let answered: Vec<_> = report.parts.iter().filter(|p| p.status != "missing").collect();
+    assert!(answered.len() >= 20, "{} parts answered", answered.len());
+    for part in answered {
+        assert_eq!(part.status, "correct", "{}: {}", part.key, part.feedback);
+    }
+    // Its comments: the class it writes for q5paths.b is another spelling of the key's.
+    let b = report.parts.iter().find(|p| p.key == "q5paths.b").unwrap();
+    assert!(file.contains(&format!("# the same class as the key's {}", b.expected)), "{}", b.expected);
+    assert!(!file.contains("impractical"));
+}
+
+/// TA 10: the manual carries no stale Q5 policy (a "measured" No, an impractical two-pass
+/// caustic, a mal-rule for impractical cells that Q5 does not have).
+#[test]
+fn the_manual_has_no_stale_q5_policy() {
+    let text = prose("checker.md");
+    for stale in [
+        "measured_no",
+        "a Yes on a cell that is *impractical*",
+        "experiment measures No",
+        "d_caustic = \"impractical\"",
+    ] {
+        assert!(!text.contains(stale), "checker.md: {stale}");
+    }
+    // Q5 has no mal-rules, and no key cell is impractical.
+    let q5 = variant("q5", 0).unwrap();
+    assert!(q5.parts.iter().all(|p| p.mal_rules.is_empty()));
+    assert!(q5.parts.iter().all(|p| !matches!(p.expected, Expected::Choice { value: "impractical", .. })));
+    assert!(text.contains("Q5 has no mal-rules") && text.contains("no key cell is *impractical*"));
+}
+
+/// TA 11: a trace's planes earn credit only up to the first wrong entry (seed 7's q3e: a wrong
+/// first plane and a right second earn 0 of 1.5; a right first and a wrong second, 0.75).
+#[test]
+fn the_manual_states_the_planes_credit_as_the_code_gives_it() {
+    let grade = |planes: &str| -> f64 {
+        let file = format!("[meta]\nseed = 7\n[q3e]\nplanes = {planes}\n");
+        let report = hw3::checker::check(&file, None).unwrap();
+        report.parts.iter().find(|p| p.key == "q3e.planes").unwrap().score
+    };
+    let right = r#"[ { node = [], t = "parallel", first = "x>=3" }, { node = ["x>=3"], t = 1.5, first = "y<3" } ]"#;
+    assert_eq!(grade(right), 1.5);
+    assert_eq!(grade(&right.replace(r#"first = "x>=3""#, r#"first = "x<3""#)), 0.0);
+    assert_eq!(grade(&right.replace("t = 1.5", "t = 2")), 0.75);
+    assert_says(
+        "checker.md",
+        &[
+            "credit is the number of entries right *before the first wrong one*, out of the longer of the two lists".into(),
+            "For seed 7's `q3e.planes` (two entries, 1.5 points), a wrong first entry and a right second one earn 0; a right first entry and a wrong second one earn 0.75.".into(),
+        ],
+    );
+}
+
+/// TA "as a grader": the manual's tolerances are the code's, part by part.
+#[test]
+fn the_manual_states_the_tolerances_the_code_uses() {
+    const ONE_PER_CENT: [&str; 3] = ["q1a.gap_fraction", "q1c.reflection_turn_deg", "q1d.pixels_per_frame"];
+    for seed in 0..24 {
+        for question in hw3::checker::QUESTIONS {
+            for part in variant(question, seed).unwrap().parts {
+                let expected = match &part.expected {
+                    Expected::OrNone { value, .. } => (**value).clone(),
+                    other => other.clone(),
+                };
+                match expected {
+                    Expected::Number { rtol, atol, .. } => {
+                        let probe = part.key.starts_with("q4c.")
+                            && (part.key.ends_with("solid_angle") || part.key.ends_with("_sum"));
+                        let documented = if ONE_PER_CENT.contains(&part.key) || probe {
+                            1e-2
+                        } else if part.key == "q4c.bias_ratio" {
+                            2e-3
+                        } else {
+                            1e-3
+                        };
+                        assert_eq!((rtol, atol), (documented, 1e-9), "{}", part.key);
+                    }
+                    Expected::Vector { rtol, atol, .. } => assert_eq!((rtol, atol), (1e-3, 1e-6), "{}", part.key),
+                    Expected::Direction { angle_tol, .. } => {
+                        let documented = if part.key.starts_with("q4c.") { 5e-3 } else { 1e-3 };
+                        assert_eq!(angle_tol, documented, "{}", part.key);
+                    }
+                    _ => {}
+                }
+            }
+        }
+    }
+    assert_says(
+        "checker.md",
+        &[
+            "**Numbers** are accepted within `rtol · |key| + 1e-9`, where `rtol` is the part's relative tolerance, which the template prints beside it: `1e-3` (0.1 %: hand arithmetic to four figures) for every number except Q1's `q1a.gap_fraction`, `q1c.reflection_turn_deg` and `q1d.pixels_per_frame` and Q4's probe-image solid angles and texel sums (`1e-2`, 1 %), and Q4's `q4c.bias_ratio` (`2e-3`, 0.2 %".into(),
+            "**Points** (Q2's `point`) are accepted when their distance to the key is within `1e-3 · |key| + 1e-6`.".into(),
+            "must be within 1 mrad of the key *and* of unit length (within 1e-3); the directions of Q4's probe image (its texels' and the blind direction) within 5 mrad".into(),
+        ],
+    );
+    let text = prose("checker.md");
+    assert!(!text.contains("Numbers** are accepted within `1e-3 · |key| + 1e-9`"));
+}
+
+/// Student 9: the hand-in page leaves how often to check to the course, and says why.
+#[test]
+fn hand_in_leaves_how_often_to_check_to_the_course() {
+    let text = prose("hand_in.md");
+    assert!(!text.contains("Check as often as you like"));
+    assert!(text.contains("Because `hw3 check` shows the expected value of every part it marks wrong"));
+    assert!(text.contains("A course that grades your first attempt, or limits how often you may check, will say so"));
+    // And it does show the expected value of a wrong part.
+    let report = hw3::checker::check("[meta]\nseed = 3\n[q1b]\ntransmittance = 0.5\n", None).unwrap();
+    let part = report.parts.iter().find(|p| p.key == "q1b.transmittance").unwrap();
+    assert_eq!(part.status, "wrong");
+    assert!(hw3::checker::report_text(&report).contains(&format!("expected {}", part.expected)));
+}
