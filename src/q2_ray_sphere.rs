@@ -243,13 +243,20 @@ pub fn answers() -> Answers {
         sphere.radius,
         b * b - 4.0 * a * c,
     );
-    let case = match (b * b - 4.0 * a * c, c) {
-        (disc, _) if disc < 0.0 => "miss",
-        (disc, _) if disc == 0.0 => "tangent",
-        (_, c) if c == 0.0 => "on_surface",
-        (_, c) if c < 0.0 => "inside",
-        _ if b < 0.0 => "outside",
-        _ => "behind",
+    // The chapter's case rule (part q2a, step 3): the discriminant's sign, then C's, then B's.
+    let discriminant = b * b - 4.0 * a * c;
+    let case = if discriminant < 0.0 {
+        "miss"
+    } else if discriminant == 0.0 {
+        "tangent"
+    } else if c == 0.0 {
+        "on_surface"
+    } else if c < 0.0 {
+        "inside"
+    } else if b < 0.0 {
+        "outside"
+    } else {
+        "behind"
     };
     if let Some(answer) = &solved {
         let _ = writeln!(
