@@ -32,7 +32,8 @@ use crate::answers::Answers;
 
 /// The Q1 answers: the four hard scenes and what makes each hard, with the law each obeys.
 /// Cheap (no rendering): the measured numbers are [`findings`], read from the committed tables
-/// that the chapter includes, so the two say the same.
+/// that the engineering notes include, in the words the chapter prints them, so the two say the
+/// same (every number printed here is one the chapter prints; `tests/chapters_q1_q2.rs` checks).
 ///
 /// # Examples
 /// ```
@@ -49,60 +50,47 @@ pub fn answers() -> Answers {
     let found = findings();
     let (first_count, last_count) = found.clutter_counts;
     let sigmas = FOG_SIGMAS.map(|s| s.to_string()).join(" / ");
-    let (width, height) = metric::METRIC_SIZE;
-    let [
-        within,
-        changed,
-        kd_tests,
-        path_excess,
-        airlight_turn,
-        ranges,
-        sensitivity,
-        growth,
-        ball_speed,
-        constant_ratio,
-        spp_ratio,
-    ] = <[String; 11]>::try_from(found.shared_phrases()).expect("eleven shared phrases");
-    let (passed_few, passed_many) = found.spheres_passed;
+    let [within, changed, kd_tests, airlight_turn, ranges, sensitivity, growth, ball_speed, constant_ratio, spp_ratio] =
+        <[String; 10]>::try_from(found.shared_phrases()).expect("ten shared phrases");
+    let (_, passed_most) = found.spheres_passed;
     let (coarse, fine) = found.airlight_errors;
     let text = format!(
-        "(a) clutter: one sphere of radius a over a W × W face blocks a perpendicular ray with \
-         probability p = πa²/(W + 2a)², so the gap fraction is (1 − p)^N ≈ e^(−Np); the measured gap \
-         fractions lie {within} of the law over N = {first_count}…{last_count} (table q1_clutter_table). \
-         What makes it hard: a camera ray passes through {passed_few:.3} to {passed_many:.3} spheres but \
-         sees at most one; a camera step of {CLUTTER_CAMERA_STEP} changes which sphere {changed} of the \
-         pixels see; without an acceleration structure every ray is tested against all N spheres, with \
-         the kd-tree {kd_tests} (table q1_clutter_hardness).\n\
+        "(a) clutter: one sphere of radius a over a W × W face (widened by a on each side) blocks a \
+         perpendicular ray with probability p = πa²/(W + 2a)², so the gap fraction is (1 − p)^N; its limit \
+         e^(−Np) is larger by about Np²/2, relatively. Over forests of {first_count} to {last_count} spheres \
+         every measured gap fraction lies {within} of the law. What makes it hard is visibility: at N = \
+         {last_count} a ray passes through {passed_most:.3} spheres on average but sees at most one; a \
+         sideways camera step of {CLUTTER_CAMERA_STEP} changes which sphere {changed} of the pixels see; \
+         the kd-tree of Q3 cuts the ray/sphere tests from all N to {kd_tests}.\n\
          (b) fog: a target's light arrives dimmed by the transmittance e^(−σ_t ℓ) over a path of length \
-         ℓ (the renderer matches it to rounding, below {:e}; the probe's path is ℓ = {:.4} d, so the \
-         dimming differs from e^(−σ_t d) by {path_excess}); a dark object seen against the horizon sky \
+         ℓ (the renderer matches it to rounding, below {:e}); a dark object seen against the horizon sky \
          keeps the contrast e^(−σ_t d) (Koschmieder), so the visual range is ln 50/σ_t = {ranges} units \
-         for σ_t = {sigmas}. A lamp adds its glow (airlight), which the renderer integrates along every \
-         view ray and which matches Sun et al.'s closed form (largest error {coarse:.1e} at {} steps, \
-         {fine:.1e} at 4096); the lamp-lit contrast T/airlight falls faster than T where the airlight \
-         grows with distance, and slower where it falls ({airlight_turn}).\n\
+         for σ_t = {sigmas}. A lamp adds its glow (airlight), which the renderer adds up in {} steps along \
+         every view ray, at most {coarse:.1e} from Sun et al.'s closed form ({fine:.1e} with 4096 steps); \
+         under a lamp the contrast falls faster than T where the glow grows with distance, and slower \
+         where it falls ({airlight_turn}).\n\
          (c) mirrors: a sideways camera step δ turns the reflection at a mirror ball's centre by 2δ/R; \
          between four mirror spheres nearby rays separate {growth}, between flat mirrors only linearly; \
          over the pixels that see the spheres, the image changes {sensitivity} faster per unit camera \
-         move than the same spheres made diffuse (Whitted, {width}×{height}).\n\
+         move than the same spheres made diffuse.\n\
          (d) change over time: an object moving v/fps per frame at depth z shifts \
          (v/fps)·(H/2)/tan(fov/2)/z pixels per frame; the moving ball shifts {ball_speed}, and its motion \
-         blur costs {constant_ratio}, {spp_ratio} of the still scene for the same noise (table \
-         q1_motion_table).",
+         blur costs {constant_ratio}, {spp_ratio} of the still scene for the same noise.",
         fog::ROUNDING_LEVEL,
-        fog_path_factor(),
         crate::render::integrator::IN_SCATTER_STEPS,
     );
-    Answers { question: "q1", title: "Four scenes that are hard to render, and why (measured)", text }
+    Answers { question: "q1", title: "Four scenes that are hard to render, and why", text }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
 
+    /// The chapter's lessons rest on the generated tables, which the engineering notes include in
+    /// full (the chapter itself keeps the charts and the lessons in words).
     #[test]
-    fn chapter_includes_every_generated_table() {
-        let chapter = include_str!("../docs/q1_hard_scenes.md");
+    fn engineering_notes_include_every_generated_table() {
+        let notes = include_str!("../docs/engineering_q1.md");
         for table in [
             "q1_clutter_table.md",
             "q1_clutter_hardness.md",
@@ -113,7 +101,7 @@ mod tests {
             "q1_mirror_divergence_table.md",
             "q1_motion_table.md",
         ] {
-            assert!(chapter.contains(&format!("{{{{include:figures/{table}}}}}")), "{table}");
+            assert!(notes.contains(&format!("{{{{include:figures/{table}}}}}")), "{table}");
         }
     }
 

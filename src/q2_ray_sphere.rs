@@ -20,8 +20,9 @@ use student_solver::student_trace;
 pub use figures::figures;
 
 /// The ray and sphere of variant 0 (the checker's seed 0): eye `(−5, 1, 0)`, direction
-/// `(1, 0, 0)`, sphere of radius 2 at the origin: `A = 1`, `B = −10`, `C = 22`. The chapter's
-/// worked example is [`notes_example`], which no variant draws.
+/// `(1, 0, 0)`, sphere of radius 2 at the origin: `A = 1`, `B = −10`, `C = 22`, first hit
+/// `t = 5 − √3`. Despite its name it is not the chapter's worked example: that is
+/// [`notes_example`], which no variant draws.
 ///
 /// # Examples
 /// ```
@@ -192,66 +193,122 @@ pub fn trace_cases() -> Vec<(&'static str, Ray<f64>, Sphere<f64>)> {
     ]
 }
 
-/// Q2's answers as `hw3 answers --question q2` prints them.
+/// The share of reflected `f32` rays that re-hit their own sphere, in per cent, for a spawn
+/// policy and a scenario (20 000 random hits, the chapter's sample), as the chapter prints it.
+fn self_hit_percent(scenario: Scenario, policy: SpawnPolicy) -> f64 {
+    let count = self_hit_rate::<f32>(scenario, policy, 20_000, 11);
+    100.0 * count.self_hits as f64 / count.reflected as f64
+}
+
+/// `[x, y, z]` as the chapter writes a vector in prose, `(x, y, z)`: whole numbers without a
+/// point, and the last bits of rounding (below 10⁻⁹) left out, as a hand computation writes them.
+fn tuple(v: [f64; 3]) -> String {
+    let tidy = |x: f64| (x * 1e9).round() / 1e9 + 0.0;
+    format!("({}, {}, {})", tidy(v[0]), tidy(v[1]), tidy(v[2]))
+}
+
+/// Q2's answers as `hw3 answers --question q2` prints them: the chapter's formulas, its worked
+/// example and its findings, each number as the chapter prints it (`tests/chapters_q1_q2.rs`
+/// checks that every number printed here is one the chapter prints).
 ///
 /// # Examples
 /// ```
 /// let answers = hw3::q2_ray_sphere::answers();
 /// assert_eq!(answers.question, "q2");
 /// assert!(answers.text.contains("t1 < t2"));
+/// assert!(answers.text.contains("t = 1, point (-3, 5, -1)"));
 /// ```
 #[must_use]
 pub fn answers() -> Answers {
     let (ray, sphere) = notes_example();
+    let solved = solve(&ray, &sphere, Solver::Stable, Precision::F64).ok();
+    let f = ray.origin - sphere.center;
+    let (a, b, c) = (ray.dir.dot(ray.dir), 2.0 * f.dot(ray.dir), f.dot(f) - sphere.radius * sphere.radius);
     let mut text = String::new();
-    let _ = writeln!(text, "(a) A = d.d, B = 2(e-o).d, C = |e-o|^2 - r^2; first hit = smallest root t > 0.");
-    let _ = writeln!(text, "    The homework's case analysis is right, with two errata:");
+    let _ =
+        writeln!(text, "(a) A = d.d, B = 2(e - o).d, C = |e - o|^2 - r^2; the first hit is the smallest root t > 0");
+    let _ = writeln!(
+        text,
+        "    (t = 0 is the eye itself, not a hit). The homework's case analysis is right, with two errata:"
+    );
     let _ = writeln!(text, "    - its 't1 < t2' branch is dead code: t1 takes +sqrt, so t1 >= t2 whenever A > 0;");
     let _ =
         writeln!(text, "    - the tangent case accepts t >= 0 but the two-root case t > 0 (inconsistent at t = 0).");
-    let _ = writeln!(text, "    Worked example:\n{}", indent(&worked_trace(&ray, &sphere)));
+    let _ = writeln!(
+        text,
+        "    Worked example: e = {}, d = {}, o = {}, r = {}: A = {a}, B = {b}, C = {c}, B^2 - 4AC = {};",
+        tuple(ray.origin.to_array()),
+        tuple(ray.dir.to_array()),
+        tuple(sphere.center.to_array()),
+        sphere.radius,
+        b * b - 4.0 * a * c,
+    );
+    // The chapter's case rule (part q2a, step 3): the discriminant's sign, then C's, then B's.
+    let discriminant = b * b - 4.0 * a * c;
+    let case = if discriminant < 0.0 {
+        "miss"
+    } else if discriminant == 0.0 {
+        "tangent"
+    } else if c == 0.0 {
+        "on_surface"
+    } else if c < 0.0 {
+        "inside"
+    } else if b < 0.0 {
+        "outside"
+    } else {
+        "behind"
+    };
+    if let Some(answer) = &solved {
+        let _ = writeln!(
+            text,
+            "    case {case}, t = {}, point {}.",
+            answer.t.map_or("none".into(), |t| t.to_string()),
+            answer.point.map_or("none".into(), tuple),
+        );
+    }
     let rows = catalogue::score_catalogue();
     let far = rows.iter().find(|r| r.case.name == "far: r = 1 at distance 1e5, offset 0.9 r");
     if let Some(row) = far {
+        let missed = if matches!(row.outcomes[0], catalogue::Outcome::Missed) { "misses" } else { "hits" };
         let _ = writeln!(
             text,
-            "    In f32 the homework formula misses a unit sphere 1e5 away aimed 0.9 r off-centre \
-             ({:?}); the stable form's relative error is {:.1e}.",
-            row.outcomes[0],
+            "    In f32 the homework formula {missed} a unit sphere 10^5 away aimed 0.9 r off-centre; the stable \
+             form's relative error there is {:.1e}.",
             row.outcomes[1].error()
+        );
+    }
+    if let Some(answer) = &solved {
+        let _ = writeln!(
+            text,
+            "(b) n = (p - o)/r, reflected = dhat - 2(n.dhat)n: in the worked example n = {}, reflected {}.",
+            answer.normal.map_or("none".into(), tuple),
+            answer.reflected_dir.map_or("none".into(), tuple),
         );
     }
     let _ = writeln!(
         text,
-        "(b) n = (p - o)/r, r = d^ - 2(n.d^)n; the reflected ray must not start at the raw hit point.\n    \
-         Reflected f32 rays that re-hit their own sphere (20000 random hits per scenario):"
+        "    The reflected ray must not start at the computed hit point: in f32 {:.0} % of such rays re-hit \
+         their own sphere near the world origin. A fixed t_min = {} still leaves {:.1} % on a huge sphere \
+         (r = 10^6) and {:.1} % in a scene moved 10^4 units away; reprojecting onto the sphere and \
+         offsetting along the normal leaves 0.",
+        self_hit_percent(Scenario::Near, SpawnPolicy::AtComputedPoint),
+        reflection::FIXED_T_MIN,
+        self_hit_percent(Scenario::HugeSphere, SpawnPolicy::FixedEpsilon),
+        self_hit_percent(Scenario::Translated, SpawnPolicy::FixedEpsilon),
     );
-    for policy in SpawnPolicy::ALL {
-        let rate = |scenario| {
-            let count = self_hit_rate::<f32>(scenario, policy, 20_000, 11);
-            100.0 * count.self_hits as f64 / count.reflected as f64
-        };
-        let (near, huge, moved) = (rate(Scenario::Near), rate(Scenario::HugeSphere), rate(Scenario::Translated));
-        let _ = writeln!(
-            text,
-            "    {policy:?}: {near:.2} % near the origin, {huge:.2} % on a sphere of radius 1e6, {moved:.2} % translated by 1e4"
-        );
-    }
     let t_alg = closest_approach::closest_approach_algebraic(&ray, sphere.center);
     let t_geo = closest_approach::closest_approach_geometric(&ray, sphere.center);
-    let _ =
-        writeln!(text, "(c) t = -(e-o).d/|d|^2: algebraically -B/2A = {t_alg}, geometrically (o-e).d^/|d| = {t_geo}.");
-    let stable = first_hit_stable(&ray, &sphere).map_or("none".to_string(), |t| format!("{t:.6}"));
+    let l = f + ray.dir * t_alg;
+    let half_chord = (sphere.radius * sphere.radius - l.length_squared()).sqrt() / ray.dir.length();
     let _ = write!(
         text,
-        "    The stable solver starts from this t and steps back by the half-chord over |d|, \
-         sqrt(r^2 - |l|^2)/|d|: first hit = {stable}."
+        "(c) t = -(e - o).d/|d|^2: in the worked example {t_alg} from the quadratic's vertex -B/2A, and {t_geo} \
+         from the perpendicular; the half-chord sqrt(r^2 - |l|^2)/|d| = {half_chord} in t gives the roots {} \
+         and {}.",
+        t_alg - half_chord,
+        t_alg + half_chord,
     );
     Answers { question: "q2", title: "Ray/sphere intersection, reflection, closest approach", text }
-}
-
-fn indent(text: &str) -> String {
-    text.lines().map(|l| format!("      {l}")).collect::<Vec<_>>().join("\n")
 }
 
 /// Parses the CLI's `--origin`, `--dir`, `--center`, `--radius` into validated `f64` inputs.

@@ -447,24 +447,3 @@ fn every_chapter_links_the_glossary_and_its_engineering_notes() {
         }
     }
 }
-
-/// Q1: the chapter's mirror-scene cost table is the benchmark's data.
-#[test]
-fn q1_cost_table_matches_the_benchmark_csv() {
-    let q1 = chapter("q1_hard_scenes.md");
-    let csv = std::fs::read_to_string(Path::new(DOCS).join("data/q1_accuracy.csv")).unwrap();
-    let value = |integrator: &str, spp: u32| -> (f64, f64) {
-        let row = csv
-            .lines()
-            .find(|l| l.starts_with(&format!("mirrors,{integrator},{spp},")))
-            .unwrap_or_else(|| panic!("{integrator} {spp}"));
-        let f: Vec<f64> = row.split(',').skip(3).map(|x| x.parse().unwrap()).collect();
-        (f[1], f[0])
-    };
-    for spp in [1, 4, 16, 64] {
-        let (path_rmse, path_s) = value("path", spp);
-        let (whitted_rmse, whitted_s) = value("whitted", spp);
-        let row = format!("| {spp} | {path_rmse:.2e} | {path_s:.2e} | {whitted_rmse:.2e} | {whitted_s:.2e} |");
-        assert!(q1.contains(&row), "Q1 table row missing or stale: {row}");
-    }
-}

@@ -109,7 +109,8 @@ pub(crate) struct Key {
     pub p: f64,
     /// `(1 − p)^N`.
     pub gap: f64,
-    /// The Boolean-model limit `e^(−Np)` (within the part's 1 %).
+    /// The Boolean-model limit `e^(−Np)`: larger than the key by about `Np²/2`, relatively, so
+    /// within the part's 1 % only while `Np²/2` stays below about 0.01.
     pub boolean: f64,
     /// The first-order term `1 − Np` (a recognised mistake).
     pub first_order: f64,
@@ -198,7 +199,8 @@ pub(super) fn variant(seed: u64) -> Variant {
             key: "q1a.gap_fraction",
             prompt: "fraction of rays crossing the slab without a hit",
             points: 2.0,
-            // 1 % so that the Boolean-model limit e^(−Np) also counts: it differs by about N p²/2.
+            // The exact (1 − p)^N, within 1 %. The Boolean-model limit e^(−Np) is larger by about
+            // N p²/2, relatively: it passes only where that is below about 0.01 (the chapter says so).
             expected: Expected::number(gap, 1e-2),
             mal_rules: vec![MalRule {
                 value: Expected::number(k.first_order, 1e-2),
@@ -276,7 +278,7 @@ pub(super) fn variant(seed: u64) -> Variant {
             expected: Expected::Choice { value: difficulty_of(scene), options: &DIFFICULTIES },
             mal_rules: vec![],
             explained_in: ANSWER_NOTES,
-            method: "Render the scene and see what makes it hard: many small occluders, fog, mirrors, or motion.",
+            method: "Look at the scene's picture in the chapter and ask what makes it hard: many objects hiding one another, a medium that dims and glows, mirrors, or motion.",
         });
     }
     Variant { question: "q1", seed, statement, parts, follows: vec![] }

@@ -31,7 +31,8 @@ fn integer(g: &mut rng::Generator, low: i64, high: i64) -> f64 {
 }
 
 /// The cases of the homework's analysis of Q2(a), in the order seeds cycle through them
-/// (`(seed − 1) mod 6`, so seeds 1, 7, 13, … are "outside"; seed 0 is the notes' worked example, an eye outside).
+/// (`(seed − 1) mod 6`, so seeds 1, 7, 13, … are "outside"; seed 0 is a fixed ray with the eye outside,
+/// [`crate::q2_ray_sphere::worked_example`], not the chapter's worked example).
 pub(super) const CASES: [&str; 6] = ["outside", "inside", "behind", "tangent", "miss", "on_surface"];
 
 /// Why each case is what it is, for the feedback on a wrong `case` or `hit`.
@@ -56,7 +57,9 @@ fn axis(g: &mut rng::Generator) -> DVec3 {
     [DVec3::X, DVec3::Y, DVec3::Z][(g.next_u64() % 3) as usize] * sign
 }
 
-/// A ray/sphere pair for `seed` and its case: seed 0 is the notes' worked example; others are
+/// A ray/sphere pair for `seed` and its case: seed 0 is a fixed ray and sphere (eye `(−5, 1, 0)`,
+/// direction `(1, 0, 0)`, radius 2 at the origin: an eye outside), not the chapter's worked example
+/// ([`crate::q2_ray_sphere::notes_example`], which no variant draws); others are
 /// drawn with integer coordinates in the case `CASES[(seed − 1) mod 6]`. "outside" redraws until the
 /// ray meets the sphere at two well-separated positive roots (a discriminant large enough that
 /// hand arithmetic is not a lottery); the tangent and on-surface cases are built exactly (a
@@ -498,10 +501,12 @@ pub(super) fn variant(seed: u64) -> Variant {
 mod tests {
     use super::*;
 
+    /// Seed 0 is the fixed ray the grader's manual describes, not the chapter's worked example.
     #[test]
-    fn seed_zero_is_the_worked_example() {
+    fn seed_zero_is_the_fixed_ray_not_the_chapters_example() {
         let variant = variant(0);
         assert!(variant.statement.contains("e = (-5, 1, 0)"), "{}", variant.statement);
+        assert_ne!(scene(0).1, crate::q2_ray_sphere::notes_example().1);
     }
 
     #[test]

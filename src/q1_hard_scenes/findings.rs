@@ -1,5 +1,6 @@
 //! The numbers Q1's answer states, read from the committed measurement tables (`docs/figures/`),
 //! so that `hw3 answers --question q1` and the chapter print the same values from one source.
+//! The engineering notes include the tables in full; the chapter states their lessons.
 //! The tables are what the measurements give today: `tests/docs.rs` regenerates every one and
 //! compares it with the committed file byte for byte.
 
@@ -195,7 +196,6 @@ impl Findings {
             format!("within {:.2} standard errors", self.clutter_largest_z),
             format!("{:.0} % to {:.0} %", self.pixels_changed.0 * 100.0, self.pixels_changed.1 * 100.0),
             format!("{:.0} to {:.0} spheres per ray", self.kd_tests.0, self.kd_tests.1),
-            format!("up to {:.1} %", self.fog_path_excess_percent),
             self.airlight_turn(),
             self.visual_ranges(),
             format!("{}×", self.sensitivity_range()),
