@@ -52,7 +52,7 @@ enum Command {
     },
     /// Write a blank answers file: every question of a variant, every key commented out.
     Template {
-        /// Variant seed, 0 … 2^63 − 1 (0 = the notes' worked example).
+        /// Variant seed, 0 … 2^63 − 1 (0 = the homework's own numbers where it has them).
         #[arg(long, default_value_t = 0, value_parser = seed_arg, allow_hyphen_values = true)]
         seed: u64,
     },
@@ -88,7 +88,7 @@ enum Command {
         /// The question (q2).
         #[arg(long)]
         question: String,
-        /// Variant seed, 0 … 2^63 − 1 (0 = the notes' worked example).
+        /// Variant seed, 0 … 2^63 − 1 (0 = the homework's own numbers where it has them).
         #[arg(long, default_value_t = 0, value_parser = seed_arg, allow_hyphen_values = true)]
         seed: u64,
     },

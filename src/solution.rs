@@ -10,8 +10,10 @@
 //! answers file, with the digits it prints, grades full marks.
 //!
 //! `hw3 solution --seed S [--question qN] [--format text|markdown]` prints it; seed 0 is the
-//! homework's own numbers (the renderer's scenes for Q1, the notes' worked example for Q2 and Q4). The printable answer key of
-//! the notes, [`crate::notes::answer_key`], is drawn from the same solutions.
+//! homework's own numbers where it has them (Q3), and fixed numbers elsewhere (Q1: the renderer's
+//! scenes; Q2: e = (−5, 1, 0), d = (1, 0, 0), a sphere of radius 2 at the origin; Q4: L = 1 + ω_z,
+//! a 60° tilt, D = 3R). The printable answer key of the notes, [`crate::notes::answer_key`], is
+//! drawn from the same solutions.
 //!
 //! # Examples
 //! ```

@@ -1117,13 +1117,12 @@ fn the_manual_states_the_planes_credit_as_the_code_gives_it() {
     };
     let right = r#"[ { node = [], t = "parallel", first = "x>=3" }, { node = ["x>=3"], t = 1.5, first = "y<3" } ]"#;
     assert_eq!(grade(right), 1.5);
-    assert_eq!(grade(&right.replace(r#"first = "x>=3""#, r#"first = "x<3""#)), 0.0);
+    assert_eq!(grade(&right.replace(r#"first = "x>=3""#, r#"first = "x<3""#)), 0.75);
     assert_eq!(grade(&right.replace("t = 1.5", "t = 2")), 0.75);
     assert_says(
         "checker.md",
         &[
-            "credit is the number of entries right *before the first wrong one*, out of the longer of the two lists".into(),
-            "For seed 7's `q3e.planes` (two entries, 1.5 points), a wrong first entry and a right second one earn 0; a right first entry and a wrong second one earn 0.75.".into(),
+            "For seed 7's `q3e.planes` (two entries, 1.5 points), a wrong first entry and a right second one earn 0.75, as do a right first entry and a wrong second one.".into(),
         ],
     );
 }

@@ -229,7 +229,7 @@ pub struct Part {
 pub struct Variant {
     /// Question id (`"q2"`).
     pub question: &'static str,
-    /// The seed it came from (0 = the homework's own numbers, or the notes' worked example).
+    /// The seed it came from (0 = the homework's own numbers where it has them, fixed numbers elsewhere).
     pub seed: u64,
     /// The question with its numbers, as markdown.
     pub statement: String,
