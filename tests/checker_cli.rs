@@ -203,7 +203,7 @@ fn answering_none_everywhere_scores_only_the_parts_with_no_value() {
     }
 }
 
-/// The demo class of `tests/answers/class/`: 50 submissions made from the checker's own key, so
+/// The demo class of `tests/answers/class/`: 54 submissions made from the checker's own key, so
 /// that each is known to be right or to carry one named error.
 mod class_demo {
     use hw3::checker::{Expected, MalRule, answers_key, variant};
@@ -216,7 +216,7 @@ mod class_demo {
 
     /// Files written so, and graded as: right, one recognised mistake, an early error carried
     /// forward, a question left out, or not gradable at all.
-    pub const CLASS: usize = 50;
+    pub const CLASS: usize = 54;
     pub const CARRIED: usize = 4;
     pub const INCOMPLETE: usize = 2;
     pub const UNREADABLE: usize = 5;
@@ -308,7 +308,7 @@ mod class_demo {
     }
 
     /// The mistakes packed [`MISTAKES_PER_FILE`] to a file, each file one variant's and its
-    /// mistakes in different parts, to leave room for right files in a class of 50.
+    /// mistakes in different parts, to leave room for right files in a class of 54.
     pub fn mistake_files() -> Vec<Vec<Mistake>> {
         let mut files: Vec<Vec<Mistake>> = Vec::new();
         for mistake in mistakes() {
@@ -338,7 +338,7 @@ mod class_demo {
         set(file, "q2b.reflected_dir", vector(reflected));
     }
 
-    /// The 50 submissions, in file-name order.
+    /// The 54 submissions, in file-name order.
     pub fn submissions() -> Vec<Submission> {
         let mut out = Vec::new();
         let mut push = |about: String, bytes: Vec<u8>, kind: &str| {
@@ -440,7 +440,7 @@ fn class_dir() -> std::path::PathBuf {
 fn class_demo_files_are_the_generators() {
     let dir = class_dir();
     let submissions = class_demo::submissions();
-    assert_eq!(submissions.len(), 50, "the demo class has 50 submissions");
+    assert_eq!(submissions.len(), class_demo::CLASS, "the demo class has 54 submissions");
     if std::env::var_os("HW3_WRITE_CLASS").is_some() {
         std::fs::create_dir_all(&dir).unwrap();
         for old in std::fs::read_dir(&dir).unwrap() {
@@ -468,7 +468,7 @@ fn class_demo_files_are_the_generators() {
 }
 
 #[test]
-fn a_class_of_50_graded_in_one_command() {
+fn a_class_of_54_graded_in_one_command() {
     use hw3::checker::variant;
     let out = hw3(&["check", class_dir().to_str().unwrap(), "--format", "json"]);
     assert_eq!(out.status.code(), Some(1), "some parts wrong, some files not graded");
@@ -559,28 +559,29 @@ fn a_class_report_as_text_csv_and_gradescope() {
     let text = hw3(&["check", dir.to_str().unwrap()]);
     assert_eq!(text.status.code(), Some(1));
     let text = String::from_utf8(text.stdout).unwrap();
-    assert!(text.starts_with("class of 50 files: 45 graded, 5 not graded"), "{text}");
+    assert!(text.starts_with("class of 54 files: 49 graded, 5 not graded"), "{text}");
     assert!(text.contains("not graded: not valid TOML"), "{text}");
     assert!(text.contains("most common recognised mistake per part"), "{text}");
     let csv = String::from_utf8(hw3(&["check", dir.to_str().unwrap(), "--format", "csv"]).stdout).unwrap();
     let rows: Vec<&str> = csv.lines().collect();
-    assert_eq!(rows.len(), 1 + 50 + 2, "header, a row per file, mean and right");
+    assert_eq!(rows.len(), 1 + class_demo::CLASS + 2, "header, a row per file, mean and right");
     assert!(rows[0].starts_with("file,seed,score,max_score,error,q1a.gap_fraction"));
-    assert!(rows[51].starts_with("(mean),,") && rows[52].starts_with("(right),,"));
+    let n = class_demo::CLASS;
+    assert!(rows[n + 1].starts_with("(mean),,") && rows[n + 2].starts_with("(right),,"));
 
     let out = std::env::temp_dir().join(format!("hw3-class-gradescope-{}", std::process::id()));
     let graded = hw3(&["check", dir.to_str().unwrap(), "--format", "gradescope", "--out", out.to_str().unwrap()]);
     assert_eq!(graded.status.code(), Some(1));
     assert!(graded.stdout.is_empty());
     let written: Vec<_> = std::fs::read_dir(&out).unwrap().collect();
-    assert_eq!(written.len(), 50, "one results file per student");
+    assert_eq!(written.len(), class_demo::CLASS, "one results file per student");
     let first: serde_json::Value =
         serde_json::from_slice(&std::fs::read(out.join("01_right_seed0.json")).unwrap()).unwrap();
     let full = hw3::checker::check(&std::fs::read_to_string(dir.join("01_right_seed0.toml")).unwrap(), None).unwrap();
     assert!(full.all_correct());
     assert_eq!(first["score"].as_f64(), Some(full.max_score));
     let broken: serde_json::Value =
-        serde_json::from_slice(&std::fs::read(out.join("50_unreadable_shape.json")).unwrap()).unwrap();
+        serde_json::from_slice(&std::fs::read(out.join("54_unreadable_shape.json")).unwrap()).unwrap();
     assert_eq!(broken["score"], 0.0);
     assert!(broken["output"].as_str().unwrap().starts_with("not graded: "), "{broken}");
     std::fs::remove_dir_all(&out).ok();
@@ -596,7 +597,7 @@ fn a_class_report_as_text_csv_and_gradescope() {
 #[test]
 fn a_class_of_unreadable_files_or_over_the_bounds_exits_2() {
     let dir = class_dir();
-    let bad: Vec<String> = ["48_unreadable_binary.toml", "50_unreadable_shape.toml"]
+    let bad: Vec<String> = ["52_unreadable_binary.toml", "54_unreadable_shape.toml"]
         .iter()
         .map(|f| dir.join(f).display().to_string())
         .collect();

@@ -92,6 +92,7 @@ one_test_per_rule! {
     convention_earns_half_everywhere => Rule::Convention,
     other_quantity_earns_nothing_everywhere => Rule::OtherQuantity,
     wrong_case_earns_nothing_everywhere => Rule::WrongCase,
+    wrong_verdict_earns_nothing_everywhere => Rule::WrongVerdict,
 }
 
 /// The inconsistencies, each resolved by one rule: the distance for t earns the same in
@@ -194,6 +195,34 @@ fn q4_the_lost_fraction_follows_from_the_students_half_angle() {
     assert_eq!(part(&report, "q4b.blind_half_angle_deg").score, 0.0);
     let p = part(&report, "q4b.lost_fraction");
     assert_eq!((p.score, p.mistake), (2.0, Some("carried_forward")), "{p:?}");
+}
+
+/// Q5: a missed class that follows from the student's own wrong verdict is charged once, at the
+/// verdict. Radiosity captures colour bleeding (`q5a.b` is yes, its missed class `none`); a student
+/// who says no and names the whole effect as missed is consistent with that no, since a method
+/// misses all of each of Q5's effects or none of it. So is a yes with `none` for the highlight,
+/// which radiosity misses.
+#[test]
+fn q5_a_missed_class_follows_from_the_students_verdict() {
+    let report = check("[q5a]\nb = \"no\"\nb_missed = \"LDD*DE\"\na = \"yes\"\na_missed = \"none\"\n", None).unwrap();
+    for (cell, missed) in [("q5a.b", "q5a.b_missed"), ("q5a.a", "q5a.a_missed")] {
+        let verdict = part(&report, cell);
+        assert_eq!((verdict.score, verdict.mistake), (0.0, Some("wrong_verdict")), "{verdict:?}");
+        let p = part(&report, missed);
+        assert_eq!((p.score, p.status, p.mistake), (0.5, "correct", Some("carried_forward")), "{p:?}");
+        assert!(p.feedback.contains(&format!("first wrong step: `{cell}`")), "{}", p.feedback);
+    }
+    // A class that does not follow from the verdict is wrong, and told where its chain starts.
+    let report = check("[q5a]\nb = \"no\"\nb_missed = \"LDE\"\n", None).unwrap();
+    let p = part(&report, "q5a.b_missed");
+    assert_eq!((p.score, p.mistake), (0.0, None), "{p:?}");
+    assert!(p.feedback.contains("first wrong step: `q5a.b`"), "{}", p.feedback);
+    // An impractical for a no implies the same missed class as the no: a wrong class there is its
+    // own mistake, not one carried from the verdict.
+    let report = check("[q5b]\nd_caustic = \"impractical\"\nd_caustic_missed = \"LSDE\"\n", None).unwrap();
+    let p = part(&report, "q5b.d_caustic_missed");
+    assert_eq!(p.score, 0.0);
+    assert!(!p.feedback.contains("first wrong step"), "{}", p.feedback);
 }
 
 /// The section a part links to, as rustdoc numbers a chapter's headings (lower case,

@@ -215,6 +215,7 @@ fn as_given(expected: &Expected) -> Option<Given> {
         Expected::Number { value, .. } => Some(Given::Number(*value)),
         Expected::Vector { value, .. } | Expected::Direction { value, .. } => Some(Given::Vector(*value)),
         Expected::Trace { leaves, .. } => Some(Given::Trace(leaves.clone())),
+        Expected::Paths { value } => Some(Given::Paths(value.clone())),
         _ => None,
     }
 }

@@ -291,6 +291,13 @@ pub enum Derivation {
     /// Q4: the irradiance lost for a normal into the blind cone, `sin² γ`, from the student's
     /// half-angle `γ` in degrees.
     LostFromHalfAngle,
+    /// Q5: the paths a method misses, from the student's verdict on the cell: `none` for a yes,
+    /// the effect's whole class for a no or an impractical (a method misses all of each of Q5's
+    /// effects or none of it, so that is what the student's own verdict implies).
+    MissedFromVerdict {
+        /// The effect's class of light paths (Heckbert's notation).
+        effect: &'static str,
+    },
 }
 
 /// One plane of a traversal: the node, where the ray crosses its plane, and which child comes first.

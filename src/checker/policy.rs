@@ -43,13 +43,15 @@ pub enum Rule {
     OtherQuantity,
     /// The wrong case of the analysis.
     WrongCase,
+    /// A verdict on whether a method captures an effect that the light paths contradict.
+    WrongVerdict,
     /// A step that follows correctly from the student's own earlier wrong answer.
     CarriedForward,
 }
 
 impl Rule {
     /// Every rule, in the order of the policy table.
-    pub const ALL: [Self; 13] = [
+    pub const ALL: [Self; 14] = [
         Self::Sign,
         Self::Factor,
         Self::Power,
@@ -62,6 +64,7 @@ impl Rule {
         Self::Convention,
         Self::OtherQuantity,
         Self::WrongCase,
+        Self::WrongVerdict,
         Self::CarriedForward,
     ];
 
@@ -86,6 +89,7 @@ impl Rule {
             Self::Convention => "convention",
             Self::OtherQuantity => "other_quantity",
             Self::WrongCase => "wrong_case",
+            Self::WrongVerdict => "wrong_verdict",
             Self::CarriedForward => "carried_forward",
         }
     }
@@ -106,7 +110,13 @@ impl Rule {
     #[must_use]
     pub const fn credit(self) -> f64 {
         match self {
-            Self::Sign | Self::Power | Self::WrongTerm | Self::WrongRoot | Self::OtherQuantity | Self::WrongCase => 0.0,
+            Self::Sign
+            | Self::Power
+            | Self::WrongTerm
+            | Self::WrongRoot
+            | Self::OtherQuantity
+            | Self::WrongCase
+            | Self::WrongVerdict => 0.0,
             Self::Factor
             | Self::DistanceForParameter
             | Self::NotNormalised
@@ -159,6 +169,9 @@ impl Rule {
             }
             Self::WrongCase => {
                 "The wrong case of the analysis, or a hit for a miss: every later part rests on it, and the feedback says which sign decides."
+            }
+            Self::WrongVerdict => {
+                "A yes, no or impractical that the light paths contradict (yes where the method misses some of the effect's paths, no where it produces them all on purpose, impractical where some cannot be produced at all): the cell is that comparison and nothing else, so nothing of it is right."
             }
             Self::CarriedForward => {
                 "A step that follows correctly from the student's own earlier wrong answer: the error is charged once, at the step where it was made."

@@ -132,7 +132,7 @@ const SOLID_ANGLE_METHOD: &str =
 const WEIGHTED_METHOD: &str =
     "Add L max(0, n . w) dw over every texel inside the disc, each weighted by its own solid angle.";
 const UNWEIGHTED_METHOD: &str =
-    "Add L max(0, n . w) over the texels inside the disc and multiply by the equal share 4 pi/N.";
+    "Add L max(0, n . w) over the N texels inside the disc and multiply by the equal share 4 pi/N.";
 const RATIO_METHOD: &str = "Divide the unweighted sum by the weighted one: a ratio above 1 means the equal share overweights the texels that light the surface.";
 const MASKED_METHOD: &str = "Subtract the used texels' solid angles from 4 pi: what is left is held by the texels whose centre falls outside the disc.";
 const BLIND_DIRECTION_METHOD: &str = "Every point of the rim reflects the view ray straight on, so the direction behind the ball is the one the image cannot show.";
@@ -479,7 +479,7 @@ impl ProbeImage {
                 },
                 MalRule {
                     value: ratio(1.0),
-                    message: "the unweighted sum is not exact here: texels wholly inside the disc cover more than 4 pi/N, rim texels less",
+                    message: "the unweighted sum is not exact here: a texel wholly inside the disc covers 4(2/N)^2 and a rim texel less, and neither is the equal share 4 pi/N",
                     rule: Rule::OtherQuantity,
                 },
             ],

@@ -2,7 +2,7 @@
 //! accuracy-versus-time Pareto plot drawn from the benchmark's committed CSV.
 
 use super::blind_spot;
-use super::irradiance::Irradiance;
+use super::irradiance::{Irradiance, equal_weight};
 use super::maps::{AnalyticMap, sun_direction};
 use crate::envmap::{BuiltinMap, Probe, ProbeFormat, horizontal_camera, luminance};
 use crate::plot::{
@@ -231,10 +231,12 @@ fn blind_spot_figure() -> Result<Figure, PlotError> {
 /// column.
 const SOLID_ANGLE_PANEL: usize = 192;
 
-/// A false-colour image of `Δω / (mean Δω)` per texel for each disk format and lat-long, on a
-/// shared logarithmic scale (one colour bar, its ticks the ratio): where the format spends its
-/// resolution. Each panel's label names the format and states the mean, `4π` over the image's
-/// texel count, in steradians.
+/// A false-colour image of `Δω / share` per texel for each disk format and lat-long, on a shared
+/// logarithmic scale (one colour bar, its ticks the ratio): where the format spends its
+/// resolution. The share is the one the unweighted sum gives every texel used,
+/// [`equal_weight`]: the solid angle the image covers divided among the texels whose centre it
+/// uses (`4π/N` on the orthographic ball, as in the chapter's Part q4c). Each panel's label names
+/// the format and states the share, in steradians.
 fn solid_angle_figure() -> Result<Figure, PlotError> {
     let name = "q4_texel_solid_angle.png";
     let size = SOLID_ANGLE_PANEL;
@@ -249,16 +251,16 @@ fn solid_angle_figure() -> Result<Figure, PlotError> {
         let (w, h) = if format == ProbeFormat::LatLong { (size, size / 2) } else { (size, size) };
         let probe = Probe::from_fn(format, w, h, DMat3::IDENTITY, |_| glam::DVec3::ZERO)
             .map_err(|e| PlotError::Draw { figure: name.into(), message: e.to_string() })?;
-        let mean = 4.0 * std::f64::consts::PI / (w * h) as f64;
+        let share = equal_weight(probe.texels());
         // log10 of the ratio, −1 (10× smaller) … 1 (10× larger); `None` outside the image's disk.
         let ratios: Vec<Option<f64>> = probe
             .texels()
             .iter()
-            .map(|texel| (texel.solid_angle > 0.0).then(|| (texel.solid_angle / mean).log10().clamp(-1.0, 1.0)))
+            .map(|texel| (texel.solid_angle > 0.0).then(|| (texel.solid_angle / share).log10().clamp(-1.0, 1.0)))
             .collect();
-        panels.push((label, format!("{w}×{h} texels, mean {mean:.1e} sr"), (w, h), ratios));
+        panels.push((label, format!("{w}×{h} texels, share {share:.1e} sr"), (w, h), ratios));
     }
-    // A diverging ramp: blue (10× smaller) → pale grey (the mean) → vermillion (10× larger).
+    // A diverging ramp: blue (10× smaller) → pale grey (the share) → vermillion (10× larger).
     let ramp = |t: f64| {
         let end = if t < 0.0 { PALETTE[0] } else { PALETTE[1] };
         let mid = 235.0;
@@ -268,7 +270,7 @@ fn solid_angle_figure() -> Result<Figure, PlotError> {
     let (gap, label_band, bar_band) = (12_usize, 44_usize, 96_usize);
     let width = formats.len() * (size + gap) - gap + bar_band;
     crate::plot::png_figure(name, (width as u32, (size + label_band) as u32), |root| {
-        for (slot, (label, mean, (w, h), ratios)) in panels.iter().enumerate() {
+        for (slot, (label, share, (w, h), ratios)) in panels.iter().enumerate() {
             let x0 = slot * (size + gap);
             let y0 = (size - h) / 2;
             for (index, ratio) in ratios.iter().enumerate() {
@@ -278,14 +280,14 @@ fn solid_angle_figure() -> Result<Figure, PlotError> {
             }
             let text_at = |line: usize| (x0 as i32 + 2, (size + 6 + 17 * line) as i32);
             root.draw(&Text::new(*label, text_at(0), ("sans-serif", 13))).map_err(err)?;
-            root.draw(&Text::new(mean.as_str(), text_at(1), ("sans-serif", 12))).map_err(err)?;
+            root.draw(&Text::new(share.as_str(), text_at(1), ("sans-serif", 12))).map_err(err)?;
         }
         let bar_x = (formats.len() * (size + gap)) as i32 + 4;
         let at = |ratio: f64| (ratio.log10() + 1.0) / 2.0;
-        let ticks = [(at(0.1), "0.1×"), (at(0.3), "0.3×"), (at(1.0), "1× mean"), (at(3.0), "3×"), (at(10.0), "10×")];
+        let ticks = [(at(0.1), "0.1×"), (at(0.3), "0.3×"), (at(1.0), "1× share"), (at(3.0), "3×"), (at(10.0), "10×")];
         crate::plot::color_bar(root, (bar_x, 8), (14, size as i32 - 16), &|v| ramp(2.0 * v - 1.0), &ticks)?;
         let title = ("sans-serif", 12);
-        root.draw(&Text::new("texel Δω / mean", (bar_x - 4, size as i32 + 6), title)).map_err(err)?;
+        root.draw(&Text::new("texel Δω / share", (bar_x - 4, size as i32 + 6), title)).map_err(err)?;
         root.draw(&Text::new("(log scale)", (bar_x - 4, size as i32 + 23), title)).map_err(err)
     })
 }
