@@ -32,7 +32,7 @@ pub use grading::{PartResult, Report, check};
 pub use key::{Derivation, Expected, ExpectedLeaf, ExpectedPlane, Follows, MalRule, Part, Variant};
 pub use policy::{Rule, policy_table};
 pub use reports::{report_gradescope, report_text};
-pub use template::{answers_key, answers_key_for, template};
+pub use template::{answer_key, answer_key_for, template};
 pub use variants::{QUESTIONS, variant};
 
 #[cfg(test)]

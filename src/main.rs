@@ -354,7 +354,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         Some(Command::Template { seed }) => emit(&hw3::checker::template(seed).map_err(|e| UsageError(e.to_string()))?),
         Some(Command::Variant { question, seed }) => {
             let variant = hw3::checker::variant(&question, seed).map_err(|e| UsageError(e.to_string()))?;
-            let key = hw3::checker::answers_key_for(&question, seed).map_err(|e| UsageError(e.to_string()))?;
+            let key = hw3::checker::answer_key_for(&question, seed).map_err(|e| UsageError(e.to_string()))?;
             emit_line(&format!("{}\n\nSolution, as an answers file:\n[meta]\nseed = {seed}\n{key}", variant.statement))
         }
         Some(Command::Solution { seed, question, format }) => {

@@ -30,8 +30,8 @@ mod q2;
 mod q3;
 mod q4;
 mod q5;
-mod render;
 mod setting;
+mod text;
 
 pub use answer_key::{answer_key_table, figures};
 
@@ -187,7 +187,7 @@ impl Solution {
     /// ```
     #[must_use]
     pub fn render(&self, format: Format) -> String {
-        render::solution(self, format)
+        text::solution(self, format)
     }
 
     /// The final answers as an answers file (`hw3 check` reads it), with the digits the solution
@@ -202,7 +202,7 @@ impl Solution {
     /// ```
     #[must_use]
     pub fn answers_toml(&self) -> String {
-        render::answers_toml(self)
+        text::answers_toml(self)
     }
 }
 

@@ -41,7 +41,7 @@ fn template_then_key_round_trip() {
     assert_eq!(report["seed"], 9);
     assert_eq!(report["score"], 0.0);
     let key = dir.join("key.toml");
-    std::fs::write(&key, hw3::checker::answers_key(9).unwrap()).unwrap();
+    std::fs::write(&key, hw3::checker::answer_key(9).unwrap()).unwrap();
     let perfect = hw3(&["check", key.to_str().unwrap(), "--format", "gradescope"]);
     assert_eq!(perfect.status.code(), Some(0));
     let results: serde_json::Value = serde_json::from_slice(&perfect.stdout).unwrap();
@@ -206,7 +206,7 @@ fn answering_none_everywhere_scores_only_the_parts_with_no_value() {
 /// The demo class of `tests/answers/class/`: 54 submissions made from the checker's own key, so
 /// that each is known to be right or to carry one named error.
 mod class_demo {
-    use hw3::checker::{Expected, MalRule, answers_key, variant};
+    use hw3::checker::{Expected, MalRule, answer_key, variant};
 
     /// One submission: its file name and its bytes (an unreadable one need not be UTF-8).
     pub struct Submission {
@@ -250,7 +250,7 @@ mod class_demo {
     }
 
     fn key_table(seed: u64) -> toml::Table {
-        toml::from_str(&answers_key(seed).unwrap()).unwrap()
+        toml::from_str(&answer_key(seed).unwrap()).unwrap()
     }
 
     fn set(file: &mut toml::Table, key: &str, value: toml::Value) {
@@ -412,7 +412,7 @@ mod class_demo {
         let about = "incomplete: Q5 left out (variant 2)";
         push(about.into(), written(about, &file), "incomplete_no_q5");
         // Not gradable: each is a row of the class report with its reason.
-        let key = answers_key(0).unwrap();
+        let key = answer_key(0).unwrap();
         let broken = [
             ("unreadable_syntax", format!("# a table left open\n{}", key.replacen("[q2a]", "[q2a", 1)).into_bytes()),
             (

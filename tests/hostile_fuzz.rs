@@ -163,7 +163,7 @@ fn fuzz_templates_and_variants_of_any_seed() {
             prop_assert!(report.seed == seed && report.score == 0.0, "seed {seed}: {report:?}");
         }
         let _ = hw3::checker::variant(question, seed);
-        let _ = hw3::checker::answers_key_for(question, seed);
+        let _ = hw3::checker::answer_key_for(question, seed);
         Ok(())
     });
 }

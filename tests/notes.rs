@@ -585,7 +585,7 @@ fn diary_lines_are_recognised() {
 /// What belongs to the grader's pages only: the worked solutions and keys of variants, and how
 /// variants are drawn.
 const GRADERS_ONLY: [&str; 8] =
-    ["hw3 solution", "hw3 variant", "notes::answer_key", "answers_key", "mod 6", "mod 3", "seed −", "seed -"];
+    ["hw3 solution", "hw3 variant", "notes::answer_key", "answer_key", "mod 6", "mod 3", "seed −", "seed -"];
 
 #[test]
 fn the_student_pages_show_no_key_and_no_variant_design() {

@@ -62,9 +62,9 @@ pub struct PartStatistics {
 ///
 /// # Examples
 /// ```
-/// use hw3::checker::{answers_key, check_class};
+/// use hw3::checker::{answer_key, check_class};
 /// let files = vec![
-///     ("key.toml".to_string(), Ok(answers_key(0).unwrap())),
+///     ("key.toml".to_string(), Ok(answer_key(0).unwrap())),
 ///     ("blank.toml".to_string(), Ok(String::new())),
 ///     ("broken.toml".to_string(), Ok("[q2a".to_string())),
 /// ];
@@ -231,8 +231,8 @@ pub fn check_class(files: &[(String, Result<String, String>)], seed_override: Op
 ///
 /// # Examples
 /// ```
-/// use hw3::checker::{answers_key, check_class, class_text};
-/// let files = vec![("key.toml".to_string(), Ok(answers_key(0).unwrap()))];
+/// use hw3::checker::{answer_key, check_class, class_text};
+/// let files = vec![("key.toml".to_string(), Ok(answer_key(0).unwrap()))];
 /// let text = class_text(&check_class(&files, None));
 /// assert!(text.contains("key.toml") && text.contains("1 graded, 0 not graded"));
 /// ```
@@ -301,8 +301,8 @@ fn csv_field(text: &str) -> String {
 ///
 /// # Examples
 /// ```
-/// use hw3::checker::{answers_key, check_class, class_csv};
-/// let files = vec![("a.toml".to_string(), Ok(answers_key(0).unwrap())), ("b.toml".to_string(), Ok("x = [".into()))];
+/// use hw3::checker::{answer_key, check_class, class_csv};
+/// let files = vec![("a.toml".to_string(), Ok(answer_key(0).unwrap())), ("b.toml".to_string(), Ok("x = [".into()))];
 /// let csv = class_csv(&check_class(&files, None));
 /// let rows: Vec<&str> = csv.lines().collect();
 /// assert!(rows[0].starts_with("file,seed,score,max_score,error,q1a.gap_fraction,"));
@@ -371,11 +371,11 @@ fn gradescope_of(submission: &Submission) -> serde_json::Value {
 ///
 /// # Examples
 /// ```
-/// use hw3::checker::{answers_key, check_class, class_gradescope};
-/// let files = vec![("a.toml".to_string(), Ok(answers_key(0).unwrap()))];
+/// use hw3::checker::{answer_key, check_class, class_gradescope};
+/// let files = vec![("a.toml".to_string(), Ok(answer_key(0).unwrap()))];
 /// let json = class_gradescope(&check_class(&files, None));
 /// assert_eq!(json["submissions"][0]["file"], "a.toml");
-/// let full = hw3::checker::check(&answers_key(0).unwrap(), None).unwrap().max_score;
+/// let full = hw3::checker::check(&answer_key(0).unwrap(), None).unwrap().max_score;
 /// assert_eq!(json["submissions"][0]["results"]["score"].as_f64(), Some(full));
 /// ```
 #[must_use]
@@ -423,7 +423,7 @@ fn round2(x: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::checker::answers_key;
+    use crate::checker::answer_key;
 
     fn class(texts: &[&str]) -> ClassReport {
         let files: Vec<_> = texts.iter().enumerate().map(|(i, t)| (format!("s{i}.toml"), Ok(t.to_string()))).collect();
@@ -432,7 +432,7 @@ mod tests {
 
     #[test]
     fn statistics_count_each_status_and_the_commonest_mistake() {
-        let key = answers_key(0).unwrap();
+        let key = answer_key(0).unwrap();
         let with_t = |t: f64| {
             let mut file: toml::Table = toml::from_str(&key).unwrap();
             file["q2a"].as_table_mut().unwrap().insert("t".into(), toml::Value::Float(t));
@@ -460,7 +460,7 @@ mod tests {
 
     #[test]
     fn a_class_of_keys_is_all_correct() {
-        let keys: Vec<String> = (0..4).map(|s| answers_key(s).unwrap()).collect();
+        let keys: Vec<String> = (0..4).map(|s| answer_key(s).unwrap()).collect();
         let report = class(&keys.iter().map(String::as_str).collect::<Vec<_>>());
         assert!(report.all_correct());
         assert_eq!(report.mean_score, report.max_score);

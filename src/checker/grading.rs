@@ -74,7 +74,7 @@ impl Report {
     ///
     /// # Examples
     /// ```
-    /// let key = hw3::checker::answers_key(2).unwrap();
+    /// let key = hw3::checker::answer_key(2).unwrap();
     /// assert!(hw3::checker::check(&key, None).unwrap().all_correct());
     /// assert!(!hw3::checker::check("", None).unwrap().all_correct());
     /// ```
@@ -98,7 +98,7 @@ impl Report {
 ///
 /// # Examples
 /// ```
-/// let template = hw3::checker::answers_key(0).unwrap();
+/// let template = hw3::checker::answer_key(0).unwrap();
 /// let report = hw3::checker::check(&template, None).unwrap();
 /// assert!(report.all_correct());
 /// assert!(hw3::checker::check("q2a = [", None).is_err());
@@ -393,7 +393,7 @@ fn round2(x: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::checker::{Kind, answers_key};
+    use crate::checker::{Kind, answer_key};
     use proptest::prelude::*;
 
     #[test]
@@ -425,7 +425,7 @@ mod tests {
 
     #[test]
     fn trace_feedback_names_the_first_divergence() {
-        let key = answers_key(0).unwrap();
+        let key = answer_key(0).unwrap();
         // Edit case (d)'s leaves only (its descents come first and hold the same intervals).
         let at = key.find("[q3d]").unwrap();
         let at = at + key[at..].find("\nleaves").unwrap();
@@ -468,7 +468,7 @@ mod tests {
         /// The key of any variant scores 100 %.
         #[test]
         fn key_scores_full_marks(seed in 0u64..1_000_000) {
-            let report = check(&answers_key(seed).unwrap(), None).unwrap();
+            let report = check(&answer_key(seed).unwrap(), None).unwrap();
             prop_assert!(report.all_correct(), "{:?}", report);
             prop_assert_eq!(report.score, report.max_score);
         }
@@ -478,7 +478,7 @@ mod tests {
         fn perturbing_one_part_loses_exactly_its_points(seed in 0u64..1_000_000, question in 0usize..QUESTIONS.len(), which in 0usize..64) {
             let variant = variant(QUESTIONS[question], seed).unwrap();
             let part = &variant.parts[which % variant.parts.len()];
-            let key = answers_key(seed).unwrap();
+            let key = answer_key(seed).unwrap();
             let (table, name) = part.key.split_once('.').unwrap();
             let mut doc: toml::Table = toml::from_str(&key).unwrap();
             let entry = doc.get_mut(table).unwrap().as_table_mut().unwrap().get_mut(name).unwrap();

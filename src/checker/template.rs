@@ -44,12 +44,12 @@ pub fn template(seed: u64) -> Result<String, CheckError> {
 ///
 /// # Examples
 /// ```
-/// assert!(hw3::checker::answers_key(3).unwrap().contains("seed = 3"));
+/// assert!(hw3::checker::answer_key(3).unwrap().contains("seed = 3"));
 /// ```
-pub fn answers_key(seed: u64) -> Result<String, CheckError> {
+pub fn answer_key(seed: u64) -> Result<String, CheckError> {
     let mut out = format!("[meta]\nseed = {seed}\n");
     for question in QUESTIONS {
-        out.push_str(&answers_key_for(question, seed)?);
+        out.push_str(&answer_key_for(question, seed)?);
     }
     Ok(out)
 }
@@ -61,9 +61,9 @@ pub fn answers_key(seed: u64) -> Result<String, CheckError> {
 ///
 /// # Examples
 /// ```
-/// assert!(hw3::checker::answers_key_for("q3", 0).unwrap().contains("[q3d]"));
+/// assert!(hw3::checker::answer_key_for("q3", 0).unwrap().contains("[q3d]"));
 /// ```
-pub fn answers_key_for(question: &str, seed: u64) -> Result<String, CheckError> {
+pub fn answer_key_for(question: &str, seed: u64) -> Result<String, CheckError> {
     let mut out = String::new();
     let mut section = "";
     for part in variant(question, seed)?.parts {

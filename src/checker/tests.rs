@@ -16,7 +16,7 @@ fn variants_are_pinned_for_seeds_1_to_5() {
                 format!(
                     "{}\n-- key --\n{}\n",
                     variant(question, s).unwrap().statement,
-                    answers_key_for(question, s).unwrap()
+                    answer_key_for(question, s).unwrap()
                 )
             })
             .collect();
@@ -32,7 +32,7 @@ fn variants_are_pinned_for_seeds_1_to_5() {
 fn cached_and_uncached_reports_are_equal() {
     let homework = include_str!("../../tests/answers/seed_hw3.toml");
     for seed in [0, 1, 7, 1 << 40, i64::MAX as u64] {
-        let files = [crate::checker::template(seed).unwrap(), crate::checker::answers_key(seed).unwrap()];
+        let files = [crate::checker::template(seed).unwrap(), crate::checker::answer_key(seed).unwrap()];
         for text in files.iter().map(String::as_str).chain([homework]) {
             let fresh = uncached(|| crate::checker::check(text, Some(seed)));
             let first = crate::checker::check(text, Some(seed));

@@ -1,7 +1,7 @@
 //! The printable answer key of the notes: every part's final answer for seed 0, the student's
 //! own answer beside it with the grade the checker gives it, and where the chapter explains it.
 
-use super::render::value;
+use super::text::value;
 use super::{QUESTIONS, SolutionError, solution};
 use crate::checker::{self, PartResult};
 use crate::plot::{Figure, PlotError, markdown_table};

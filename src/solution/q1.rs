@@ -5,7 +5,7 @@
 //! Every number is the checker's key ([`checker::q1_key`](crate::checker)) of the numbers read
 //! back from the statement; the working shows the intermediate values that key is built from.
 
-use super::render::{final_number, num, operand};
+use super::text::{final_number, num, operand};
 use super::{Section, SolutionError, Step, Value, setting};
 use crate::checker::{Q1_SCENES, Variant, difficulty_of, q1_key};
 use crate::render::catalogue::CATALOGUE;

@@ -5,7 +5,7 @@
 //! stable solver's, as in the checker's key; for the variants' small integer settings the two
 //! agree to the last printed digit.
 
-use super::render::{num, operand, vector};
+use super::text::{num, operand, vector};
 use super::{Section, SolutionError, Step, Value, setting};
 use crate::checker::Variant;
 use crate::geometry::sphere::{closest_approach_t, first_hit_stable, reflect_with_cosine, roots_stable, surface_hit};

@@ -5,7 +5,7 @@
 //! plane the visit is explained by the same interval rule the traversal applied
 //! ([`split_interval`]).
 
-use super::render::{num, operand};
+use super::text::{num, operand};
 use super::{Section, SolutionError, Step, Value, setting};
 use crate::checker::{ExpectedLeaf, ExpectedPlane, Variant};
 use crate::kdtree::{QuotientAxis, Visit, split_interval};
@@ -126,13 +126,13 @@ fn part(ray: &Ray2, [planes_key, descents_key, key]: [&'static str; 3], label: c
         })
         .collect();
     steps.push(Step::answer(
-        format!("planes met in order: {}", super::render::value(&Value::Planes(planes.clone()))),
+        format!("planes met in order: {}", super::text::value(&Value::Planes(planes.clone()))),
         planes_key,
         Value::Planes(planes),
     ));
-    let listed = descents.iter().map(super::render::leaf).collect::<Vec<_>>().join("; then ");
+    let listed = descents.iter().map(super::text::leaf).collect::<Vec<_>>().join("; then ");
     steps.push(Step::answer(format!("descents in order: {listed}"), descents_key, Value::Leaves(descents)));
-    let listed = leaves.iter().map(super::render::leaf).collect::<Vec<_>>().join("; then ");
+    let listed = leaves.iter().map(super::text::leaf).collect::<Vec<_>>().join("; then ");
     steps.push(Step::answer(format!("leaves in order: {listed}"), key, Value::Leaves(leaves)));
     let title = format!(
         "({label}) e = ({}, {}), d = ({}, {})",

@@ -3,7 +3,7 @@
 //! question on the variant's probe image: each listed texel's direction and solid angle, the
 //! weighted and unweighted texel sums, the bias, the masked solid angle and the blind direction.
 
-use super::render::{num, operand, vector};
+use super::text::{num, operand, vector};
 use super::{Section, SolutionError, Step, Value, setting};
 use crate::checker::Variant;
 use crate::envmap::{Probe, ProbeFormat, horizontal_camera};
