@@ -29,13 +29,14 @@ pub use class::{
 pub use error::CheckError;
 pub use formula::{Formula, FormulaError, Kind, Point, Value};
 pub use grading::{PartResult, Report, check};
-pub use key::{Derivation, Expected, ExpectedLeaf, ExpectedPlane, Follows, MalRule, Part, Variant};
+pub use key::{
+    Derivation, Expected, ExpectedLeaf, ExpectedPlane, Follows, MalRule, Part, Q1Setting, Q4Image, Q4Setting, Setting,
+    Variant,
+};
 pub use policy::{Rule, policy_table};
 pub use reports::{report_gradescope, report_text};
 pub use template::{answer_key, answer_key_for, template};
 pub use variants::{QUESTIONS, variant};
 
-#[cfg(test)]
-pub(crate) use q1::numbers as q1_numbers;
 /// Q1's key numbers, for the worked solution (which computes each step from them).
-pub(crate) use q1::{Numbers as Q1Numbers, SCENES as Q1_SCENES, difficulty_of, key as q1_key};
+pub(crate) use q1::{SCENES as Q1_SCENES, difficulty_of, key as q1_key};

@@ -358,13 +358,8 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             emit_line(&format!("{}\n\nSolution, as an answers file:\n[meta]\nseed = {seed}\n{key}", variant.statement))
         }
         Some(Command::Solution { seed, question, format }) => {
-            use hw3::solution::SolutionError;
-            // A question or format the user typed is a usage error; a statement that no longer
-            // reads is the program's (exit 1).
-            let usage = |e: SolutionError| match e {
-                SolutionError::Statement { .. } => anyhow::Error::new(e),
-                other => UsageError(other.to_string()).into(),
-            };
+            // Every error of a solution is a question or a format the user typed.
+            let usage = |e: hw3::solution::SolutionError| anyhow::Error::from(UsageError(e.to_string()));
             let format = format.parse().map_err(usage)?;
             emit_line(&hw3::solution::command(question.as_deref(), seed, format).map_err(usage)?)
         }

@@ -30,12 +30,11 @@ mod q2;
 mod q3;
 mod q4;
 mod q5;
-mod setting;
 mod text;
 
 pub use answer_key::{answer_key_table, figures};
 
-use crate::checker::{self, CheckError, ExpectedLeaf, ExpectedPlane};
+use crate::checker::{self, CheckError, ExpectedLeaf, ExpectedPlane, Setting};
 
 /// The questions a solution can be asked for, in homework order.
 pub const QUESTIONS: [&str; 5] = ["q1", "q2", "q3", "q4", "q5"];
@@ -78,17 +77,6 @@ pub enum SolutionError {
     /// A format other than `text` or `markdown`.
     #[error("unknown format `{0}`; known: text, markdown")]
     UnknownFormat(String),
-    /// The checker's statement of a variant no longer reads as the setting this module expects
-    /// (an internal error: the statement's wording changed).
-    #[error("{question} variant {seed}: cannot read {what} from the statement")]
-    Statement {
-        /// The question.
-        question: &'static str,
-        /// The variant.
-        seed: u64,
-        /// What could not be read.
-        what: &'static str,
-    },
 }
 
 /// A final answer's value, as the checker compares it.
@@ -209,8 +197,7 @@ impl Solution {
 /// The worked solution of `question` for variant `seed`.
 ///
 /// # Errors
-/// [`SolutionError::UnknownQuestion`] for a question outside [`QUESTIONS`];
-/// [`SolutionError::Statement`] if the checker's statement no longer reads as expected (a bug).
+/// [`SolutionError::UnknownQuestion`] for a question outside [`QUESTIONS`].
 ///
 /// # Examples
 /// ```
@@ -224,12 +211,12 @@ pub fn solution(question: &str, seed: u64) -> Result<Solution, SolutionError> {
         CheckError::UnknownQuestion(q) => SolutionError::UnknownQuestion(q),
         other => SolutionError::UnknownQuestion(other.to_string()),
     })?;
-    let sections = match variant.question {
-        "q1" => q1::sections(&variant)?,
-        "q2" => q2::sections(&variant)?,
-        "q3" => q3::sections(&variant)?,
-        "q4" => q4::sections(&variant)?,
-        _ => q5::sections(&variant)?,
+    let sections = match &variant.setting {
+        Setting::Q1(numbers) => q1::sections(numbers),
+        Setting::Q2 { ray, sphere } => q2::sections(ray, sphere),
+        Setting::Q3 { d, e } => q3::sections(*d, *e),
+        Setting::Q4(setting) => q4::sections(setting),
+        Setting::Q5 => q5::sections(&variant),
     };
     Ok(Solution { question: variant.question, seed, statement: variant.statement, sections })
 }

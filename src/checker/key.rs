@@ -3,6 +3,8 @@
 
 use super::formula::{Formula, Kind, Point};
 use super::policy::Rule;
+use crate::geometry::{Ray, Sphere};
+use crate::q3_kd_traversal::Ray2;
 
 /// The answer a part expects, with how it is compared.
 ///
@@ -217,6 +219,89 @@ pub struct Part {
     pub method: &'static str,
 }
 
+/// The numbers a variant is drawn as. Its statement, its key, its template and its worked
+/// solution are all made from them; nothing is read back from the statement's words.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Setting {
+    /// Q1: the numbers of each difficulty.
+    Q1(Q1Setting),
+    /// Q2: the ray and the sphere.
+    Q2 {
+        /// The ray `e + d t`.
+        ray: Ray<f64>,
+        /// The sphere.
+        sphere: Sphere<f64>,
+    },
+    /// Q3: the rays of parts (d) and (e), in the homework's tree.
+    Q3 {
+        /// The ray of part (d).
+        d: Ray2,
+        /// The ray of part (e).
+        e: Ray2,
+    },
+    /// Q4: the sky, the tilt, the ball's distance and the probe image of part (c).
+    Q4(Q4Setting),
+    /// Q5: no numbers (one variant).
+    Q5,
+}
+
+/// Q1's numbers: a slab of spheres, a fog, a mirror ball and a camera step, a moving object.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Q1Setting {
+    /// Spheres in the slab, `N`.
+    pub count: f64,
+    /// The side `W` of the slab's front face.
+    pub side: f64,
+    /// The spheres' radius `a`.
+    pub radius: f64,
+    /// The fog's extinction coefficient `σ_t`.
+    pub sigma_t: f64,
+    /// The path length `l` through the fog.
+    pub path: f64,
+    /// The mirror sphere's radius `R`.
+    pub mirror_radius: f64,
+    /// The camera's sideways step.
+    pub step: f64,
+    /// The object's speed, units per second.
+    pub speed: f64,
+    /// Frames per second.
+    pub fps: f64,
+    /// The object's distance (depth) from the camera.
+    pub depth: f64,
+    /// The vertical field of view, degrees.
+    pub fov_deg: f64,
+    /// The image height, pixels.
+    pub height: f64,
+}
+
+/// Q4's numbers: the sky `L(ω) = a + b ω_z`, the normal's tilt from up towards `+x`, the ball's
+/// distance in radii, and part (c)'s probe image.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Q4Setting {
+    /// The sky's constant term `a`.
+    pub a: f64,
+    /// The sky's gradient `b` along `ω_z`.
+    pub b: f64,
+    /// The normal's tilt from up towards `+x`, degrees.
+    pub tilt_deg: f64,
+    /// The ball's distance `D/R`.
+    pub distance_over_radius: f64,
+    /// Part (c)'s image.
+    pub image: Q4Image,
+}
+
+/// Part (c) of Q4: a small orthographic mirror-ball image, texel by texel.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Q4Image {
+    /// Texels across and down.
+    pub size: usize,
+    /// Each texel's radiance, row by row from the top; `None` where the texel's centre is
+    /// outside the disc (masked).
+    pub radiance: Vec<Option<f64>>,
+    /// The three listed texels, `(row, column)`.
+    pub listed: [(usize, usize); 3],
+}
+
 /// A question variant: its parameters in words and its parts.
 ///
 /// # Examples
@@ -231,6 +316,8 @@ pub struct Variant {
     pub question: &'static str,
     /// The seed it came from (0 = the homework's own numbers where it has them, fixed numbers elsewhere).
     pub seed: u64,
+    /// The numbers it is drawn as.
+    pub setting: Setting,
     /// The question with its numbers, as markdown.
     pub statement: String,
     /// Its parts, in order.

@@ -2,7 +2,7 @@
 //! transmittance and visual range, the turn of a mirror reflection per camera step, the image
 //! shift of a moving object per frame), and the built-in scenes matched to the difficulties.
 
-use super::key::{Expected, MalRule, Part, Variant};
+use super::key::{Expected, MalRule, Part, Q1Setting, Setting, Variant};
 use super::policy::Rule;
 use crate::q1_hard_scenes::{
     block_probability, focal_length_pixels, gap_fraction, pixels_per_frame, reflection_turn, transmittance,
@@ -33,33 +33,11 @@ pub(crate) const SCENES: [(&str, &str); 4] = [
     ("motion", "q1match.motion"),
 ];
 
-/// A variant's numbers.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct Numbers {
-    /// Spheres, slab side `W`, radius `a`.
-    pub count: f64,
-    pub side: f64,
-    pub radius: f64,
-    /// Fog `σ_t` and a path length.
-    pub sigma_t: f64,
-    pub path: f64,
-    /// Mirror sphere radius and camera step.
-    pub mirror_radius: f64,
-    pub step: f64,
-    /// Object speed (units per second), frames per second, depth, vertical field of view
-    /// (degrees) and image height (pixels).
-    pub speed: f64,
-    pub fps: f64,
-    pub depth: f64,
-    pub fov_deg: f64,
-    pub height: f64,
-}
-
 /// Seed 0 is the renderer's clutter scene (1500 spheres of radius 0.5 over a 40 × 40 face) and
 /// its fog street (σ_t = 0.08); other seeds draw from small grids of nice numbers.
-pub(crate) fn numbers(seed: u64) -> Numbers {
+pub(crate) fn numbers(seed: u64) -> Q1Setting {
     if seed == 0 {
-        return Numbers {
+        return Q1Setting {
             count: CLUTTER_COUNT as f64,
             side: 2.0 * CLUTTER_HALF_WIDTH,
             radius: CLUTTER_RADIUS,
@@ -76,7 +54,7 @@ pub(crate) fn numbers(seed: u64) -> Numbers {
     }
     let mut g = rng::seeded(seed, STREAM);
     let mut pick = |values: &[f64]| values[(g.next_u64() % values.len() as u64) as usize];
-    Numbers {
+    Q1Setting {
         count: pick(&[500.0, 1000.0, 1500.0, 2000.0, 4000.0]),
         side: pick(&[20.0, 30.0, 40.0]),
         radius: pick(&[0.25, 0.5, 1.0]),
@@ -135,7 +113,7 @@ pub(crate) struct Key {
 }
 
 /// The key of a variant's numbers.
-pub(crate) fn key(n: &Numbers) -> Key {
+pub(crate) fn key(n: &Q1Setting) -> Key {
     // One sphere blocks a ray with probability p = πa²/(W + 2a)² (its centre must fall in the
     // disc of radius a around the ray, out of a face widened by a on each side); misses multiply.
     let widened_area = (n.side + 2.0 * n.radius).powi(2);
@@ -281,7 +259,7 @@ pub(super) fn variant(seed: u64) -> Variant {
             method: "Look at the scene's picture in the chapter and ask what makes it hard: many objects hiding one another, a medium that dims and glows, mirrors, or motion.",
         });
     }
-    Variant { question: "q1", seed, statement, parts, follows: vec![] }
+    Variant { question: "q1", seed, setting: Setting::Q1(n), statement, parts, follows: vec![] }
 }
 
 #[cfg(test)]

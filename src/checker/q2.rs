@@ -1,7 +1,7 @@
 //! Q2 variants: a ray and a sphere with small integer coordinates, and the parts a–c.
 
 use super::formula::{Kind, Point, Value};
-use super::key::{Derivation, Expected, Follows, MalRule, Part, Variant, formula_part};
+use super::key::{Derivation, Expected, Follows, MalRule, Part, Setting, Variant, formula_part};
 use super::policy::Rule;
 use crate::geometry::sphere::{Roots, closest_approach_t, first_hit_stable, roots_stable, surface_hit};
 use crate::geometry::{Ray, Sphere};
@@ -494,7 +494,7 @@ pub(super) fn variant(seed: u64) -> Variant {
         });
     }
     parts.extend([closest, t_closest_formula]);
-    Variant { question: "q2", seed, statement, parts, follows }
+    Variant { question: "q2", seed, setting: Setting::Q2 { ray, sphere }, statement, parts, follows }
 }
 
 #[cfg(test)]

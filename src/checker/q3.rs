@@ -1,7 +1,7 @@
 //! Q3 variants: rays through the homework's kd-tree, graded leaf by leaf (path and t-interval).
 
 use super::formula::{Kind, Point, Value};
-use super::key::{Derivation, Expected, ExpectedLeaf, ExpectedPlane, Follows, Part, Variant, formula_part};
+use super::key::{Derivation, Expected, ExpectedLeaf, ExpectedPlane, Follows, Part, Setting, Variant, formula_part};
 use super::policy::Rule;
 use super::traces::show_bound;
 use crate::q3_kd_traversal::student::cases;
@@ -301,7 +301,7 @@ pub(super) fn variant(seed: u64) -> Variant {
             derivation: Derivation::LeavesFromDescents,
         });
     }
-    Variant { question: "q3", seed, statement, parts, follows }
+    Variant { question: "q3", seed, setting: Setting::Q3 { d, e }, statement, parts, follows }
 }
 
 #[cfg(test)]

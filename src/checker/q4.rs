@@ -2,7 +2,7 @@
 //! and Q4 as the homework asks it: lighting a surface from a small probe image, texel by texel.
 
 use super::formula::{Kind, Point, Value};
-use super::key::{Derivation, Expected, Follows, MalRule, Part, Variant, formula_part};
+use super::key::{Derivation, Expected, Follows, MalRule, Part, Q4Image, Q4Setting, Setting, Variant, formula_part};
 use super::policy::Rule;
 use crate::envmap::{Probe, ProbeFormat, Texel, horizontal_camera};
 use crate::plot::markdown_table;
@@ -120,7 +120,8 @@ pub(super) fn variant(seed: u64) -> Variant {
     }];
     let mut parts = parts;
     parts.extend(image.parts(normal));
-    Variant { question: "q4", seed, statement, parts, follows }
+    let setting = Setting::Q4(Q4Setting { a, b, tilt_deg, distance_over_radius, image: image.setting() });
+    Variant { question: "q4", seed, setting, statement, parts, follows }
 }
 
 /// Where the notes work a probe image by hand.
@@ -271,6 +272,13 @@ impl ProbeImage {
     /// `(row, column)` of texel `index`.
     fn place(&self, index: usize) -> (usize, usize) {
         (index / self.size, index % self.size)
+    }
+
+    /// The image as a variant's setting states it: each texel's radiance (`None` where masked)
+    /// and the listed texels.
+    fn setting(&self) -> Q4Image {
+        let radiance = self.probe.texels().iter().map(|t| t.centre_inside.then_some(t.radiance.x)).collect::<Vec<_>>();
+        Q4Image { size: self.size, radiance, listed: self.listed.map(|i| self.place(i)) }
     }
 
     /// Part (c)'s statement, with the image as a table.

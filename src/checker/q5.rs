@@ -1,7 +1,7 @@
 //! Q5 tables: which effects each method captures, graded cell by cell against the grammar's
 //! verdicts (area light, the homework's setting). Q5 has one variant: the seed is ignored.
 
-use super::key::{Derivation, Expected, Follows, MalRule, Part, Variant};
+use super::key::{Derivation, Expected, Follows, MalRule, Part, Setting, Variant};
 use super::policy::Rule;
 use crate::q5_effect_tables::{ALGORITHMS, Cell, EFFECTS, Effect, LightKind, Verdict, grammar_table};
 use std::sync::OnceLock;
@@ -203,7 +203,7 @@ pub(super) fn variant(seed: u64) -> Variant {
          more mirrors to the eye. Equivalent expressions are the same answer (LDD*E = LD+E).\n\
          q5paths: each effect's own class of light paths, light first and eye last."
     );
-    Variant { question: "q5", seed, statement, parts, follows }
+    Variant { question: "q5", seed, setting: Setting::Q5, statement, parts, follows }
 }
 
 #[cfg(test)]

@@ -175,3 +175,55 @@ fn seed_zero_names_the_classic_slips() {
     let text = feedback("q4c.term_formula", "\"L*(dot(n, w) + abs(dot(n, w)))/2*dw\"".into());
     assert!(!text.contains("missing"), "{text}");
 }
+
+// The statement states the setting the key, the template and the worked solution are made from.
+#[test]
+fn every_statement_states_its_setting() {
+    let v3 = |v: glam::DVec3| format!("({}, {}, {})", v.x, v.y, v.z);
+    for seed in 0..=20 {
+        for question in QUESTIONS {
+            let v = variant(question, seed).unwrap();
+            let says: Vec<String> = match &v.setting {
+                Setting::Q1(n) => vec![
+                    format!("{} spheres of radius a = {}", n.count, n.radius),
+                    format!("front face is a {} x {} square", n.side, n.side),
+                    format!("sigma_t = {}: the transmittance along a path of length {}", n.sigma_t, n.path),
+                    format!("radius R = {} steps sideways by {}", n.mirror_radius, n.step),
+                    format!("moving at {} units/s across the view, {} units away", n.speed, n.depth),
+                    format!("filmed at {} frames/s with a vertical field of view of {} degrees", n.fps, n.fov_deg),
+                    format!("an image {} pixels high", n.height),
+                ],
+                Setting::Q2 { ray, sphere } => vec![
+                    format!("e = {}, d = {}", v3(ray.origin), v3(ray.dir)),
+                    format!("centre o = {}, radius r = {}", v3(sphere.center), sphere.radius),
+                ],
+                Setting::Q3 { d, e } => [('d', d), ('e', e)]
+                    .map(|(label, r)| {
+                        format!("({label}) e = ({}, {}), d = ({}, {})", r.origin[0], r.origin[1], r.dir[0], r.dir[1])
+                    })
+                    .to_vec(),
+                Setting::Q4(s) => {
+                    let sign = if s.b < 0.0 { '-' } else { '+' };
+                    let mut says = vec![
+                        format!("L(w) = {} {sign} {} w_z", s.a, s.b.abs()),
+                        format!("tilted {} degrees", s.tilt_deg),
+                        format!("distance D = {} R", s.distance_over_radius),
+                        format!("as a {} x {} image", s.image.size, s.image.size),
+                    ];
+                    let listed: Vec<String> = s.image.listed.iter().map(|p| format!("{p:?}")).collect();
+                    says.push(format!("For texels {} (row, column)", listed.join(", ")));
+                    for (row, texels) in s.image.radiance.chunks(s.image.size).enumerate() {
+                        let cells: Vec<String> =
+                            texels.iter().map(|l| l.map_or_else(|| "-".to_string(), |l| format!("{l}"))).collect();
+                        says.push(format!("| {row} | {} |", cells.join(" | ")));
+                    }
+                    says
+                }
+                Setting::Q5 => vec![],
+            };
+            for said in says {
+                assert!(v.statement.contains(&said), "{question} seed {seed}: `{said}` not in\n{}", v.statement);
+            }
+        }
+    }
+}

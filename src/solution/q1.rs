@@ -2,17 +2,16 @@
 //! transmittance and visual range, the turn of a mirror reflection per camera step, the image
 //! shift per frame of a moving object), then which built-in scene shows which difficulty.
 //!
-//! Every number is the checker's key ([`checker::q1_key`](crate::checker)) of the numbers read
-//! back from the statement; the working shows the intermediate values that key is built from.
+//! Every number is the checker's key ([`checker::q1_key`](crate::checker)) of the variant's
+//! numbers; the working shows the intermediate values that key is built from.
 
 use super::text::{final_number, num, operand};
-use super::{Section, SolutionError, Step, Value, setting};
-use crate::checker::{Q1_SCENES, Variant, difficulty_of, q1_key};
+use super::{Section, Step, Value};
+use crate::checker::{Q1_SCENES, Q1Setting, difficulty_of, q1_key};
 use crate::render::catalogue::CATALOGUE;
 
-pub(super) fn sections(variant: &Variant) -> Result<Vec<Section>, SolutionError> {
-    let n = setting::q1(variant)?;
-    let k = q1_key(&n);
+pub(super) fn sections(n: &Q1Setting) -> Vec<Section> {
+    let k = q1_key(n);
     let a = vec![
         Step::work(format!(
             "a sphere blocks a ray perpendicular to the face when its centre is within a = {} of the ray; its \
@@ -128,13 +127,13 @@ pub(super) fn sections(variant: &Variant) -> Result<Vec<Section>, SolutionError>
             Step::answer(format!("{scene} ({description}): ({letter})"), key, Value::Word(letter.into()))
         })
         .collect();
-    Ok(vec![
+    vec![
         Section { title: "(a) clutter: the gap fraction".into(), steps: a },
         Section { title: "(b) fog: transmittance and visual range".into(), steps: b },
         Section { title: "(c) mirrors: the turn of the reflected ray".into(), steps: c },
         Section { title: "(d) motion: the image shift per frame".into(), steps: d },
         Section { title: "which scene shows which difficulty".into(), steps: matches },
-    ])
+    ]
 }
 
 /// A probability that may be far below 1 (a sphere's `p`, the gap of a dense slab): six

@@ -6,13 +6,13 @@
 //! agree to the last printed digit.
 
 use super::text::{num, operand, vector};
-use super::{Section, SolutionError, Step, Value, setting};
-use crate::checker::Variant;
+use super::{Section, Step, Value};
 use crate::geometry::sphere::{closest_approach_t, first_hit_stable, reflect_with_cosine, roots_stable, surface_hit};
+use crate::geometry::{Ray, Sphere};
 use crate::q2_ray_sphere::student_solver::{StudentBranch, student_trace};
 
-pub(super) fn sections(variant: &Variant) -> Result<Vec<Section>, SolutionError> {
-    let (ray, sphere) = setting::q2(variant)?;
+pub(super) fn sections(ray: &Ray<f64>, sphere: &Sphere<f64>) -> Vec<Section> {
+    let (ray, sphere) = (*ray, *sphere);
     let (e, d, o, r) = (ray.origin, ray.dir, sphere.center, sphere.radius);
     let trace = student_trace(&ray, &sphere);
     let f = e - o;
@@ -113,11 +113,11 @@ pub(super) fn sections(variant: &Variant) -> Result<Vec<Section>, SolutionError>
             )),
         ];
         symbols(&mut c, &c_formulas);
-        return Ok(vec![
+        return vec![
             Section { title: "(a) the first intersection".into(), steps: a },
             Section { title: "(b) the normal and the reflected direction".into(), steps: b },
             Section { title: "(c) the closest approach".into(), steps: c },
-        ]);
+        ];
     };
     let hit = surface_hit(&ray, &sphere, t);
     a.push(Step::answer(format!("t = {}", num(t)), "q2a.t", Value::Number(t)));
@@ -177,9 +177,9 @@ pub(super) fn sections(variant: &Variant) -> Result<Vec<Section>, SolutionError>
         )),
     ];
     symbols(&mut c, &c_formulas);
-    Ok(vec![
+    vec![
         Section { title: "(a) the first intersection".into(), steps: a },
         Section { title: "(b) the normal and the reflected direction".into(), steps: b },
         Section { title: "(c) the closest approach".into(), steps: c },
-    ])
+    ]
 }

@@ -6,8 +6,8 @@
 //! ([`split_interval`]).
 
 use super::text::{num, operand};
-use super::{Section, SolutionError, Step, Value, setting};
-use crate::checker::{ExpectedLeaf, ExpectedPlane, Variant};
+use super::{Section, Step, Value};
+use crate::checker::{ExpectedLeaf, ExpectedPlane};
 use crate::kdtree::{QuotientAxis, Visit, split_interval};
 use crate::q3_kd_traversal::{Branch, Interval, Node2, Ray2, Step as TraceStep, traverse};
 
@@ -144,7 +144,7 @@ fn part(ray: &Ray2, [planes_key, descents_key, key]: [&'static str; 3], label: c
     Section { title, steps }
 }
 
-pub(super) fn sections(variant: &Variant) -> Result<Vec<Section>, SolutionError> {
+pub(super) fn sections(d: Ray2, e: Ray2) -> Vec<Section> {
     // (b) and (c) in symbols: the plane `axis = s` is met where `e_axis + d_axis t = s`.
     let formulas = Section {
         title: "(b), (c) the plane parameter in symbols".into(),
@@ -162,8 +162,8 @@ pub(super) fn sections(variant: &Variant) -> Result<Vec<Section>, SolutionError>
         ],
     };
     let mut sections = vec![formulas];
-    for &(label, keys) in &PARTS {
-        sections.push(part(&setting::q3(variant, label)?, keys, label));
+    for (&(label, keys), ray) in PARTS.iter().zip([d, e]) {
+        sections.push(part(&ray, keys, label));
     }
-    Ok(sections)
+    sections
 }

@@ -4,8 +4,8 @@
 //! weighted and unweighted texel sums, the bias, the masked solid angle and the blind direction.
 
 use super::text::{num, operand, vector};
-use super::{Section, SolutionError, Step, Value, setting};
-use crate::checker::Variant;
+use super::{Section, Step, Value};
+use crate::checker::{Q4Image, Q4Setting};
 use crate::envmap::{Probe, ProbeFormat, horizontal_camera};
 use crate::q4_light_probe::blind_spot;
 use crate::q4_light_probe::irradiance::{centre_texels, equal_weight, unweighted_sum, weighted_sum};
@@ -13,9 +13,7 @@ use crate::q4_light_probe::maps::{AnalyticMap, Term};
 use glam::{DVec2, DVec3};
 use std::f64::consts::PI;
 
-pub(super) fn sections(variant: &Variant) -> Result<Vec<Section>, SolutionError> {
-    let s = setting::q4(variant)?;
-    let distance_error = || SolutionError::Statement { question: "q4", seed: variant.seed, what: "a distance D > R" };
+pub(super) fn sections(s: &Q4Setting) -> Vec<Section> {
     let tilt = s.tilt_deg.to_radians();
     let normal = DVec3::new(tilt.sin(), 0.0, tilt.cos());
     let constant = Term::Constant { radiance: s.a }.irradiance(normal);
@@ -45,9 +43,11 @@ pub(super) fn sections(variant: &Variant) -> Result<Vec<Section>, SolutionError>
     ];
 
     let d = s.distance_over_radius;
-    let gamma = blind_spot::half_angle(d).map_err(|_| distance_error())?;
-    let lost = blind_spot::lost_fraction(d, 0.0).map_err(|_| distance_error())?;
-    let share = blind_spot::solid_angle(d).map_err(|_| distance_error())? / (4.0 * PI);
+    // A variant's ball is seen from outside it: D ≥ 2R.
+    let outside = "a variant's camera lies outside the ball";
+    let gamma = blind_spot::half_angle(d).expect(outside);
+    let lost = blind_spot::lost_fraction(d, 0.0).expect(outside);
+    let share = blind_spot::solid_angle(d).expect(outside) / (4.0 * PI);
     let b = vec![
         Step::work(format!("R/D = 1/{} = {}", num(d), num(1.0 / d))),
         Step::work(format!("γ = arcsin(R/D) = {} rad", num(gamma))),
@@ -71,55 +71,12 @@ pub(super) fn sections(variant: &Variant) -> Result<Vec<Section>, SolutionError>
             num(share)
         )),
     ];
-    let c = probe_steps(variant, normal)?;
-    Ok(vec![
+    let c = probe_steps(&s.image, normal);
+    vec![
         Section { title: "(a) the irradiance E(n)".into(), steps: a },
         Section { title: "(b) the blind cone".into(), steps: b },
         Section { title: "(c) lighting from the probe image".into(), steps: c },
-    ])
-}
-
-/// Part (c)'s image, read back from the statement: texels across, each texel's radiance
-/// (`None` where masked), and the listed texels as `(row, column)`.
-struct Image {
-    size: usize,
-    radiance: Vec<Option<f64>>,
-    listed: Vec<(usize, usize)>,
-}
-
-/// Reads part (c)'s table and listed texels from the statement.
-fn read_image(variant: &Variant) -> Result<Image, SolutionError> {
-    let error = |what| SolutionError::Statement { question: "q4", seed: variant.seed, what };
-    let part = variant.statement.split_once("(c) ").ok_or_else(|| error("part (c)"))?.1;
-    // The table's rows: skip its header and rule, then `| row | L | L | ... |`.
-    let mut radiance = Vec::new();
-    let mut size = 0;
-    for line in part.lines().filter(|l| l.starts_with('|')).skip(2) {
-        let cells: Vec<&str> = line.trim_matches('|').split('|').map(str::trim).skip(1).collect();
-        size = cells.len();
-        for cell in cells {
-            radiance.push(if cell == "-" {
-                None
-            } else {
-                Some(cell.parse().map_err(|_| error("a texel's radiance"))?)
-            });
-        }
-    }
-    if size == 0 || radiance.len() != size * size {
-        return Err(error("the probe image's table"));
-    }
-    let list = part.split_once("For texels ").and_then(|(_, rest)| rest.split_once(" (row, column)"));
-    let list = list.ok_or_else(|| error("the listed texels"))?.0;
-    let listed = list
-        .split("), ")
-        .map(|pair| {
-            let (row, column) = pair.trim_matches(|c| c == '(' || c == ')').split_once(", ")?;
-            Some((row.parse().ok()?, column.parse().ok()?))
-        })
-        .collect::<Option<Vec<(usize, usize)>>>()
-        .filter(|l| l.len() == 3 && l.iter().all(|&(r, c)| r < size && c < size))
-        .ok_or_else(|| error("the listed texels"))?;
-    Ok(Image { size, radiance, listed })
+    ]
 }
 
 /// The answer keys of the listed texels, in the order the statement lists them.
@@ -129,12 +86,11 @@ const LISTED: [(&str, &str); 3] = [
     ("q4c.texel3_direction", "q4c.texel3_solid_angle"),
 ];
 
-fn probe_steps(variant: &Variant, normal: DVec3) -> Result<Vec<Step>, SolutionError> {
-    let image = read_image(variant)?;
+fn probe_steps(image: &Q4Image, normal: DVec3) -> Vec<Step> {
     let n = image.size;
     let radiance = image.radiance.iter().map(|l| DVec3::splat(l.unwrap_or(0.0))).collect();
     let probe = Probe::from_radiance(ProbeFormat::MirrorBall, n, n, horizontal_camera(), radiance)
-        .map_err(|_| SolutionError::Statement { question: "q4", seed: variant.seed, what: "radiances ≥ 0" })?;
+        .expect("a variant's radiances are finite and ≥ 0");
     let texels = centre_texels(&probe);
     let camera = horizontal_camera();
     let side = 2.0 / n as f64;
@@ -255,5 +211,5 @@ fn probe_steps(variant: &Variant, normal: DVec3) -> Result<Vec<Step>, SolutionEr
         "q4c.term_formula",
         Value::Formula(term.into()),
     ));
-    Ok(steps)
+    steps
 }
