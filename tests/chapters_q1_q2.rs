@@ -119,7 +119,7 @@ fn q1_worked_examples_are_the_crates_laws() {
             format!("$f = 300/\\tan 25° = 300/{} = {:.2}$", sig(25f64.to_radians().tan(), 5), focal),
             format!("pixels_per_frame = {:.2}", pixels_per_frame(3.0 / 20.0, 4.0, focal)),
             format!("$643.35 \\cdot 0.15/4 = {:.2}$", pixels_per_frame(0.15, 4.0, focal)),
-            format!("(here {:.2}), no credit", 0.15 * wrong_focal / 4.0),
+            format!("(a shift of {:.2} pixels here), no credit", 0.15 * wrong_focal / 4.0),
             format!(
                 "$\\tan 50° = {:.3}$ but $2\\tan 25° = {:.3}$",
                 50f64.to_radians().tan(),
