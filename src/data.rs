@@ -34,6 +34,77 @@ pub const Q5_PHOTON_CORNELL: &str = include_str!("../docs/data/q5_photon_cornell
 /// `q5_effect_tables::cornell_published::converged_reference`).
 pub const Q5_CORNELL_REFERENCE: &str = include_str!("../docs/data/q5_cornell_reference.csv");
 
+/// Why a committed CSV could not be read: what is wrong, in which file and which record. The
+/// files are compiled in and pinned by tests, so these name a bad commit of the data, never a
+/// user's input.
+///
+/// # Examples
+/// ```
+/// use hw3::data::DataError;
+/// let error = DataError::FieldCount { file: "q5_photon_accuracy.csv", expected: 7, got: 2 };
+/// assert_eq!(error.to_string(), "q5_photon_accuracy.csv: expected 7 fields, got 2");
+/// ```
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum DataError {
+    /// A field that should be a number is missing or is not one.
+    #[error("{file}: bad field {index} in `{record}`")]
+    BadField {
+        /// The CSV file's name (`q1_accuracy.csv`).
+        file: &'static str,
+        /// The field's index in its record, from 0.
+        index: usize,
+        /// The record, its fields joined by commas.
+        record: String,
+    },
+    /// A field of an all-numeric record is not a number.
+    #[error("{file}: `{record}`: {source}")]
+    NotANumber {
+        /// The CSV file's name.
+        file: &'static str,
+        /// The record, its fields joined by commas.
+        record: String,
+        /// The number parser's error.
+        source: std::num::ParseFloatError,
+    },
+    /// A record has the wrong number of fields.
+    #[error("{file}: expected {expected} fields, got {got}")]
+    FieldCount {
+        /// The CSV file's name.
+        file: &'static str,
+        /// The number of fields of every record.
+        expected: usize,
+        /// The number this record has.
+        got: usize,
+    },
+    /// The header is not the one expected.
+    #[error("{file}: header {header:?}")]
+    Header {
+        /// The CSV file's name.
+        file: &'static str,
+        /// The header's fields, as read.
+        header: Vec<String>,
+    },
+    /// A record of a per-probe file is not `index,radiance,error` with its own index, a positive
+    /// radiance and a non-negative error.
+    #[error("{file}: record {} is not `{index},radiance,error`", .index + 1)]
+    ProbeRecord {
+        /// The CSV file's name.
+        file: &'static str,
+        /// The record's index, from 0 (the probe it should hold).
+        index: usize,
+    },
+    /// A per-probe file holds a record count other than the probes'.
+    #[error("{file}: {got} probes, expected {expected}")]
+    ProbeCount {
+        /// The CSV file's name.
+        file: &'static str,
+        /// The records the file holds.
+        got: usize,
+        /// The number of probes.
+        expected: usize,
+    },
+}
+
 /// A committed CSV file, split: its `#` comment lines, its header and its records.
 ///
 /// The committed files are plain comma-separated fields, with no quoting (no field holds a comma).

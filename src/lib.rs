@@ -58,7 +58,8 @@ pub fn all_answers() -> Vec<Answers> {
 /// and thread count; with `HW3_FIGURE_TIMINGS` set, each job's seconds on stderr).
 ///
 /// # Errors
-/// [`plot::PlotError`] if a figure cannot be drawn, or if two figures share a file name.
+/// [`plot::PlotError`] if a figure cannot be drawn, [`plot::PlotError::DuplicateName`] if two
+/// figures share a file name.
 pub fn all_figures() -> Result<Vec<plot::Figure>, plot::PlotError> {
     // Two jobs read the Q5 measured table (the Q5 figures and the effect grid), and a pool worker
     // never waits for another thread's measurement of it (`measured_table` says why): measured
@@ -69,10 +70,7 @@ pub fn all_figures() -> Result<Vec<plot::Figure>, plot::PlotError> {
     let mut names: Vec<&str> = figures.iter().map(|f| f.file_name.as_str()).collect();
     names.sort_unstable();
     if let Some(pair) = names.windows(2).find(|pair| pair[0] == pair[1]) {
-        return Err(plot::PlotError::Draw {
-            figure: pair[0].to_owned(),
-            message: "two figures share this file name".into(),
-        });
+        return Err(plot::PlotError::DuplicateName { figure: pair[0].to_owned() });
     }
     Ok(figures)
 }

@@ -22,6 +22,7 @@ pub use grammar::{
 
 use crate::answers::Answers;
 use crate::plot::{Figure, PlotError, markdown_table};
+use error::TablesError;
 use grammar::agreement;
 
 /// The cell-by-cell comparison with the student's answers (area light, the student's two
@@ -30,7 +31,7 @@ use grammar::agreement;
 /// [`experiments::measured_table`]; "–" for a cell it lacks).
 ///
 /// # Errors
-/// A message when the grammar ([`decide`]) fails (never for the built-in tables).
+/// [`TablesError::Grammar`] when the grammar ([`decide`]) fails (never for the built-in tables).
 ///
 /// # Examples
 /// ```
@@ -50,9 +51,9 @@ use grammar::agreement;
 /// assert!(markdown.lines().any(|l| l.starts_with("| 5(a)(a) |") && l.ends_with("| No (0.00) |")));
 /// assert_eq!(markdown.lines().filter(|l| l.starts_with("| 5(") && l.ends_with("| – |")).count(), 11);
 /// ```
-pub fn student_comparison_markdown(measured: &[experiments::MeasuredCell]) -> Result<String, String> {
+pub fn student_comparison_markdown(measured: &[experiments::MeasuredCell]) -> Result<String, TablesError> {
     let mut rows = Vec::new();
-    for cell in grammar_table().map_err(|e| e.to_string())?.iter().filter(|c| c.student != StudentAnswer::NotAsked) {
+    for cell in grammar_table()?.iter().filter(|c| c.student != StudentAnswer::NotAsked) {
         let Some(method) = ALGORITHMS.iter().find(|m| m.id == cell.algorithm) else { continue };
         let Some(effect) = EFFECTS.iter().find(|e| e.id == cell.effect) else { continue };
         let experiment = measured
@@ -78,7 +79,8 @@ pub fn student_comparison_markdown(measured: &[experiments::MeasuredCell]) -> Re
 /// and the measured table as text, or everything as one JSON value.
 ///
 /// # Errors
-/// A message when a table cannot be built (a grammar overflow).
+/// [`TablesError::Grammar`] when a table cannot be built (a grammar overflow),
+/// [`TablesError::Json`] when the JSON value cannot be serialised.
 ///
 /// # Examples
 /// ```
@@ -99,13 +101,13 @@ pub fn student_comparison_markdown(measured: &[experiments::MeasuredCell]) -> Re
 /// assert_eq!(json["grammar"].as_array().unwrap().len(), 2 * EFFECTS.len() * ALGORITHMS.len()); // two lights
 /// assert!(effect_tables_command(false, &[]).unwrap().contains("measured verdict"));
 /// ```
-pub fn effect_tables_command(json: bool, measured: &[experiments::MeasuredCell]) -> Result<String, String> {
-    let cells = grammar_table().map_err(|e| e.to_string())?;
+pub fn effect_tables_command(json: bool, measured: &[experiments::MeasuredCell]) -> Result<String, TablesError> {
+    let cells = grammar_table()?;
     if json {
         let value = serde_json::json!({ "grammar": cells, "measured": measured });
-        serde_json::to_string_pretty(&value).map_err(|e| e.to_string())
+        Ok(serde_json::to_string_pretty(&value)?)
     } else {
-        let mut out = grammar_table_markdown().map_err(|e| e.to_string())?;
+        let mut out = grammar_table_markdown()?;
         out.push_str(&measured_tables_markdown(measured)?);
         Ok(out)
     }
@@ -117,7 +119,7 @@ pub fn effect_tables_command(json: bool, measured: &[experiments::MeasuredCell])
 /// ends there if its standard output cannot take it).
 ///
 /// # Errors
-/// A message when the grammar table cannot be built (a grammar overflow).
+/// [`TablesError::Grammar`] when the grammar table cannot be built (a grammar overflow).
 ///
 /// # Examples
 /// ```
@@ -125,7 +127,7 @@ pub fn effect_tables_command(json: bool, measured: &[experiments::MeasuredCell])
 /// let both = grammar_table_markdown().unwrap() + &measured_tables_markdown(&[]).unwrap();
 /// assert_eq!(both, effect_tables_command(false, &[]).unwrap());
 /// ```
-pub fn measured_tables_markdown(measured: &[experiments::MeasuredCell]) -> Result<String, String> {
+pub fn measured_tables_markdown(measured: &[experiments::MeasuredCell]) -> Result<String, TablesError> {
     let mut out = student_comparison_markdown(measured)?;
     out.push('\n');
     out.push_str(&experiments::measured_table_markdown(measured));

@@ -2,6 +2,7 @@
 //! and its two charts.
 
 use super::chart::{Series, chart, key, series};
+use crate::data::DataError;
 use crate::plot::{Axis, Figure, PALETTE, PlotError};
 use plotters::prelude::*;
 
@@ -16,16 +17,21 @@ struct AccuracyRow {
 }
 
 /// Parses `docs/data/q1_accuracy.csv` (header `scene,integrator,spp,seconds,rmse`).
-fn parse_accuracy(csv: &str) -> Result<Vec<AccuracyRow>, String> {
+///
+/// # Errors
+/// [`DataError::BadField`] for the first record whose `spp`, `seconds` or `rmse` is missing or
+/// not a number.
+fn parse_accuracy(csv: &str) -> Result<Vec<AccuracyRow>, DataError> {
     crate::data::csv(csv)
         .records
         .into_iter()
         .map(|fields| {
-            let number = |i: usize| -> Result<f64, String> {
-                fields
-                    .get(i)
-                    .and_then(|f| f.trim().parse().ok())
-                    .ok_or_else(|| format!("q1_accuracy.csv: bad field {i} in `{}`", fields.join(",")))
+            let number = |index: usize| -> Result<f64, DataError> {
+                fields.get(index).and_then(|f| f.trim().parse().ok()).ok_or_else(|| DataError::BadField {
+                    file: "q1_accuracy.csv",
+                    index,
+                    record: fields.join(","),
+                })
             };
             Ok(AccuracyRow {
                 scene: fields.first().unwrap_or(&"").to_string(),
@@ -107,8 +113,7 @@ fn accuracy_figures(rows: &[AccuracyRow]) -> Result<Vec<Figure>, PlotError> {
 
 /// The two accuracy charts from the committed CSV.
 pub(super) fn committed_accuracy_figures() -> Result<Vec<Figure>, PlotError> {
-    let rows = parse_accuracy(crate::data::Q1_ACCURACY)
-        .map_err(|message| PlotError::Draw { figure: "q1_accuracy_spp.svg".into(), message })?;
+    let rows = parse_accuracy(crate::data::Q1_ACCURACY).map_err(|e| PlotError::data("q1_accuracy_spp.svg", e))?;
     accuracy_figures(&rows)
 }
 
@@ -121,7 +126,9 @@ mod tests {
         let rows = parse_accuracy("scene,integrator,spp,seconds,rmse\nfog,path,4,1e-2,3e-2\n").unwrap();
         assert_eq!(rows.len(), 1);
         assert_eq!((rows[0].spp, rows[0].seconds, rows[0].rmse), (4.0, 1e-2, 3e-2));
-        assert!(parse_accuracy("h\nfog,path,x,1,1\n").is_err());
+        let bad = parse_accuracy("h\nfog,path,x,1,1\n").unwrap_err();
+        assert_eq!(bad, DataError::BadField { file: "q1_accuracy.csv", index: 2, record: "fog,path,x,1,1".into() });
+        assert_eq!(bad.to_string(), "q1_accuracy.csv: bad field 2 in `fog,path,x,1,1`");
         let charts = accuracy_figures(&rows).unwrap();
         assert_eq!(charts.len(), 2);
     }

@@ -62,7 +62,7 @@ fn pair_figure(
 }
 
 fn input_error(figure: &str, e: InputError) -> PlotError {
-    PlotError::Draw { figure: figure.into(), message: e.to_string() }
+    PlotError::data(figure, e)
 }
 
 /// The clutter chart's sphere-count ticks: the measured counts ([`CLUTTER_COUNTS`]), which

@@ -4,9 +4,10 @@
 use super::catalogue::{self, Outcome, VARIANTS, variant_label};
 use super::reflection::{Scenario, SpawnPolicy, self_hit_rate};
 use super::{closest_approach, notes_example};
-use crate::geometry::sphere::{first_hit_stable, roots_stable};
+use crate::geometry::sphere::{Roots, first_hit_stable, roots_stable};
+use crate::geometry::{InputError, Ray};
 use crate::plot::{
-    self, Axis, Chart, Dots, Figure, Legend, LegendMark, Mesh, PALETTE, PlotError, Series, Shape, Stroke, err,
+    self, Axis, Chart, Dots, DrawError, Figure, Legend, LegendMark, Mesh, PALETTE, PlotError, Series, Shape, Stroke,
     markdown_table,
 };
 use crate::{data, stats};
@@ -26,10 +27,14 @@ use plotters::prelude::*;
 /// assert!(figures.iter().any(|f| f.file_name == "q2_catalogue.md"));
 /// ```
 pub fn figures() -> Result<Vec<Figure>, PlotError> {
+    let reflection = worked_hit().map_err(|e| PlotError::data("q2_reflection.svg", e))?;
+    let reflection = plot::svg_figure("q2_reflection.svg", (560, 400), |root| draw_reflection(root, reflection))?;
+    let closest_approach = plot::svg_figure("q2_closest_approach.svg", (560, 400), draw_closest_approach)?;
+    let cases = case_rays().map_err(|e| PlotError::data("q2_cases.svg", e))?;
     let mut figures = vec![
-        plot::svg_figure("q2_reflection.svg", (560, 400), draw_reflection)?,
-        plot::svg_figure("q2_closest_approach.svg", (560, 400), draw_closest_approach)?,
-        plot::svg_figure("q2_cases.svg", (900, 520), draw_cases)?,
+        reflection,
+        closest_approach,
+        plot::svg_figure("q2_cases.svg", (900, 520), |root| draw_cases(root, &cases))?,
         Figure { file_name: "q2_catalogue.md".into(), bytes: catalogue::catalogue_table().into_bytes() },
         Figure {
             file_name: "q2_far_sweep.md".into(),
@@ -43,10 +48,45 @@ pub fn figures() -> Result<Vec<Figure>, PlotError> {
     Ok(figures)
 }
 
+/// Why the geometry a Q2 figure shows could not be computed (never for the built-in example and
+/// cases, which the tests draw).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+enum GeometryError {
+    /// A case's ray is invalid.
+    #[error(transparent)]
+    Input(#[from] InputError),
+    /// The worked example's ray misses its sphere.
+    #[error("the worked example must hit")]
+    NoHit,
+}
+
+/// The worked example's two roots and its first hit with t ≥ 0.
+///
+/// # Errors
+/// [`GeometryError::NoHit`] if the ray misses the sphere.
+fn worked_hit() -> Result<(Roots<f64>, f64), GeometryError> {
+    let (ray, sphere) = notes_example();
+    let roots = roots_stable(&ray, &sphere).ok_or(GeometryError::NoHit)?;
+    let t_hit = first_hit_stable(&ray, &sphere).ok_or(GeometryError::NoHit)?;
+    Ok((roots, t_hit))
+}
+
+/// The [`CASES`] as rays, with their names.
+///
+/// # Errors
+/// [`GeometryError::Input`] for a case whose ray is invalid.
+fn case_rays() -> Result<Vec<(&'static str, Ray<f64>)>, GeometryError> {
+    CASES.iter().map(|&(name, origin, dir)| Ok((name, Ray::new(DVec3::from(origin), DVec3::from(dir))?))).collect()
+}
+
 /// The worked example's cross-section at `z = 0` with equal scales (the circle is round), axes
 /// and tick labels but no grid: the sphere, its centre `o`, and what `shapes` add on top.
-fn cross_section(root: &DrawingArea<SVGBackend<'_>, Shift>, caption: &str, shapes: Vec<Shape>) -> Result<(), String> {
-    let area = root.titled(caption, ("sans-serif", 16)).map_err(err)?;
+fn cross_section(
+    root: &DrawingArea<SVGBackend<'_>, Shift>,
+    caption: &str,
+    shapes: Vec<Shape>,
+) -> Result<(), DrawError> {
+    let area = root.titled(caption, ("sans-serif", 16))?;
     let (_, sphere) = notes_example();
     let mut sphere_shapes = vec![
         Shape::line(circle(sphere.center, sphere.radius), PALETTE[7], 2),
@@ -123,11 +163,11 @@ const CASES: [(&str, [f64; 3], [f64; 3]); 6] = [
 
 /// The six cases of the root analysis as a small multiple: in each panel the sphere, the ray
 /// from its eye (the part with t < 0 dashed grey), both roots as computed by
-/// [`roots_stable`], and the first hit with t ≥ 0 by [`first_hit_stable`] (ringed).
-fn draw_cases(root: &DrawingArea<SVGBackend<'_>, Shift>) -> Result<(), String> {
+/// [`roots_stable`], and the first hit with t ≥ 0 by [`first_hit_stable`] (ringed); `cases` are
+/// the [`CASES`]' rays ([`case_rays`]).
+fn draw_cases(root: &DrawingArea<SVGBackend<'_>, Shift>, cases: &[(&str, Ray<f64>)]) -> Result<(), DrawError> {
     let (_, sphere) = notes_example();
-    for (area, &(name, origin, dir)) in root.split_evenly((2, 3)).iter().zip(CASES.iter()) {
-        let ray = crate::geometry::Ray::<f64>::new(DVec3::from(origin), DVec3::from(dir)).map_err(err)?;
+    for (area, &(name, ray)) in root.split_evenly((2, 3)).iter().zip(cases.iter()) {
         let roots = roots_stable(&ray, &sphere);
         let hit = first_hit_stable(&ray, &sphere);
         let numbers = match roots {
@@ -136,10 +176,7 @@ fn draw_cases(root: &DrawingArea<SVGBackend<'_>, Shift>) -> Result<(), String> {
             None => "no real root".into(),
         };
         let verdict = hit.map_or("no hit".into(), |t| format!("first hit t = {t:.3}"));
-        let area = area
-            .margin(4, 4, 4, 4)
-            .titled(&format!("{name}: {verdict}"), ("sans-serif", CASE_TITLE_PX))
-            .map_err(err)?;
+        let area = area.margin(4, 4, 4, 4).titled(&format!("{name}: {verdict}"), ("sans-serif", CASE_TITLE_PX))?;
         let (behind, ahead) = (ray.at(-8.0), ray.at(8.0));
         let mut shapes = vec![
             Shape::line(circle(sphere.center, sphere.radius), PALETTE[7], 2),
@@ -178,15 +215,18 @@ fn draw_cases(root: &DrawingArea<SVGBackend<'_>, Shift>) -> Result<(), String> {
         .draw(&area)?;
         let height = area.dim_in_pixel().1;
         let style = TextStyle::from(("sans-serif", CASE_TEXT_PX)).color(&PALETTE[7]);
-        area.draw(&Text::new(numbers, (6, i32::try_from(height).unwrap_or(0) - 22), style)).map_err(err)?;
+        area.draw(&Text::new(numbers, (6, i32::try_from(height).unwrap_or(0) - 22), style))?;
     }
     Ok(())
 }
 
-fn draw_reflection(root: &DrawingArea<SVGBackend<'_>, Shift>) -> Result<(), String> {
+/// The worked example's ray, its roots and the reflection at its first hit ([`worked_hit`]:
+/// `(roots, t_hit)`).
+fn draw_reflection(
+    root: &DrawingArea<SVGBackend<'_>, Shift>,
+    (roots, t_hit): (Roots<f64>, f64),
+) -> Result<(), DrawError> {
     let (ray, sphere) = notes_example();
-    let roots = roots_stable(&ray, &sphere).ok_or("the worked example must hit")?;
-    let t_hit = first_hit_stable(&ray, &sphere).ok_or("the worked example must hit")?;
     let (near, far) = (ray.at(roots.near), ray.at(roots.far));
     let mut shapes = vec![Shape::line(vec![(ray.origin.x, ray.origin.y), (7.0, ray.origin.y)], PALETTE[0], 1)];
     shapes.extend(arrow(ray.origin, ray.at(0.5), PALETTE[0]));
@@ -211,7 +251,7 @@ fn draw_reflection(root: &DrawingArea<SVGBackend<'_>, Shift>) -> Result<(), Stri
     cross_section(root, "Q2a/b: e + d t meets the sphere at t = 1 and t = 3; reflection at the first hit", shapes)
 }
 
-fn draw_closest_approach(root: &DrawingArea<SVGBackend<'_>, Shift>) -> Result<(), String> {
+fn draw_closest_approach(root: &DrawingArea<SVGBackend<'_>, Shift>) -> Result<(), DrawError> {
     let (ray, sphere) = notes_example();
     let t = closest_approach::closest_approach_algebraic(&ray, sphere.center);
     let foot = ray.at(t);
@@ -323,7 +363,7 @@ impl CostTable {
         out
     }
 
-    fn draw(&self, root: &DrawingArea<SVGBackend<'_>, Shift>) -> Result<(), String> {
+    fn draw(&self, root: &DrawingArea<SVGBackend<'_>, Shift>) -> Result<(), DrawError> {
         let points: Vec<(String, f64, f64, f64)> = self
             .intersections()
             .filter_map(|r| {

@@ -3,7 +3,7 @@
 
 use super::{Axis2, Interval, Node2, Ray2, RayText, student, traverse, write_path};
 use crate::kdtree::Side;
-use crate::plot::{Axis, Chart, Figure, PALETTE, PlotError, Series, Shape, legend_grid, svg_figure};
+use crate::plot::{Axis, Chart, DrawError, Figure, PALETTE, PlotError, Series, Shape, legend_grid, svg_figure};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::fmt;
@@ -204,7 +204,12 @@ fn steps(file_name: &str, ray: &Ray2) -> Result<Figure, PlotError> {
 
 /// Draws the tree, the ray and the visited leaves' pieces; with `step = Some(k)`, only the first
 /// `k + 1` leaves, the `k`-th one's cell shaded in its colour.
-fn draw(root: &DrawingArea<SVGBackend<'_>, Shift>, title: &str, ray: &Ray2, step: Option<usize>) -> Result<(), String> {
+fn draw(
+    root: &DrawingArea<SVGBackend<'_>, Shift>,
+    title: &str,
+    ray: &Ray2,
+    step: Option<usize>,
+) -> Result<(), DrawError> {
     let tree = Node2::homework();
     let [(x0, x1), (y0, y1)] = WINDOW;
     let width = root.dim_in_pixel().0;

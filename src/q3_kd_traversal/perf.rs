@@ -6,7 +6,9 @@
 //! libraries measured in the same run.
 
 use crate::data;
-use crate::plot::{Axis, Chart, Dots, Figure, LegendMark, PALETTE, PlotError, Series, Stroke, legend_grid, svg_figure};
+use crate::plot::{
+    Axis, Chart, Dots, DrawError, Figure, LegendMark, PALETTE, PlotError, Series, Stroke, legend_grid, svg_figure,
+};
 use plotters::prelude::*;
 use std::collections::BTreeMap;
 
@@ -184,7 +186,7 @@ fn panel<DB: DrawingBackend>(
     n_max: f64,
     rays: Rays,
     shown: Shown,
-) -> Result<(), String> {
+) -> Result<(), DrawError> {
     let title = match (rays, shown) {
         (Rays::Camera, Shown::WithPeers) => "camera rays 512×512 (1 thread)",
         (Rays::Random, Shown::WithPeers) => "10⁶ random rays (1 thread)",

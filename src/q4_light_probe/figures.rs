@@ -4,9 +4,9 @@
 use super::blind_spot;
 use super::irradiance::{Irradiance, equal_weight};
 use super::maps::{AnalyticMap, sun_direction};
-use crate::envmap::{BuiltinMap, Probe, ProbeFormat, horizontal_camera, luminance};
+use crate::envmap::{BuiltinMap, Probe, ProbeError, ProbeFormat, horizontal_camera, luminance};
 use crate::plot::{
-    Axis, Chart, Figure, FigureJob, Legend, LegendMark, Note, PALETTE, PlotError, Series, Stroke, compact_tick, err,
+    Axis, Chart, Figure, FigureJob, Legend, LegendMark, Note, PALETTE, PlotError, Series, Stroke, compact_tick,
 };
 use glam::DMat3;
 use glam::DVec3;
@@ -87,13 +87,16 @@ struct Unwrap {
 /// uniform map comes out with 17 % texel-to-texel noise, a grid over the ball and, at its rim,
 /// where the texels on the image's axes catch 1.33 and 0.55 of their share, two lines through
 /// the blind cone of the unwrap. Both panels read the probe bilinearly.
-fn unwrap_pixels(source: &Probe) -> Result<Unwrap, String> {
+///
+/// # Errors
+/// [`ProbeError::Input`] if [`UNWRAP_DISTANCE`] is not a valid `D/R`, and the [`ProbeError`] of
+/// [`Probe::from_fn`] if the probe cannot be built (a texel of `source` that is not finite).
+fn unwrap_pixels(source: &Probe) -> Result<Unwrap, ProbeError> {
     use rayon::prelude::*;
-    let format = ProbeFormat::perspective_ball(UNWRAP_DISTANCE).map_err(|e| e.to_string())?;
+    let format = ProbeFormat::perspective_ball(UNWRAP_DISTANCE)?;
     let probe = Probe::from_fn(format, UNWRAP_PROBE_SIZE, UNWRAP_PROBE_SIZE, horizontal_camera(), |w| {
         source.radiance_bilinear(w)
-    })
-    .map_err(|e| e.to_string())?;
+    })?;
     let ball = (0..BALL_PIXELS * BALL_PIXELS)
         .into_par_iter()
         .map(|index| {
@@ -123,9 +126,8 @@ fn unwrap_pixels(source: &Probe) -> Result<Unwrap, String> {
 /// outline. One exposure for both (Reinhard `L/(1 + L)`, gamma 2.2).
 fn unwrap_figure() -> Result<Figure, PlotError> {
     let name = "q4_probe_unwrap.png";
-    let failed = |message: String| PlotError::Draw { figure: name.into(), message };
-    let courtyard = BuiltinMap::Courtyard.probe().map_err(|e| failed(e.to_string()))?;
-    let pixels = unwrap_pixels(&courtyard).map_err(failed)?;
+    let courtyard = BuiltinMap::Courtyard.probe().map_err(|e| PlotError::data(name, e))?;
+    let pixels = unwrap_pixels(&courtyard).map_err(|e| PlotError::data(name, e))?;
     let exposure = |radiance: DVec3| {
         let byte = |c: f64| (255.0 * (c / (1.0 + c)).max(0.0).powf(1.0 / 2.2)).round() as u8;
         RGBColor(byte(radiance.x), byte(radiance.y), byte(radiance.z))
@@ -133,19 +135,19 @@ fn unwrap_figure() -> Result<Figure, PlotError> {
     let band = 26_i32;
     let (ball_size, (long_width, long_height)) = (BALL_PIXELS as i32, (LONG_PIXELS.0 as i32, LONG_PIXELS.1 as i32));
     let blind = PALETTE[1];
-    let half_angle = blind_spot::half_angle(UNWRAP_DISTANCE).map_err(|e| failed(e.to_string()))?;
+    let half_angle = blind_spot::half_angle(UNWRAP_DISTANCE).map_err(|e| PlotError::data(name, e))?;
     crate::plot::png_figure(name, ((ball_size + 12 + long_width) as u32, (long_height + band) as u32), |root| {
         let ball_label = format!("perspective mirror ball, D/R = {UNWRAP_DISTANCE}");
-        root.draw(&Text::new(ball_label, (4, 5), ("sans-serif", 14))).map_err(err)?;
+        root.draw(&Text::new(ball_label, (4, 5), ("sans-serif", 14)))?;
         for (index, radiance) in pixels.ball.iter().enumerate() {
             if let Some(radiance) = radiance {
                 let (x, y) = ((index % BALL_PIXELS) as i32, (index / BALL_PIXELS) as i32);
-                root.draw_pixel((x, y + band), &exposure(*radiance)).map_err(err)?;
+                root.draw_pixel((x, y + band), &exposure(*radiance))?;
             }
         }
         let x0 = ball_size + 12;
         let long_label = format!("unwrapped to lat-long; vermillion: the blind cone, {:.1}°", half_angle.to_degrees());
-        root.draw(&Text::new(long_label, (x0 + 4, 5), ("sans-serif", 14))).map_err(err)?;
+        root.draw(&Text::new(long_label, (x0 + 4, 5), ("sans-serif", 14)))?;
         let seen = |x: i32, y: i32| {
             let (x, y) = (x.rem_euclid(long_width), y.clamp(0, long_height - 1));
             pixels.long[(y * long_width + x) as usize]
@@ -162,7 +164,7 @@ fn unwrap_figure() -> Result<Figure, PlotError> {
                     Some(radiance) => exposure(radiance),
                     None => blind,
                 };
-                root.draw_pixel((x0 + x, y + band), &colour).map_err(err)?;
+                root.draw_pixel((x0 + x, y + band), &colour)?;
             }
         }
         Ok(())
@@ -250,7 +252,7 @@ fn solid_angle_figure() -> Result<Figure, PlotError> {
     for (format, label) in formats {
         let (w, h) = if format == ProbeFormat::LatLong { (size, size / 2) } else { (size, size) };
         let probe = Probe::from_fn(format, w, h, DMat3::IDENTITY, |_| glam::DVec3::ZERO)
-            .map_err(|e| PlotError::Draw { figure: name.into(), message: e.to_string() })?;
+            .map_err(|e| PlotError::data(name, e))?;
         let share = equal_weight(probe.texels());
         // log10 of the ratio, −1 (10× smaller) … 1 (10× larger); `None` outside the image's disk.
         let ratios: Vec<Option<f64>> = probe
@@ -275,20 +277,21 @@ fn solid_angle_figure() -> Result<Figure, PlotError> {
             let y0 = (size - h) / 2;
             for (index, ratio) in ratios.iter().enumerate() {
                 if let Some(t) = ratio {
-                    root.draw_pixel(((x0 + index % w) as i32, (y0 + index / w) as i32), &ramp(*t)).map_err(err)?;
+                    root.draw_pixel(((x0 + index % w) as i32, (y0 + index / w) as i32), &ramp(*t))?;
                 }
             }
             let text_at = |line: usize| (x0 as i32 + 2, (size + 6 + 17 * line) as i32);
-            root.draw(&Text::new(*label, text_at(0), ("sans-serif", 13))).map_err(err)?;
-            root.draw(&Text::new(share.as_str(), text_at(1), ("sans-serif", 12))).map_err(err)?;
+            root.draw(&Text::new(*label, text_at(0), ("sans-serif", 13)))?;
+            root.draw(&Text::new(share.as_str(), text_at(1), ("sans-serif", 12)))?;
         }
         let bar_x = (formats.len() * (size + gap)) as i32 + 4;
         let at = |ratio: f64| (ratio.log10() + 1.0) / 2.0;
         let ticks = [(at(0.1), "0.1×"), (at(0.3), "0.3×"), (at(1.0), "1× share"), (at(3.0), "3×"), (at(10.0), "10×")];
         crate::plot::color_bar(root, (bar_x, 8), (14, size as i32 - 16), &|v| ramp(2.0 * v - 1.0), &ticks)?;
         let title = ("sans-serif", 12);
-        root.draw(&Text::new("texel Δω / share", (bar_x - 4, size as i32 + 6), title)).map_err(err)?;
-        root.draw(&Text::new("(log scale)", (bar_x - 4, size as i32 + 23), title)).map_err(err)
+        root.draw(&Text::new("texel Δω / share", (bar_x - 4, size as i32 + 6), title))?;
+        root.draw(&Text::new("(log scale)", (bar_x - 4, size as i32 + 23), title))?;
+        Ok(())
     })
 }
 
@@ -357,13 +360,12 @@ fn render_row(title: &'static str, probe: &Probe, reference: &(dyn Fn(DVec3) -> 
 /// with the colour bar and its scale beside them), each map on two rows of three panels.
 fn sphere_render_figure() -> Result<Figure, PlotError> {
     let name = "q4_sphere_render.png";
-    let failed = |message: String| PlotError::Draw { figure: name.into(), message };
+    let failed = |e: ProbeError| PlotError::data(name, e);
     let sun_map = AnalyticMap::sun();
-    let sun_probe =
-        sun_map.rasterise(ProbeFormat::MirrorBall, 128, horizontal_camera()).map_err(|e| failed(e.to_string()))?;
-    let sunrise = BuiltinMap::Sunrise.probe().map_err(|e| failed(e.to_string()))?;
-    let sunrise_ball = Probe::resample_lat_long(&sunrise, ProbeFormat::MirrorBall, 128, horizontal_camera())
-        .map_err(|e| failed(e.to_string()))?;
+    let sun_probe = sun_map.rasterise(ProbeFormat::MirrorBall, 128, horizontal_camera()).map_err(failed)?;
+    let sunrise = BuiltinMap::Sunrise.probe().map_err(failed)?;
+    let sunrise_ball =
+        Probe::resample_lat_long(&sunrise, ProbeFormat::MirrorBall, 128, horizontal_camera()).map_err(failed)?;
     let sunrise_reference = Irradiance::new(&sunrise);
     let brightest = sunrise
         .texels()
@@ -416,20 +418,18 @@ fn sphere_render_figure() -> Result<Figure, PlotError> {
             let ramp = |v: f64| heat(v * 0.1 * row.peak);
             let bar_at = (bar_x as i32 + 24, (bar_y + label_band) as i32 + 8);
             let ticks = [(0.0, "0"), (0.5, "5 %"), (1.0, "≥ 10 %")];
-            root.draw(&Text::new("|error|/peak", (bar_x as i32 + 20, bar_y as i32 + 4), ("sans-serif", 13)))
-                .map_err(err)?;
+            root.draw(&Text::new("|error|/peak", (bar_x as i32 + 20, bar_y as i32 + 4), ("sans-serif", 13)))?;
             crate::plot::color_bar(root, bar_at, (16, RENDER_SIZE as i32 - 16), &ramp, &ticks)?;
             for (panel, label) in labels.iter().enumerate() {
                 let (x0, y0) = corner(panel);
-                root.draw(&Text::new(*label, (x0 as i32 + 4, y0 as i32 + 4), ("sans-serif", 13))).map_err(err)?;
+                root.draw(&Text::new(*label, (x0 as i32 + 4, y0 as i32 + 4), ("sans-serif", 13)))?;
                 let second = &second_lines[panel];
-                root.draw(&Text::new(second.as_str(), (x0 as i32 + 4, y0 as i32 + 19), ("sans-serif", 12)))
-                    .map_err(err)?;
+                root.draw(&Text::new(second.as_str(), (x0 as i32 + 4, y0 as i32 + 19), ("sans-serif", 12)))?;
                 for index in 0..RENDER_SIZE * RENDER_SIZE {
                     if let Some(c) = pixel(panel, index) {
                         let x = (x0 + index % RENDER_SIZE) as i32;
                         let y = (y0 + label_band + index / RENDER_SIZE) as i32;
-                        root.draw_pixel((x, y), &c).map_err(err)?;
+                        root.draw_pixel((x, y), &c)?;
                     }
                 }
             }

@@ -21,6 +21,7 @@ use super::budget::Budget;
 use super::error::ExperimentError;
 use super::photon_cornell::Reference;
 use super::radiosity::{Mesh, Solver, System};
+use crate::data::DataError;
 use crate::geometry::{InputError, Ray};
 use crate::plot::markdown_table;
 use crate::render::analysis::analyze;
@@ -343,8 +344,10 @@ pub const REFERENCE_CSV: &str = "q5_cornell_reference.csv";
 /// `cargo test --release --test unit -- --ignored write_converged_reference`.
 ///
 /// # Errors
-/// A message naming the file if it does not hold one record `probe,radiance,standard_error` per
-/// probe, in order, with a positive radiance.
+/// A [`DataError`] naming the file if it does not hold one record `probe,radiance,standard_error`
+/// per probe, in order, with a positive radiance: [`DataError::Header`] for another header,
+/// [`DataError::ProbeRecord`] for a bad record, [`DataError::ProbeCount`] for a record count other
+/// than the [`wall_probes`]'.
 ///
 /// # Examples
 /// ```
@@ -352,10 +355,11 @@ pub const REFERENCE_CSV: &str = "q5_cornell_reference.csv";
 /// assert_eq!(reference.radiance.len(), 20);
 /// assert!(reference.max_relative_error() < 1e-3); // 0.06 %: 40 times below a 4096-sample one
 /// ```
-pub fn converged_reference() -> Result<Reference, String> {
+pub fn converged_reference() -> Result<Reference, DataError> {
+    let file = REFERENCE_CSV;
     let csv = crate::data::csv(crate::data::Q5_CORNELL_REFERENCE);
     if csv.header != ["probe", "radiance", "standard_error"] {
-        return Err(format!("{REFERENCE_CSV}: header {:?}", csv.header));
+        return Err(DataError::Header { file, header: csv.header.iter().map(|f| (*f).to_owned()).collect() });
     }
     let mut reference = Reference { radiance: Vec::new(), standard_error: Vec::new() };
     for (index, record) in csv.records.iter().enumerate() {
@@ -365,11 +369,11 @@ pub fn converged_reference() -> Result<Reference, String> {
                 reference.radiance.push(radiance);
                 reference.standard_error.push(error);
             }
-            _ => return Err(format!("{REFERENCE_CSV}: record {} is not `{index},radiance,error`", index + 1)),
+            _ => return Err(DataError::ProbeRecord { file, index }),
         }
     }
     if reference.radiance.len() != wall_probes().len() {
-        return Err(format!("{REFERENCE_CSV}: {} probes, expected {}", reference.radiance.len(), wall_probes().len()));
+        return Err(DataError::ProbeCount { file, got: reference.radiance.len(), expected: wall_probes().len() });
     }
     Ok(reference)
 }
@@ -426,7 +430,7 @@ pub fn relative_errors(n: usize, reference: &[f64]) -> Result<Vec<f64>, Experime
 pub fn validation_table(budget: &Budget) -> Result<String, ExperimentError> {
     let finest_level = *budget.levels.last().expect("a budget has at least one level");
     let scene = scene()?;
-    let reference = converged_reference().map_err(ExperimentError::Data)?;
+    let reference = converged_reference()?;
     let mut out = format!(
         "Published Cornell box, radiosity (one form-factor sample per patch, 80 Gauss–Seidel sweeps) against the path tracer ({REFERENCE_SPP} samples per probe, relative standard error at most {:.2} %) at 20 wall probes.\n\n",
         reference.max_relative_error() * 100.0

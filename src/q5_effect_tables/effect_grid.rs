@@ -203,7 +203,8 @@ fn label(row: &Row, method: Measured, cost: &str, cell: &MeasuredCell) -> String
 /// run compares with it).
 ///
 /// # Errors
-/// [`PlotError::Draw`] when a scene, a render or the measured table fails.
+/// [`PlotError::Data`] with the [`ExperimentError`] of a scene, a render or the measured table
+/// that fails (or of a cell the table lacks), and the [`PlotError`] of the panel grid.
 ///
 /// # Examples
 /// ```
@@ -220,22 +221,22 @@ fn label(row: &Row, method: Measured, cost: &str, cell: &MeasuredCell) -> String
 ///
 /// [`EXPERIMENTS`]: super::experiments::EXPERIMENTS
 pub fn figure(budget: &Budget) -> Result<Figure, PlotError> {
-    let draw_error = |e: &dyn std::fmt::Display| PlotError::Draw { figure: GRID_PNG.into(), message: e.to_string() };
-    let cells = measured_table(budget).map_err(|e| draw_error(&e))?;
+    let draw_error = |e: ExperimentError| PlotError::data(GRID_PNG, e);
+    let cells = measured_table(budget).map_err(draw_error)?;
     let mut rendered: Vec<(&str, Vec<(Image, String)>)> = Vec::new();
     let mut panels = Vec::new();
     for row in &ROWS {
         let shared = if row.effect == "e" { "b" } else { row.effect };
         if !rendered.iter().any(|(id, _)| *id == shared) {
-            let scene = row_scene(shared).map_err(|e| draw_error(&e))?;
-            rendered.push((shared, render_methods(&scene, budget).map_err(|e| draw_error(&e))?));
+            let scene = row_scene(shared).map_err(draw_error)?;
+            rendered.push((shared, render_methods(&scene, budget).map_err(draw_error)?));
         }
         let images = &rendered.iter().find(|(id, _)| *id == shared).expect("rendered above").1;
         for (method, (image, cost)) in table_methods(budget).iter().zip(images) {
-            let cell = cells
-                .iter()
-                .find(|c| c.effect == row.effect && c.algorithm == method.id())
-                .ok_or_else(|| draw_error(&"the measured table has no such cell"))?;
+            let cell =
+                cells.iter().find(|c| c.effect == row.effect && c.algorithm == method.id()).ok_or_else(|| {
+                    draw_error(ExperimentError::MissingCell { effect: row.effect, algorithm: method.id() })
+                })?;
             let exposed = Image { pixels: image.pixels.iter().map(|&p| p * row.exposure).collect(), ..image.clone() };
             panels.push(Panel { image: exposed.to_rgb8(), label: label(row, *method, cost, cell) });
         }

@@ -1,7 +1,9 @@
-//! Why an experiment could not run.
+//! Why an experiment could not run, and why a table of `hw3 effect-tables` could not be made.
 
 use super::radiosity::RadiosityError;
+use crate::data::DataError;
 use crate::geometry::InputError;
+use crate::render::analysis::grammar::GrammarError;
 use crate::render::photon::PhotonError;
 
 /// Why an experiment could not run.
@@ -28,9 +30,37 @@ pub enum ExperimentError {
     Render(String),
     /// Committed data (a CSV under `docs/data/`) is malformed.
     #[error("committed data: {0}")]
-    Data(String),
+    Data(#[from] DataError),
     /// A table row or column id that [`EFFECTS`](crate::q5_effect_tables::EFFECTS) or
     /// [`ALGORITHMS`](crate::q5_effect_tables::ALGORITHMS) does not list.
     #[error("no effect or method with id {0:?}")]
     UnknownId(&'static str),
+    /// The measured table has no cell for an effect and a method a figure shows.
+    #[error("the measured table has no such cell")]
+    MissingCell {
+        /// The effect's id.
+        effect: &'static str,
+        /// The method's id.
+        algorithm: &'static str,
+    },
+}
+
+/// Why a table of `hw3 effect-tables` could not be made.
+///
+/// # Examples
+/// ```
+/// use hw3::q5_effect_tables::error::TablesError;
+/// use hw3::render::analysis::grammar::GrammarError;
+/// let error: TablesError = GrammarError::TooManyStates(100_000).into();
+/// assert_eq!(error.to_string(), "derivative search exceeded 100000 states");
+/// ```
+#[derive(Debug, thiserror::Error)]
+pub enum TablesError {
+    /// The grammar's table could not be built (a derivative search overflowed; never for the
+    /// built-in tables).
+    #[error(transparent)]
+    Grammar(#[from] GrammarError),
+    /// The JSON output could not be serialised.
+    #[error(transparent)]
+    Json(#[from] serde_json::Error),
 }

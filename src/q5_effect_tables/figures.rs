@@ -20,10 +20,8 @@ use crate::render::{Settings, render};
 /// # Errors
 /// [`PlotError`] if drawing fails.
 pub(super) fn figures(budget: &Budget) -> Result<Vec<Figure>, PlotError> {
-    let draw_error =
-        |figure: &str, e: &dyn std::fmt::Display| PlotError::Draw { figure: figure.into(), message: e.to_string() };
     let mut figures = Vec::new();
-    let (_, small) = cornell_system(4, 1).map_err(|e| draw_error("q5_radiosity_convergence.svg", &e))?;
+    let (_, small) = cornell_system(4, 1).map_err(|e| PlotError::data("q5_radiosity_convergence.svg", e))?;
     let reference = small.solve(Solver::GaussSeidel, 200).pop().unwrap_or_default();
     let curves: Vec<(Solver, Vec<f64>)> =
         Solver::ALL.iter().map(|&s| (s, relative_errors(&small.solve(s, 20), &reference))).collect();
@@ -57,17 +55,17 @@ pub(super) fn figures(budget: &Budget) -> Result<Vec<Figure>, PlotError> {
     // partly serial, and run alone they left one core idle for the last seconds of the drawn-figure
     // check in the test build. Errors are reported in the order the tables are written.
     let (validation, measured) = rayon::join(|| cornell_published::validation_table(budget), || measured_table(budget));
-    let validation = validation.map_err(|e| draw_error("q5_cornell_published.md", &e))?;
+    let validation = validation.map_err(|e| PlotError::data("q5_cornell_published.md", e))?;
     figures.push(Figure { file_name: "q5_cornell_published.md".into(), bytes: validation.into_bytes() });
-    let measured = measured.map_err(|e| draw_error("q5_measured_table.md", &e))?;
+    let measured = measured.map_err(|e| PlotError::data("q5_measured_table.md", e))?;
     figures.push(Figure {
         file_name: "q5_measured_table.md".into(),
         bytes: measured_table_markdown(&measured).into_bytes(),
     });
-    let grammar = grammar_table_markdown().map_err(|e| draw_error("q5_grammar_tables.md", &e))?;
+    let grammar = grammar_table_markdown().map_err(|e| PlotError::data("q5_grammar_tables.md", e))?;
     figures.push(Figure { file_name: "q5_grammar_tables.md".into(), bytes: grammar.into_bytes() });
     let comparison =
-        super::student_comparison_markdown(&measured).map_err(|e| draw_error("q5_seed_comparison.md", &e))?;
+        super::student_comparison_markdown(&measured).map_err(|e| PlotError::data("q5_seed_comparison.md", e))?;
     figures.push(Figure { file_name: "q5_seed_comparison.md".into(), bytes: comparison.into_bytes() });
     Ok(figures)
 }
@@ -126,11 +124,9 @@ pub const NOISY_SPP: u32 = Budget::PUBLISHED.noisy_spp;
 /// assert_eq!((width(&figures[1]), width(&figures[2])), (16, 24));
 /// ```
 pub fn renders(budget: &Budget) -> Result<Vec<Figure>, PlotError> {
-    let draw_error =
-        |figure: &str, e: &dyn std::fmt::Display| PlotError::Draw { figure: figure.into(), message: e.to_string() };
     let radiosity_png = "q5_radiosity_cornell.png";
     let (patches, samples) = budget.render_mesh;
-    let (scene, system) = cornell_system(patches, samples).map_err(|e| draw_error(radiosity_png, &e))?;
+    let (scene, system) = cornell_system(patches, samples).map_err(|e| PlotError::data(radiosity_png, e))?;
     let solution = system.solve(Solver::GaussSeidel, 60).pop().unwrap_or_default();
     let (width, height) = budget.image_size((640, 640));
     let image = system.render(&scene, &solution, width, height).to_rgb8();
@@ -152,7 +148,7 @@ const PUBLISHED_SIZE: u32 = 320;
 fn published_figure(budget: &Budget) -> Result<Figure, PlotError> {
     let (size, _) = budget.image_size((PUBLISHED_SIZE, PUBLISHED_SIZE));
     let (patches, noisy_spp, converged_spp) = (budget.side_by_side_patches, budget.noisy_spp, budget.converged_spp);
-    let draw_error = |e: ExperimentError| PlotError::Draw { figure: PUBLISHED_PNG.into(), message: e.to_string() };
+    let draw_error = |e: ExperimentError| PlotError::data(PUBLISHED_PNG, e);
     let radiosity = cornell_published::radiosity_image(size, patches).map_err(draw_error)?;
     let noisy = cornell_published::path_traced_image(size, noisy_spp).map_err(draw_error)?;
     let (converged, converged_noise) =
@@ -234,13 +230,11 @@ fn montage_settings(scene: &Scene, (width, height): (u32, u32), spp: u32) -> Set
 /// The four open experiment scenes, path-traced ([`montage_scenes`], [`montage_settings`]), as a
 /// labelled 2 × 2 grid.
 fn effect_scenes_figure(budget: &Budget) -> Result<Figure, PlotError> {
-    let render_error =
-        |e: &dyn std::fmt::Display| PlotError::Draw { figure: EFFECT_SCENES_PNG.into(), message: e.to_string() };
     let size = budget.image_size(MONTAGE_SIZE);
     let mut panels = Vec::new();
-    for (scene, what, spp) in &montage_scenes(budget).map_err(|e| render_error(&e))? {
+    for (scene, what, spp) in &montage_scenes(budget).map_err(|e| PlotError::data(EFFECT_SCENES_PNG, e))? {
         let settings = montage_settings(scene, size, *spp);
-        let image = render(scene, &settings, &|_| {}).map_err(|e| render_error(&e))?.to_rgb8();
+        let image = render(scene, &settings, &|_| {}).map_err(|e| PlotError::data(EFFECT_SCENES_PNG, e))?.to_rgb8();
         panels.push(Panel { image, label: format!("{what}\npath tracing, {spp} spp") });
     }
     // Below the panels: on them a label covered the mirrored red panel's corner.

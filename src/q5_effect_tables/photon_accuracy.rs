@@ -2,6 +2,7 @@
 //! `cargo bench -p hw3-benches --bench q5_photon` writes (`docs/data/q5_photon_accuracy.csv`), so that
 //! [`super::figures`] stays deterministic: timings come only from the benchmark.
 
+use crate::data::DataError;
 use crate::plot::{Axis, Chart, Dots, Figure, Legend, PALETTE, PlotError, Series, Stroke, TickFormat};
 use plotters::prelude::{BLACK, SeriesLabelPosition};
 
@@ -34,23 +35,27 @@ pub struct AccuracyRow {
 /// Parses the CSV (header `photons,stored,k,trace_seconds,query_seconds,rms_error,mean_error`).
 ///
 /// # Errors
-/// A message naming the first line with a missing or non-numeric field.
+/// [`DataError::NotANumber`] for the first record with a non-numeric field,
+/// [`DataError::FieldCount`] for the first with other than 7 fields.
 ///
 /// # Examples
 /// ```
+/// use hw3::data::DataError;
 /// use hw3::q5_effect_tables::photon_accuracy::parse;
 /// let rows = parse("header\n10000,19823,8,4.8e-2,1.8e-3,4.2e-1,2.0e-2\n").unwrap();
 /// assert_eq!(rows[0].k, 8.0);
-/// assert!(parse("header\n1,2,x\n").is_err());
+/// assert!(matches!(parse("header\n1,2,x\n"), Err(DataError::NotANumber { .. })));
+/// assert!(matches!(parse("header\n1,2\n"), Err(DataError::FieldCount { expected: 7, got: 2, .. })));
 /// ```
-pub fn parse(csv: &str) -> Result<Vec<AccuracyRow>, String> {
-    numeric_rows(csv, "q5_photon_accuracy.csv")?
+pub fn parse(csv: &str) -> Result<Vec<AccuracyRow>, DataError> {
+    let file = "q5_photon_accuracy.csv";
+    numeric_rows(csv, file)?
         .into_iter()
         .map(|fields| match fields[..] {
             [photons, stored, k, trace_seconds, query_seconds, rms_error, mean_error] => {
                 Ok(AccuracyRow { photons, stored, k, trace_seconds, query_seconds, rms_error, mean_error })
             }
-            _ => Err(format!("q5_photon_accuracy.csv: expected 7 fields, got {}", fields.len())),
+            _ => Err(DataError::FieldCount { file, expected: 7, got: fields.len() }),
         })
         .collect()
 }
@@ -58,8 +63,8 @@ pub fn parse(csv: &str) -> Result<Vec<AccuracyRow>, String> {
 /// The numeric fields of every line of a CSV after its header (blank lines skipped).
 ///
 /// # Errors
-/// A message naming `file` and the first line with a non-numeric field.
-pub(super) fn numeric_rows(csv: &str, file: &str) -> Result<Vec<Vec<f64>>, String> {
+/// [`DataError::NotANumber`] naming `file` and the first record with a non-numeric field.
+pub(super) fn numeric_rows(csv: &str, file: &'static str) -> Result<Vec<Vec<f64>>, DataError> {
     crate::data::csv(csv)
         .records
         .into_iter()
@@ -68,7 +73,7 @@ pub(super) fn numeric_rows(csv: &str, file: &str) -> Result<Vec<Vec<f64>>, Strin
                 .iter()
                 .map(|f| f.trim().parse::<f64>())
                 .collect::<Result<_, _>>()
-                .map_err(|e| format!("{file}: `{}`: {e}", fields.join(",")))
+                .map_err(|source| DataError::NotANumber { file, record: fields.join(","), source })
         })
         .collect()
 }
@@ -76,13 +81,14 @@ pub(super) fn numeric_rows(csv: &str, file: &str) -> Result<Vec<Vec<f64>>, Strin
 /// Parses committed data (a constant of [`crate::data`]) for the figure `figure`.
 ///
 /// # Errors
-/// [`PlotError::Draw`] naming the figure when the data is malformed.
+/// [`PlotError::Data`] naming the figure, with the [`DataError`] of `parse`, when the data is
+/// malformed.
 pub(super) fn read_committed<T>(
     csv: &str,
     figure: &str,
-    parse: impl Fn(&str) -> Result<Vec<T>, String>,
+    parse: impl Fn(&str) -> Result<Vec<T>, DataError>,
 ) -> Result<Vec<T>, PlotError> {
-    parse(csv).map_err(|message| PlotError::Draw { figure: figure.into(), message })
+    parse(csv).map_err(|e| PlotError::data(figure, e))
 }
 
 /// The log-log chart of RMS error against k, one line per photon count, with the noise law

@@ -10,6 +10,7 @@
 //! radiance over a radius `r ∝ √(k/N)`, so it grows with k and shrinks as photons are added).
 
 use super::photon_accuracy::LogLogChart;
+use crate::data::DataError;
 use crate::geometry::{InputError, Ray};
 use crate::plot::{Figure, PlotError};
 use crate::render::catalogue::{CornellContents, cornell_box};
@@ -298,16 +299,18 @@ pub struct Row {
 /// Parses the CSV (header `photons,k,trace_seconds,query_seconds,rms,bias,noise,reference_error`).
 ///
 /// # Errors
-/// A message naming the first line with a missing or non-numeric field.
+/// [`DataError::NotANumber`] for the first record with a non-numeric field,
+/// [`DataError::FieldCount`] for the first with other than 8 fields.
 ///
 /// # Examples
 /// ```
+/// use hw3::data::DataError;
 /// use hw3::q5_effect_tables::photon_cornell::parse;
 /// let rows = parse("header\n10000,32,0.01,0.001,0.2,0.1,0.17,0.004\n").unwrap();
 /// assert_eq!((rows[0].k, rows[0].error.bias), (32.0, 0.1));
-/// assert!(parse("header\n1,2\n").is_err());
+/// assert!(matches!(parse("header\n1,2\n"), Err(DataError::FieldCount { expected: 8, got: 2, .. })));
 /// ```
-pub fn parse(csv: &str) -> Result<Vec<Row>, String> {
+pub fn parse(csv: &str) -> Result<Vec<Row>, DataError> {
     super::photon_accuracy::numeric_rows(csv, CSV_NAME)?
         .into_iter()
         .map(|fields| match fields[..] {
@@ -319,7 +322,7 @@ pub fn parse(csv: &str) -> Result<Vec<Row>, String> {
                 error: ErrorSplit { rms, bias, noise },
                 reference_error,
             }),
-            _ => Err(format!("{CSV_NAME}: expected 8 fields, got {}", fields.len())),
+            _ => Err(DataError::FieldCount { file: CSV_NAME, expected: 8, got: fields.len() }),
         })
         .collect()
 }

@@ -164,11 +164,11 @@ pub fn answer_key_table() -> Result<String, SolutionError> {
 /// The answer key's generated table, `answer_key_table.md`, for the figures pipeline.
 ///
 /// # Errors
-/// [`PlotError::Draw`] if the table cannot be written (see [`answer_key_table`]).
+/// [`PlotError::Data`] with the [`SolutionError`] of [`answer_key_table`] if the table cannot be
+/// written.
 pub fn figures() -> Result<Vec<Figure>, PlotError> {
     let file_name = "answer_key_table.md".to_string();
-    let table =
-        answer_key_table().map_err(|e| PlotError::Draw { figure: file_name.clone(), message: e.to_string() })?;
+    let table = answer_key_table().map_err(|e| PlotError::data(&file_name, e))?;
     Ok(vec![Figure { file_name, bytes: table.into_bytes() }])
 }
 

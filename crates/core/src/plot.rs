@@ -32,16 +32,17 @@ pub struct Figure {
     pub bytes: Vec<u8>,
 }
 
-/// Why a figure could not be drawn.
+/// Why a figure could not be made.
 #[derive(Debug, thiserror::Error)]
 pub enum PlotError {
-    /// plotters reported a drawing error (its error types are generic, so only the text is kept).
-    #[error("drawing {figure}: {message}")]
+    /// Drawing the figure failed: plotters refused a call, or a drawing helper of this module
+    /// refused its arguments.
+    #[error("drawing {figure}: {source}")]
     Draw {
         /// The figure being drawn.
         figure: String,
-        /// plotters' message.
-        message: String,
+        /// What went wrong while drawing.
+        source: DrawError,
     },
     /// The PNG encoder failed.
     #[error("encoding {figure}: {source}")]
@@ -51,6 +52,112 @@ pub enum PlotError {
         /// The encoder's error.
         source: PngError,
     },
+    /// What the figure shows could not be computed or read (a scene, a measurement, a probe,
+    /// committed data): the error of the step that failed, whatever its type ([`PlotError::data`]).
+    #[error("drawing {figure}: {source}")]
+    Data {
+        /// The figure being made.
+        figure: String,
+        /// The failed step's error.
+        source: Box<dyn std::error::Error + Send + Sync>,
+    },
+    /// Two figures of one run share a file name (one would overwrite the other).
+    #[error("drawing {figure}: two figures share this file name")]
+    DuplicateName {
+        /// The shared file name.
+        figure: String,
+    },
+}
+
+impl PlotError {
+    /// [`PlotError::Data`]: the figure `figure` could not be made because of `source`.
+    ///
+    /// # Examples
+    /// ```
+    /// use hw3_core::geometry::InputError;
+    /// let source = InputError::OutOfRange { name: "radius", value: "-1".into(), expected: "> 0" };
+    /// let error = hw3_core::plot::PlotError::data("q2_cases.svg", source);
+    /// assert_eq!(error.to_string(), "drawing q2_cases.svg: radius must be > 0, got -1");
+    /// ```
+    pub fn data<E: std::error::Error + Send + Sync + 'static>(figure: &str, source: E) -> Self {
+        Self::Data { figure: figure.into(), source: Box::new(source) }
+    }
+
+    /// [`PlotError::Draw`]: drawing the figure `figure` failed with `source`.
+    pub fn draw(figure: &str, source: impl Into<DrawError>) -> Self {
+        Self::Draw { figure: figure.into(), source: source.into() }
+    }
+}
+
+/// Why drawing failed: the error of every drawing closure and helper ([`svg_figure`],
+/// [`png_figure`], [`Chart::draw`], [`color_bar`], [`legend_grid`], the questions' diagrams).
+///
+/// plotters' own errors convert into it (`From`), so `?` works on plotters' calls inside a
+/// drawing closure.
+///
+/// # Examples
+/// ```
+/// use hw3_core::plot::{Axis, Chart, DrawError, svg_figure};
+/// let ticked = Axis { ticks: Some(&[1.0]), ..Axis::linear(0.0, 1.0, "x") };
+/// let chart = Chart::new("c", ticked, Axis::linear(0.0, 1.0, "y"));
+/// let figure = svg_figure("c.svg", (200, 100), |root| chart.draw(root));
+/// assert!(matches!(figure, Err(hw3_core::plot::PlotError::Draw { source: DrawError::TicksOnLinearAxis, .. })));
+/// ```
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum DrawError {
+    /// plotters' drawing backend failed. Its error type is generic over the backend (an SVG
+    /// string, a bitmap buffer), so only its message is kept.
+    #[error("backend error: {0}")]
+    Backend(String),
+    /// plotters found the backend already in use by another drawing operation.
+    #[error("Multiple backend operation in progress")]
+    Sharing,
+    /// plotters could not lay the drawing area out (a split or margin larger than the area).
+    #[error("Bad layout")]
+    Layout,
+    /// [`Chart::equal_scale`] was asked of a chart with a caption or a log axis.
+    #[error("equal scales need linear axes and no caption (title the area first)")]
+    EqualScale,
+    /// [`Axis::ticks`] was set on a linear axis.
+    #[error("tick values are for log axes only")]
+    TicksOnLinearAxis,
+    /// [`legend_grid`] was asked for 0 columns.
+    #[error("a legend needs at least one column")]
+    NoLegendColumns,
+    /// [`panel_grid`] (or one of its variants) was given no panel.
+    #[error("no panels")]
+    NoPanels,
+    /// [`panel_grid`] was asked for 0 columns.
+    #[error("panels must share one size and columns must be at least 1")]
+    NoColumns,
+    /// A panel of a [`panel_grid`] differs in size from the first.
+    #[error("panels must share one size and columns must be at least 1")]
+    PanelSize {
+        /// The first panel's width and height, in pixels.
+        expected: (u32, u32),
+        /// The other panel's width and height.
+        found: (u32, u32),
+    },
+    /// A label line of [`panel_grid_labels_beside`] is wider than its column less the margin.
+    #[error("label line {line:?} is {width} px, wider than {column} px less 8")]
+    LabelTooWide {
+        /// The label line.
+        line: String,
+        /// Its width as drawn, in pixels.
+        width: u32,
+        /// The label column's width, in pixels (8 of them are margin).
+        column: u32,
+    },
+}
+
+impl<E: std::error::Error + Send + Sync> From<DrawingAreaErrorKind<E>> for DrawError {
+    fn from(error: DrawingAreaErrorKind<E>) -> Self {
+        match error {
+            DrawingAreaErrorKind::BackendError(e) => Self::Backend(e.to_string()),
+            DrawingAreaErrorKind::SharingError => Self::Sharing,
+            DrawingAreaErrorKind::LayoutError => Self::Layout,
+        }
+    }
 }
 
 static FONTS: Once = Once::new();
@@ -79,18 +186,18 @@ pub fn init_fonts() {
 /// Draws an SVG figure of `width`×`height` pixels with `draw`, which receives the root area.
 ///
 /// # Errors
-/// [`PlotError::Draw`] when `draw` or plotters fails.
+/// [`PlotError::Draw`] with the [`DrawError`] of `draw` or of plotters.
 pub fn svg_figure<F>(file_name: &str, (width, height): (u32, u32), draw: F) -> Result<Figure, PlotError>
 where
-    F: FnOnce(&DrawingArea<SVGBackend<'_>, plotters::coord::Shift>) -> Result<(), String>,
+    F: FnOnce(&DrawingArea<SVGBackend<'_>, plotters::coord::Shift>) -> Result<(), DrawError>,
 {
     init_fonts();
     let mut svg = String::new();
     {
         let root = SVGBackend::with_string(&mut svg, (width, height)).into_drawing_area();
-        root.fill(&WHITE).map_err(|e| draw_error(file_name, e))?;
-        draw(&root).map_err(|message| PlotError::Draw { figure: file_name.into(), message })?;
-        root.present().map_err(|e| draw_error(file_name, e))?;
+        root.fill(&WHITE).map_err(|e| PlotError::draw(file_name, e))?;
+        draw(&root).map_err(|e| PlotError::draw(file_name, e))?;
+        root.present().map_err(|e| PlotError::draw(file_name, e))?;
     }
     Ok(Figure { file_name: file_name.into(), bytes: svg.into_bytes() })
 }
@@ -99,18 +206,19 @@ where
 /// [`encode_png`], which is deterministic for identical pixels).
 ///
 /// # Errors
-/// [`PlotError::Draw`] when drawing fails, [`PlotError::Encode`] when encoding does.
+/// [`PlotError::Draw`] with the [`DrawError`] of `draw` or of plotters, [`PlotError::Encode`]
+/// when encoding fails.
 pub fn png_figure<F>(file_name: &str, (width, height): (u32, u32), draw: F) -> Result<Figure, PlotError>
 where
-    F: FnOnce(&DrawingArea<BitMapBackend<'_>, plotters::coord::Shift>) -> Result<(), String>,
+    F: FnOnce(&DrawingArea<BitMapBackend<'_>, plotters::coord::Shift>) -> Result<(), DrawError>,
 {
     init_fonts();
     let mut rgb = vec![0u8; width as usize * height as usize * 3];
     {
         let root = BitMapBackend::with_buffer(&mut rgb, (width, height)).into_drawing_area();
-        root.fill(&WHITE).map_err(|e| draw_error(file_name, e))?;
-        draw(&root).map_err(|message| PlotError::Draw { figure: file_name.into(), message })?;
-        root.present().map_err(|e| draw_error(file_name, e))?;
+        root.fill(&WHITE).map_err(|e| PlotError::draw(file_name, e))?;
+        draw(&root).map_err(|e| PlotError::draw(file_name, e))?;
+        root.present().map_err(|e| PlotError::draw(file_name, e))?;
     }
     let image = RgbImage::from_raw(width, height, rgb).expect("buffer has width*height*3 bytes");
     png_bytes(file_name, &image)
@@ -123,15 +231,6 @@ where
 pub fn png_bytes(file_name: &str, image: &RgbImage) -> Result<Figure, PlotError> {
     let bytes = encode_png(image).map_err(|source| PlotError::Encode { figure: file_name.into(), source })?;
     Ok(Figure { file_name: file_name.into(), bytes })
-}
-
-/// Turns any displayable plotters error into the `String` the drawing closures return.
-pub fn err<E: std::fmt::Display>(e: E) -> String {
-    e.to_string()
-}
-
-fn draw_error<E: std::fmt::Display>(figure: &str, e: E) -> PlotError {
-    PlotError::Draw { figure: figure.into(), message: e.to_string() }
 }
 
 /// One picture of a [`panel_grid`]: an image and the label drawn onto its top-left corner (one
@@ -152,21 +251,20 @@ fn draw_label<DB: DrawingBackend>(
     root: &DrawingArea<DB, plotters::coord::Shift>,
     label: &str,
     (x, y): (i32, i32),
-) -> Result<(), String> {
+) -> Result<(), DrawError> {
     let font = ("sans-serif", LABEL_PX).into_font().color(&WHITE);
     let line_height = LABEL_PX as i32 + 3;
     let mut width = 0;
     for line in label.lines() {
-        width = width.max(root.estimate_text_size(line, &font).map_err(err)?.0 as i32);
+        width = width.max(root.estimate_text_size(line, &font)?.0 as i32);
     }
     let lines = label.lines().count() as i32;
     root.draw(&Rectangle::new(
         [(x, y), (x + width + 8, y + lines * line_height + 5)],
         RGBColor(0, 0, 0).mix(0.65).filled(),
-    ))
-    .map_err(err)?;
+    ))?;
     for (k, line) in label.lines().enumerate() {
-        root.draw(&Text::new(line.to_string(), (x + 4, y + 3 + k as i32 * line_height), font.clone())).map_err(err)?;
+        root.draw(&Text::new(line.to_string(), (x + 4, y + 3 + k as i32 * line_height), font.clone()))?;
     }
     Ok(())
 }
@@ -176,8 +274,10 @@ fn draw_label<DB: DrawingBackend>(
 /// Compared panels must share one exposure: this only places pixels, it never rescales them.
 ///
 /// # Errors
-/// [`PlotError::Draw`] when `panels` is empty, `columns` is 0, the panels differ in size, or the
-/// text cannot be drawn; [`PlotError::Encode`] when encoding fails.
+/// [`PlotError::Draw`] with [`DrawError::NoPanels`] when `panels` is empty,
+/// [`DrawError::NoColumns`] when `columns` is 0, [`DrawError::PanelSize`] when the panels differ
+/// in size, or plotters' error when the text cannot be drawn; [`PlotError::Encode`] when encoding
+/// fails.
 ///
 /// # Examples
 /// ```
@@ -218,8 +318,8 @@ pub fn panel_grid_labels_below(file_name: &str, panels: &[Panel], columns: usize
 /// effect's panels, say) reads as one block; 0 or at least the row count means no gap.
 ///
 /// # Errors
-/// As [`panel_grid`], and [`PlotError::Draw`] when a label line is wider than `label_width`
-/// less an 8-pixel margin (a label never runs into the next panel).
+/// As [`panel_grid`], and [`PlotError::Draw`] with [`DrawError::LabelTooWide`] when a label line
+/// is wider than `label_width` less an 8-pixel margin (a label never runs into the next panel).
 ///
 /// # Examples
 /// ```
@@ -266,12 +366,15 @@ enum LabelPlace {
 fn grid_of_panels(file_name: &str, panels: &[Panel], columns: usize, place: LabelPlace) -> Result<Figure, PlotError> {
     init_fonts();
     let Some(first) = panels.first() else {
-        return Err(PlotError::Draw { figure: file_name.into(), message: "no panels".into() });
+        return Err(PlotError::draw(file_name, DrawError::NoPanels));
     };
     let (width, height) = first.image.dimensions();
-    if columns == 0 || panels.iter().any(|p| p.image.dimensions() != (width, height)) {
-        let message = "panels must share one size and columns must be at least 1".into();
-        return Err(PlotError::Draw { figure: file_name.into(), message });
+    if columns == 0 {
+        return Err(PlotError::draw(file_name, DrawError::NoColumns));
+    }
+    if let Some(other) = panels.iter().find(|p| p.image.dimensions() != (width, height)) {
+        let size = DrawError::PanelSize { expected: (width, height), found: other.image.dimensions() };
+        return Err(PlotError::draw(file_name, size));
     }
     let (strip, side) = match place {
         LabelPlace::On => (0, 0),
@@ -316,20 +419,22 @@ fn grid_of_panels(file_name: &str, panels: &[Panel], columns: usize, place: Labe
                     let font = ("sans-serif", LABEL_PX).into_font().color(&WHITE);
                     for line in panel.label.lines() {
                         let (text_width, _) =
-                            root.estimate_text_size(line, &font).map_err(|e| draw_error(file_name, e))?;
+                            root.estimate_text_size(line, &font).map_err(|e| PlotError::draw(file_name, e))?;
                         if text_width + 8 > label_width {
-                            let message =
-                                format!("label line {line:?} is {text_width} px, wider than {label_width} px less 8");
-                            return Err(PlotError::Draw { figure: file_name.into(), message });
+                            let wide = DrawError::LabelTooWide {
+                                line: line.to_owned(),
+                                width: text_width,
+                                column: label_width,
+                            };
+                            return Err(PlotError::draw(file_name, wide));
                         }
                     }
                     (x + width, y + 2)
                 }
             };
-            draw_label(&root, &panel.label, (at.0 as i32, at.1 as i32))
-                .map_err(|message| PlotError::Draw { figure: file_name.into(), message })?;
+            draw_label(&root, &panel.label, (at.0 as i32, at.1 as i32)).map_err(|e| PlotError::draw(file_name, e))?;
         }
-        root.present().map_err(|e| draw_error(file_name, e))?;
+        root.present().map_err(|e| PlotError::draw(file_name, e))?;
     }
     let grid = RgbImage::from_raw(grid_width, grid_height, rgb).expect("buffer has width*height*3 bytes");
     png_bytes(file_name, &grid)
@@ -368,8 +473,8 @@ pub fn difference_line(against: &str, a: &RgbImage, b: &RgbImage) -> String {
 /// (`(v, text)`) to its right in black (so place it over a light background).
 ///
 /// # Errors
-/// The drawing backend's error, as text (the `Err` of the closures [`png_figure`] and
-/// [`svg_figure`] take).
+/// plotters' error as a [`DrawError`] ([`DrawError::Backend`] and the like: the `Err` of the
+/// closures [`png_figure`] and [`svg_figure`] take).
 ///
 /// # Examples
 /// ```
@@ -388,22 +493,22 @@ pub fn color_bar<DB: DrawingBackend>(
     (width, height): (i32, i32),
     colour: &dyn Fn(f64) -> RGBColor,
     ticks: &[(f64, &str)],
-) -> Result<(), String> {
+) -> Result<(), DrawError> {
     init_fonts();
     let span = f64::from((height - 1).max(1));
     for row in 0..height {
         let v = 1.0 - f64::from(row) / span;
         let c = colour(v);
         for column in 0..width {
-            root.draw_pixel((at.0 + column, at.1 + row), &c).map_err(err)?;
+            root.draw_pixel((at.0 + column, at.1 + row), &c)?;
         }
     }
-    root.draw(&Rectangle::new([(at.0 - 1, at.1 - 1), (at.0 + width, at.1 + height)], BLACK)).map_err(err)?;
+    root.draw(&Rectangle::new([(at.0 - 1, at.1 - 1), (at.0 + width, at.1 + height)], BLACK))?;
     for &(v, text) in ticks {
         let y = at.1 + ((1.0 - v) * span).round() as i32;
         let x = at.0 + width;
-        root.draw(&PathElement::new(vec![(x, y), (x + 3, y)], BLACK)).map_err(err)?;
-        root.draw(&Text::new(text.to_string(), (x + 5, y - 6), ("sans-serif", 12))).map_err(err)?;
+        root.draw(&PathElement::new(vec![(x, y), (x + 3, y)], BLACK))?;
+        root.draw(&Text::new(text.to_string(), (x + 5, y - 6), ("sans-serif", 12)))?;
     }
     Ok(())
 }
@@ -424,16 +529,15 @@ pub const PALETTE: [RGBColor; 8] = [
 mod tests {
     use super::*;
 
-    fn sample(root: &DrawingArea<SVGBackend<'_>, plotters::coord::Shift>) -> Result<(), String> {
+    fn sample(root: &DrawingArea<SVGBackend<'_>, plotters::coord::Shift>) -> Result<(), DrawError> {
         let mut chart = ChartBuilder::on(root)
             .caption("α √ test", ("sans-serif", 16))
             .margin(8)
             .x_label_area_size(24)
             .y_label_area_size(30)
-            .build_cartesian_2d(0.0..1.0, 0.0..1.0)
-            .map_err(err)?;
-        chart.configure_mesh().draw().map_err(err)?;
-        chart.draw_series(LineSeries::new([(0.0, 0.0), (1.0, 1.0)], PALETTE[0])).map_err(err)?;
+            .build_cartesian_2d(0.0..1.0, 0.0..1.0)?;
+        chart.configure_mesh().draw()?;
+        chart.draw_series(LineSeries::new([(0.0, 0.0), (1.0, 1.0)], PALETTE[0]))?;
         Ok(())
     }
 
@@ -449,7 +553,7 @@ mod tests {
     #[test]
     fn png_with_text_is_byte_identical_and_decodes() {
         let draw = |root: &DrawingArea<BitMapBackend<'_>, plotters::coord::Shift>| {
-            root.draw(&Text::new("abc", (10, 10), ("sans-serif", 14))).map_err(err)
+            root.draw(&Text::new("abc", (10, 10), ("sans-serif", 14))).map_err(DrawError::from)
         };
         let a = png_figure("t.png", (64, 32), draw).unwrap();
         let b = png_figure("t.png", (64, 32), draw).unwrap();
@@ -471,8 +575,13 @@ mod tests {
             assert!(darkened, "the label of the panel at ({x}, {y}) was drawn");
         }
         assert_eq!(grid.get_pixel(120, 90).0, [0, 0, 0], "the missing fourth panel stays black");
-        assert!(
-            panel_grid("g.png", &[panel(1), Panel { image: RgbImage::new(2, 2), label: String::new() }], 2).is_err()
-        );
+        let mixed = panel_grid("g.png", &[panel(1), Panel { image: RgbImage::new(2, 2), label: String::new() }], 2);
+        assert!(matches!(
+            mixed,
+            Err(PlotError::Draw { source: DrawError::PanelSize { expected: (80, 60), found: (2, 2) }, .. })
+        ));
+        let message = mixed.unwrap_err().to_string();
+        assert_eq!(message, "drawing g.png: panels must share one size and columns must be at least 1");
+        assert!(matches!(panel_grid("g.png", &[], 2), Err(PlotError::Draw { source: DrawError::NoPanels, .. })));
     }
 }

@@ -8,7 +8,7 @@
 //! crate's figures use (caption and label sizes, label areas, legend box, marker sizes, grid) is a
 //! field, so converting a hand-built plotters chart to it keeps its bytes.
 
-use super::{Figure, PlotError, err, png_figure, svg_figure};
+use super::{DrawError, Figure, PlotError, png_figure, svg_figure};
 use plotters::chart::SeriesAnno;
 use plotters::coord::Shift;
 use plotters::coord::combinators::WithKeyPoints;
@@ -399,7 +399,8 @@ impl<'a> Chart<'a> {
     /// The chart as an SVG figure of `width`×`height` pixels.
     ///
     /// # Errors
-    /// [`PlotError::Draw`] when plotters fails (e.g. a log axis with a non-positive end).
+    /// [`PlotError::Draw`] with the [`DrawError`] of [`Chart::draw`] (plotters' error, e.g. for a
+    /// log axis with a non-positive end, or what the chart refuses).
     pub fn svg(&self, file_name: &str, size: (u32, u32)) -> Result<Figure, PlotError> {
         svg_figure(file_name, size, |root| self.draw(root))
     }
@@ -407,7 +408,8 @@ impl<'a> Chart<'a> {
     /// The chart as a PNG figure of `width`×`height` pixels.
     ///
     /// # Errors
-    /// [`PlotError::Draw`] when plotters fails, [`PlotError::Encode`] when encoding does.
+    /// [`PlotError::Draw`] with the [`DrawError`] of [`Chart::draw`], [`PlotError::Encode`] when
+    /// encoding fails.
     pub fn png(&self, file_name: &str, size: (u32, u32)) -> Result<Figure, PlotError> {
         png_figure(file_name, size, |root| self.draw(root))
     }
@@ -415,13 +417,14 @@ impl<'a> Chart<'a> {
     /// Draws the chart on `area` (a whole figure, or one panel of it).
     ///
     /// # Errors
-    /// plotters' message when drawing fails; a message when [`Chart::equal_scale`] is asked of a
-    /// chart with a caption or a log axis.
-    pub fn draw<DB: DrawingBackend>(&self, area: &DrawingArea<DB, Shift>) -> Result<(), String> {
+    /// [`DrawError::EqualScale`] when [`Chart::equal_scale`] is asked of a chart with a caption or
+    /// a log axis, [`DrawError::TicksOnLinearAxis`] when [`Axis::ticks`] is set on a linear axis,
+    /// and plotters' error ([`DrawError::Backend`] and the like) when drawing fails.
+    pub fn draw<DB: DrawingBackend>(&self, area: &DrawingArea<DB, Shift>) -> Result<(), DrawError> {
         let (x, mut y) = (self.x.range, self.y.range);
         if self.equal_scale {
             if !self.caption.is_empty() || self.x.log || self.y.log {
-                return Err("equal scales need linear axes and no caption (title the area first)".into());
+                return Err(DrawError::EqualScale);
             }
             let (width, height) = area.dim_in_pixel();
             let inside = |pixels: u32, label_area: u32| f64::from(pixels.saturating_sub(2 * self.margin + label_area));
@@ -429,7 +432,7 @@ impl<'a> Chart<'a> {
             y.1 = y.0 + units_per_pixel * inside(height, self.label_areas.0);
         }
         if (self.x.ticks.is_some() && !self.x.log) || (self.y.ticks.is_some() && !self.y.log) {
-            return Err("tick values are for log axes only".into());
+            return Err(DrawError::TicksOnLinearAxis);
         }
         let y = AxisCoord::new(y, self.y.log, self.y.ticks);
         self.draw_in(area, AxisCoord::new(self.x.range, self.x.log, self.x.ticks), y)
@@ -440,9 +443,9 @@ impl<'a> Chart<'a> {
         area: &DrawingArea<DB, Shift>,
         x: AxisCoord,
         y: AxisCoord,
-    ) -> Result<(), String> {
+    ) -> Result<(), DrawError> {
         if self.fill {
-            area.fill(&WHITE).map_err(err)?;
+            area.fill(&WHITE)?;
         }
         let mut builder = ChartBuilder::on(area);
         if !self.caption.is_empty() {
@@ -452,8 +455,7 @@ impl<'a> Chart<'a> {
             .margin(self.margin)
             .x_label_area_size(self.label_areas.0)
             .y_label_area_size(self.label_areas.1)
-            .build_cartesian_2d(x, y)
-            .map_err(err)?;
+            .build_cartesian_2d(x, y)?;
         if self.mesh != Mesh::Hidden {
             let mut mesh = chart.configure_mesh();
             mesh.label_style(("sans-serif", self.label_size));
@@ -484,7 +486,7 @@ impl<'a> Chart<'a> {
             if let Some(format) = &self.y.format {
                 mesh.y_label_formatter(format);
             }
-            mesh.draw().map_err(err)?;
+            mesh.draw()?;
         }
         for series in &self.series {
             draw_series(&mut chart, series)?;
@@ -497,11 +499,11 @@ impl<'a> Chart<'a> {
                 Shape::Series(series) => draw_series(&mut chart, series)?,
                 Shape::Note(note) => draw_note(&mut chart, note)?,
                 Shape::Polygon { points, colour } => {
-                    chart.draw_series(std::iter::once(Polygon::new(points.clone(), colour.filled()))).map_err(err)?;
+                    chart.draw_series(std::iter::once(Polygon::new(points.clone(), colour.filled())))?;
                 }
                 Shape::Rectangle { corners, colour, opacity } => {
                     let style = colour.mix(*opacity).filled();
-                    chart.draw_series(std::iter::once(Rectangle::new(*corners, style))).map_err(err)?;
+                    chart.draw_series(std::iter::once(Rectangle::new(*corners, style)))?;
                 }
             }
         }
@@ -514,8 +516,8 @@ impl<'a> Chart<'a> {
             .label_font(("sans-serif", legend.font))
             .background_style(WHITE.mix(legend.opacity))
             .border_style(BLACK)
-            .draw()
-            .map_err(err)
+            .draw()?;
+        Ok(())
     }
 }
 
@@ -592,7 +594,7 @@ impl ValueFormatter<f64> for AxisCoord {
 }
 
 /// Draws `series` (its line first, then its dots) and gives it its legend entry.
-fn draw_series<DB, X, Y>(chart: &mut Cartesian<'_, DB, X, Y>, series: &Series) -> Result<(), String>
+fn draw_series<DB, X, Y>(chart: &mut Cartesian<'_, DB, X, Y>, series: &Series) -> Result<(), DrawError>
 where
     DB: DrawingBackend,
     X: Ranged<ValueType = f64>,
@@ -611,8 +613,8 @@ where
         let style = colour.stroke_width(stroke.width);
         let points = series.points.iter().copied();
         let annotation = match stroke.dash {
-            None => chart.draw_series(LineSeries::new(points, style)).map_err(err)?,
-            Some((dash, gap)) => chart.draw_series(DashedLineSeries::new(points, dash, gap, style)).map_err(err)?,
+            None => chart.draw_series(LineSeries::new(points, style))?,
+            Some((dash, gap)) => chart.draw_series(DashedLineSeries::new(points, dash, gap, style))?,
         };
         if label_on_line {
             label(annotation);
@@ -621,7 +623,7 @@ where
     if let Some(dots) = series.dots {
         let style = dots.ring.map_or(colour.filled(), |width| colour.stroke_width(width));
         let circles = series.points.iter().map(|&p| Circle::new(p, dots.radius, style));
-        let annotation = chart.draw_series(circles).map_err(err)?;
+        let annotation = chart.draw_series(circles)?;
         if !label_on_line {
             label(annotation);
         }
@@ -636,7 +638,8 @@ where
 /// columns split the area's width evenly; nothing is drawn for a series without a label.
 ///
 /// # Errors
-/// The drawing backend's error, as text; a message when `columns` is 0.
+/// [`DrawError::NoLegendColumns`] when `columns` is 0; plotters' error ([`DrawError::Backend`]
+/// and the like) when drawing fails.
 ///
 /// # Examples
 /// ```
@@ -651,9 +654,9 @@ pub fn legend_grid<DB: DrawingBackend>(
     series: &[Series],
     columns: usize,
     font: u32,
-) -> Result<(), String> {
+) -> Result<(), DrawError> {
     if columns == 0 {
-        return Err("a legend needs at least one column".into());
+        return Err(DrawError::NoLegendColumns);
     }
     let column_width = area.dim_in_pixel().0 as i32 / columns as i32;
     let row_height = font as i32 + 12;
@@ -666,28 +669,27 @@ pub fn legend_grid<DB: DrawingBackend>(
             match stroke.dash {
                 None => area.draw(&PathElement::new(ends, style)),
                 Some((dash, gap)) => area.draw(&DashedPathElement::new(ends, dash, gap, style)),
-            }
-            .map_err(err)?;
+            }?;
         }
         if let Some(dots) = series.dots {
             let style = dots.ring.map_or(series.colour.filled(), |width| series.colour.stroke_width(width));
-            area.draw(&Circle::new((x + 11, middle), dots.radius, style)).map_err(err)?;
+            area.draw(&Circle::new((x + 11, middle), dots.radius, style))?;
         }
         let label = series.label.clone().unwrap_or_default();
-        area.draw(&Text::new(label, (x + 30, y), ("sans-serif", font))).map_err(err)?;
+        area.draw(&Text::new(label, (x + 30, y), ("sans-serif", font)))?;
     }
     Ok(())
 }
 
 /// Draws `note` in its colour.
-fn draw_note<DB, X, Y>(chart: &mut Cartesian<'_, DB, X, Y>, note: &Note) -> Result<(), String>
+fn draw_note<DB, X, Y>(chart: &mut Cartesian<'_, DB, X, Y>, note: &Note) -> Result<(), DrawError>
 where
     DB: DrawingBackend,
     X: Ranged<ValueType = f64>,
     Y: Ranged<ValueType = f64>,
 {
     let style = TextStyle::from(("sans-serif", note.size)).color(&note.colour);
-    chart.draw_series(std::iter::once(Text::new(note.text.clone(), note.at, style))).map_err(err)?;
+    chart.draw_series(std::iter::once(Text::new(note.text.clone(), note.at, style)))?;
     Ok(())
 }
 
@@ -728,8 +730,7 @@ mod tests {
                 .margin(12)
                 .x_label_area_size(40)
                 .y_label_area_size(60)
-                .build_cartesian_2d((1.0..100.0).log_scale(), 0.0..1.05)
-                .map_err(err)?;
+                .build_cartesian_2d((1.0..100.0).log_scale(), 0.0..1.05)?;
             chart
                 .configure_mesh()
                 .x_desc("x")
@@ -740,18 +741,15 @@ mod tests {
                 .y_labels(8)
                 .x_label_formatter(&tick)
                 .y_label_formatter(&tick)
-                .draw()
-                .map_err(err)?;
+                .draw()?;
             let colour = PALETTE[0];
             chart
-                .draw_series(LineSeries::new(LINE, colour.stroke_width(2)))
-                .map_err(err)?
+                .draw_series(LineSeries::new(LINE, colour.stroke_width(2)))?
                 .label("line")
                 .legend(move |(x, y)| PathElement::new([(x, y), (x + 16, y)], colour));
             let colour = PALETTE[1];
             chart
-                .draw_series(DOTS.iter().map(|&p| Circle::new(p, 4, colour.filled())))
-                .map_err(err)?
+                .draw_series(DOTS.iter().map(|&p| Circle::new(p, 4, colour.filled())))?
                 .label("dots")
                 .legend(move |(x, y)| Circle::new((x + 8, y), 4, colour.filled()));
             chart
@@ -760,8 +758,8 @@ mod tests {
                 .label_font(("sans-serif", 13))
                 .background_style(WHITE.mix(0.85))
                 .border_style(BLACK)
-                .draw()
-                .map_err(err)
+                .draw()?;
+            Ok(())
         })
         .unwrap();
         let ticks = |axis: Axis<'static>, labels| Axis { labels: Some(labels), format: Some(tick), ..axis };
@@ -792,27 +790,23 @@ mod tests {
                 .margin(10)
                 .x_label_area_size(40)
                 .y_label_area_size(60)
-                .build_cartesian_2d((0.5..200.0).log_scale(), (0.01..2.0).log_scale())
-                .map_err(err)?;
-            chart.configure_mesh().x_desc("ns").y_desc("%").label_style(("sans-serif", 12)).draw().map_err(err)?;
+                .build_cartesian_2d((0.5..200.0).log_scale(), (0.01..2.0).log_scale())?;
+            chart.configure_mesh().x_desc("ns").y_desc("%").label_style(("sans-serif", 12)).draw()?;
             let colour = PALETTE[2];
-            chart.draw_series(LineSeries::new(LINE.to_vec(), colour.stroke_width(1))).map_err(err)?;
+            chart.draw_series(LineSeries::new(LINE.to_vec(), colour.stroke_width(1)))?;
             chart
-                .draw_series(LINE.iter().map(|&p| Circle::new(p, 4, colour.filled())))
-                .map_err(err)?
+                .draw_series(LINE.iter().map(|&p| Circle::new(p, 4, colour.filled())))?
                 .label("sh9")
                 .legend(move |(x, y)| Circle::new((x + 8, y), 4, colour.filled()));
-            chart
-                .draw_series(std::iter::once(Text::new("sh9 256²".to_string(), (11.5, 0.3), ("sans-serif", 11))))
-                .map_err(err)?;
+            chart.draw_series(std::iter::once(Text::new("sh9 256²".to_string(), (11.5, 0.3), ("sans-serif", 11))))?;
             chart
                 .configure_series_labels()
                 .position(SeriesLabelPosition::LowerLeft)
                 .label_font(("sans-serif", 12))
                 .background_style(WHITE.mix(0.85))
                 .border_style(BLACK)
-                .draw()
-                .map_err(err)
+                .draw()?;
+            Ok(())
         })
         .unwrap();
         let helper = Chart {
@@ -836,25 +830,22 @@ mod tests {
     #[test]
     fn reproduces_the_q5_log_log_chart() {
         let by_hand = svg_figure("q5.svg", (640, 400), |root| {
-            root.fill(&WHITE).map_err(err)?;
+            root.fill(&WHITE)?;
             let mut chart = ChartBuilder::on(root)
                 .caption("Q5", ("sans-serif", 18))
                 .margin(12)
                 .x_label_area_size(40)
                 .y_label_area_size(60)
-                .build_cartesian_2d((1.0..100.0).log_scale(), (0.01..1.0).log_scale())
-                .map_err(err)?;
-            chart.configure_mesh().x_desc("k").y_desc("error").label_style(("sans-serif", 12)).draw().map_err(err)?;
+                .build_cartesian_2d((1.0..100.0).log_scale(), (0.01..1.0).log_scale())?;
+            chart.configure_mesh().x_desc("k").y_desc("error").label_style(("sans-serif", 12)).draw()?;
             let colour = PALETTE[0];
             chart
-                .draw_series(LineSeries::new(LINE.to_vec(), colour.stroke_width(2)))
-                .map_err(err)?
+                .draw_series(LineSeries::new(LINE.to_vec(), colour.stroke_width(2)))?
                 .label("photons")
                 .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], colour.stroke_width(2)));
-            chart.draw_series(LINE.iter().map(|&p| Circle::new(p, 3, colour.filled()))).map_err(err)?;
+            chart.draw_series(LINE.iter().map(|&p| Circle::new(p, 3, colour.filled())))?;
             chart
-                .draw_series(DashedLineSeries::new(DOTS.to_vec(), 6, 4, BLACK.stroke_width(1)))
-                .map_err(err)?
+                .draw_series(DashedLineSeries::new(DOTS.to_vec(), 6, 4, BLACK.stroke_width(1)))?
                 .label("law")
                 .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], BLACK.stroke_width(1)));
             chart
@@ -862,8 +853,8 @@ mod tests {
                 .background_style(WHITE.mix(0.8))
                 .border_style(BLACK)
                 .label_font(("sans-serif", 13))
-                .draw()
-                .map_err(err)
+                .draw()?;
+            Ok(())
         })
         .unwrap();
         let helper = Chart {
@@ -893,7 +884,7 @@ mod tests {
     fn reproduces_a_diagram() {
         let (x_min, x_max, y_min) = (-6.0, 3.0, -2.5);
         let by_hand = svg_figure("d.svg", (560, 360), |root| {
-            let area = root.titled("diagram", ("sans-serif", 16)).map_err(err)?;
+            let area = root.titled("diagram", ("sans-serif", 16))?;
             let (width, height) = area.dim_in_pixel();
             let units_per_pixel = (x_max - x_min) / f64::from(width - 2 * 6 - 26);
             let y_max = y_min + units_per_pixel * f64::from(height - 2 * 6 - 20);
@@ -901,36 +892,33 @@ mod tests {
                 .margin(6)
                 .x_label_area_size(20)
                 .y_label_area_size(26)
-                .build_cartesian_2d(x_min..x_max, y_min..y_max)
-                .map_err(err)?;
+                .build_cartesian_2d(x_min..x_max, y_min..y_max)?;
             chart
                 .configure_mesh()
                 .disable_mesh()
                 .x_labels(10)
                 .bold_line_style(RGBColor(230, 230, 230))
                 .label_style(("sans-serif", 11))
-                .draw()
-                .map_err(err)?;
+                .draw()?;
             let box_style = PALETTE[3].mix(0.15).filled();
-            chart.draw_series(std::iter::once(Rectangle::new([(0.0, 0.0), (1.0, 1.0)], box_style))).map_err(err)?;
-            chart.draw_series(LineSeries::new(LINE.to_vec(), PALETTE[0].stroke_width(2))).map_err(err)?;
+            chart.draw_series(std::iter::once(Rectangle::new([(0.0, 0.0), (1.0, 1.0)], box_style)))?;
+            chart.draw_series(LineSeries::new(LINE.to_vec(), PALETTE[0].stroke_width(2)))?;
             let head = vec![(1.0, 0.0), (0.8, 0.1), (0.8, -0.1)];
-            chart.draw_series(std::iter::once(Polygon::new(head, PALETTE[0].filled()))).map_err(err)?;
-            chart.draw_series(std::iter::once(Circle::new((0.0, 0.0), 4, PALETTE[1].filled()))).map_err(err)?;
+            chart.draw_series(std::iter::once(Polygon::new(head, PALETTE[0].filled())))?;
+            chart.draw_series(std::iter::once(Circle::new((0.0, 0.0), 4, PALETTE[1].filled())))?;
             let label = TextStyle::from(("sans-serif", 13)).color(&PALETTE[1]);
-            chart.draw_series(std::iter::once(Text::new("o".to_string(), (0.1, -0.1), label))).map_err(err)?;
-            chart.draw_series(std::iter::once(Circle::new((1.0, 1.0), 8, PALETTE[2].stroke_width(2)))).map_err(err)?;
+            chart.draw_series(std::iter::once(Text::new("o".to_string(), (0.1, -0.1), label)))?;
+            chart.draw_series(std::iter::once(Circle::new((1.0, 1.0), 8, PALETTE[2].stroke_width(2))))?;
             let bare = root.margin(200, 0, 300, 0);
             let (width, height) = bare.dim_in_pixel();
             let y_max = -1.0 + 2.0 * f64::from(height - 22) / f64::from(width);
-            let mut chart =
-                ChartBuilder::on(&bare).margin_bottom(22).build_cartesian_2d(-1.0..1.0, -1.0..y_max).map_err(err)?;
-            chart.draw_series(LineSeries::new(DOTS.to_vec(), BLACK.stroke_width(1))).map_err(err)?;
+            let mut chart = ChartBuilder::on(&bare).margin_bottom(22).build_cartesian_2d(-1.0..1.0, -1.0..y_max)?;
+            chart.draw_series(LineSeries::new(DOTS.to_vec(), BLACK.stroke_width(1)))?;
             Ok(())
         })
         .unwrap();
         let helper = svg_figure("d.svg", (560, 360), |root| {
-            let area = root.titled("diagram", ("sans-serif", 16)).map_err(err)?;
+            let area = root.titled("diagram", ("sans-serif", 16))?;
             Chart {
                 margin: 6,
                 label_areas: (20, 26),
@@ -980,9 +968,12 @@ mod tests {
             equal_scale: true,
             ..Chart::new("title", Axis::linear(0.0, 1.0, "x"), Axis::linear(0.0, 1.0, "y"))
         };
-        assert!(chart.svg("e.svg", (200, 200)).is_err());
+        let refused = |chart: &Chart<'_>| {
+            matches!(chart.svg("e.svg", (200, 200)), Err(PlotError::Draw { source: DrawError::EqualScale, .. }))
+        };
+        assert!(refused(&chart));
         let chart = Chart { caption: "", x: Axis::log(1.0, 10.0, "x"), ..chart };
-        assert!(chart.svg("e.svg", (200, 200)).is_err());
+        assert!(refused(&chart));
         assert!(Chart { x: Axis::linear(0.0, 1.0, "x"), ..chart }.svg("e.svg", (200, 200)).is_ok());
     }
 

@@ -30,8 +30,7 @@ fn render_scene(
     switched_off: Option<Pass>,
     (width, height): (u32, u32),
 ) -> Result<hw3_core::plot::RgbImage, PlotError> {
-    let scene =
-        catalogue::by_name(name).map_err(|e| PlotError::Draw { figure: file_name.into(), message: e.to_string() })?;
+    let scene = catalogue::by_name(name).map_err(|e| PlotError::data(file_name, e))?;
     let plan = analyze(&scene).plan;
     let plan = switched_off.map_or(plan, |pass| plan.with(pass, false));
     let image = render(&scene, &Settings::whitted(width, height, spp_of(name), plan), &|_| {})
@@ -47,7 +46,8 @@ fn render_scene(
 /// The [`jobs`] run in parallel.
 ///
 /// # Errors
-/// [`PlotError::Draw`] if a scene cannot be built (the vendored map is missing).
+/// [`PlotError::Data`] if a scene cannot be built (the vendored map is missing), and the
+/// [`PlotError`] of [`plot::panel_grid`] if a figure cannot be drawn.
 pub fn figures() -> Result<Vec<Figure>, PlotError> {
     plot::run_jobs(&jobs())
 }
