@@ -371,8 +371,8 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         }
         Some(Command::Sphere { origin, dir, center, radius, precision, method, json }) => {
             use hw3::q2_ray_sphere::catalogue::{Precision, Solver};
-            let (ray, sphere) =
-                hw3::q2_ray_sphere::parse_sphere_args(&origin, &dir, &center, radius).map_err(UsageError)?;
+            let (ray, sphere) = hw3::q2_ray_sphere::parse_sphere_args(&origin, &dir, &center, radius)
+                .map_err(|e| UsageError(e.to_string()))?;
             let precision = match precision {
                 PrecisionArg::F32 => Precision::F32,
                 PrecisionArg::F64 => Precision::F64,
@@ -505,7 +505,7 @@ fn irradiance(args: Q4IrradianceArgs) -> anyhow::Result<()> {
     if !analytic {
         limits::check_hdr_file(Path::new(&args.env), large).map_err(UsageError)?;
     }
-    let normal = hw3::geometry::parse_vec3("--normal", &args.normal).map_err(UsageError)?;
+    let normal = hw3::geometry::parse_vec3("--normal", &args.normal).map_err(|e| UsageError(e.to_string()))?;
     let request = hw3::q4_light_probe::IrradianceRequest {
         env: args.env,
         normal,

@@ -8,7 +8,7 @@ pub mod student_solver;
 
 use crate::answers::Answers;
 use crate::geometry::sphere::{closest_approach_t, first_hit_stable, surface_hit};
-use crate::geometry::{InputError, Ray, Sphere};
+use crate::geometry::{InputError, ParseVec3Error, Ray, Sphere};
 use crate::real::Real;
 use catalogue::{Precision, Solver};
 use glam::DVec3;
@@ -311,28 +311,44 @@ pub fn answers() -> Answers {
     Answers { question: "q2", title: "Ray/sphere intersection, reflection, closest approach", text }
 }
 
+/// Why `hw3 sphere`'s arguments were refused ([`parse_sphere_args`]): the message names the bad
+/// argument.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum SphereArgsError {
+    /// `--origin`, `--dir` or `--center` is not three comma-separated numbers.
+    #[error(transparent)]
+    Syntax(#[from] ParseVec3Error),
+    /// The ray or the sphere is invalid (a non-finite coordinate, a zero direction, a radius that
+    /// is not positive).
+    #[error(transparent)]
+    Input(#[from] InputError),
+}
+
 /// Parses the CLI's `--origin`, `--dir`, `--center`, `--radius` into validated `f64` inputs.
 ///
 /// # Errors
-/// A one-line message naming the bad argument.
+/// [`SphereArgsError::Syntax`] for a vector that is not three numbers, [`SphereArgsError::Input`]
+/// for an invalid ray or sphere; either names the bad argument.
 ///
 /// # Examples
 /// ```
-/// let (ray, sphere) = hw3::q2_ray_sphere::parse_sphere_args("0,0,0", "0,0,1", "0,0,5", 1.0).unwrap();
+/// use hw3::q2_ray_sphere::{SphereArgsError, parse_sphere_args};
+/// let (ray, sphere) = parse_sphere_args("0,0,0", "0,0,1", "0,0,5", 1.0).unwrap();
 /// assert_eq!(sphere.center.z, 5.0);
-/// assert!(hw3::q2_ray_sphere::parse_sphere_args("0,0,0", "0,0,0", "0,0,5", 1.0).is_err());
+/// assert!(matches!(parse_sphere_args("0,0,0", "0,0,0", "0,0,5", 1.0), Err(SphereArgsError::Input(_))));
+/// assert!(matches!(parse_sphere_args("0,0", "0,0,1", "0,0,5", 1.0), Err(SphereArgsError::Syntax(_))));
 /// ```
 pub fn parse_sphere_args(
     origin: &str,
     dir: &str,
     center: &str,
     radius: f64,
-) -> Result<(Ray<f64>, Sphere<f64>), String> {
+) -> Result<(Ray<f64>, Sphere<f64>), SphereArgsError> {
     let origin = crate::geometry::parse_vec3("--origin", origin)?;
     let dir = crate::geometry::parse_vec3("--dir", dir)?;
     let center = crate::geometry::parse_vec3("--center", center)?;
-    let ray = Ray::new(origin, dir).map_err(|e| e.to_string())?;
-    let sphere = Sphere::new(center, radius).map_err(|e| e.to_string())?;
+    let ray = Ray::new(origin, dir)?;
+    let sphere = Sphere::new(center, radius)?;
     Ok((ray, sphere))
 }
 

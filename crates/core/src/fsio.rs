@@ -67,21 +67,57 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
     result
 }
 
+/// Why a folder cannot receive the files a command will write ([`check_writable_dir`]).
+///
+/// # Examples
+/// ```
+/// use hw3_core::fsio::{DirError, check_writable_dir};
+/// let error = check_writable_dir(std::path::Path::new("/no/such/dir")).unwrap_err();
+/// assert!(matches!(&error, DirError::Unreadable { source, .. } if source.kind() == std::io::ErrorKind::NotFound));
+/// assert_eq!(error.to_string(), "/no/such/dir: No such file or directory");
+/// ```
+#[derive(Debug, thiserror::Error)]
+pub enum DirError {
+    /// The folder's metadata cannot be read (it does not exist, or a parent cannot be searched).
+    #[error("{}: {}", .dir.display(), io_reason(.source))]
+    Unreadable {
+        /// The folder.
+        dir: PathBuf,
+        /// The operating system's error.
+        source: std::io::Error,
+    },
+    /// The path exists but is not a directory.
+    #[error("{} is not a directory", .dir.display())]
+    NotADirectory {
+        /// The path.
+        dir: PathBuf,
+    },
+    /// The folder refuses a new file (permissions, a read-only file system, a full disk).
+    #[error("cannot write in {}: {}", .dir.display(), io_reason(.source))]
+    NotWritable {
+        /// The folder.
+        dir: PathBuf,
+        /// The operating system's error on creating a file in it.
+        source: std::io::Error,
+    },
+}
+
 /// Checks, before any work, that a file can later be written into `dir`: it exists, is a
 /// directory, and accepts a new file (a temporary is created and removed).
 ///
 /// # Errors
-/// A message naming `dir` and what is wrong with it.
+/// [`DirError::Unreadable`] when `dir` cannot be read, [`DirError::NotADirectory`] when it is not
+/// a directory, [`DirError::NotWritable`] when a file cannot be created in it.
 ///
 /// # Examples
 /// ```
 /// assert!(hw3_core::fsio::check_writable_dir(&std::env::temp_dir()).is_ok());
 /// assert!(hw3_core::fsio::check_writable_dir(std::path::Path::new("/no/such/dir")).is_err());
 /// ```
-pub fn check_writable_dir(dir: &Path) -> Result<(), String> {
+pub fn check_writable_dir(dir: &Path) -> Result<(), DirError> {
     match std::fs::metadata(dir) {
-        Err(e) => return Err(format!("{}: {}", dir.display(), io_reason(&e))),
-        Ok(meta) if !meta.is_dir() => return Err(format!("{} is not a directory", dir.display())),
+        Err(source) => return Err(DirError::Unreadable { dir: dir.to_path_buf(), source }),
+        Ok(meta) if !meta.is_dir() => return Err(DirError::NotADirectory { dir: dir.to_path_buf() }),
         Ok(_) => {}
     }
     let probe = temporary_beside(&dir.join("probe"));
@@ -91,7 +127,7 @@ pub fn check_writable_dir(dir: &Path) -> Result<(), String> {
             let _ = std::fs::remove_file(&probe);
             Ok(())
         }
-        Err(e) => Err(format!("cannot write in {}: {}", dir.display(), io_reason(&e))),
+        Err(source) => Err(DirError::NotWritable { dir: dir.to_path_buf(), source }),
     }
 }
 
@@ -144,8 +180,10 @@ mod tests {
         let file = dir.join("a_file");
         std::fs::write(&file, b"x").unwrap();
         assert!(check_writable_dir(&dir).is_ok());
-        assert!(check_writable_dir(&file).unwrap_err().contains("not a directory"));
-        assert!(check_writable_dir(&dir.join("missing")).is_err());
+        let not_a_dir = check_writable_dir(&file).unwrap_err();
+        assert!(matches!(&not_a_dir, DirError::NotADirectory { dir } if *dir == file), "{not_a_dir:?}");
+        assert_eq!(not_a_dir.to_string(), format!("{} is not a directory", file.display()));
+        assert!(matches!(check_writable_dir(&dir.join("missing")), Err(DirError::Unreadable { .. })));
         assert_eq!(parent_dir(Path::new("x.png")), Path::new("."));
         std::fs::remove_dir_all(&dir).unwrap();
     }

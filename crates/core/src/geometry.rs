@@ -171,21 +171,34 @@ pub fn ray_to_f32(ray: &Ray<f64>) -> Result<Ray<f32>, InputError> {
     Ray::new(f32::vec_from_f64(ray.origin), f32::vec_from_f64(ray.dir))
 }
 
+/// A command-line vector that is not three comma-separated numbers ([`parse_vec3`]).
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("{name}: expected three comma-separated numbers like 1,0,-2.5, got `{text}`")]
+pub struct ParseVec3Error {
+    /// The option the text was given to (`"--normal"`).
+    pub name: String,
+    /// The text as given.
+    pub text: String,
+}
+
 /// Parses `"x,y,z"` into a `DVec3` (used by the CLI; spaces allowed).
 ///
 /// # Errors
-/// A message naming `name` when there are not exactly three numbers.
+/// [`ParseVec3Error`] naming `name` and the text when there are not exactly three numbers.
 ///
 /// # Examples
 /// ```
-/// assert_eq!(hw3_core::geometry::parse_vec3("d", "1, -2,3e0").unwrap(), glam::DVec3::new(1.0, -2.0, 3.0));
-/// assert!(hw3_core::geometry::parse_vec3("d", "1,2").is_err());
+/// use hw3_core::geometry::{ParseVec3Error, parse_vec3};
+/// assert_eq!(parse_vec3("d", "1, -2,3e0").unwrap(), glam::DVec3::new(1.0, -2.0, 3.0));
+/// let error = parse_vec3("d", "1,2").unwrap_err();
+/// assert_eq!(error, ParseVec3Error { name: "d".into(), text: "1,2".into() });
+/// assert_eq!(error.to_string(), "d: expected three comma-separated numbers like 1,0,-2.5, got `1,2`");
 /// ```
-pub fn parse_vec3(name: &str, text: &str) -> Result<DVec3, String> {
+pub fn parse_vec3(name: &str, text: &str) -> Result<DVec3, ParseVec3Error> {
     let parts: Vec<&str> = text.split(',').map(str::trim).collect();
     let numbers: Result<Vec<f64>, _> = parts.iter().map(|p| p.parse::<f64>()).collect();
     match numbers {
         Ok(n) if n.len() == 3 => Ok(DVec3::new(n[0], n[1], n[2])),
-        _ => Err(format!("{name}: expected three comma-separated numbers like 1,0,-2.5, got `{text}`")),
+        _ => Err(ParseVec3Error { name: name.to_owned(), text: text.to_owned() }),
     }
 }
