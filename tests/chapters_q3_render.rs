@@ -559,7 +559,11 @@ mod render {
             [1e4, 3e4, 1e5, 1e6].iter().filter_map(|&p| Some(query(p, 2048.0)? / query(p, 128.0)?)).collect();
         assert_eq!(ratios.len(), 3);
         let (low, high) = ratios.iter().fold((f64::MAX, 0.0f64), |(lo, hi), &r| (lo.min(r), hi.max(r)));
-        has(&t, &format!("sixteen times the neighbours took {:.0} to {:.0} times as long", low.floor(), high.ceil()));
+        has(&t, &format!("from 128 to 2048, took {:.0} to {:.0} times as long", low.floor(), high.ceil()));
+        let small: Vec<f64> =
+            [1e4, 3e4, 1e5, 1e6].iter().filter_map(|&p| Some(query(p, 128.0)? / query(p, 8.0)?)).collect();
+        let (low, high) = small.iter().fold((f64::MAX, 0.0f64), |(lo, hi), &r| (lo.min(r), hi.max(r)));
+        has(&t, &format!("from 8 to 128 only {low:.0} to {high:.0}"));
     }
 
     /// The accuracy section is the lesson in relative terms, with one table and one plot; the
