@@ -23,8 +23,8 @@ mod traces;
 mod variants;
 
 pub use class::{
-    ClassReport, MAX_CLASS_BYTES, MAX_CLASS_FILES, PartStatistics, Submission, check_class, class_csv, class_files,
-    class_gradescope, class_text, gradescope_files, read_class,
+    ClassError, ClassReport, GradescopeError, MAX_CLASS_BYTES, MAX_CLASS_FILES, PartStatistics, Submission,
+    check_class, class_csv, class_files, class_gradescope, class_text, gradescope_files, read_class,
 };
 pub use error::CheckError;
 pub use formula::{Formula, FormulaError, Kind, Point, Value};

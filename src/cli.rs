@@ -5,7 +5,9 @@
 //! README's table "Exit statuses and limits" lists each with its measured worst case);
 //! `--allow-large` raises them to what the program can still do without overflowing.
 
+use crate::envmap::radiance::RadianceError;
 use crate::fsio::io_reason;
+use std::path::{Path, PathBuf};
 
 /// Largest variant seed: answers files store it as a TOML integer, which is an `i64`.
 pub const MAX_SEED: u64 = i64::MAX as u64;
@@ -50,50 +52,126 @@ pub struct Limit {
     pub max_large: u64,
 }
 
+/// A count outside its [`Limit`] ([`Limit::check`]): which count, its value and the bound it
+/// crosses.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum LimitError {
+    /// The value is below the limit's minimum.
+    #[error("{name} must be at least {min}, got {value}")]
+    TooSmall {
+        /// The count as the message names it (`--size`, or a description).
+        name: String,
+        /// The value given.
+        value: u64,
+        /// [`Limit::min`].
+        min: u64,
+    },
+    /// The value is over the default maximum, and `--allow-large` would accept it.
+    #[error("{name} = {value} is over the limit of {max}; pass --allow-large to allow up to {max_large}")]
+    NeedsAllowLarge {
+        /// The count as the message names it.
+        name: String,
+        /// The value given.
+        value: u64,
+        /// [`Limit::max`].
+        max: u64,
+        /// [`Limit::max_large`].
+        max_large: u64,
+    },
+    /// The value is over the largest value accepted even with `--allow-large`.
+    #[error("{name} = {value} is over the limit of {max_large}, even with --allow-large")]
+    TooLarge {
+        /// The count as the message names it.
+        name: String,
+        /// The value given.
+        value: u64,
+        /// [`Limit::max_large`].
+        max_large: u64,
+    },
+}
+
 impl Limit {
     /// Checks `value` (named `name` in the message) against the limit.
     ///
     /// # Errors
-    /// A one-line message naming `name`, the range, and whether `--allow-large` would help.
+    /// [`LimitError::TooSmall`] below [`Limit::min`], [`LimitError::NeedsAllowLarge`] over
+    /// [`Limit::max`] when `--allow-large` would help (it is not given and the value is within
+    /// [`Limit::max_large`]), [`LimitError::TooLarge`] over [`Limit::max_large`]: each names
+    /// `name`, the value and the bound.
     ///
     /// # Examples
     /// ```
-    /// use hw3::cli::PROBE_SIZE;
+    /// use hw3::cli::{LimitError, PROBE_SIZE};
     /// assert!(PROBE_SIZE.check("--size", 256, false).is_ok());
-    /// assert!(PROBE_SIZE.check("--size", 2048, false).unwrap_err().contains("--allow-large"));
+    /// let error = PROBE_SIZE.check("--size", 2048, false).unwrap_err();
+    /// assert!(matches!(error, LimitError::NeedsAllowLarge { value: 2048, max: 1024, .. }));
+    /// assert!(error.to_string().contains("--allow-large"));
     /// assert!(PROBE_SIZE.check("--size", 2048, true).is_ok());
-    /// assert!(PROBE_SIZE.check("--size", 1 << 20, true).is_err());
+    /// assert!(matches!(PROBE_SIZE.check("--size", 1 << 20, true), Err(LimitError::TooLarge { .. })));
     /// ```
-    pub fn check(&self, name: &str, value: u64, allow_large: bool) -> Result<u64, String> {
+    pub fn check(&self, name: &str, value: u64, allow_large: bool) -> Result<u64, LimitError> {
         let max = if allow_large { self.max_large } else { self.max };
+        let name = name.to_owned();
         if value < self.min {
-            Err(format!("{name} must be at least {}, got {value}", self.min))
+            Err(LimitError::TooSmall { name, value, min: self.min })
         } else if value <= max {
             Ok(value)
         } else if !allow_large && value <= self.max_large {
-            Err(format!(
-                "{name} = {value} is over the limit of {max}; pass --allow-large to allow up to {}",
-                self.max_large
-            ))
+            Err(LimitError::NeedsAllowLarge { name, value, max, max_large: self.max_large })
         } else {
-            Err(format!("{name} = {value} is over the limit of {}, even with --allow-large", self.max_large))
+            Err(LimitError::TooLarge { name, value, max_large: self.max_large })
         }
     }
+}
+
+/// A command-line value that does not parse ([`parse_unsigned`], [`parse_seed`],
+/// [`parse_size`]): the text given and the range it should be in. The text is shown
+/// [`quote`]d.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum ArgError {
+    /// Not a whole number from 0 to `max` (a sign, a non-digit, an empty text, a larger value).
+    #[error("expected a whole number 0 … {max}, got `{}`", quote(.text))]
+    NotAWholeNumber {
+        /// The text given.
+        text: String,
+        /// The largest value accepted.
+        max: u64,
+    },
+    /// Not a seed an answers file can store: a whole number from 0 to [`MAX_SEED`].
+    #[error(
+        "expected a whole number 0 … {MAX_SEED}, got `{}` (2^63 − 1 is the largest seed an answers file stores)",
+        quote(.text)
+    )]
+    Seed {
+        /// The text given.
+        text: String,
+    },
+    /// `--size` is not `WIDTHxHEIGHT` with each side from 1 to `max_side`.
+    #[error("--size: expected WIDTHxHEIGHT, each side 1 … {max_side}, got `{}`", quote(.text))]
+    Size {
+        /// The text given.
+        text: String,
+        /// The largest side accepted.
+        max_side: u32,
+    },
 }
 
 /// Parses a non-negative integer of at most `max`, in decimal, with a message that says the range.
 ///
 /// # Errors
-/// A one-line message for a sign, a non-digit, an empty string or a value over `max`.
+/// [`ArgError::NotAWholeNumber`] for a sign, a non-digit, an empty string or a value over `max`.
 ///
 /// # Examples
 /// ```
-/// assert_eq!(hw3::cli::parse_unsigned("42", 100), Ok(42));
-/// assert!(hw3::cli::parse_unsigned("-1", 100).unwrap_err().contains("0 … 100"));
-/// assert!(hw3::cli::parse_unsigned("101", 100).is_err());
+/// use hw3::cli::{ArgError, parse_unsigned};
+/// assert_eq!(parse_unsigned("42", 100), Ok(42));
+/// let error = parse_unsigned("-1", 100).unwrap_err();
+/// assert_eq!(error, ArgError::NotAWholeNumber { text: "-1".into(), max: 100 });
+/// assert!(error.to_string().contains("0 … 100"));
+/// assert!(parse_unsigned("101", 100).is_err());
 /// ```
-pub fn parse_unsigned(text: &str, max: u64) -> Result<u64, String> {
-    let range = || format!("expected a whole number 0 … {max}, got `{}`", quote(text));
+pub fn parse_unsigned(text: &str, max: u64) -> Result<u64, ArgError> {
+    let range = || ArgError::NotAWholeNumber { text: text.to_owned(), max };
     if text.is_empty() || !text.bytes().all(|b| b.is_ascii_digit()) {
         return Err(range());
     }
@@ -107,33 +185,35 @@ pub fn parse_unsigned(text: &str, max: u64) -> Result<u64, String> {
 /// file can store, so that every template written can be checked.
 ///
 /// # Errors
-/// As [`parse_unsigned`].
+/// [`ArgError::Seed`] where [`parse_unsigned`] fails.
 ///
 /// # Examples
 /// ```
-/// assert_eq!(hw3::cli::parse_seed("9223372036854775807"), Ok(i64::MAX as u64));
-/// assert!(hw3::cli::parse_seed("9223372036854775808").is_err());
+/// use hw3::cli::{ArgError, parse_seed};
+/// assert_eq!(parse_seed("9223372036854775807"), Ok(i64::MAX as u64));
+/// assert_eq!(parse_seed("9223372036854775808"), Err(ArgError::Seed { text: "9223372036854775808".into() }));
 /// ```
-pub fn parse_seed(text: &str) -> Result<u64, String> {
-    parse_unsigned(text, MAX_SEED).map_err(|e| format!("{e} (2^63 − 1 is the largest seed an answers file stores)"))
+pub fn parse_seed(text: &str) -> Result<u64, ArgError> {
+    parse_unsigned(text, MAX_SEED).map_err(|_| ArgError::Seed { text: text.to_owned() })
 }
 
 /// Parses `WIDTHxHEIGHT`, each side a whole number 1 … `max_side`.
 ///
 /// # Errors
-/// A one-line message naming `--size`.
+/// [`ArgError::Size`], whose message names `--size`.
 ///
 /// # Examples
 /// ```
-/// assert_eq!(hw3::cli::parse_size("320x240", 8192), Ok((320, 240)));
-/// assert!(hw3::cli::parse_size("0x5", 8192).is_err());
-/// assert!(hw3::cli::parse_size("-3x5", 8192).is_err());
+/// use hw3::cli::{ArgError, parse_size};
+/// assert_eq!(parse_size("320x240", 8192), Ok((320, 240)));
+/// assert_eq!(parse_size("0x5", 8192), Err(ArgError::Size { text: "0x5".into(), max_side: 8192 }));
+/// assert!(parse_size("-3x5", 8192).is_err());
 /// ```
-pub fn parse_size(text: &str, max_side: u32) -> Result<(u32, u32), String> {
+pub fn parse_size(text: &str, max_side: u32) -> Result<(u32, u32), ArgError> {
     let side = |s: &str| parse_unsigned(s.trim(), u64::from(max_side)).ok().filter(|&v| v >= 1);
     text.split_once(['x', 'X'])
         .and_then(|(w, h)| Some((u32::try_from(side(w)?).ok()?, u32::try_from(side(h)?).ok()?)))
-        .ok_or_else(|| format!("--size: expected WIDTHxHEIGHT, each side 1 … {max_side}, got `{}`", quote(text)))
+        .ok_or_else(|| ArgError::Size { text: text.to_owned(), max_side })
 }
 
 /// `text` cut to [`QUOTE_CHARS`] characters (with how many were cut), control characters escaped:
@@ -217,29 +297,152 @@ fn escape_controls(text: &str) -> String {
     out
 }
 
+/// A path as a message shows it: [`quote`]d.
+fn shown(path: &Path) -> String {
+    quote(&path.display().to_string())
+}
+
+/// Why a text file could not be read ([`read_text_bounded`]): which file, and what is wrong.
+///
+/// # Examples
+/// ```
+/// use hw3::cli::{ReadError, read_text_bounded};
+/// let error = read_text_bounded(std::path::Path::new("/dev/zero"), 1024).unwrap_err();
+/// assert!(matches!(error, ReadError::TooLong { limit: 1024, .. }));
+/// assert_eq!(error.to_string(), "/dev/zero is longer than the limit of 1024 bytes");
+/// ```
+#[derive(Debug, thiserror::Error)]
+pub enum ReadError {
+    /// The file cannot be opened or read.
+    #[error("cannot read {}: {}", shown(.path), io_reason(.source))]
+    Io {
+        /// The file.
+        path: PathBuf,
+        /// The operating system's error.
+        source: std::io::Error,
+    },
+    /// The path is a directory.
+    #[error("cannot read {}: it is a directory", shown(.path))]
+    Directory {
+        /// The path.
+        path: PathBuf,
+    },
+    /// The file holds more than `limit` bytes.
+    #[error("{} is longer than the limit of {limit} bytes", shown(.path))]
+    TooLong {
+        /// The file.
+        path: PathBuf,
+        /// The most bytes read.
+        limit: u64,
+    },
+    /// The file is not UTF-8 text.
+    #[error("{} is not UTF-8 text (byte {})", shown(.path), .source.valid_up_to())]
+    NotUtf8 {
+        /// The file.
+        path: PathBuf,
+        /// The decoder's error, which says where the first bad byte is.
+        source: std::str::Utf8Error,
+    },
+}
+
 /// Reads at most `limit` bytes of `path` as UTF-8 text: a device that never ends (`/dev/zero`) or a
 /// huge file is refused after `limit + 1` bytes, without reading the rest.
 ///
 /// # Errors
-/// A one-line message naming the file: unreadable, over the limit, or not UTF-8.
+/// A [`ReadError`] naming the file: [`ReadError::Io`] when it cannot be read,
+/// [`ReadError::Directory`] for a directory, [`ReadError::TooLong`] over the limit,
+/// [`ReadError::NotUtf8`] when it is not UTF-8.
 ///
 /// # Examples
 /// ```
-/// assert!(hw3::cli::read_text_bounded(std::path::Path::new("/dev/zero"), 1024).unwrap_err().contains("1024"));
+/// assert!(hw3::cli::read_text_bounded(std::path::Path::new("/dev/zero"), 1024).unwrap_err().to_string().contains("1024"));
 /// ```
-pub fn read_text_bounded(path: &std::path::Path, limit: u64) -> Result<String, String> {
+pub fn read_text_bounded(path: &Path, limit: u64) -> Result<String, ReadError> {
     use std::io::Read as _;
-    let name = quote(&path.display().to_string());
-    let file = std::fs::File::open(path).map_err(|e| format!("cannot read {name}: {}", io_reason(&e)))?;
+    let io = |source| ReadError::Io { path: path.to_path_buf(), source };
+    let file = std::fs::File::open(path).map_err(io)?;
     if file.metadata().is_ok_and(|m| m.is_dir()) {
-        return Err(format!("cannot read {name}: it is a directory"));
+        return Err(ReadError::Directory { path: path.to_path_buf() });
     }
     let mut bytes = Vec::new();
-    file.take(limit + 1).read_to_end(&mut bytes).map_err(|e| format!("cannot read {name}: {}", io_reason(&e)))?;
+    file.take(limit + 1).read_to_end(&mut bytes).map_err(io)?;
     if bytes.len() as u64 > limit {
-        return Err(format!("{name} is longer than the limit of {limit} bytes"));
+        return Err(ReadError::TooLong { path: path.to_path_buf(), limit });
     }
-    String::from_utf8(bytes).map_err(|e| format!("{name} is not UTF-8 text (byte {})", e.utf8_error().valid_up_to()))
+    String::from_utf8(bytes).map_err(|e| ReadError::NotUtf8 { path: path.to_path_buf(), source: e.utf8_error() })
+}
+
+/// Why a Radiance `.hdr` file given to `--env` was refused before decoding ([`check_hdr_file`]):
+/// which file, and what is wrong with it.
+#[derive(Debug, thiserror::Error)]
+pub enum HdrFileError {
+    /// The file cannot be opened, or its metadata read.
+    #[error("--env: cannot read {}: {}", shown(.path), io_reason(.source))]
+    Unreadable {
+        /// The file.
+        path: PathBuf,
+        /// The operating system's error.
+        source: std::io::Error,
+    },
+    /// The path is not a regular file (a folder, a device).
+    #[error("--env: {} is not a regular file", shown(.path))]
+    NotAFile {
+        /// The path.
+        path: PathBuf,
+    },
+    /// The file is larger than [`MAP_FILE_BYTES`].
+    #[error("--env: {} has {bytes} bytes, over the limit of {limit}", shown(.path))]
+    TooLarge {
+        /// The file.
+        path: PathBuf,
+        /// Its size in bytes.
+        bytes: u64,
+        /// [`MAP_FILE_BYTES`].
+        limit: u64,
+    },
+    /// The file does not start with `#?RADIANCE`.
+    #[error("--env: {} is not a Radiance .hdr file (it does not start with #?RADIANCE)", shown(.path))]
+    NotRadiance {
+        /// The file.
+        path: PathBuf,
+    },
+    /// The resolution line cannot be read.
+    #[error("--env: {} has an unreadable resolution line `{}`", shown(.path), quote(.line))]
+    Resolution {
+        /// The file.
+        path: PathBuf,
+        /// The line as read.
+        line: String,
+    },
+    /// Another fault of the header (its `FORMAT`, its length, a read error).
+    #[error("--env: {}: {source}", shown(.path))]
+    Header {
+        /// The file.
+        path: PathBuf,
+        /// The header reader's error.
+        source: RadianceError,
+    },
+    /// The map is smaller than [`MAP_MIN_SIDES`].
+    #[error(
+        "--env: {} is {width}×{height}; a map needs at least {}×{} texels for the estimators to agree",
+        shown(.path),
+        .min.0,
+        .min.1
+    )]
+    TooSmall {
+        /// The file.
+        path: PathBuf,
+        /// The width its header declares.
+        width: u64,
+        /// The height its header declares.
+        height: u64,
+        /// [`MAP_MIN_SIDES`].
+        min: (u64, u64),
+    },
+    /// The map has more texels than [`MAP_TEXELS`] allows (the limit's name says the file and
+    /// its resolution).
+    #[error(transparent)]
+    Texels(LimitError),
 }
 
 /// Checks a Radiance `.hdr` file before it is decoded: its size in bytes, its header (read by the
@@ -247,50 +450,46 @@ pub fn read_text_bounded(path: &std::path::Path, limit: u64) -> Result<String, S
 /// declares, against [`MAP_TEXELS`] and [`MAP_MIN_SIDES`].
 ///
 /// # Errors
-/// A one-line message naming the file and what is wrong (not a Radiance file, too large, too small).
+/// A [`HdrFileError`] naming the file and what is wrong: [`HdrFileError::Unreadable`],
+/// [`HdrFileError::NotAFile`], [`HdrFileError::TooLarge`] (bytes), [`HdrFileError::NotRadiance`],
+/// [`HdrFileError::Resolution`], [`HdrFileError::Header`], [`HdrFileError::TooSmall`] or
+/// [`HdrFileError::Texels`].
 ///
 /// # Examples
 /// ```
+/// use hw3::cli::{HdrFileError, check_hdr_file};
 /// let path = std::env::temp_dir().join(format!("hw3-cli-doc-{}.hdr", std::process::id()));
 /// std::fs::write(&path, b"\x89PNG\r\n\x1a\n").unwrap();
-/// assert!(hw3::cli::check_hdr_file(&path, false).unwrap_err().contains("not a Radiance"));
+/// let error = check_hdr_file(&path, false).unwrap_err();
+/// assert!(matches!(error, HdrFileError::NotRadiance { .. }));
+/// assert!(error.to_string().contains("not a Radiance"));
 /// std::fs::remove_file(&path).unwrap();
 /// ```
-pub fn check_hdr_file(path: &std::path::Path, allow_large: bool) -> Result<(), String> {
+pub fn check_hdr_file(path: &Path, allow_large: bool) -> Result<(), HdrFileError> {
     use std::io::Read as _;
-    let name = quote(&path.display().to_string());
-    let file = std::fs::File::open(path).map_err(|e| format!("--env: cannot read {name}: {}", io_reason(&e)))?;
-    let meta = file.metadata().map_err(|e| format!("--env: cannot read {name}: {}", io_reason(&e)))?;
+    let unreadable = |source| HdrFileError::Unreadable { path: path.to_path_buf(), source };
+    let file = std::fs::File::open(path).map_err(unreadable)?;
+    let meta = file.metadata().map_err(unreadable)?;
     if !meta.is_file() {
-        return Err(format!("--env: {name} is not a regular file"));
+        return Err(HdrFileError::NotAFile { path: path.to_path_buf() });
     }
     if meta.len() > MAP_FILE_BYTES {
-        return Err(format!("--env: {name} has {} bytes, over the limit of {MAP_FILE_BYTES}", meta.len()));
+        return Err(HdrFileError::TooLarge { path: path.to_path_buf(), bytes: meta.len(), limit: MAP_FILE_BYTES });
     }
     // The decoder's own header reader, on at most 64 KiB: what passes here is what it will read.
-    use crate::envmap::radiance::{RadianceError, read_header};
     let mut reader = std::io::BufReader::new(file.take(64 * 1024));
-    let (width, height) = read_header(&mut reader).map_err(|e| match e {
-        RadianceError::Signature => {
-            format!("--env: {name} is not a Radiance .hdr file (it does not start with #?RADIANCE)")
-        }
-        RadianceError::Resolution(line) => {
-            format!("--env: {name} has an unreadable resolution line `{}`", quote(&line))
-        }
-        other => format!("--env: {name}: {other}"),
+    let (width, height) = crate::envmap::radiance::read_header(&mut reader).map_err(|e| match e {
+        RadianceError::Signature => HdrFileError::NotRadiance { path: path.to_path_buf() },
+        RadianceError::Resolution(line) => HdrFileError::Resolution { path: path.to_path_buf(), line },
+        source => HdrFileError::Header { path: path.to_path_buf(), source },
     })?;
     let (width, height) = (u64::from(width), u64::from(height));
     if width < MAP_MIN_SIDES.0 || height < MAP_MIN_SIDES.1 {
-        return Err(format!(
-            "--env: {name} is {width}×{height}; a map needs at least {}×{} texels for the estimators to agree",
-            MAP_MIN_SIDES.0, MAP_MIN_SIDES.1
-        ));
+        return Err(HdrFileError::TooSmall { path: path.to_path_buf(), width, height, min: MAP_MIN_SIDES });
     }
-    MAP_TEXELS.check(
-        &format!("--env: {name}: texels ({width}×{height})"),
-        width.saturating_mul(height),
-        allow_large,
-    )?;
+    MAP_TEXELS
+        .check(&format!("--env: {}: texels ({width}×{height})", shown(path)), width.saturating_mul(height), allow_large)
+        .map_err(HdrFileError::Texels)?;
     Ok(())
 }
 
@@ -300,10 +499,14 @@ mod tests {
 
     #[test]
     fn limits_name_the_flag_that_lifts_them() {
-        let message = RENDER_SAMPLES.check("--spp", RENDER_SAMPLES.max + 1, false).unwrap_err();
+        let message = RENDER_SAMPLES.check("--spp", RENDER_SAMPLES.max + 1, false).unwrap_err().to_string();
         assert!(message.contains("--allow-large"), "{message}");
-        assert!(!RENDER_SAMPLES.check("--spp", u64::MAX, true).unwrap_err().contains("pass --allow-large"));
-        assert!(PROBE_SIZE.check("--size", 1, false).unwrap_err().contains("at least 16"));
+        let over = RENDER_SAMPLES.check("--spp", u64::MAX, true).unwrap_err();
+        assert!(matches!(over, LimitError::TooLarge { value: u64::MAX, .. }));
+        assert!(!over.to_string().contains("pass --allow-large"));
+        let under = PROBE_SIZE.check("--size", 1, false).unwrap_err();
+        assert_eq!(under, LimitError::TooSmall { name: "--size".into(), value: 1, min: 16 });
+        assert_eq!(under.to_string(), "--size must be at least 16, got 1");
     }
 
     #[test]

@@ -208,17 +208,17 @@ struct Q4IrradianceArgs {
 
 /// `--seed` of `template`, `check` and `variant`.
 fn seed_arg(text: &str) -> Result<u64, String> {
-    limits::parse_seed(text)
+    limits::parse_seed(text).map_err(|e| e.to_string())
 }
 
 /// A count whose bound is checked later, with `--allow-large` known.
 fn count_arg(text: &str) -> Result<u64, String> {
-    limits::parse_unsigned(text, u64::MAX)
+    limits::parse_unsigned(text, u64::MAX).map_err(|e| e.to_string())
 }
 
 /// `render --spp`: the renderer's own range.
 fn spp_arg(text: &str) -> Result<u32, String> {
-    let spp = limits::parse_unsigned(text, u64::from(hw3::render::MAX_SPP))?;
+    let spp = limits::parse_unsigned(text, u64::from(hw3::render::MAX_SPP)).map_err(|e| e.to_string())?;
     if spp == 0 { Err("expected at least 1 sample per pixel, got `0`".into()) } else { Ok(spp as u32) }
 }
 
@@ -425,7 +425,8 @@ fn check(files: &[PathBuf], seed: Option<u64>, format: FormatArg, out: Option<&P
     }
     if !class {
         let file = &files[0];
-        let text = limits::read_text_bounded(file, limits::ANSWERS_FILE_BYTES).map_err(UsageError)?;
+        let text =
+            limits::read_text_bounded(file, limits::ANSWERS_FILE_BYTES).map_err(|e| UsageError(e.to_string()))?;
         let name = file.display().to_string();
         let report =
             hw3::checker::check(&text, seed).map_err(|e| UsageError(format!("{}: {e}", limits::quote(&name))))?;
@@ -439,7 +440,7 @@ fn check(files: &[PathBuf], seed: Option<u64>, format: FormatArg, out: Option<&P
         deliver(out, &body)?;
         return if report.all_correct() { Ok(()) } else { Err(SomeWrong.into()) };
     }
-    let paths = hw3::checker::class_files(files).map_err(UsageError)?;
+    let paths = hw3::checker::class_files(files).map_err(|e| UsageError(e.to_string()))?;
     let graded = check_class(&hw3::checker::read_class(&paths), seed);
     if graded.graded == 0 {
         let first = &graded.submissions[0];
@@ -453,7 +454,7 @@ fn check(files: &[PathBuf], seed: Option<u64>, format: FormatArg, out: Option<&P
     }
     match (format, out) {
         (FormatArg::Gradescope, Some(folder)) => {
-            let results = hw3::checker::gradescope_files(&graded).map_err(UsageError)?;
+            let results = hw3::checker::gradescope_files(&graded).map_err(|e| UsageError(e.to_string()))?;
             for (name, json) in &results {
                 let path = folder.join(name);
                 hw3::fsio::write_atomic(&path, format!("{}\n", serde_json::to_string_pretty(json)?).as_bytes())
@@ -499,11 +500,12 @@ fn deliver(out: Option<&Path>, body: &str) -> anyhow::Result<()> {
 /// `hw3 irradiance`: every bound is checked, and a map file's header read, before a texel is made.
 fn irradiance(args: Q4IrradianceArgs) -> anyhow::Result<()> {
     let large = args.allow_large;
-    let samples = limits::IRRADIANCE_SAMPLES.check("--samples", args.samples, large).map_err(UsageError)?;
-    let size = limits::PROBE_SIZE.check("--size", args.size, large).map_err(UsageError)?;
+    let usage = |e: limits::LimitError| UsageError(e.to_string());
+    let samples = limits::IRRADIANCE_SAMPLES.check("--samples", args.samples, large).map_err(usage)?;
+    let size = limits::PROBE_SIZE.check("--size", args.size, large).map_err(usage)?;
     let analytic = args.env == "sky" || args.env.starts_with("constant:") || args.env.starts_with("linear:");
     if !analytic {
-        limits::check_hdr_file(Path::new(&args.env), large).map_err(UsageError)?;
+        limits::check_hdr_file(Path::new(&args.env), large).map_err(|e| UsageError(e.to_string()))?;
     }
     let normal = hw3::geometry::parse_vec3("--normal", &args.normal).map_err(|e| UsageError(e.to_string()))?;
     let request = hw3::q4_light_probe::IrradianceRequest {
@@ -543,11 +545,11 @@ fn render_to_file(
     allow_large: bool,
 ) -> anyhow::Result<()> {
     use hw3::render::command::render_scene;
-    let size = limits::parse_size(size, hw3::render::MAX_SIDE).map_err(UsageError)?;
+    let size = limits::parse_size(size, hw3::render::MAX_SIDE).map_err(|e| UsageError(e.to_string()))?;
     let samples = u64::from(size.0) * u64::from(size.1) * u64::from(spp);
     limits::RENDER_SAMPLES
         .check("camera samples (width × height × --spp)", samples, allow_large)
-        .map_err(UsageError)?;
+        .map_err(|e| UsageError(e.to_string()))?;
     let mode = effects.parse().map_err(UsageError)?;
     check_render_out(out)?;
     let output = render_scene(scene, spp, size, mode).map_err(|e| UsageError(e.to_string()))?;

@@ -9,7 +9,8 @@
 
 use super::grading::{Report, check};
 use super::reports::report_gradescope;
-use crate::cli::{ANSWERS_FILE_BYTES, one_line, quote, read_text_bounded};
+use crate::cli::{ANSWERS_FILE_BYTES, ReadError, one_line, quote, read_text_bounded};
+use crate::fsio::io_reason;
 use serde::Serialize;
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
@@ -97,15 +98,61 @@ impl ClassReport {
     }
 }
 
+/// Why a class run's files were refused before any was read ([`class_files`]).
+///
+/// # Examples
+/// ```
+/// use hw3::checker::{ClassError, class_files};
+/// let empty = std::env::temp_dir().join(format!("hw3-class-doc-{}", std::process::id()));
+/// std::fs::create_dir_all(&empty).unwrap();
+/// let error = class_files(&[empty.clone()]).unwrap_err();
+/// assert!(matches!(&error, ClassError::NoAnswersFiles { dir } if *dir == empty));
+/// assert!(error.to_string().ends_with("` holds no *.toml file"));
+/// std::fs::remove_dir(&empty).unwrap();
+/// ```
+#[derive(Debug, thiserror::Error)]
+pub enum ClassError {
+    /// A folder cannot be listed.
+    #[error("cannot list `{}`: {}", quote(&.dir.display().to_string()), io_reason(.source))]
+    List {
+        /// The folder.
+        dir: PathBuf,
+        /// The operating system's error.
+        source: std::io::Error,
+    },
+    /// A folder holds no `*.toml` file.
+    #[error("`{}` holds no *.toml file", quote(&.dir.display().to_string()))]
+    NoAnswersFiles {
+        /// The folder.
+        dir: PathBuf,
+    },
+    /// More answers files than [`MAX_CLASS_FILES`].
+    #[error("more than {limit} answers files: grade the class in parts")]
+    TooManyFiles {
+        /// [`MAX_CLASS_FILES`].
+        limit: usize,
+    },
+    /// The files' summed size is over [`MAX_CLASS_BYTES`].
+    #[error("the answers files hold {bytes} bytes, over the limit of {limit}")]
+    TooManyBytes {
+        /// The summed size.
+        bytes: u64,
+        /// [`MAX_CLASS_BYTES`].
+        limit: u64,
+    },
+}
+
 /// The files of a class run: each path as given, and for a folder its `*.toml` files (not its
 /// sub-folders), sorted by name. The count and the summed size are checked here, before any file
 /// is read; a file that is not a regular file (a device) counts as [`ANSWERS_FILE_BYTES`], the
 /// most that is read of it.
 ///
 /// # Errors
-/// A one-line message: a folder that cannot be listed or holds no `*.toml` file, more than
-/// [`MAX_CLASS_FILES`] files, or more than [`MAX_CLASS_BYTES`] bytes. A single file that cannot
-/// be read is not an error here: it is reported in the class report.
+/// [`ClassError::List`] for a folder that cannot be listed, [`ClassError::NoAnswersFiles`] for
+/// one that holds no `*.toml` file, [`ClassError::TooManyFiles`] for more than
+/// [`MAX_CLASS_FILES`] files, [`ClassError::TooManyBytes`] for more than [`MAX_CLASS_BYTES`]
+/// bytes. A single file that cannot be read is not an error here: it is reported in the class
+/// report.
 ///
 /// # Examples
 /// ```
@@ -114,23 +161,21 @@ impl ClassReport {
 /// assert!(files.iter().any(|f| f.ends_with("seed_hw3.toml")));
 /// assert!(files.windows(2).all(|w| w[0] < w[1]));
 /// ```
-pub fn class_files(paths: &[PathBuf]) -> Result<Vec<PathBuf>, String> {
+pub fn class_files(paths: &[PathBuf]) -> Result<Vec<PathBuf>, ClassError> {
     let mut files = Vec::new();
     for path in paths {
         if !path.is_dir() {
             files.push(path.clone());
             continue;
         }
-        let name = quote(&path.display().to_string());
-        let listing =
-            std::fs::read_dir(path).map_err(|e| format!("cannot list `{name}`: {}", crate::fsio::io_reason(&e)))?;
+        let listing = std::fs::read_dir(path).map_err(|source| ClassError::List { dir: path.clone(), source })?;
         let mut found: Vec<PathBuf> = listing
             .filter_map(Result::ok)
             .map(|entry| entry.path())
             .filter(|p| p.extension().is_some_and(|e| e == "toml") && !p.is_dir())
             .collect();
         if found.is_empty() {
-            return Err(format!("`{name}` holds no *.toml file"));
+            return Err(ClassError::NoAnswersFiles { dir: path.clone() });
         }
         found.sort();
         files.extend(found);
@@ -139,7 +184,7 @@ pub fn class_files(paths: &[PathBuf]) -> Result<Vec<PathBuf>, String> {
         }
     }
     if files.len() > MAX_CLASS_FILES {
-        return Err(format!("more than {MAX_CLASS_FILES} answers files: grade the class in parts"));
+        return Err(ClassError::TooManyFiles { limit: MAX_CLASS_FILES });
     }
     let bytes: u64 = files
         .iter()
@@ -150,7 +195,7 @@ pub fn class_files(paths: &[PathBuf]) -> Result<Vec<PathBuf>, String> {
         })
         .sum();
     if bytes > MAX_CLASS_BYTES {
-        return Err(format!("the answers files hold {bytes} bytes, over the limit of {MAX_CLASS_BYTES}"));
+        return Err(ClassError::TooManyBytes { bytes, limit: MAX_CLASS_BYTES });
     }
     Ok(files)
 }
@@ -158,7 +203,7 @@ pub fn class_files(paths: &[PathBuf]) -> Result<Vec<PathBuf>, String> {
 /// Reads each file (at most [`ANSWERS_FILE_BYTES`] of UTF-8 text): its name, and its text or why
 /// it cannot be read.
 #[must_use]
-pub fn read_class(files: &[PathBuf]) -> Vec<(String, Result<String, String>)> {
+pub fn read_class(files: &[PathBuf]) -> Vec<(String, Result<String, ReadError>)> {
     files.iter().map(|f| (f.display().to_string(), read_text_bounded(f, ANSWERS_FILE_BYTES))).collect()
 }
 
@@ -167,18 +212,22 @@ pub fn read_class(files: &[PathBuf]) -> Vec<(String, Result<String, String>)> {
 ///
 /// # Examples
 /// ```
-/// let files = vec![("gone.toml".to_string(), Err("cannot read `gone.toml`: no such file".to_string()))];
+/// use hw3::cli::ReadError;
+/// let gone = ReadError::Io { path: "gone.toml".into(), source: std::io::ErrorKind::NotFound.into() };
+/// let files = vec![("gone.toml".to_string(), Err(gone))];
 /// let class = hw3::checker::check_class(&files, None);
 /// assert_eq!((class.graded, class.ungraded, class.max_score), (0, 1, 0.0));
-/// assert!(class.submissions[0].error.as_deref().unwrap().contains("no such file"));
+/// assert!(class.submissions[0].error.as_deref().unwrap().starts_with("cannot read gone.toml: "));
 /// ```
 #[must_use]
-pub fn check_class(files: &[(String, Result<String, String>)], seed_override: Option<u64>) -> ClassReport {
+pub fn check_class(files: &[(String, Result<String, ReadError>)], seed_override: Option<u64>) -> ClassReport {
     let submissions: Vec<Submission> = files
         .iter()
         .map(|(file, text)| {
-            let graded =
-                text.as_ref().map_err(Clone::clone).and_then(|t| check(t, seed_override).map_err(|e| e.to_string()));
+            let graded = text
+                .as_ref()
+                .map_err(ToString::to_string)
+                .and_then(|t| check(t, seed_override).map_err(|e| e.to_string()));
             match graded {
                 Ok(report) => Submission { file: file.clone(), report: Some(report), error: None },
                 Err(error) => Submission { file: file.clone(), report: None, error: Some(one_line(&error)) },
@@ -385,12 +434,43 @@ pub fn class_gradescope(class: &ClassReport) -> serde_json::Value {
     serde_json::json!({ "submissions": submissions })
 }
 
+/// Why a class's Gradescope results cannot be written one file per student ([`gradescope_files`]).
+///
+/// # Examples
+/// ```
+/// use hw3::checker::{GradescopeError, check_class, gradescope_files};
+/// let files = vec![("x/a.toml".to_string(), Ok(String::new())), ("y/a.toml".to_string(), Ok(String::new()))];
+/// let error = gradescope_files(&check_class(&files, None)).unwrap_err();
+/// assert!(matches!(&error, GradescopeError::SameResultsFile { name, .. } if name == "a.json"));
+/// assert_eq!(error.to_string(), "`x/a.toml` and `y/a.toml` would both write a.json");
+/// ```
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum GradescopeError {
+    /// An answers file's name has no stem (or one that is not UTF-8) to name its results after.
+    #[error("`{}` has no file name to name its results after", quote(.file))]
+    NoFileStem {
+        /// The answers file, as given.
+        file: String,
+    },
+    /// Two answers files share a stem, so their results would overwrite each other.
+    #[error("`{}` and `{}` would both write {name}", quote(.first), quote(.second))]
+    SameResultsFile {
+        /// The first answers file with the stem.
+        first: String,
+        /// The second.
+        second: String,
+        /// The results file both would write (`alice.json`).
+        name: String,
+    },
+}
+
 /// The class as one Gradescope `results.json` per student, for a folder: the file name is the
 /// answers file's stem with `.json` (`alice.toml` → `alice.json`).
 ///
 /// # Errors
-/// A one-line message when two answers files share a stem (their results would overwrite each
-/// other), or a stem is not valid UTF-8 text.
+/// [`GradescopeError::SameResultsFile`] when two answers files share a stem (their results would
+/// overwrite each other), [`GradescopeError::NoFileStem`] when a file has no stem or one that is
+/// not valid UTF-8 text.
 ///
 /// # Examples
 /// ```
@@ -399,17 +479,17 @@ pub fn class_gradescope(class: &ClassReport) -> serde_json::Value {
 /// assert!(gradescope_files(&check_class(&files[..1], None)).unwrap()[0].0 == "a.json");
 /// assert!(gradescope_files(&check_class(&files, None)).is_err());
 /// ```
-pub fn gradescope_files(class: &ClassReport) -> Result<Vec<(String, serde_json::Value)>, String> {
+pub fn gradescope_files(class: &ClassReport) -> Result<Vec<(String, serde_json::Value)>, GradescopeError> {
     let mut seen = BTreeMap::new();
     let mut out = Vec::new();
     for s in &class.submissions {
         let stem = Path::new(&s.file).file_stem().and_then(|s| s.to_str()).unwrap_or_default();
         if stem.is_empty() {
-            return Err(format!("`{}` has no file name to name its results after", quote(&s.file)));
+            return Err(GradescopeError::NoFileStem { file: s.file.clone() });
         }
         let name = format!("{stem}.json");
         if let Some(other) = seen.insert(name.clone(), s.file.clone()) {
-            return Err(format!("`{}` and `{}` would both write {name}", quote(&other), quote(&s.file)));
+            return Err(GradescopeError::SameResultsFile { first: other, second: s.file.clone(), name });
         }
         out.push((name, gradescope_of(s)));
     }
@@ -478,9 +558,13 @@ mod tests {
     fn bounds_are_checked_before_reading() {
         let dir = std::env::temp_dir().join(format!("hw3-class-bounds-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
-        assert!(class_files(std::slice::from_ref(&dir)).unwrap_err().contains("no *.toml"));
+        let empty = class_files(std::slice::from_ref(&dir)).unwrap_err();
+        assert!(matches!(empty, ClassError::NoAnswersFiles { .. }), "{empty:?}");
+        assert!(empty.to_string().contains("no *.toml"));
         let many: Vec<PathBuf> = (0..=MAX_CLASS_FILES).map(|i| dir.join(format!("{i}.toml"))).collect();
-        assert!(class_files(&many).unwrap_err().contains("more than"));
+        let too_many = class_files(&many).unwrap_err();
+        assert!(matches!(too_many, ClassError::TooManyFiles { limit: MAX_CLASS_FILES }), "{too_many:?}");
+        assert_eq!(too_many.to_string(), "more than 2000 answers files: grade the class in parts");
         std::fs::remove_dir_all(&dir).ok();
     }
 }
