@@ -550,7 +550,7 @@ fn render_to_file(
     limits::RENDER_SAMPLES
         .check("camera samples (width × height × --spp)", samples, allow_large)
         .map_err(|e| UsageError(e.to_string()))?;
-    let mode = effects.parse().map_err(UsageError)?;
+    let mode = effects.parse::<hw3::render::command::EffectsMode>().map_err(|e| UsageError(e.to_string()))?;
     check_render_out(out)?;
     let output = render_scene(scene, spp, size, mode).map_err(|e| UsageError(e.to_string()))?;
     hw3::fsio::write_atomic(out, &output.png)

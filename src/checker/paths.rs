@@ -1,15 +1,19 @@
 //! Light-path classes as answers: Heckbert's notation, graded by language equivalence with the
 //! crate's grammar (so `LDD*E` and `LD+E` are the same answer).
 
-use crate::render::analysis::grammar::{Lang, shortest_word, word_text};
+use crate::render::analysis::grammar::{GrammarError, Lang, shortest_word, word_text};
 
 /// A light-path class: Heckbert's notation as the crate's grammar reads it, or `none` (∅).
-pub(super) fn paths(source: &str) -> Result<Lang, String> {
+///
+/// # Errors
+/// [`GrammarError::Syntax`] with the expression (trimmed), what was found and where, when it
+/// is neither `none` nor a path expression.
+pub(super) fn paths(source: &str) -> Result<Lang, GrammarError> {
     let trimmed = source.trim();
     if trimmed.eq_ignore_ascii_case("none") || trimmed == "∅" {
         return Ok(Lang::Empty);
     }
-    Lang::parse(trimmed).map_err(|e| e.to_string())
+    Lang::parse(trimmed)
 }
 
 /// Whether `given` is the same class of paths as `key`; if not, the shortest path in one and
@@ -54,5 +58,12 @@ mod tests {
         assert!(!ok);
         assert!(words.contains("contains LSSDE, yours does not"), "{words}");
         assert!(!compare_paths("none", "LGE").0);
+    }
+
+    #[test]
+    fn a_class_that_does_not_parse_is_a_syntax_error() {
+        assert_eq!(paths(" None "), Ok(Lang::Empty));
+        let error = paths(" L(D| ").unwrap_err();
+        assert!(matches!(&error, GrammarError::Syntax { expression, .. } if expression == "L(D|"), "{error:?}");
     }
 }

@@ -73,19 +73,28 @@ fn yes_no(flag: bool) -> &'static str {
     if flag { "yes" } else { "no" }
 }
 
+/// `--size` is not two whole numbers joined by `x` ([`parse_size`]).
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("--size: expected WIDTHxHEIGHT like 320x240, got `{text}`")]
+pub struct ParseSizeError {
+    /// The text given.
+    pub text: String,
+}
+
 /// Parses `--size WxH` (`64x48`).
 ///
 /// # Errors
-/// A one-line message when the text is not two positive integers joined by `x`.
+/// [`ParseSizeError`] with the text when it is not two whole numbers joined by `x`.
 ///
 /// # Examples
 /// ```
-/// assert_eq!(hw3_render::render::command::parse_size("64x48"), Ok((64, 48)));
-/// assert!(hw3_render::render::command::parse_size("64").is_err());
+/// use hw3_render::render::command::{ParseSizeError, parse_size};
+/// assert_eq!(parse_size("64x48"), Ok((64, 48)));
+/// assert_eq!(parse_size("64"), Err(ParseSizeError { text: "64".into() }));
 /// ```
-pub fn parse_size(text: &str) -> Result<(u32, u32), String> {
+pub fn parse_size(text: &str) -> Result<(u32, u32), ParseSizeError> {
     let parsed = text.split_once(['x', 'X']).and_then(|(w, h)| Some((w.trim().parse().ok()?, h.trim().parse().ok()?)));
-    parsed.ok_or_else(|| format!("--size: expected WIDTHxHEIGHT like 320x240, got `{text}`"))
+    parsed.ok_or_else(|| ParseSizeError { text: text.to_owned() })
 }
 
 /// Which passes `hw3 render` runs.
@@ -97,14 +106,31 @@ pub enum EffectsMode {
     All,
 }
 
-impl std::str::FromStr for EffectsMode {
-    type Err = String;
+/// `--effects` is neither `auto` nor `all` ([`EffectsMode`]'s `FromStr`).
+///
+/// # Examples
+/// ```
+/// use hw3_render::render::command::{EffectsMode, ParseEffectsModeError};
+/// assert_eq!("all".parse(), Ok(EffectsMode::All));
+/// let error = "some".parse::<EffectsMode>().unwrap_err();
+/// assert_eq!(error, ParseEffectsModeError { text: "some".into() });
+/// assert_eq!(error.to_string(), "--effects: expected auto or all, got `some`");
+/// ```
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("--effects: expected auto or all, got `{text}`")]
+pub struct ParseEffectsModeError {
+    /// The text given.
+    pub text: String,
+}
 
-    fn from_str(text: &str) -> Result<Self, String> {
+impl std::str::FromStr for EffectsMode {
+    type Err = ParseEffectsModeError;
+
+    fn from_str(text: &str) -> Result<Self, ParseEffectsModeError> {
         match text {
             "auto" => Ok(Self::Auto),
             "all" => Ok(Self::All),
-            _ => Err(format!("--effects: expected auto or all, got `{text}`")),
+            _ => Err(ParseEffectsModeError { text: text.to_owned() }),
         }
     }
 }
