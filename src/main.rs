@@ -404,7 +404,9 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             if !json {
                 emit(&grammar_table_markdown()?)?;
             }
-            let measured = experiments::measured_table(&Budget::PUBLISHED)?;
+            // The message alone: an ExperimentError keeps its source, which `main`'s `{e:#}`
+            // would print a second time after it.
+            let measured = experiments::measured_table(&Budget::PUBLISHED).map_err(|e| anyhow::anyhow!("{e}"))?;
             if json {
                 emit_line(&effect_tables_command(true, &measured).map_err(anyhow::Error::msg)?)
             } else {

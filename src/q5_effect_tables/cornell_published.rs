@@ -255,9 +255,7 @@ pub fn path_settings(scene: &Scene, size: u32, spp: u32) -> Settings {
 /// ```
 pub fn path_traced_image(size: u32, spp: u32) -> Result<crate::plot::RgbImage, ExperimentError> {
     let scene = scene()?;
-    Ok(render(&scene, &path_settings(&scene, size, spp), &|_| {})
-        .map_err(|e| ExperimentError::Render(e.to_string()))?
-        .to_rgb8())
+    Ok(render(&scene, &path_settings(&scene, size, spp), &|_| {})?.to_rgb8())
 }
 
 /// Seeds of the two halves of [`path_traced_with_noise`]: not the seed 1 of [`path_settings`], whose
@@ -272,7 +270,8 @@ const HALF_SEEDS: [u64; 2] = [2, 3];
 /// ([`noise_between`]); the mean of two halves has `1/√2` of it.
 ///
 /// # Errors
-/// [`ExperimentError::Render`] for an odd or zero `spp`, or if the render fails.
+/// [`ExperimentError::UnevenSamples`] for an odd or zero `spp`, [`ExperimentError::Render`] if
+/// the render fails.
 ///
 /// # Examples
 /// ```
@@ -284,12 +283,12 @@ const HALF_SEEDS: [u64; 2] = [2, 3];
 /// ```
 pub fn path_traced_with_noise(size: u32, spp: u32) -> Result<(crate::plot::RgbImage, f64), ExperimentError> {
     if spp == 0 || !spp.is_multiple_of(2) {
-        return Err(ExperimentError::Render(format!("{spp} samples per pixel do not split into two equal halves")));
+        return Err(ExperimentError::UnevenSamples(spp));
     }
     let scene = scene()?;
     let half = |seed| {
         render(&scene, &Settings { seed, ..path_settings(&scene, size, spp / 2) }, &|_| {})
-            .map_err(|e| ExperimentError::Render(e.to_string()))
+            .map_err(ExperimentError::from)
     };
     let (a, b) = (half(HALF_SEEDS[0])?, half(HALF_SEEDS[1])?);
     let noise = noise_between(&a.to_rgb8(), &b.to_rgb8()) / std::f64::consts::SQRT_2;

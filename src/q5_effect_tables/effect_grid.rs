@@ -115,7 +115,6 @@ fn has_specular(scene: &Scene) -> bool {
 /// method's cost as text.
 fn render_methods(scene: &Scene, budget: &Budget) -> Result<Vec<(Image, String)>, ExperimentError> {
     let (width, height) = budget.image_size(PANEL_SIZE);
-    let render_error = |e: crate::render::RenderError| ExperimentError::Render(e.to_string());
     let maps = trace_photons(scene, budget.photons, PHOTON_SEED)?;
     let mut images = Vec::new();
     let mut two_pass = None;
@@ -133,7 +132,7 @@ fn render_methods(scene: &Scene, budget: &Budget) -> Result<Vec<(Image, String)>
                 let passes = integrator.restrict(analyze(scene).plan).with(Pass::Caustics, false);
                 let spp = budget.light_samples;
                 let settings = Settings { integrator, ..Settings::whitted(width, height, spp, passes) };
-                (render(scene, &settings, &|_| {}).map_err(render_error)?, format!("{spp} spp"))
+                (render(scene, &settings, &|_| {})?, format!("{spp} spp"))
             }
             // Without a mirror or glass, and so with an empty caustic map, photon mapping traces
             // exactly the two-pass method's rays and estimates (the caustic map adds nothing, bit
@@ -146,7 +145,7 @@ fn render_methods(scene: &Scene, budget: &Budget) -> Result<Vec<(Image, String)>
                 let (tracer, integrator) = photon_eye(scene, &maps, caustics, budget.light_samples)?;
                 let settings = Settings { integrator, ..Settings::whitted(width, height, 1, Passes::default()) };
                 let cost = format!("{} photons,\nk = {NEIGHBOURS}", power_of_ten(budget.photons));
-                let rendered = (render_with(&tracer, &settings, &|_| {}).map_err(render_error)?, cost);
+                let rendered = (render_with(&tracer, &settings, &|_| {})?, cost);
                 if method == Measured::TwoPass {
                     two_pass = Some(rendered.clone());
                 }

@@ -3,6 +3,7 @@
 use super::radiosity::RadiosityError;
 use crate::data::DataError;
 use crate::geometry::InputError;
+use crate::render::RenderError;
 use crate::render::analysis::grammar::GrammarError;
 use crate::render::photon::PhotonError;
 
@@ -25,9 +26,13 @@ pub enum ExperimentError {
     /// A scene failed validation (never for the built-in scenes).
     #[error(transparent)]
     Scene(#[from] InputError),
-    /// A figure could not be rendered or encoded.
+    /// A render was refused.
     #[error("rendering a figure failed: {0}")]
-    Render(String),
+    Render(#[from] RenderError),
+    /// A render of the mean of two halves was asked for a sample count that does not split into
+    /// two equal halves (odd, or zero).
+    #[error("rendering a figure failed: {0} samples per pixel do not split into two equal halves")]
+    UnevenSamples(u32),
     /// Committed data (a CSV under `docs/data/`) is malformed.
     #[error("committed data: {0}")]
     Data(#[from] DataError),
