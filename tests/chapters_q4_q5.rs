@@ -1238,10 +1238,14 @@ fn q5_convergence_caption_is_measured() {
         b = next;
     }
     let q5 = chapter("q5_effect_tables.md");
+    // The radiosity picture's mesh, and the box's quads: five walls, the lamp and five block faces.
+    let (pictured, _) = hw3::q5_effect_tables::Budget::PUBLISHED.render_mesh;
+    assert_eq!(patches, 11 * 16);
     says(
         &q5,
         &[
-            format!("(4 × 4 patches per wall, {patches} patches)"),
+            format!("({pictured} × {pictured} patches on every wall, block face and the lamp)"),
+            format!("(4 × 4 patches on every wall, block face and the lamp, {patches} patches)"),
             format!("a sweep is {patches} shots, one per patch"),
             format!("about {jacobi:.2} for Jacobi and {gauss_seidel:.2} for Gauss–Seidel"),
             format!("{rho} in the worked example, {white:.3} for a closed box of these white walls"),
