@@ -1,6 +1,7 @@
 //! Shared plotting core: an embedded font, deterministic SVG/PNG figures, the [`Figure`] type
-//! every question module returns from its `figures()` function, one chart helper ([`Chart`]) and
-//! one markdown-table writer ([`markdown_table`]).
+//! every question module returns from its `figures()` function, one chart helper ([`Chart`]),
+//! one markdown-table writer ([`markdown_table`]), and the errors of drawing ([`DrawError`], what
+//! a drawing closure returns) and of making a figure ([`PlotError`]).
 //!
 //! Figures must be byte-identical from run to run (they are committed under `docs/figures/` and
 //! pinned by snapshots), so nothing here reads the clock, the locale or the system's fonts: text is
