@@ -150,11 +150,17 @@ fn q2_an_early_slip_is_charged_once() {
         assert_eq!((p.score, p.max_score, p.mistake), (p.max_score, p.max_score, Some("carried_forward")), "{p:?}");
         assert!(p.feedback.contains("first wrong step: `q2a.t`"), "{key}: {}", p.feedback);
     }
-    // A point that follows from nothing the student wrote is wrong, and told where the chain broke.
+    // A point that follows from nothing the student wrote is wrong; the feedback says the earlier
+    // part is wrong too without calling it the first wrong step (fixing it would not fix this).
     let broken = check("[q2a]\nt = 3.0\npoint = [-2.0, 1.5, 0.0]\n", None).unwrap();
     let p = part(&broken, "q2a.point");
     assert_eq!((p.status, p.mistake), ("wrong", None));
-    assert!(p.feedback.contains("first wrong step: `q2a.t`"), "{}", p.feedback);
+    assert!(
+        p.feedback.contains("`q2a.t` is wrong too, but this answer does not follow from it either"),
+        "{}",
+        p.feedback
+    );
+    assert!(!p.feedback.contains("first wrong step"), "{}", p.feedback);
 }
 
 /// Q3 (d) with a wrong root crossing, t = 2.5 instead of 2 for x = 3, and every descent and leaf
@@ -212,11 +218,15 @@ fn q5_a_missed_class_follows_from_the_students_verdict() {
         assert_eq!((p.score, p.status, p.mistake), (0.5, "correct", Some("carried_forward")), "{p:?}");
         assert!(p.feedback.contains(&format!("first wrong step: `{cell}`")), "{}", p.feedback);
     }
-    // A class that does not follow from the verdict is wrong, and told where its chain starts.
+    // A class that does not follow from the verdict is wrong, and not blamed on the verdict.
     let report = check("[q5a]\nb = \"no\"\nb_missed = \"LDE\"\n", None).unwrap();
     let p = part(&report, "q5a.b_missed");
     assert_eq!((p.score, p.mistake), (0.0, None), "{p:?}");
-    assert!(p.feedback.contains("first wrong step: `q5a.b`"), "{}", p.feedback);
+    assert!(
+        p.feedback.contains("`q5a.b` is wrong too, but this answer does not follow from it either"),
+        "{}",
+        p.feedback
+    );
     // An impractical for a no implies the same missed class as the no: a wrong class there is its
     // own mistake, not one carried from the verdict.
     let report = check("[q5b]\nd_caustic = \"impractical\"\nd_caustic_missed = \"LSDE\"\n", None).unwrap();
@@ -263,4 +273,41 @@ fn every_part_links_an_existing_section_and_teaches_its_method() {
     let report = check("[q2a]\nt = 1.0", None).unwrap();
     let t = part(&report, "q2a.t");
     assert!(t.feedback.ends_with(variant("q2", 0).unwrap().parts.iter().find(|p| p.key == "q2a.t").unwrap().method));
+}
+
+/// Leaves follow from the student's own descents only when those descents follow the traversal's
+/// method: a bound kept at 0 where the ray crosses a plane is a mistake of method, and the leaves
+/// that repeat it are graded against the key (seed 0, case (d)).
+#[test]
+fn leaves_carry_a_slip_of_the_descents_not_a_mistake_of_method() {
+    let file =
+        |descents: &str, leaves: &str| format!("[meta]\nseed = 0\n[q3d]\ndescents = {descents}\nleaves = {leaves}\n");
+    let kept_at_zero = file(
+        r#"[{ path = ["x>=3"], tmin = 0, tmax = 2 }, { path = ["x>=3", "y<3"], tmin = 0, tmax = 2 }, { path = ["x<3"], tmin = 0, tmax = "inf" }, { path = ["x<3", "y>=1"], tmin = 0, tmax = "inf" }]"#,
+        r#"[{ path = ["x>=3", "y<3"], tmin = 0, tmax = 2 }, { path = ["x<3", "y>=1"], tmin = 0, tmax = "inf" }]"#,
+    );
+    let report = check(&kept_at_zero, None).unwrap();
+    let leaves = part(&report, "q3d.leaves");
+    assert_eq!((leaves.score, leaves.mistake), (1.5, None), "{leaves:?}");
+    assert!(leaves.feedback.contains("leave the traversal's method"), "{}", leaves.feedback);
+    // A slip of arithmetic (the root crossed at t = 2.5) is carried into the leaves.
+    let slip = file(
+        r#"[{ path = ["x>=3"], tmin = 0, tmax = 2.5 }, { path = ["x>=3", "y<3"], tmin = 0, tmax = 2.5 }, { path = ["x<3"], tmin = 2.5, tmax = "inf" }, { path = ["x<3", "y>=1"], tmin = 2.5, tmax = "inf" }]"#,
+        r#"[{ path = ["x>=3", "y<3"], tmin = 0, tmax = 2.5 }, { path = ["x<3", "y>=1"], tmin = 2.5, tmax = "inf" }]"#,
+    );
+    let report = check(&slip, None).unwrap();
+    let leaves = part(&report, "q3d.leaves");
+    assert_eq!((leaves.score, leaves.mistake), (3.0, Some("carried_forward")), "{leaves:?}");
+}
+
+/// An extra entry costs its own share, not the credit of the entries after it: a zero-length
+/// piece listed first (the tie the question rules out) and then the key's four descents earn 4
+/// of 5 shares.
+#[test]
+fn an_extra_descent_costs_its_own_share() {
+    let text = "[meta]\nseed = 0\n[q3d]\ndescents = [{ path = [\"x<3\"], tmin = 0, tmax = 0 }, { path = [\"x>=3\"], tmin = 0, tmax = 2 }, { path = [\"x>=3\", \"y<3\"], tmin = 0, tmax = 2 }, { path = [\"x<3\"], tmin = 2, tmax = \"inf\" }, { path = [\"x<3\", \"y>=1\"], tmin = 2, tmax = \"inf\" }]\n";
+    let report = check(text, None).unwrap();
+    let descents = part(&report, "q3d.descents");
+    assert_eq!(descents.score, 1.2, "{descents:?}");
+    assert!(descents.feedback.contains("wrong cell"), "{}", descents.feedback);
 }

@@ -2,6 +2,7 @@
 
 use super::key::{Derivation, Expected, ExpectedLeaf};
 use super::reading::Given;
+use super::traces::method_followed;
 use glam::DVec3;
 
 /// The later part's key as it would be from `earlier` (the student's answer to the part it
@@ -31,8 +32,12 @@ pub(super) fn recompute(derivation: &Derivation, earlier: &Given, later: &Expect
             let lost = degrees.to_radians().sin().powi(2);
             Some(Expected::Number { value: lost, rtol: *rtol, atol: *atol })
         }
-        (Derivation::LeavesFromDescents, Given::Trace(descents), Expected::Trace { planes, .. }) => {
-            Some(Expected::Trace { leaves: leaves_of(descents), planes: planes.clone(), descents: false })
+        (Derivation::LeavesFromDescents { descents: key }, Given::Trace(descents), Expected::Trace { planes, .. }) => {
+            method_followed(key, planes, descents).then(|| Expected::Trace {
+                leaves: leaves_of(descents),
+                planes: planes.clone(),
+                descents: false,
+            })
         }
         (Derivation::MissedFromVerdict { effect }, Given::Choice { answer, .. }, Expected::Paths { .. }) => {
             match answer.as_str() {

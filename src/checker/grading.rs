@@ -3,7 +3,7 @@
 use super::carried::recompute;
 use super::error::CheckError;
 use super::formula::compare_formulas;
-use super::key::{Expected, Follows, Part, Variant};
+use super::key::{Derivation, Expected, Follows, Part, Variant};
 use super::paths::compare_paths;
 use super::policy::Rule;
 use super::reading::{Given, lookup, read_seed, read_value, require_tables};
@@ -178,7 +178,8 @@ fn carry_forward(parts: &[&Part], givens: &[Option<Given>], follows: &[&Follows]
         }
         let (Some(given), Some(from)) = (&givens[later], &givens[earlier]) else { continue };
         let Some(expected) = recompute(&f.derivation, from, &part.expected) else {
-            results[later].feedback = format!("{}; first wrong step: `{root}`", results[later].feedback);
+            results[later].feedback =
+                format!("{}; `{}` is wrong too: {}", results[later].feedback, f.from, unfollowable(&f.derivation));
             continue;
         };
         // An earlier slip this step does not depend on (an inward normal reflects the same way)
@@ -204,8 +205,23 @@ fn carry_forward(parts: &[&Part], givens: &[Option<Given>], follows: &[&Follows]
                 f.from
             );
         } else {
-            results[later].feedback = format!("{}; first wrong step: `{root}`", results[later].feedback);
+            // Wrong both against the key and against the student's own earlier answer: naming the
+            // earlier part as the first wrong step would say that fixing it fixes this.
+            results[later].feedback = format!(
+                "{}; `{}` is wrong too, but this answer does not follow from it either",
+                results[later].feedback, f.from
+            );
         }
+    }
+}
+
+/// Why a later part was not recomputed from the student's earlier answer.
+fn unfollowable(derivation: &Derivation) -> &'static str {
+    match derivation {
+        Derivation::LeavesFromDescents { .. } => {
+            "your descents leave the traversal's method (a wrong cell, or a bound kept at 0 or left unclipped), so the leaves are graded against the key"
+        }
+        _ => "there is nothing in it to follow from",
     }
 }
 

@@ -373,8 +373,14 @@ pub enum Derivation {
         /// The ray's direction `d`.
         dir: [f64; 3],
     },
-    /// Q3: the leaves are the student's descents into cells that are not split further.
-    LeavesFromDescents,
+    /// Q3: the leaves are the student's descents into cells that are not split further, when
+    /// those descents follow the traversal's method (the key's cells, each bound right, carried
+    /// from a wrong plane parameter, or that slip itself): a wrong cell or a bound kept at 0 or
+    /// left unclipped is a mistake of method, charged again in the leaves.
+    LeavesFromDescents {
+        /// The key's descents, to tell a slip from a mistake of method.
+        descents: Vec<ExpectedLeaf>,
+    },
     /// Q4: the irradiance lost for a normal into the blind cone, `sin² γ`, from the student's
     /// half-angle `γ` in degrees.
     LostFromHalfAngle,

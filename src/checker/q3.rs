@@ -277,6 +277,7 @@ pub(super) fn variant(seed: u64) -> Variant {
             explained_in: TRACE_NOTES,
             method: PLANES_METHOD,
         });
+        let key_descents = key.descents.clone();
         parts.push(Part {
             key: name("descents"),
             prompt: "every descent into a child, in order, with its t-interval",
@@ -298,7 +299,7 @@ pub(super) fn variant(seed: u64) -> Variant {
         follows.push(Follows {
             key: name("leaves"),
             from: name("descents"),
-            derivation: Derivation::LeavesFromDescents,
+            derivation: Derivation::LeavesFromDescents { descents: key_descents },
         });
     }
     Variant { question: "q3", seed, setting: Setting::Q3 { d, e }, statement, parts, follows }

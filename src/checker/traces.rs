@@ -30,14 +30,71 @@ pub(super) struct TraceGrade {
     pub words: String,
 }
 
+/// The entries of the key and of the answer that name the same cell, paired in order: the longest
+/// such run (a longest common subsequence of the paths), so that an extra or a missing entry puts
+/// no later one out of step.
+fn aligned(expected: &[ExpectedLeaf], given: &[ExpectedLeaf]) -> Vec<(usize, usize)> {
+    let (n, m) = (expected.len(), given.len());
+    // longest[i][j]: the longest such run in expected[i..] and given[j..].
+    let mut longest = vec![vec![0usize; m + 1]; n + 1];
+    for i in (0..n).rev() {
+        for j in (0..m).rev() {
+            longest[i][j] = if expected[i].path == given[j].path {
+                longest[i + 1][j + 1] + 1
+            } else {
+                longest[i + 1][j].max(longest[i][j + 1])
+            };
+        }
+    }
+    let (mut i, mut j, mut pairs) = (0, 0, Vec::new());
+    while i < n && j < m {
+        if expected[i].path == given[j].path {
+            pairs.push((i, j));
+            (i, j) = (i + 1, j + 1);
+        } else if longest[i + 1][j] >= longest[i][j + 1] {
+            i += 1;
+        } else {
+            j += 1;
+        }
+    }
+    pairs
+}
+
+/// Whether `given` follows the traversal's method: the key's cells in the key's order, and every
+/// bound the key's, or carried from one wrong plane parameter, or that slip itself (a finite,
+/// non-zero value where the key's bound is a plane crossing). A wrong, missing or extra cell, or a
+/// bound kept at 0 or left at infinity where the ray crosses a plane, is a mistake of method.
+pub(super) fn method_followed(expected: &[ExpectedLeaf], planes: &[(String, f64)], given: &[ExpectedLeaf]) -> bool {
+    if expected.len() != given.len() || expected.iter().zip(given).any(|(e, g)| e.path != g.path) {
+        return false;
+    }
+    let is_crossing = |t: f64| planes.iter().any(|(_, pt)| same_bound(t, *pt));
+    let mut substituted: Vec<(f64, f64)> = Vec::new();
+    for (e, g) in expected.iter().zip(given) {
+        for (key, student) in [(e.t_min, g.t_min), (e.t_max, g.t_max)] {
+            let carried = substituted.iter().find(|(k, _)| same_bound(key, *k)).map_or(key, |&(_, s)| s);
+            if same_bound(student, carried) {
+                continue;
+            }
+            let slip = student.is_finite() && student != 0.0 && is_crossing(key) && carried == key;
+            if !slip {
+                return false;
+            }
+            substituted.push((key, student));
+        }
+    }
+    true
+}
+
 /// Grades a trace (its leaves, or every descent) entry by entry.
 ///
 /// An entry is right when its cell and bounds are the key's. A wrong *plane parameter* is carried
 /// forward: once an entry has a wrong finite, non-zero bound where the key's bound is a plane
 /// crossing, later entries are expected with that crossing at the student's value, and an entry
 /// that follows earns [`Rule::CarriedForward`]'s credit. A bound kept at 0 or left at `inf` is a
-/// mistake of method, not of arithmetic, and is not carried; a wrong cell ends the credit (the
-/// entries after it are not comparable).
+/// mistake of method, not of arithmetic, and is not carried. Entries are paired by cell, in order
+/// ([`aligned`]): an extra or a missing cell costs its own share (of the larger of the two counts),
+/// not the credit of the entries after it.
 pub(super) fn grade_trace(
     expected: &[ExpectedLeaf],
     planes: &[(String, f64)],
@@ -56,11 +113,8 @@ pub(super) fn grade_trace(
     let is_crossing = |t: f64| planes.iter().any(|(_, pt)| same_bound(t, *pt));
     // Key crossing → the student's value for it.
     let mut substituted: Vec<(f64, f64)> = Vec::new();
-    let (mut right, mut carried) = (prefix, 0);
-    for (e, g) in expected.iter().zip(given).skip(prefix) {
-        if e.path != g.path {
-            break;
-        }
+    let (mut right, mut carried) = (0, 0);
+    for (e, g) in aligned(expected, given).into_iter().map(|(i, j)| (&expected[i], &given[j])) {
         if agree(e, g) {
             right += 1;
             continue;
