@@ -1,6 +1,6 @@
 //! Pages of the course notes that belong to no single question: the glossary every chapter links
 //! to, and the engineering notes (how each chapter's timings were measured, the peer libraries it
-//! was compared with, what was tried and dropped), kept out of the student's path.
+//! was compared with, the designs it was measured against), kept out of the student's path.
 
 /// The glossary: every technical term of the chapters, defined once.
 pub mod glossary {

@@ -127,7 +127,7 @@ pub fn checksum(hits: &[Option<(usize, f64)>]) -> (usize, f64) {
 ///   Σt = 223 855.88; random 727 694 hits, Σt = 96 248.64. The `f64` tree must land within 3 hits
 ///   and 2·10⁻⁵ relative.
 /// - the trees' expected coarse survivors per leaf visit
-///   ([`KdTree::survivors_per_leaf_visit`]) that the Q3 engineering notes quote (step 24, with
+///   ([`KdTree::survivors_per_leaf_visit`]) that the Q3 engineering notes quote (with
 ///   the default `K_I = 0.075`) and choose the prefetch of exact spheres by: 0.35 and 0.16 at N =
 ///   10⁴ and 10⁵ with fixed k, 0.89 and 0.98 with fixed volume, to two decimals.
 ///

@@ -339,8 +339,8 @@ pub const REFERENCE_CSV: &str = "q5_cornell_reference.csv";
 /// The converged path-traced reference at the [`wall_probes`], as committed in
 /// `docs/data/q5_cornell_reference.csv` ([`crate::data::Q5_CORNELL_REFERENCE`]):
 /// [`REFERENCE_SPP`] samples per probe from seed [`REFERENCE_SEED`]
-/// ([`super::photon_cornell::reference_seeded`]), computed once (about 10 CPU-minutes; 54 minutes of wall time on a loaded 2-core machine) by
-/// `cargo test --release --test unit -- --ignored write_converged_reference`.
+/// ([`super::photon_cornell::reference_seeded`]), computed once (about 10 CPU-minutes) by
+/// `cargo test --release --lib -- --ignored write_converged_reference`.
 ///
 /// # Errors
 /// A [`DataError`] naming the file if it does not hold one record `probe,radiance,standard_error`
@@ -552,7 +552,7 @@ mod tests {
             "# Published Cornell box (cornell_published::scene), channel-mean radiance at the 20 wall probes (cornell_published::wall_probes)\n\
              # path traced, every bounce on, 12 at most: photon_cornell::reference_seeded, seed {REFERENCE_SEED}, {spp} samples per probe, {seconds:.0} s on 2 shared cores\n\
              # standard_error: sample standard deviation over sqrt(samples); largest relative {:.3} %\n\
-             # written by: cargo test --release --test unit -- --ignored write_converged_reference\n\
+             # written by: cargo test --release --lib -- --ignored write_converged_reference\n\
              probe,radiance,standard_error\n",
             reference.max_relative_error() * 100.0
         );

@@ -465,8 +465,7 @@ pub fn verdict(fraction: f64) -> Verdict {
 ///
 /// At [`Budget::PUBLISHED`] (the committed `q5_measured_table.md`, pinned by
 /// `experiments::tests`) it is computed once per process and then cloned: the test, the figures
-/// and `hw3 effect-tables` share it (that command, which prints little more than the table, takes
-/// about 4 s in the test build on two cores). Any other budget is measured afresh on every call.
+/// and `hw3 effect-tables` share it (that command prints little more than the table). Any other budget is measured afresh on every call.
 ///
 /// Threads outside the rayon pool wait for one another, so such callers measure it once. A pool
 /// thread never waits for it: while a worker waits inside rayon for part of its own work, it runs

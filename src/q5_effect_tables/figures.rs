@@ -258,7 +258,7 @@ mod tests {
     }
 
     /// The numbers the pictures' samples were chosen by (not a check: slow, run by hand with
-    /// `RAYON_NUM_THREADS=1 cargo test --release --test unit q5_picture_noise -- --ignored --nocapture`,
+    /// `RAYON_NUM_THREADS=1 cargo test --release --lib q5_picture_noise -- --ignored --nocapture`,
     /// `HW3_NOISE_SPP=32,128` for other counts, `HW3_NOISE_ONLY=Cornell` for the pictures whose
     /// name contains a word): each path-traced picture's noise ([`noise_level`]) at its figure's
     /// size and the CPU seconds of one render; the published box also without Russian roulette, and

@@ -23,9 +23,8 @@ use glam::DVec3;
 use std::cmp::Ordering;
 
 /// Most points in a leaf: smaller leaves mean more nodes to walk, larger ones more distances to
-/// compute. 4, 8, 16 and 32 timed within the machine's noise of each other: 6.2–7.7 ms per 1000
-/// queries for the 50 nearest of 10⁵ points on a sphere (release, alternating runs on this
-/// crate's 2-core test machine, 2026-12-05).
+/// compute. 4, 8, 16 and 32 time within noise of each other for the 50 nearest of
+/// 10⁵ points on a sphere.
 pub const LEAF_SIZE: usize = 8;
 
 /// Ranges larger than this build their two halves on two threads (`rayon::join`); the split is
@@ -218,8 +217,8 @@ fn build(records: &mut [(DVec3, u32)], axes: &mut [u8]) {
 /// back to its best `k` (`select_nth_unstable`, linear) whenever it fills, so each offer costs
 /// O(1) amortised instead of a heap's O(log k). The `k`-th distance of the last cut bounds what
 /// may still enter: looser than the exact `k`-th between cuts, never wrong. (A `BinaryHeap` of
-/// `k` was 1.1× slower at k = 50 and 1.9× at k = 2048, and a sorted array slower than the heap:
-/// 1000 queries among 10⁵ points on a sphere, release, on the 2-core test machine, 2026-12-05.)
+/// `k` is about 1.1× slower at k = 50 and 1.9× at k = 2048 for 1000 queries among 10⁵ points on
+/// a sphere; a sorted array is slower than the heap.)
 struct Candidates {
     buffer: Vec<Neighbour>,
     /// Squared distances computed (offers made), for the test that the walk prunes.

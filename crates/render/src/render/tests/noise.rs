@@ -5,7 +5,7 @@ use crate::render::noise::*;
 use crate::render::{analysis::analyze, catalogue};
 
 /// The numbers the figures' samples were chosen by (not a check: slow, run by hand with
-/// `cargo test --release --test unit figure_scene_noise -- --ignored --nocapture`): each figure
+/// `cargo test --release -p hw3-render --lib figure_scene_noise -- --ignored --nocapture`): each figure
 /// scene's noise at half its figure's width and height (the noise per pixel does not depend
 /// on the image size) for the given samples per pixel, Whitted with the scene's plan.
 #[test]
