@@ -1150,7 +1150,7 @@ fn the_manual_states_the_tolerances_the_code_uses() {
                     other => other.clone(),
                 };
                 match expected {
-                    Expected::Number { rtol, atol, .. } => {
+                    Expected::Number { value, rtol, atol } => {
                         let probe = part.key.starts_with("q4c.")
                             && (part.key.ends_with("solid_angle") || part.key.ends_with("_sum"));
                         let documented = if ONE_PER_CENT.contains(&part.key) || probe {
@@ -1160,7 +1160,8 @@ fn the_manual_states_the_tolerances_the_code_uses() {
                         } else {
                             1e-3
                         };
-                        assert_eq!((rtol, atol), (documented, 1e-9), "{}", part.key);
+                        let floor = if value == 0.0 { 1e-9 } else { 0.0 };
+                        assert_eq!((rtol, atol), (documented, floor), "{}", part.key);
                     }
                     Expected::Vector { rtol, atol, .. } => assert_eq!((rtol, atol), (1e-3, 1e-6), "{}", part.key),
                     Expected::Direction { angle_tol, .. } => {
@@ -1175,7 +1176,7 @@ fn the_manual_states_the_tolerances_the_code_uses() {
     assert_says(
         "checker.md",
         &[
-            "**Numbers** are accepted within `rtol · |key| + 1e-9`, where `rtol` is the part's relative tolerance, which the template prints beside it: `1e-3` (0.1 %: hand arithmetic to four figures) for every number except Q1's `q1a.gap_fraction`, `q1c.reflection_turn_deg` and `q1d.pixels_per_frame` and Q4's probe-image solid angles and texel sums (`1e-2`, 1 %), and Q4's `q4c.bias_ratio` (`2e-3`, 0.2 %".into(),
+            "**Numbers** are accepted within `rtol · |key|` (a key of exactly zero within `1e-9`), where `rtol` is the part's relative tolerance, which the template prints beside it: `1e-3` (0.1 %: hand arithmetic to four figures) for every number except Q1's `q1a.gap_fraction`, `q1c.reflection_turn_deg` and `q1d.pixels_per_frame` and Q4's probe-image solid angles and texel sums (`1e-2`, 1 %), and Q4's `q4c.bias_ratio` (`2e-3`, 0.2 %".into(),
             "**Points** (Q2's `point`) are accepted when their distance to the key is within `1e-3 · |key| + 1e-6`.".into(),
             "must be within 1 mrad of the key *and* of unit length (within 1e-3); the directions of Q4's probe image (its texels' and the blind direction) within 5 mrad".into(),
         ],

@@ -309,5 +309,61 @@ fn an_extra_descent_costs_its_own_share() {
     let report = check(text, None).unwrap();
     let descents = part(&report, "q3d.descents");
     assert_eq!(descents.score, 1.2, "{descents:?}");
-    assert!(descents.feedback.contains("wrong cell"), "{}", descents.feedback);
+    assert!(descents.feedback.contains("descent 1 is extra: [x<3] t in [0, 0] has no length"), "{}", descents.feedback);
+}
+
+/// `inf` is a bound like any other: a finite tmax where the ray never leaves the cell is wrong,
+/// however large (seed 0, case (d): the last leaf is [x<3, y>=1] on [2, inf]).
+#[test]
+fn a_finite_bound_is_not_inf() {
+    let leaves = |last: &str| {
+        format!(
+            "[meta]\nseed = 0\n[q3d]\nleaves = [{{ path = [\"x>=3\", \"y<3\"], tmin = 0, tmax = 2 }}, {{ path = [\"x<3\", \"y>=1\"], tmin = 2, tmax = {last} }}]\n"
+        )
+    };
+    let right = check(&leaves("\"inf\""), None).unwrap();
+    assert_eq!(part(&right, "q3d.leaves").score, 3.0);
+    for finite in ["7", "1e300"] {
+        let report = check(&leaves(finite), None).unwrap();
+        let p = part(&report, "q3d.leaves");
+        assert_eq!(p.score, 1.5, "tmax = {finite}: {p:?}");
+        assert!(
+            p.feedback.contains("tmax should be inf: the ray does not leave this cell by any plane"),
+            "{}",
+            p.feedback
+        );
+    }
+}
+
+/// A zero-length piece listed before the right entry of the same cell is the extra one: the right
+/// entry keeps its credit and the feedback names the piece, not the right entry.
+#[test]
+fn a_zero_length_piece_before_the_right_entry_is_the_extra_one() {
+    let text = "[meta]\nseed = 0\n[q3d]\nleaves = [{ path = [\"x>=3\", \"y<3\"], tmin = 0, tmax = 2 }, { path = [\"x<3\", \"y>=1\"], tmin = 2, tmax = 2 }, { path = [\"x<3\", \"y>=1\"], tmin = 2, tmax = \"inf\" }]\n";
+    let report = check(text, None).unwrap();
+    let p = part(&report, "q3d.leaves");
+    assert_eq!(p.score, 2.0, "two of three entries right: {p:?}");
+    assert!(p.feedback.contains("leaf 2 is extra: [x<3, y>=1] t in [2, 2] has no length"), "{}", p.feedback);
+}
+
+/// A formula that divides by zero is infinite at every point and agrees with no finite key.
+#[test]
+fn a_formula_that_divides_by_zero_is_wrong() {
+    let p = graded("q2", 0, "q2c.t_formula", "\"1/0\"");
+    assert_eq!((p.score, p.status), (0.0, "wrong"), "{p:?}");
+}
+
+/// A number is compared relatively: 0 is not accepted for a tiny key (Q1's gap fraction of a dense
+/// forest).
+#[test]
+fn zero_is_not_a_tiny_number() {
+    let tiny = (0..1000)
+        .find(|&seed| {
+            let v = variant("q1", seed).unwrap();
+            let part = v.parts.iter().find(|p| p.key == "q1a.gap_fraction").unwrap();
+            matches!(part.expected, Expected::Number { value, .. } if value > 0.0 && value < 1e-9)
+        })
+        .expect("a seed whose gap fraction is below 1e-9");
+    let p = graded("q1", tiny, "q1a.gap_fraction", "0");
+    assert_eq!(p.score, 0.0, "seed {tiny}: {p:?}");
 }

@@ -384,12 +384,17 @@ fn eval(node: &Node, point: &Point) -> Value {
 }
 
 /// Whether two values agree to `1e-6` relative to the larger of their sizes and 1 (vectors by
-/// the norm of the difference). NaN agrees with nothing.
+/// the norm of the difference). Only finite values agree: NaN and an infinity (a division by
+/// zero) agree with nothing, so `1/0` cannot pass for a finite key.
 #[must_use]
 pub(super) fn agree(a: Value, b: Value) -> bool {
     match (a, b) {
-        (Value::Scalar(x), Value::Scalar(y)) => (x - y).abs() <= 1e-6 * x.abs().max(y.abs()).max(1.0),
-        (Value::Vector(u), Value::Vector(v)) => (u - v).length() <= 1e-6 * u.length().max(v.length()).max(1.0),
+        (Value::Scalar(x), Value::Scalar(y)) => {
+            x.is_finite() && y.is_finite() && (x - y).abs() <= 1e-6 * x.abs().max(y.abs()).max(1.0)
+        }
+        (Value::Vector(u), Value::Vector(v)) => {
+            u.is_finite() && v.is_finite() && (u - v).length() <= 1e-6 * u.length().max(v.length()).max(1.0)
+        }
         _ => false,
     }
 }

@@ -118,18 +118,20 @@ pub enum Expected {
 }
 
 impl Expected {
-    /// A number accepted within `rtol·|value| + 10⁻⁹`, the absolute floor the checker's numeric
-    /// parts use unless they need another (then they write [`Expected::Number`] out); for a key of
-    /// exactly zero the floor alone decides.
+    /// A number accepted within `rtol·|value|`: purely relative, so a tiny key (Q1's gap fraction
+    /// at a dense forest, about 10⁻¹⁰) is not matched by 0. A key of exactly zero, which no
+    /// relative tolerance can meet, is accepted within 10⁻⁹. Parts that need another absolute
+    /// floor write [`Expected::Number`] out.
     ///
     /// # Examples
     /// ```
     /// use hw3::checker::Expected;
-    /// assert_eq!(Expected::number(2.0, 1e-3), Expected::Number { value: 2.0, rtol: 1e-3, atol: 1e-9 });
+    /// assert_eq!(Expected::number(2.0, 1e-3), Expected::Number { value: 2.0, rtol: 1e-3, atol: 0.0 });
+    /// assert_eq!(Expected::number(0.0, 1e-3), Expected::Number { value: 0.0, rtol: 1e-3, atol: 1e-9 });
     /// ```
     #[must_use]
     pub const fn number(value: f64, rtol: f64) -> Self {
-        Self::Number { value, rtol, atol: 1e-9 }
+        Self::Number { value, rtol, atol: if value == 0.0 { 1e-9 } else { 0.0 } }
     }
 }
 

@@ -4,16 +4,18 @@
 use crate::render::analysis::grammar::{GrammarError, Lang, shortest_word, word_text};
 
 /// A light-path class: Heckbert's notation as the crate's grammar reads it, or `none` (∅).
+/// Letters are read in either case (`lds+e` is `LDS+E`), as the Q5 verdicts are: the notation's
+/// letters are all capitals, so no answer changes meaning by it.
 ///
 /// # Errors
-/// [`GrammarError::Syntax`] with the expression (trimmed), what was found and where, when it
-/// is neither `none` nor a path expression.
+/// [`GrammarError::Syntax`] with the expression (trimmed, in capitals), what was found and where,
+/// when it is neither `none` nor a path expression.
 pub(super) fn paths(source: &str) -> Result<Lang, GrammarError> {
     let trimmed = source.trim();
     if trimmed.eq_ignore_ascii_case("none") || trimmed == "∅" {
         return Ok(Lang::Empty);
     }
-    Lang::parse(trimmed)
+    Lang::parse(&trimmed.to_ascii_uppercase())
 }
 
 /// Whether `given` is the same class of paths as `key`; if not, the shortest path in one and
@@ -63,6 +65,8 @@ mod tests {
     #[test]
     fn a_class_that_does_not_parse_is_a_syntax_error() {
         assert_eq!(paths(" None "), Ok(Lang::Empty));
+        assert_eq!(paths("lds+e"), paths("LDS+E"));
+        assert!(compare_paths("LGE", "lge").0);
         let error = paths(" L(D| ").unwrap_err();
         assert!(matches!(&error, GrammarError::Syntax { expression, .. } if expression == "L(D|"), "{error:?}");
     }

@@ -5,8 +5,10 @@
 use super::key::{ExpectedLeaf, ExpectedPlane};
 use super::policy::Rule;
 
+/// Whether a student's bound `a` is the key's `b`: within 10⁻⁶ relative, and `inf` only as `inf`
+/// (a finite bound where the ray never leaves the cell is wrong, however large).
 pub(super) fn same_bound(a: f64, b: f64) -> bool {
-    a == b || (a - b).abs() <= 1e-6 * (1.0 + b.abs())
+    a == b || (a.is_finite() && b.is_finite() && (a - b).abs() <= 1e-6 * (1.0 + b.abs()))
 }
 
 pub(super) fn show_bound(t: f64) -> String {
@@ -30,34 +32,72 @@ pub(super) struct TraceGrade {
     pub words: String,
 }
 
-/// The entries of the key and of the answer that name the same cell, paired in order: the longest
-/// such run (a longest common subsequence of the paths), so that an extra or a missing entry puts
-/// no later one out of step.
+fn agree(e: &ExpectedLeaf, g: &ExpectedLeaf) -> bool {
+    e.path == g.path && same_bound(g.t_min, e.t_min) && same_bound(g.t_max, e.t_max)
+}
+
+/// The entries of the key and of the answer that name the same cell, paired in order so that an
+/// extra or a missing entry puts no later one out of step: first the most pairs that agree
+/// entirely, then the most that share their cell (a weighted longest common subsequence). So a
+/// zero-length piece listed before the right entry of the same cell is the extra one, not the
+/// right entry.
 fn aligned(expected: &[ExpectedLeaf], given: &[ExpectedLeaf]) -> Vec<(usize, usize)> {
     let (n, m) = (expected.len(), given.len());
-    // longest[i][j]: the longest such run in expected[i..] and given[j..].
-    let mut longest = vec![vec![0usize; m + 1]; n + 1];
+    // An agreeing pair outweighs every same-cell pair the trace could hold.
+    let whole = n.max(m) + 1;
+    let weight = |i: usize, j: usize| match (&expected[i], &given[j]) {
+        (e, g) if agree(e, g) => Some(whole + 1),
+        (e, g) if e.path == g.path => Some(1),
+        _ => None,
+    };
+    // best[i][j]: the heaviest pairing of expected[i..] with given[j..].
+    let mut best = vec![vec![0usize; m + 1]; n + 1];
     for i in (0..n).rev() {
         for j in (0..m).rev() {
-            longest[i][j] = if expected[i].path == given[j].path {
-                longest[i + 1][j + 1] + 1
-            } else {
-                longest[i + 1][j].max(longest[i][j + 1])
-            };
+            let paired = weight(i, j).map_or(0, |w| w + best[i + 1][j + 1]);
+            best[i][j] = paired.max(best[i + 1][j]).max(best[i][j + 1]);
         }
     }
     let (mut i, mut j, mut pairs) = (0, 0, Vec::new());
     while i < n && j < m {
-        if expected[i].path == given[j].path {
+        if weight(i, j).is_some_and(|w| best[i][j] == w + best[i + 1][j + 1]) {
             pairs.push((i, j));
             (i, j) = (i + 1, j + 1);
-        } else if longest[i + 1][j] >= longest[i][j + 1] {
+        } else if best[i][j] == best[i + 1][j] {
             i += 1;
         } else {
             j += 1;
         }
     }
     pairs
+}
+
+/// Where the answer first leaves the key, walking the pairing of [`aligned`]: how many entries
+/// agree before it (so the divergence is entry `k + 1` of both), and the key's entry and the
+/// answer's entry there, either absent when the other is missing or extra.
+fn first_divergence<'a>(
+    expected: &'a [ExpectedLeaf],
+    given: &'a [ExpectedLeaf],
+    pairs: &[(usize, usize)],
+) -> (usize, Option<&'a ExpectedLeaf>, Option<&'a ExpectedLeaf>) {
+    let (mut i, mut j) = (0, 0);
+    for &(pi, pj) in pairs {
+        if pi > i || pj > j || !agree(&expected[pi], &given[pj]) {
+            break;
+        }
+        (i, j) = (pi + 1, pj + 1);
+    }
+    // i == j here: the loop advances both together, over agreeing pairs only.
+    let (e, g) = match pairs.iter().find(|&&(pi, _)| pi >= i) {
+        // The next pair skips a key entry only: that entry is missing.
+        Some(&(pi, pj)) if pi > i && pj == j => (expected.get(i), None),
+        // It skips an answer entry only: that entry is extra.
+        Some(&(pi, pj)) if pi == i && pj > j => (None, given.get(j)),
+        // The pair itself disagrees, or both sides skip an entry (a wrong cell), or no pair is
+        // left (then what remains on either side).
+        _ => (expected.get(i), given.get(j)),
+    };
+    (i, e, g)
 }
 
 /// Whether `given` follows the traversal's method: the key's cells in the key's order, and every
@@ -102,19 +142,16 @@ pub(super) fn grade_trace(
     descents: bool,
 ) -> TraceGrade {
     let (one, many) = if descents { ("descent", "descents") } else { ("leaf", "leaves") };
-    let agree = |e: &ExpectedLeaf, g: &ExpectedLeaf| {
-        e.path == g.path && same_bound(g.t_min, e.t_min) && same_bound(g.t_max, e.t_max)
-    };
-    let prefix = expected.iter().zip(given).take_while(|(e, g)| agree(e, g)).count();
     let entries = expected.len().max(given.len()).max(1);
-    if prefix == expected.len() && prefix == given.len() {
-        return TraceGrade { credit: 1.0, exact: true, carried: 0, words: format!("all {prefix} {many} right") };
+    if expected.len() == given.len() && expected.iter().zip(given).all(|(e, g)| agree(e, g)) {
+        return TraceGrade { credit: 1.0, exact: true, carried: 0, words: format!("all {} {many} right", given.len()) };
     }
+    let pairs = aligned(expected, given);
     let is_crossing = |t: f64| planes.iter().any(|(_, pt)| same_bound(t, *pt));
     // Key crossing → the student's value for it.
     let mut substituted: Vec<(f64, f64)> = Vec::new();
     let (mut right, mut carried) = (0, 0);
-    for (e, g) in aligned(expected, given).into_iter().map(|(i, j)| (&expected[i], &given[j])) {
+    for (e, g) in pairs.iter().map(|&(i, j)| (&expected[i], &given[j])) {
         if agree(e, g) {
             right += 1;
             continue;
@@ -133,11 +170,18 @@ pub(super) fn grade_trace(
     }
     let credit = (right as f64 + carried as f64 * Rule::CarriedForward.credit()) / entries as f64;
     let plane_at = |t: f64| planes.iter().find(|(_, pt)| same_bound(t, *pt)).map(|(name, _)| name.clone());
-    let reason = match (expected.get(prefix), given.get(prefix)) {
+    let (prefix, key_entry, answer_entry) = first_divergence(expected, given, &pairs);
+    let reason = match (key_entry, answer_entry) {
         (Some(e), None) => format!("{one} {} missing: the ray goes on into {}", prefix + 1, show_leaf(e)),
-        (None, Some(g)) => {
+        (None, Some(g)) if prefix == expected.len() => {
             format!("{one} {} is extra: the ray has left the tree's last cell ({})", prefix + 1, show_leaf(g))
         }
+        (None, Some(g)) if g.t_min == g.t_max => format!(
+            "{one} {} is extra: {} has no length, and a cell the ray only touches is not entered",
+            prefix + 1,
+            show_leaf(g)
+        ),
+        (None, Some(g)) => format!("{one} {} is extra: the ray does not enter {} there", prefix + 1, show_leaf(g)),
         (Some(e), Some(g)) if e.path != g.path => {
             format!("{one} {}: wrong cell: the ray is in {}, not [{}]", prefix + 1, show_leaf(e), g.path.join(", "))
         }
@@ -154,6 +198,8 @@ pub(super) fn grade_trace(
         (Some(e), Some(g)) => {
             let why = if g.t_max.is_infinite() {
                 "the interval was not clipped at the plane the ray leaves by".to_string()
+            } else if e.t_max.is_infinite() {
+                "the ray does not leave this cell by any plane".to_string()
             } else if let Some(name) = plane_at(g.t_max) {
                 format!("t = {} is where the ray crosses {name}, not where it leaves this cell", g.t_max)
             } else {
