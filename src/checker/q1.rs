@@ -8,7 +8,7 @@ use crate::q1_hard_scenes::{
     block_probability, focal_length_pixels, gap_fraction, pixels_per_frame, reflection_turn, transmittance,
     visual_range,
 };
-use crate::render::catalogue::{CATALOGUE, CLUTTER_COUNT, CLUTTER_HALF_WIDTH, CLUTTER_RADIUS};
+use crate::render::catalogue::{CLUTTER_COUNT, CLUTTER_HALF_WIDTH, CLUTTER_RADIUS};
 use crate::rng;
 use rand_core::Rng;
 
@@ -25,12 +25,14 @@ const ANSWER_NOTES: &str = "hw3/q1_hard_scenes/index.html#part-q1match-which-sce
 /// The difficulties of Q1, by the homework's letters.
 const DIFFICULTIES: [&str; 4] = ["a", "b", "c", "d"];
 
-/// The four hard scenes of the renderer, by name, with the part that matches each.
-pub(crate) const SCENES: [(&str, &str); 4] = [
-    ("clutter", "q1match.clutter"),
-    ("fog", "q1match.fog"),
-    ("mirrors", "q1match.mirrors"),
-    ("motion", "q1match.motion"),
+/// The four hard scenes of the renderer, by name, with the part that matches each and the
+/// difficulty it shows. The letters live here, with the key, and not in the scene catalogue,
+/// which `hw3 scenes` prints to students.
+pub(crate) const SCENES: [(&str, &str, &str); 4] = [
+    ("clutter", "q1match.clutter", "a"),
+    ("fog", "q1match.fog", "b"),
+    ("mirrors", "q1match.mirrors", "c"),
+    ("motion", "q1match.motion", "d"),
 ];
 
 /// Seed 0 is the renderer's clutter scene (1500 spheres of radius 0.5 over a 40 × 40 face) and
@@ -70,11 +72,12 @@ pub(crate) fn numbers(seed: u64) -> Q1Setting {
     }
 }
 
-/// The difficulty a built-in scene illustrates: the letter its catalogue line starts with (`Q1a:`).
+/// The difficulty one of the four hard [`SCENES`] shows, by the homework's letter.
+///
+/// # Panics
+/// If `scene` is not one of them.
 pub(crate) fn difficulty_of(scene: &str) -> &'static str {
-    let (_, description) = CATALOGUE.iter().find(|(name, _)| *name == scene).expect("a built-in scene");
-    let letter = description.strip_prefix("Q1").and_then(|rest| rest.chars().next()).unwrap_or('?');
-    DIFFICULTIES.iter().find(|d| d.starts_with(letter)).expect("the hard scenes are labelled Q1a … Q1d")
+    SCENES.iter().find(|(name, ..)| *name == scene).map(|&(.., letter)| letter).expect("one of the four hard scenes")
 }
 
 /// The key's numbers of a variant, with the intermediate values the worked solution shows and
@@ -158,7 +161,7 @@ pub(super) fn variant(seed: u64) -> Variant {
          (d) an object moving at {v} units/s across the view, {z} units away, filmed at {fps} frames/s with a vertical \
          field of view of {fov} degrees and an image {h} pixels high: its image shift per frame, in pixels.\n\
          Match each built-in scene to the difficulty it shows (a, b, c or d): {}.",
-        SCENES.map(|(name, _)| name).join(", "),
+        SCENES.map(|(name, ..)| name).join(", "),
         count = n.count,
         a = n.radius,
         w = n.side,
@@ -248,7 +251,7 @@ pub(super) fn variant(seed: u64) -> Variant {
             method: "The object moves v/fps per frame; at depth z the image moves that times the focal length in pixels, (H/2)/tan(fov/2), over z.",
         },
     ];
-    for (scene, key) in SCENES {
+    for (scene, key, _) in SCENES {
         parts.push(Part {
             key,
             prompt: "which difficulty the scene shows",
@@ -289,12 +292,24 @@ mod tests {
         let v = variant(0);
         let letters: Vec<&str> = SCENES
             .iter()
-            .map(|(_, key)| match v.parts.iter().find(|p| p.key == *key).unwrap().expected {
+            .map(|(_, key, _)| match v.parts.iter().find(|p| p.key == *key).unwrap().expected {
                 Expected::Choice { value, .. } => value,
                 _ => unreachable!(),
             })
             .collect();
         assert_eq!(letters, ["a", "b", "c", "d"]);
+    }
+
+    /// `hw3 scenes` prints the catalogue to students: its lines name no question part and no
+    /// difficulty, so they do not answer q1match.
+    #[test]
+    fn the_scene_catalogue_does_not_answer_q1match() {
+        for (name, description) in crate::render::catalogue::CATALOGUE {
+            for giveaway in ["Q1", "Q4", "motion blur", "medium", "hide one another", "change over time", "difficulty"]
+            {
+                assert!(!description.contains(giveaway), "{name}: {description:?} says {giveaway:?}");
+            }
+        }
     }
 
     /// The renderer's fog follows the transmittance law the key uses (measured by the Q1 code).

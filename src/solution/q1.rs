@@ -121,7 +121,7 @@ pub(super) fn sections(n: &Q1Setting) -> Vec<Section> {
     ];
     let matches = Q1_SCENES
         .iter()
-        .map(|&(scene, key)| {
+        .map(|&(scene, key, _)| {
             let letter = difficulty_of(scene);
             let description = CATALOGUE.iter().find(|(name, _)| *name == scene).map_or("", |(_, d)| d);
             Step::answer(format!("{scene} ({description}): ({letter})"), key, Value::Word(letter.into()))

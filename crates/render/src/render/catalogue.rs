@@ -13,15 +13,15 @@ use hw3_core::rng;
 
 /// Every built-in scene: CLI name and a one-line description.
 pub const CATALOGUE: [(&str, &str); 11] = [
-    ("clutter", "Q1a: 1500 spheres in a 41×41×10 slab, seen from the front"),
-    ("fog", "Q1b: a street with two lamps in fog (σ_s = 0.08, no absorption)"),
-    ("clear-street", "Q1b's street without the medium"),
-    ("mirrors", "Q1c: four mirror spheres over a checker floor"),
-    ("diffuse-spheres", "Q1c's scene with the spheres made diffuse"),
-    ("motion", "Q1d: a ball moving 2 units during the shutter (motion blur)"),
-    ("still", "Q1d's scene with the ball at rest"),
+    ("clutter", "1500 spheres in a 41×41×10 slab, seen from the front"),
+    ("fog", "a street with two lamps in fog (σ_s = 0.08, no absorption)"),
+    ("clear-street", "the fog street in clear air"),
+    ("mirrors", "four mirror spheres over a checker floor"),
+    ("diffuse-spheres", "the mirrors scene with the spheres made diffuse"),
+    ("motion", "a ball moving 2 units while the shutter is open"),
+    ("still", "the motion scene with the ball at rest"),
     ("cornell", "the Cornell box with a mirror, a glossy and a glass sphere (indirect light, caustics)"),
-    ("probe-lit", "diffuse, glossy and mirror spheres on a floor, lit only by Q4's courtyard map"),
+    ("probe-lit", "diffuse, glossy and mirror spheres on a floor, lit only by the courtyard light probe"),
     ("fog-panel", "a ceiling panel light over a ball in fog (area-light single scattering)"),
     ("caustic", "a glass ball over a white floor under a small area light (a refraction caustic)"),
 ];
