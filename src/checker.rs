@@ -34,7 +34,7 @@ pub use key::{
     Variant,
 };
 pub use policy::{Rule, policy_table};
-pub use reports::{report_gradescope, report_text};
+pub use reports::{NOTES_ROOT, report_gradescope, report_text};
 pub use template::{answer_key, answer_key_for, template};
 pub use variants::{QUESTIONS, variant};
 

@@ -3,7 +3,14 @@
 use super::grading::Report;
 use std::fmt::Write as _;
 
-/// The report as plain text: one line per part, then the total.
+/// Where `cargo doc` writes the notes, from the crate's folder: the text report's links to the
+/// chapters' sections start here, so that they open as printed (a [`super::Part`]'s
+/// `explained_in` is the path below it, which a course serving the notes elsewhere appends to its
+/// own address).
+pub const NOTES_ROOT: &str = "target/doc/";
+
+/// The report as plain text: one line per part, then the total; each part that loses points
+/// links its chapter's section under [`NOTES_ROOT`].
 ///
 /// # Examples
 /// ```
@@ -23,7 +30,7 @@ pub fn report_text(report: &Report) -> String {
         if part.status != "correct" || part.mistake.is_some() {
             let given = part.given.as_deref().unwrap_or("—");
             let _ = writeln!(out, "    given {given}, expected {}\n    {}", part.expected, part.feedback);
-            let _ = writeln!(out, "    explained in {}", part.explained_in);
+            let _ = writeln!(out, "    explained in {NOTES_ROOT}{}", part.explained_in);
         }
     }
     for warning in &report.warnings {
