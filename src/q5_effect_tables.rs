@@ -35,14 +35,15 @@ use grammar::agreement;
 ///
 /// # Examples
 /// ```
-/// use hw3::q5_effect_tables::{StudentAnswer, Verdict, experiments::MeasuredCell, student_comparison_markdown};
+/// use hw3::q5_effect_tables::{StudentAnswer, Verdict, student_comparison_markdown};
+/// use hw3::q5_effect_tables::experiments::{MeasuredCell, Measurement};
 /// let cell = MeasuredCell {
 ///     effect: "a",
 ///     algorithm: "radiosity",
 ///     value: 0.0,
 ///     reference: 1.4,
 ///     fraction: 0.0,
-///     verdict: Verdict::No,
+///     verdict: Measurement::No,
 ///     grammar: Verdict::No,
 ///     student: StudentAnswer::No,
 /// };
@@ -85,14 +86,14 @@ pub fn student_comparison_markdown(measured: &[experiments::MeasuredCell]) -> Re
 /// # Examples
 /// ```
 /// use hw3::q5_effect_tables::{ALGORITHMS, EFFECTS, StudentAnswer, Verdict, effect_tables_command};
-/// use hw3::q5_effect_tables::experiments::MeasuredCell;
+/// use hw3::q5_effect_tables::experiments::{MeasuredCell, Measurement};
 /// let cell = MeasuredCell {
 ///     effect: "e",
 ///     algorithm: "whitted",
 ///     value: 0.0,
 ///     reference: 0.3,
 ///     fraction: 0.0,
-///     verdict: Verdict::No,
+///     verdict: Measurement::No,
 ///     grammar: Verdict::No,
 ///     student: StudentAnswer::NotAsked,
 /// };

@@ -281,7 +281,7 @@ mod tests {
             value: 57.5,
             reference: 57.6,
             fraction: 57.5 / 57.6,
-            verdict: super::super::Verdict::Yes,
+            verdict: super::super::experiments::Measurement::Yes,
             grammar: super::super::Verdict::Yes,
             student: super::super::StudentAnswer::NotAsked,
         };

@@ -49,18 +49,18 @@ pub const REFERENCE_SPP: u32 = Budget::PUBLISHED.reference_spp;
 ///
 /// # Examples
 /// ```
-/// use hw3::q5_effect_tables::{Verdict, experiments::{YES_FRACTION, verdict}};
-/// assert_eq!(verdict(YES_FRACTION), Verdict::Yes);
-/// assert_eq!(verdict(YES_FRACTION - 0.01), Verdict::Impractical);
+/// use hw3::q5_effect_tables::experiments::{Measurement, YES_FRACTION, verdict};
+/// assert_eq!(verdict(YES_FRACTION), Measurement::Yes);
+/// assert_eq!(verdict(YES_FRACTION - 0.01), Measurement::Partial);
 /// ```
 pub const YES_FRACTION: f64 = 0.8;
 /// A cell is No when it captures at most this fraction.
 ///
 /// # Examples
 /// ```
-/// use hw3::q5_effect_tables::{Verdict, experiments::{NO_FRACTION, verdict}};
-/// assert_eq!(verdict(NO_FRACTION), Verdict::No);
-/// assert_eq!(verdict(NO_FRACTION + 0.01), Verdict::Impractical);
+/// use hw3::q5_effect_tables::experiments::{Measurement, NO_FRACTION, verdict};
+/// assert_eq!(verdict(NO_FRACTION), Measurement::No);
+/// assert_eq!(verdict(NO_FRACTION + 0.01), Measurement::Partial);
 /// ```
 pub const NO_FRACTION: f64 = 0.2;
 
@@ -242,7 +242,7 @@ pub(super) fn photon_eye<'a>(
 ///     grammar: Verdict::Yes,
 ///     student: StudentAnswer::NotAsked,
 /// };
-/// assert_eq!(cell.verdict, cell.grammar);
+/// assert!(cell.verdict.agrees_with(cell.grammar));
 /// ```
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct MeasuredCell {
@@ -258,8 +258,8 @@ pub struct MeasuredCell {
     pub reference: f64,
     /// `value / reference`: the fraction of the effect the method captures.
     pub fraction: f64,
-    /// Yes (≥ [`YES_FRACTION`]), No (≤ [`NO_FRACTION`]) or Impractical (between: partial).
-    pub verdict: Verdict,
+    /// Yes (≥ [`YES_FRACTION`]), No (≤ [`NO_FRACTION`]) or Partial (between).
+    pub verdict: Measurement,
     /// The grammar's verdict for the same cell (area light).
     pub grammar: Verdict,
     /// The student's answer for the cell (`NotAsked` for the columns the homework does not have).
@@ -440,22 +440,73 @@ pub const fn table_methods(budget: &Budget) -> [Measured; 4] {
     [Measured::Radiosity { subdivisions, samples }, Measured::TwoPass, Measured::Whitted, Measured::PhotonMapping]
 }
 
-/// The verdict for a measured fraction: Yes at [`YES_FRACTION`] or more, No at [`NO_FRACTION`]
-/// or less, Impractical (partial) in between.
+/// What a measured fraction of an effect says about a method.
+///
+/// A measurement sees how much of the effect a method's estimate holds, not how the method finds
+/// it: a method that reaches some of the effect's paths only by chance (the grammar's
+/// [`Verdict::Impractical`]) still averages to the whole effect once it has enough samples, and
+/// only its noise tells. So the measurement has no word for *impractical*; its middle band is a
+/// method that holds part of the effect.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Measurement {
+    /// At least [`YES_FRACTION`] of the effect.
+    Yes,
+    /// Between [`NO_FRACTION`] and [`YES_FRACTION`]: part of the effect.
+    Partial,
+    /// At most [`NO_FRACTION`] of the effect.
+    No,
+}
+
+impl Measurement {
+    /// The word the table prints.
+    ///
+    /// # Examples
+    /// ```
+    /// use hw3::q5_effect_tables::experiments::Measurement;
+    /// assert_eq!([Measurement::Yes, Measurement::Partial, Measurement::No].map(Measurement::text), ["Yes", "Partial", "No"]);
+    /// ```
+    #[must_use]
+    pub fn text(self) -> &'static str {
+        match self {
+            Measurement::Yes => "Yes",
+            Measurement::Partial => "Partial",
+            Measurement::No => "No",
+        }
+    }
+
+    /// Whether the measurement bears out the grammar's verdict: Yes for Yes, No for No. A partial
+    /// measurement bears out no verdict, and an impractical cell cannot be told from a Yes by its
+    /// average (see [`Measurement`]), so it is never borne out by one.
+    ///
+    /// # Examples
+    /// ```
+    /// use hw3::q5_effect_tables::{Verdict, experiments::Measurement};
+    /// assert!(Measurement::No.agrees_with(Verdict::No));
+    /// assert!(!Measurement::Yes.agrees_with(Verdict::Impractical));
+    /// ```
+    #[must_use]
+    pub fn agrees_with(self, grammar: Verdict) -> bool {
+        matches!((self, grammar), (Measurement::Yes, Verdict::Yes) | (Measurement::No, Verdict::No))
+    }
+}
+
+/// The measurement's word for a fraction of the effect: Yes at [`YES_FRACTION`] or more, No at
+/// [`NO_FRACTION`] or less, Partial in between.
 ///
 /// # Examples
 /// ```
-/// use hw3::q5_effect_tables::{Verdict, experiments::verdict};
-/// assert_eq!((verdict(0.97), verdict(0.5), verdict(0.0)), (Verdict::Yes, Verdict::Impractical, Verdict::No));
+/// use hw3::q5_effect_tables::experiments::{Measurement, verdict};
+/// assert_eq!((verdict(0.97), verdict(0.5), verdict(0.0)), (Measurement::Yes, Measurement::Partial, Measurement::No));
 /// ```
 #[must_use]
-pub fn verdict(fraction: f64) -> Verdict {
+pub fn verdict(fraction: f64) -> Measurement {
     if fraction >= YES_FRACTION {
-        Verdict::Yes
+        Measurement::Yes
     } else if fraction <= NO_FRACTION {
-        Verdict::No
+        Measurement::No
     } else {
-        Verdict::Impractical
+        Measurement::Partial
     }
 }
 
@@ -555,7 +606,7 @@ fn measure_table(budget: &Budget) -> Result<Vec<MeasuredCell>, ExperimentError> 
 ///
 /// # Examples
 /// ```
-/// use hw3::q5_effect_tables::experiments::{MeasuredCell, measured_table_markdown};
+/// use hw3::q5_effect_tables::experiments::{MeasuredCell, Measurement, measured_table_markdown};
 /// use hw3::q5_effect_tables::{StudentAnswer, Verdict};
 /// let cell = MeasuredCell {
 ///     effect: "d_caustic",
@@ -563,7 +614,7 @@ fn measure_table(budget: &Budget) -> Result<Vec<MeasuredCell>, ExperimentError> 
 ///     value: 0.017,
 ///     reference: 57.6,
 ///     fraction: 0.017 / 57.6,
-///     verdict: Verdict::No,
+///     verdict: Measurement::No,
 ///     grammar: Verdict::No,
 ///     student: StudentAnswer::No,
 /// };
@@ -628,7 +679,7 @@ mod tests {
         assert_eq!(cells.len(), EXPERIMENTS.len() * TABLE_METHODS.len());
         for c in &cells {
             assert!(c.reference > 0.0 && c.fraction.is_finite(), "{c:?}");
-            assert_eq!(c.verdict, c.grammar, "{c:?}");
+            assert!(c.verdict.agrees_with(c.grammar), "{c:?}");
         }
         let caustic = |method| cells.iter().find(|c| (c.effect, c.algorithm) == ("d_caustic", method)).unwrap();
         // Only photons that bounced off the floor, into the ball and back reach the focus.

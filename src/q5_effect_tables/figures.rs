@@ -12,6 +12,7 @@ use crate::plot::{self, Axis, Chart, Figure, Legend, PALETTE, Panel, PlotError, 
 use crate::render::integrator::Integrator;
 use crate::render::scene::Scene;
 use crate::render::{Settings, render};
+use plotters::prelude::SeriesLabelPosition;
 
 /// The drawn figures: solver convergence (SVG), the published Cornell box's validation, the
 /// measured table, the grammar tables and the comparison with the student's answers (markdown),
@@ -43,7 +44,8 @@ pub(super) fn figures(budget: &Budget) -> Result<Vec<Figure>, PlotError> {
     let convergence = Chart {
         fill: true,
         series,
-        legend: Some(Legend { position: None, font: 13, opacity: 0.8 }),
+        // Lower left: the lines start at the top left and fall to the right, so that corner is empty.
+        legend: Some(Legend { position: Some(SeriesLabelPosition::LowerLeft), font: 13, opacity: 0.8 }),
         ..Chart::new(
             "Radiosity solvers: error vs sweeps (176 patches)",
             Axis::linear(0.0, 20.0, "sweeps (Southwell: N shots)"),
