@@ -367,3 +367,59 @@ fn zero_is_not_a_tiny_number() {
     let p = graded("q1", tiny, "q1a.gap_fraction", "0");
     assert_eq!(p.score, 0.0, "seed {tiny}: {p:?}");
 }
+
+/// A slip of a plane parameter is charged once, in `planes`: the descents follow from the
+/// student's planes and the leaves from those descents (seed 0, case (d), the root crossed at
+/// t = 2.5 instead of 2 throughout).
+#[test]
+fn a_plane_slip_is_charged_once_in_the_planes() {
+    let text = r#"[meta]
+seed = 0
+[q3d]
+planes = [{ node = [], t = 2.5, first = "x>=3" }, { node = ["x>=3"], t = 3, first = "y<3" }, { node = ["x<3"], t = 1, first = "y>=1" }]
+descents = [{ path = ["x>=3"], tmin = 0, tmax = 2.5 }, { path = ["x>=3", "y<3"], tmin = 0, tmax = 2.5 }, { path = ["x<3"], tmin = 2.5, tmax = "inf" }, { path = ["x<3", "y>=1"], tmin = 2.5, tmax = "inf" }]
+leaves = [{ path = ["x>=3", "y<3"], tmin = 0, tmax = 2.5 }, { path = ["x<3", "y>=1"], tmin = 2.5, tmax = "inf" }]
+"#;
+    let report = check(text, None).unwrap();
+    let planes = part(&report, "q3d.planes");
+    assert_eq!(planes.score, 1.0, "one of three nodes wrong: {planes:?}");
+    for (key, points) in [("q3d.descents", 1.5), ("q3d.leaves", 3.0)] {
+        let p = part(&report, key);
+        assert_eq!((p.score, p.mistake), (points, Some("carried_forward")), "{p:?}");
+        assert!(p.feedback.contains("first wrong step: `q3d.planes`"), "{}", p.feedback);
+    }
+    // A wrong first child is a mistake of method: the descents are graded against the key.
+    let method = text.replace(r#"t = 2.5, first = "x>=3""#, r#"t = 2.5, first = "x<3""#);
+    let report = check(&method, None).unwrap();
+    let descents = part(&report, "q3d.descents");
+    assert!(descents.score < 1.5, "{descents:?}");
+    assert!(
+        descents.feedback.contains("differ from the traversal's in more than a plane parameter"),
+        "{}",
+        descents.feedback
+    );
+}
+
+/// A trailing zero-length piece is named for what it is, and two entries in swapped order are
+/// out of order, not missing (seed 0, case (d)).
+#[test]
+fn trailing_pieces_and_swapped_entries_are_named() {
+    let leaves = |list: &str| format!("[meta]\nseed = 0\n[q3d]\nleaves = [{list}]\n");
+    let (first, second) =
+        (r#"{ path = ["x>=3", "y<3"], tmin = 0, tmax = 2 }"#, r#"{ path = ["x<3", "y>=1"], tmin = 2, tmax = "inf" }"#);
+    let trailing = leaves(&format!(r#"{first}, {second}, {{ path = ["x<3", "y>=1"], tmin = 0, tmax = 0 }}"#));
+    let report = check(&trailing, None).unwrap();
+    let p = part(&report, "q3d.leaves");
+    assert!(p.feedback.contains("leaf 3 is extra: [x<3, y>=1] t in [0, 0] has no length"), "{}", p.feedback);
+    let swapped = leaves(&format!("{second}, {first}"));
+    let report = check(&swapped, None).unwrap();
+    let p = part(&report, "q3d.leaves");
+    assert!(p.feedback.contains("leaf 1 out of order: the ray enters [x>=3, y<3]"), "{}", p.feedback);
+}
+
+/// TOML's bare `inf` is read as infinity in a trace, like `"inf"`.
+#[test]
+fn bare_inf_is_infinity() {
+    let text = "[meta]\nseed = 0\n[q3d]\nleaves = [{ path = [\"x>=3\", \"y<3\"], tmin = 0, tmax = 2 }, { path = [\"x<3\", \"y>=1\"], tmin = 2, tmax = inf }]\n";
+    assert_eq!(part(&check(text, None).unwrap(), "q3d.leaves").score, 3.0);
+}

@@ -1,8 +1,8 @@
 //! Error carried forward: a later part's key recomputed from the student's own earlier answer.
 
-use super::key::{Derivation, Expected, ExpectedLeaf};
+use super::key::{Derivation, Expected, ExpectedLeaf, ExpectedPlane};
 use super::reading::Given;
-use super::traces::method_followed;
+use super::traces::{method_followed, same_bound};
 use glam::DVec3;
 
 /// The later part's key as it would be from `earlier` (the student's answer to the part it
@@ -32,6 +32,15 @@ pub(super) fn recompute(derivation: &Derivation, earlier: &Given, later: &Expect
             let lost = degrees.to_radians().sin().powi(2);
             Some(Expected::Number { value: lost, rtol: *rtol, atol: *atol })
         }
+        (
+            Derivation::DescentsFromPlanes { planes: key },
+            Given::Planes(given),
+            Expected::Trace { leaves: descents, planes: crossings, descents: true },
+        ) => descents_with(key, given, descents).map(|leaves| Expected::Trace {
+            leaves,
+            planes: crossings.clone(),
+            descents: true,
+        }),
         (Derivation::LeavesFromDescents { descents: key }, Given::Trace(descents), Expected::Trace { planes, .. }) => {
             method_followed(key, planes, descents).then(|| Expected::Trace {
                 leaves: leaves_of(descents),
@@ -48,6 +57,38 @@ pub(super) fn recompute(derivation: &Derivation, earlier: &Given, later: &Expect
         }
         _ => None,
     }
+}
+
+/// The key's descents with each plane parameter the student got wrong replaced by the student's
+/// value, where the student's planes are the key's nodes and first children in the key's order
+/// and differ only in finite, non-zero values of `t`; `None` when they differ in anything else.
+fn descents_with(
+    key: &[ExpectedPlane],
+    given: &[ExpectedPlane],
+    descents: &[ExpectedLeaf],
+) -> Option<Vec<ExpectedLeaf>> {
+    if key.len() != given.len() {
+        return None;
+    }
+    let mut substituted: Vec<(f64, f64)> = Vec::new();
+    for (k, g) in key.iter().zip(given) {
+        if k.node != g.node || k.first != g.first {
+            return None;
+        }
+        match (k.t, g.t) {
+            (None, None) => {}
+            (Some(kt), Some(gt)) if same_bound(gt, kt) => {}
+            (Some(kt), Some(gt)) if gt.is_finite() && gt != 0.0 => substituted.push((kt, gt)),
+            _ => return None,
+        }
+    }
+    let with = |t: f64| substituted.iter().find(|(k, _)| same_bound(t, *k)).map_or(t, |&(_, g)| g);
+    Some(
+        descents
+            .iter()
+            .map(|d| ExpectedLeaf { path: d.path.clone(), t_min: with(d.t_min), t_max: with(d.t_max) })
+            .collect(),
+    )
 }
 
 /// The descents into cells the trace does not split further: a descent is a leaf unless the next
@@ -85,6 +126,7 @@ mod tests {
                         Expected::Number { value, .. } => Given::Number(value),
                         Expected::Vector { value, .. } | Expected::Direction { value, .. } => Given::Vector(value),
                         Expected::Trace { leaves, .. } => Given::Trace(leaves),
+                        Expected::Planes { steps, .. } => Given::Planes(steps),
                         Expected::Choice { value, .. } => Given::Choice { answer: value.to_string(), why: None },
                         other => panic!("{question} {seed} {}: {other:?}", follows.from),
                     };

@@ -218,8 +218,11 @@ fn carry_forward(parts: &[&Part], givens: &[Option<Given>], follows: &[&Follows]
 /// Why a later part was not recomputed from the student's earlier answer.
 fn unfollowable(derivation: &Derivation) -> &'static str {
     match derivation {
+        Derivation::DescentsFromPlanes { .. } => {
+            "your planes differ from the traversal's in more than a plane parameter (a node, a first child, or a parallel plane), so the descents are graded against the key"
+        }
         Derivation::LeavesFromDescents { .. } => {
-            "your descents leave the traversal's method (a wrong cell, or a bound kept at 0 or left unclipped), so the leaves are graded against the key"
+            "your descents leave the traversal's method (a wrong, missing or extra cell, or a bound kept at 0 or left unclipped), so the leaves are graded against the key"
         }
         _ => "there is nothing in it to follow from",
     }
@@ -265,7 +268,7 @@ fn compare(expected: &Expected, given: &Given) -> (bool, String) {
         (Expected::Number { value, rtol, atol }, Given::Number(x)) => {
             let allowed = rtol * value.abs() + atol;
             let error = (x - value).abs();
-            let range = format!("accepted: {:.6} to {:.6}", value - allowed, value + allowed);
+            let range = format!("accepted: {} to {}", show_number(value - allowed), show_number(value + allowed));
             (
                 error <= allowed,
                 format!("off by {error:.3e} (relative {:.1e}); {range}", error / value.abs().max(1e-300)),
@@ -322,9 +325,15 @@ fn compare(expected: &Expected, given: &Given) -> (bool, String) {
     }
 }
 
+/// A number in the feedback: six decimals, or six significant digits for a non-zero number below
+/// 10⁻³ (six decimals would print a dense slab's gap fraction of 10⁻¹² as 0).
+fn show_number(x: f64) -> String {
+    if x != 0.0 && x.abs() < 1e-3 { format!("{x:.5e}") } else { format!("{x:.6}") }
+}
+
 fn show_expected(expected: &Expected) -> String {
     match expected {
-        Expected::Number { value, .. } => format!("{value:.6}"),
+        Expected::Number { value, .. } => show_number(*value),
         Expected::Vector { value, .. } | Expected::Direction { value, .. } | Expected::Parallel { value, .. } => {
             show_vector(*value)
         }

@@ -375,6 +375,14 @@ pub enum Derivation {
         /// The ray's direction `d`.
         dir: [f64; 3],
     },
+    /// Q3: the descents are the key's with the student's own plane parameters, when the student's
+    /// planes are the key's nodes and first children and differ only in `t` (a slip of arithmetic,
+    /// charged once, in the planes); a wrong node, first child or parallel is a mistake of method,
+    /// and the descents are graded against the key.
+    DescentsFromPlanes {
+        /// The key's planes, to tell a slip of `t` from a mistake of method.
+        planes: Vec<ExpectedPlane>,
+    },
     /// Q3: the leaves are the student's descents into cells that are not split further, when
     /// those descents follow the traversal's method (the key's cells, each bound right, carried
     /// from a wrong plane parameter, or that slip itself): a wrong cell or a bound kept at 0 or

@@ -268,6 +268,7 @@ pub(super) fn variant(seed: u64) -> Variant {
                 _ => "q3e.leaves",
             }
         };
+        let key_planes = key.planes.clone();
         parts.push(Part {
             key: name("planes"),
             prompt: "the planes met, in order: node, t (or \"parallel\"), the child first",
@@ -295,6 +296,12 @@ pub(super) fn variant(seed: u64) -> Variant {
             mal_rules: vec![],
             explained_in: TRACE_NOTES,
             method: TRAVERSAL_METHOD,
+        });
+        // Planes before descents before leaves: a slip is carried down the chain in one pass.
+        follows.push(Follows {
+            key: name("descents"),
+            from: name("planes"),
+            derivation: Derivation::DescentsFromPlanes { planes: key_planes },
         });
         follows.push(Follows {
             key: name("leaves"),

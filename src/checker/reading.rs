@@ -81,10 +81,11 @@ fn read_choice(key: &str, value: &toml::Value, options: &[&str]) -> Result<Given
     }
 }
 
-/// A t bound: a number, or the string `"inf"`.
+/// A t bound: a number, or infinity written `"inf"` (any case) or as TOML's bare `inf`.
 fn bound(key: &str, value: Option<&toml::Value>) -> Result<f64, CheckError> {
     match value {
-        Some(toml::Value::String(s)) if s == "inf" => Ok(f64::INFINITY),
+        Some(toml::Value::String(s)) if s.trim().eq_ignore_ascii_case("inf") => Ok(f64::INFINITY),
+        Some(toml::Value::Float(x)) if *x == f64::INFINITY => Ok(f64::INFINITY),
         Some(other) => number(key, other),
         None => Err(CheckError::BadValue { key: key.to_string(), problem: "each leaf needs tmin and tmax".into() }),
     }

@@ -172,15 +172,20 @@ pub(super) fn grade_trace(
     let plane_at = |t: f64| planes.iter().find(|(_, pt)| same_bound(t, *pt)).map(|(name, _)| name.clone());
     let (prefix, key_entry, answer_entry) = first_divergence(expected, given, &pairs);
     let reason = match (key_entry, answer_entry) {
+        (Some(e), None) if given[prefix..].iter().any(|g| g.path == e.path) => format!(
+            "{one} {} out of order: the ray enters {} here, and your list has that cell later",
+            prefix + 1,
+            show_leaf(e)
+        ),
         (Some(e), None) => format!("{one} {} missing: the ray goes on into {}", prefix + 1, show_leaf(e)),
-        (None, Some(g)) if prefix == expected.len() => {
-            format!("{one} {} is extra: the ray has left the tree's last cell ({})", prefix + 1, show_leaf(g))
-        }
         (None, Some(g)) if g.t_min == g.t_max => format!(
             "{one} {} is extra: {} has no length, and a cell the ray only touches is not entered",
             prefix + 1,
             show_leaf(g)
         ),
+        (None, Some(g)) if prefix == expected.len() => {
+            format!("{one} {} is extra: the ray has left the tree's last cell ({})", prefix + 1, show_leaf(g))
+        }
         (None, Some(g)) => format!("{one} {} is extra: the ray does not enter {} there", prefix + 1, show_leaf(g)),
         (Some(e), Some(g)) if e.path != g.path => {
             format!("{one} {}: wrong cell: the ray is in {}, not [{}]", prefix + 1, show_leaf(e), g.path.join(", "))

@@ -92,8 +92,14 @@ fn cell(text: &str) -> String {
 /// earlier wrong answer, the part where the error was made.
 fn grade(result: &PartResult, follows: &[checker::Follows]) -> String {
     let points = |x: f64| format!("{x}");
+    // A trace's own later pieces also carry a bound forward within the part; only credit earned
+    // from an earlier part's answer names that part.
     let carried = (result.mistake == Some(checker::Rule::CarriedForward.id()))
-        .then(|| follows.iter().find(|f| f.key == result.key))
+        .then(|| {
+            follows.iter().find(|f| {
+                f.key == result.key && result.feedback.starts_with(&format!("follows from your `{}`", f.from))
+            })
+        })
         .flatten()
         .map_or(String::new(), |f| format!(", error carried forward from `{}`", f.from));
     format!("{}/{} {}{carried}", points(result.score), points(result.max_score), result.status)
@@ -213,5 +219,9 @@ mod tests {
         // the key says so where it prints the grade.
         let leaves = table.lines().find(|l| l.starts_with("| `q3d.leaves` |")).unwrap();
         assert!(leaves.contains("3/3 correct, error carried forward from `q3d.descents`"), "{leaves}");
+        // Its descents lose points for their own slip, carried within the trace, not for its
+        // planes, which are right.
+        let descents = table.lines().find(|l| l.starts_with("| `q3d.descents` |")).unwrap();
+        assert!(descents.contains("1.13/1.5 partial |"), "{descents}");
     }
 }

@@ -17,11 +17,11 @@ pub(super) fn num(x: f64) -> String {
 }
 
 /// A final number, as the solution prints it and writes it to an answers file: [`num`], except
-/// that a number between 10⁻⁹ (the checker's absolute tolerance, below which 0 is accepted) and
-/// 10⁻³ keeps six significant digits, which six decimals would not (the gap fraction of a dense
-/// slab is a few millionths).
+/// that a non-zero number below 10⁻³ keeps six significant digits, which six decimals would not
+/// (the gap fraction of a dense slab can be a few millionths, or 10⁻¹²): the checker compares
+/// numbers relatively.
 pub(super) fn final_number(x: f64) -> String {
-    if (1e-9..1e-3).contains(&x.abs()) { format!("{x:.5e}") } else { num(x) }
+    if x != 0.0 && x.abs() < 1e-3 { format!("{x:.5e}") } else { num(x) }
 }
 
 /// [`num`], in parentheses when negative, for a number inside a formula (`(3 - 5)/(-1)`).
@@ -167,8 +167,8 @@ mod tests {
         assert_eq!(num(0.5), "0.5");
         assert_eq!((operand(-1.0), operand(2.0)), ("(-1)".to_string(), "2".to_string()));
         assert_eq!(
-            (final_number(4.6e-6), final_number(1e-17), final_number(0.5)),
-            ("4.60000e-6".into(), "0".into(), "0.5".into())
+            (final_number(4.6e-6), final_number(1e-17), final_number(-0.0), final_number(0.5)),
+            ("4.60000e-6".into(), "1.00000e-17".into(), "0".into(), "0.5".into())
         );
     }
 }
