@@ -717,7 +717,7 @@ fn q5_quoted_measurements_are_the_committed_table() {
             format!("measures {:.3} of the path-traced caustic", fraction("d caustic", "photon_mapping")),
             format!("concentrated **{:.0}-fold**", value("d caustic", "radiosity", 3)),
             format!("It reads {:.0} % low in bleeding", 100.0 * (1.0 - fraction("b", "radiosity"))),
-            format!("{:.0} % low in the cosine falloff", 100.0 * (1.0 - fraction("c", "radiosity"))),
+            format!("{:.0} % low in the direct-light falloff", 100.0 * (1.0 - fraction("c", "radiosity"))),
             format!("(bleeding {:.2}, glow {:.2})", fraction("b", "two_pass"), fraction("e", "two_pass")),
             format!("(Yes, {:.2})", fraction("e", "two_pass")),
             format!("mirror ({:.2} against 0)", fraction("d mirror", "photon_mapping")),
@@ -745,7 +745,7 @@ fn q5_quoted_measurements_are_the_committed_table() {
         &q5,
         &[
             format!("every fraction is at least 0.12 from the thresholds {NO_FRACTION} and {YES_FRACTION}"),
-            format!("(the nearest is radiosity's {nearest:.3} for the cosine falloff)"),
+            format!("(the nearest is radiosity's {nearest:.3} for the direct-light falloff)"),
         ],
     );
     assert_eq!(fraction("c", "radiosity"), nearest);

@@ -290,7 +290,7 @@ pub fn highlight(method: Measured, budget: &Budget) -> Result<f64, ExperimentErr
     Ok(grey(glossy - matte))
 }
 
-/// (c) Direct diffuse shading: the cosine falloff across the white floor of [`lit_floor`], the
+/// (c) Direct diffuse shading: the falloff of direct light across the white floor of [`lit_floor`], the
 /// radiance under the light minus the radiance 1.5 units aside (16 probes each; the law is
 /// `L = ρ/π · L_e A cosθ cosθ' / r²`, (16/18.25)² ≈ 0.77 of the peak there).
 ///

@@ -200,7 +200,7 @@ pub const PUBLISHED_SPP: u32 = Budget::PUBLISHED.converged_spp;
 pub const CAUSTIC_SPP: u32 = Budget::PUBLISHED.caustic_spp;
 
 /// The four open experiment scenes of the montage, each with what its panel shows and its
-/// samples per pixel: the glossy floor's highlight, the white floor's cosine falloff, the red
+/// samples per pixel: the glossy floor's highlight, the white floor's falloff of direct light, the red
 /// panel in the mirror (the framed picture variant, [`mirror_room_framed`]: without its frame
 /// the mirror cannot be told from the black background), the caustic under the glass ball ([`PATH_SPP`] and [`CAUSTIC_SPP`] at
 /// [`Budget::PUBLISHED`]).
