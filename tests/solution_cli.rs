@@ -160,3 +160,35 @@ fn bad_input_is_one_line_and_exit_2() {
     let stderr = String::from_utf8(hw3(&["solution", "--question", "q9"]).stderr).unwrap();
     assert!(stderr.contains("`q9`") && stderr.contains("q1, q2, q3, q4, q5"), "{stderr}");
 }
+
+/// The Q1 solution's check line says "agrees within 1 %" exactly when the number it prints lies
+/// within 1 % of the answer, for the Boolean-model limit and for the first-order term alike.
+#[test]
+fn q1_check_line_agrees_only_where_its_numbers_do() {
+    let number_after = |text: &str, marker: &str| -> f64 {
+        let rest = &text[text.rfind(marker).unwrap_or_else(|| panic!("{marker} in {text}")) + marker.len()..];
+        rest.split_whitespace().next().unwrap().trim_end_matches([';', ',']).parse().unwrap()
+    };
+    let mut seen = [[false; 2]; 2];
+    for seed in 0..300 {
+        let solved = solution("q1", seed).unwrap();
+        let gap = solved
+            .answers()
+            .find_map(|a| match (a.key, &a.value) {
+                ("q1a.gap_fraction", Value::Number(x)) => Some(*x),
+                _ => None,
+            })
+            .unwrap();
+        let text = solved.render(Format::Text);
+        let line = text.lines().find(|l| l.contains("check: the Boolean-model limit")).unwrap();
+        let (limit_text, first_order_text) = line.split_once("; the first-order term").unwrap();
+        let limit = number_after(limit_text, ") = ");
+        let first_order = number_after(first_order_text, "1 - Np = ");
+        for (i, (value, words)) in [(limit, limit_text), (first_order, first_order_text)].into_iter().enumerate() {
+            let within = (value / gap - 1.0).abs() < 0.01;
+            assert_eq!(words.contains("agrees within 1 %"), within, "seed {seed}: {line}");
+            seen[i][usize::from(within)] = true;
+        }
+    }
+    assert_eq!(seen, [[true; 2]; 2], "seeds 0..300 show both verdicts for both terms");
+}
