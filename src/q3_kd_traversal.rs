@@ -8,7 +8,7 @@ pub mod student;
 pub use cli::{TraceInputError, kd_trace_command, parse_vec2};
 
 use crate::geometry::InputError;
-use crate::kdtree::{QuotientAxis, Side, split_interval};
+use crate::kdtree::{AxisLine, QuotientAxis, Side, split_interval};
 use std::fmt;
 
 /// A coordinate axis of the homework's plane.
@@ -489,19 +489,72 @@ impl fmt::Display for Trace {
 /// ```
 #[must_use]
 pub fn traverse(tree: &Node2, ray: &Ray2) -> Trace {
+    traverse_with(tree, ray, &|_| None)
+}
+
+/// [`traverse`] with the plane parameter of some nodes given instead of computed: at a node
+/// reached by `path`, `plane_t(path)` is used as the ray's `t` at the node's plane when it is
+/// `Some` (and the ray is not parallel to it). Every other step (which child comes first, which
+/// are visited, the intervals) follows the rule from that value.
+///
+/// This is the traversal a student makes who got one plane's `t` wrong and went on correctly
+/// from it: the checker grades the later parts of such an answer against it, so that a slip of
+/// arithmetic is charged once.
+///
+/// # Examples
+/// ```
+/// use hw3::q3_kd_traversal::{Node2, Ray2, traverse_with};
+/// let ray = Ray2::new([5.0, 0.0], [-1.0, 1.0]).unwrap();
+/// // The root plane x = 3 is met at t = 2; taken at t = 1.5 the cut moves with it.
+/// let trace = traverse_with(&Node2::homework(), &ray, &|path| path.is_empty().then_some(1.5));
+/// let leaves: Vec<String> = trace.leaves().iter().map(|l| l.interval.to_string()).collect();
+/// assert_eq!(leaves, ["[0, 1.5]", "[1.5, inf]"]);
+/// ```
+#[must_use]
+pub fn traverse_with(tree: &Node2, ray: &Ray2, plane_t: &dyn Fn(&[Branch]) -> Option<f64>) -> Trace {
     let mut steps = Vec::new();
     let root = Interval { t_min: 0.0, t_max: f64::INFINITY };
-    walk(tree, ray, &mut Vec::new(), root, &mut steps);
+    walk(tree, ray, plane_t, &mut Vec::new(), root, &mut steps);
     Trace { steps }
 }
 
-fn walk(node: &Node2, ray: &Ray2, path: &mut Vec<Branch>, interval: Interval, out: &mut Vec<Step>) {
+/// One axis of the ray with its plane parameter given, for [`traverse_with`].
+#[derive(Clone, Copy)]
+struct GivenPlane {
+    axis: QuotientAxis,
+    t: Option<f64>,
+}
+
+impl AxisLine for GivenPlane {
+    fn origin(self) -> f64 {
+        self.axis.origin()
+    }
+    fn is_parallel(self) -> bool {
+        self.axis.is_parallel()
+    }
+    fn increasing(self) -> bool {
+        self.axis.increasing()
+    }
+    fn plane_t(self, split: f64) -> f64 {
+        self.t.unwrap_or_else(|| self.axis.plane_t(split))
+    }
+}
+
+fn walk(
+    node: &Node2,
+    ray: &Ray2,
+    plane_t: &dyn Fn(&[Branch]) -> Option<f64>,
+    path: &mut Vec<Branch>,
+    interval: Interval,
+    out: &mut Vec<Step>,
+) {
     let Node2::Split { axis, split, lower, upper } = node else {
         out.push(Step::Leaf { path: path.clone(), interval });
         return;
     };
     let a = axis.index();
-    let decision = split_interval(QuotientAxis::new(ray.origin[a], ray.dir[a]), *split, interval.t_min, interval.t_max);
+    let line = GivenPlane { axis: QuotientAxis::new(ray.origin[a], ray.dir[a]), t: plane_t(path) };
+    let decision = split_interval(line, *split, interval.t_min, interval.t_max);
     out.push(Step::Plane { path: path.clone(), axis: *axis, split: *split, t: decision.t_plane });
     for (side, t_min, t_max) in decision.pieces(interval.t_min, interval.t_max) {
         path.push(Branch { axis: *axis, side, split: *split });
@@ -511,7 +564,7 @@ fn walk(node: &Node2, ray: &Ray2, path: &mut Vec<Branch>, interval: Interval, ou
             Side::Lower => lower,
             Side::Upper => upper,
         };
-        walk(child, ray, path, child_interval, out);
+        walk(child, ray, plane_t, path, child_interval, out);
         path.pop();
     }
 }

@@ -289,7 +289,11 @@ fn leaves_carry_a_slip_of_the_descents_not_a_mistake_of_method() {
     let report = check(&kept_at_zero, None).unwrap();
     let leaves = part(&report, "q3d.leaves");
     assert_eq!((leaves.score, leaves.mistake), (1.5, None), "{leaves:?}");
-    assert!(leaves.feedback.contains("leave the traversal's method"), "{}", leaves.feedback);
+    assert!(
+        leaves.feedback.contains("do not follow the traversal from the plane parameters they show"),
+        "{}",
+        leaves.feedback
+    );
     // A slip of arithmetic (the root crossed at t = 2.5) is carried into the leaves.
     let slip = file(
         r#"[{ path = ["x>=3"], tmin = 0, tmax = 2.5 }, { path = ["x>=3", "y<3"], tmin = 0, tmax = 2.5 }, { path = ["x<3"], tmin = 2.5, tmax = "inf" }, { path = ["x<3", "y>=1"], tmin = 2.5, tmax = "inf" }]"#,
@@ -422,4 +426,107 @@ fn trailing_pieces_and_swapped_entries_are_named() {
 fn bare_inf_is_infinity() {
     let text = "[meta]\nseed = 0\n[q3d]\nleaves = [{ path = [\"x>=3\", \"y<3\"], tmin = 0, tmax = 2 }, { path = [\"x<3\", \"y>=1\"], tmin = 2, tmax = inf }]\n";
     assert_eq!(part(&check(text, None).unwrap(), "q3d.leaves").score, 3.0);
+}
+
+/// A slip of a plane parameter that changes which children the ray visits is still charged
+/// once: seed 3, case (d), the root crossed at t = 1.5 instead of 0.5, so the ray reaches x < 3
+/// after it has crossed y = 1 and visits one child there, not two. The planes lose the root's
+/// share only (the first child below it follows from 1.5); the descents and leaves follow.
+#[test]
+fn a_slip_that_changes_the_branching_is_charged_once() {
+    let planes = r#"planes = [{ node = [], t = 1.5, first = "x>=3" }, { node = ["x>=3"], t = 3, first = "y<3" }, { node = ["x<3"], t = 1, first = "y>=1" }]"#;
+    let rest = r#"descents = [{ path = ["x>=3"], tmin = 0, tmax = 1.5 }, { path = ["x>=3", "y<3"], tmin = 0, tmax = 1.5 }, { path = ["x<3"], tmin = 1.5, tmax = "inf" }, { path = ["x<3", "y>=1"], tmin = 1.5, tmax = "inf" }]
+leaves = [{ path = ["x>=3", "y<3"], tmin = 0, tmax = 1.5 }, { path = ["x<3", "y>=1"], tmin = 1.5, tmax = "inf" }]"#;
+    let key = variant("q3", 3).unwrap();
+    let Expected::Planes { steps, .. } = &key.parts.iter().find(|p| p.key == "q3d.planes").unwrap().expected else {
+        unreachable!()
+    };
+    assert_eq!((steps[0].t, steps[2].first.as_str()), (Some(0.5), "y<1"), "the case this test is about");
+    let report = check(&format!("[meta]\nseed = 3\n[q3d]\n{planes}\n{rest}\n"), None).unwrap();
+    let p = part(&report, "q3d.planes");
+    assert_eq!((p.score, p.mistake), (1.0, Some("carried_forward")), "{p:?}");
+    assert!(p.feedback.contains("2 more planes right as they follow from your t"), "{}", p.feedback);
+    for (key, points) in [("q3d.descents", 1.5), ("q3d.leaves", 3.0)] {
+        let p = part(&report, key);
+        assert_eq!((p.score, p.mistake), (points, Some("carried_forward")), "{p:?}");
+    }
+    // Without planes the slip is charged in the descents, and the leaves follow from them.
+    let report = check(&format!("[meta]\nseed = 3\n[q3d]\n{rest}\n"), None).unwrap();
+    assert!(part(&report, "q3d.descents").score < 1.5);
+    let leaves = part(&report, "q3d.leaves");
+    assert_eq!((leaves.score, leaves.mistake), (3.0, Some("carried_forward")), "{leaves:?}");
+    // A wrong first child below the slip is a mistake of method even so: the leaves that repeat
+    // it are graded against the key.
+    let swapped = rest.replace(
+        r#"{ path = ["x<3", "y>=1"], tmin = 1.5, tmax = "inf" }]"#,
+        r#"{ path = ["x<3", "y<1"], tmin = 1.5, tmax = "inf" }]"#,
+    );
+    let report = check(&format!("[meta]\nseed = 3\n[q3d]\n{swapped}\n"), None).unwrap();
+    let leaves = part(&report, "q3d.leaves");
+    assert!(
+        leaves.feedback.contains("do not follow the traversal from the plane parameters they show"),
+        "{}",
+        leaves.feedback
+    );
+}
+
+/// When only part of a list follows from the student's earlier answer, the feedback names what is
+/// still wrong against the student's own values (seed 3, case (d): the plane y = 1 taken at 1.5,
+/// and the descent into y < 1 left unclipped).
+#[test]
+fn what_is_wrong_against_your_own_values_is_named() {
+    let text = r#"[meta]
+seed = 3
+[q3d]
+planes = [{ node = [], t = 0.5, first = "x>=3" }, { node = ["x>=3"], t = 3, first = "y<3" }, { node = ["x<3"], t = 1.5, first = "y<1" }]
+descents = [{ path = ["x>=3"], tmin = 0, tmax = 0.5 }, { path = ["x>=3", "y<3"], tmin = 0, tmax = 0.5 }, { path = ["x<3"], tmin = 0.5, tmax = "inf" }, { path = ["x<3", "y<1"], tmin = 0.5, tmax = "inf" }, { path = ["x<3", "y>=1"], tmin = 1.5, tmax = "inf" }]
+"#;
+    let report = check(text, None).unwrap();
+    let p = part(&report, "q3d.descents");
+    assert_eq!(p.score, 1.2, "{p:?}");
+    assert!(p.feedback.starts_with("80 % of it follows from your `q3d.planes`"), "{}", p.feedback);
+    assert!(
+        p.feedback
+            .contains("against the values you had: first 3 descents right; descent 4 [x<3, y<1]: tmax should be 1.5"),
+        "{}",
+        p.feedback
+    );
+}
+
+/// The accepted range printed for a number never contradicts the verdict for an answer written
+/// with six significant digits: rounded just outside the range it is wrong and printed outside;
+/// the key so rounded is right and printed inside (Q1's gap fraction, seeds 0..200, where it
+/// spans 10⁻¹² to 0.9).
+#[test]
+fn an_accepted_range_is_never_rounded_onto_a_wrong_answer() {
+    let six_digits = |x: f64| -> f64 { format!("{x:.5e}").parse().unwrap() };
+    for seed in 0..200 {
+        let key = variant("q1", seed).unwrap();
+        let Expected::Number { value, rtol, atol } =
+            key.parts.iter().find(|p| p.key == "q1a.gap_fraction").unwrap().expected
+        else {
+            unreachable!()
+        };
+        let allowed = rtol * value.abs() + atol;
+        let mut outside = [six_digits(value + allowed), six_digits(value - allowed)];
+        let unit = |x: f64| 10f64.powi(x.abs().log10().floor() as i32 - 5);
+        if outside[0] <= value + allowed {
+            outside[0] += unit(outside[0]);
+        }
+        if outside[1] >= value - allowed {
+            outside[1] -= unit(outside[1]);
+        }
+        for (given, right) in [(outside[0], false), (outside[1], false), (six_digits(value), true)] {
+            let result = graded("q1", seed, "q1a.gap_fraction", &format!("{given:e}"));
+            assert_eq!(result.status == "correct", right, "seed {seed}: {given:e}: {}", result.feedback);
+            if right {
+                continue;
+            }
+            let range = result.feedback.split("accepted: ").nth(1).unwrap();
+            let (low, high) = range.split_once(" to ").unwrap();
+            let high = high.split(|c: char| !(c.is_ascii_digit() || "-+.e".contains(c))).next().unwrap();
+            let (low, high): (f64, f64) = (low.parse().unwrap(), high.parse().unwrap());
+            assert!(!(low..=high).contains(&given), "seed {seed}: {given:e} printed inside [{low}, {high}]");
+        }
+    }
 }

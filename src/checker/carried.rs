@@ -3,6 +3,8 @@
 use super::key::{Derivation, Expected, ExpectedLeaf, ExpectedPlane};
 use super::reading::Given;
 use super::traces::{method_followed, same_bound};
+use crate::kdtree::{AxisLine, QuotientAxis, Side};
+use crate::q3_kd_traversal::{Branch, Node2, Ray2, Step, traverse_with};
 use glam::DVec3;
 
 /// The later part's key as it would be from `earlier` (the student's answer to the part it
@@ -33,21 +35,20 @@ pub(super) fn recompute(derivation: &Derivation, earlier: &Given, later: &Expect
             Some(Expected::Number { value: lost, rtol: *rtol, atol: *atol })
         }
         (
-            Derivation::DescentsFromPlanes { planes: key },
+            Derivation::DescentsFromPlanes { origin, dir },
             Given::Planes(given),
-            Expected::Trace { leaves: descents, planes: crossings, descents: true },
-        ) => descents_with(key, given, descents).map(|leaves| Expected::Trace {
+            Expected::Trace { planes: crossings, descents: true, .. },
+        ) => descents_following(*origin, *dir, given).map(|leaves| Expected::Trace {
             leaves,
             planes: crossings.clone(),
             descents: true,
         }),
-        (Derivation::LeavesFromDescents { descents: key }, Given::Trace(descents), Expected::Trace { planes, .. }) => {
-            method_followed(key, planes, descents).then(|| Expected::Trace {
-                leaves: leaves_of(descents),
-                planes: planes.clone(),
-                descents: false,
-            })
-        }
+        (
+            Derivation::LeavesFromDescents { descents: key, origin, dir },
+            Given::Trace(descents),
+            Expected::Trace { planes, .. },
+        ) => (method_followed(key, planes, descents) || is_a_traversal(*origin, *dir, descents))
+            .then(|| Expected::Trace { leaves: leaves_of(descents), planes: planes.clone(), descents: false }),
         (Derivation::MissedFromVerdict { effect }, Given::Choice { answer, .. }, Expected::Paths { .. }) => {
             match answer.as_str() {
                 "yes" => Some(Expected::Paths { value: "none".into() }),
@@ -59,36 +60,103 @@ pub(super) fn recompute(derivation: &Derivation, earlier: &Given, later: &Expect
     }
 }
 
-/// The key's descents with each plane parameter the student got wrong replaced by the student's
-/// value, where the student's planes are the key's nodes and first children in the key's order
-/// and differ only in finite, non-zero values of `t`; `None` when they differ in anything else.
-fn descents_with(
-    key: &[ExpectedPlane],
-    given: &[ExpectedPlane],
-    descents: &[ExpectedLeaf],
-) -> Option<Vec<ExpectedLeaf>> {
-    if key.len() != given.len() {
-        return None;
+/// The traversal of the ray `origin + t dir` through the homework's tree as a student makes it
+/// who takes `plane_t` at a node instead of computing it: its planes (each with the `t` used, and
+/// the node's right `t`) and its descents.
+fn traversal_with(
+    origin: [f64; 2],
+    dir: [f64; 2],
+    plane_t: &dyn Fn(&[Branch]) -> Option<f64>,
+) -> (Vec<(ExpectedPlane, Option<f64>)>, Vec<ExpectedLeaf>) {
+    let names = |path: &[Branch]| path.iter().map(ToString::to_string).collect::<Vec<_>>();
+    let ray = Ray2 { origin, dir };
+    let trace = traverse_with(&Node2::homework(), &ray, plane_t);
+    let (mut planes, mut descents) = (Vec::new(), Vec::new());
+    for (i, step) in trace.steps.iter().enumerate() {
+        match step {
+            Step::Plane { path, axis, split, t } => {
+                let Some(Step::Descend { path: child, .. }) = trace.steps.get(i + 1) else { continue };
+                let first = child.last().map(ToString::to_string).unwrap_or_default();
+                let a = axis.index();
+                let right_t = t.map(|_| QuotientAxis::new(origin[a], dir[a]).plane_t(*split));
+                planes.push((ExpectedPlane { node: names(path), t: *t, first }, right_t));
+            }
+            Step::Descend { path, interval } => {
+                descents.push(ExpectedLeaf { path: names(path), t_min: interval.t_min, t_max: interval.t_max });
+            }
+            Step::Leaf { .. } => {}
+        }
     }
-    let mut substituted: Vec<(f64, f64)> = Vec::new();
-    for (k, g) in key.iter().zip(given) {
-        if k.node != g.node || k.first != g.first {
+    (planes, descents)
+}
+
+/// The planes as they follow from the student's own plane parameters: the nodes met and the
+/// first children of the traversal taken with every finite `t` the student gives (at its node),
+/// each node with its right `t` (or none for a parallel ray), so that grading against them charges
+/// a wrong `t` at its node and nowhere below it.
+pub(super) fn planes_following(origin: [f64; 2], dir: [f64; 2], given: &[ExpectedPlane]) -> Vec<ExpectedPlane> {
+    let (planes, _) = traversal_with(origin, dir, &|path| given_t(given, path));
+    planes.into_iter().map(|(plane, right_t)| ExpectedPlane { t: right_t, ..plane }).collect()
+}
+
+/// The student's finite `t` at the node `path`, if the student's planes name that node.
+fn given_t(given: &[ExpectedPlane], path: &[Branch]) -> Option<f64> {
+    let node: Vec<String> = path.iter().map(ToString::to_string).collect();
+    given.iter().find(|p| p.node == node).and_then(|p| p.t).filter(|t| t.is_finite())
+}
+
+/// The descents as they follow from the student's planes: the traversal taken with the student's
+/// plane parameters (every finite one, at its node), when the student's planes are that
+/// traversal's, node for node and first child for first child. A wrong `t` may change which
+/// children are visited and which comes first below it; all of that follows. `None` when the
+/// planes are not that traversal's (a wrong node or first child, a missing or extra plane, a
+/// parallel plane given a `t` or a crossing called parallel): a mistake of method.
+fn descents_following(origin: [f64; 2], dir: [f64; 2], given: &[ExpectedPlane]) -> Option<Vec<ExpectedLeaf>> {
+    let (planes, descents) = traversal_with(origin, dir, &|path| given_t(given, path));
+    let same = planes.len() == given.len()
+        && planes.iter().map(|(p, _)| p).zip(given).all(|(p, g)| {
+            p.node == g.node
+                && p.first == g.first
+                && match (p.t, g.t) {
+                    (None, None) => true,
+                    (Some(a), Some(b)) => same_bound(a, b),
+                    _ => false,
+                }
+        });
+    same.then_some(descents)
+}
+
+/// Whether `given` is the traversal's list of descents for the plane parameters it shows: at each
+/// node where both children are entered, the bound between them; at every other node, the right
+/// `t`. The traversal taken with those values must give exactly `given`; a wrong first child, a
+/// missing or extra descent, or a bound kept at 0 or left unclipped gives a list it does not.
+fn is_a_traversal(origin: [f64; 2], dir: [f64; 2], given: &[ExpectedLeaf]) -> bool {
+    let tree = Node2::homework();
+    let inferred = |path: &[Branch]| -> Option<f64> {
+        let node = path.iter().fold(&tree, |node, branch| match (node, branch.side) {
+            (Node2::Split { lower, .. }, Side::Lower) => lower,
+            (Node2::Split { upper, .. }, Side::Upper) => upper,
+            (leaf, _) => leaf,
+        });
+        let Node2::Split { axis, .. } = node else { return None };
+        let d = dir[axis.index()];
+        if d == 0.0 {
             return None;
         }
-        match (k.t, g.t) {
-            (None, None) => {}
-            (Some(kt), Some(gt)) if same_bound(gt, kt) => {}
-            (Some(kt), Some(gt)) if gt.is_finite() && gt != 0.0 => substituted.push((kt, gt)),
-            _ => return None,
+        let parent: Vec<String> = path.iter().map(ToString::to_string).collect();
+        let children: Vec<&ExpectedLeaf> =
+            given.iter().filter(|g| g.path.len() == parent.len() + 1 && g.path[..parent.len()] == parent[..]).collect();
+        match children.as_slice() {
+            [first, _] => Some(first.t_max),
+            _ => None,
         }
-    }
-    let with = |t: f64| substituted.iter().find(|(k, _)| same_bound(t, *k)).map_or(t, |&(_, g)| g);
-    Some(
-        descents
+    };
+    let (_, descents) = traversal_with(origin, dir, &inferred);
+    descents.len() == given.len()
+        && descents
             .iter()
-            .map(|d| ExpectedLeaf { path: d.path.clone(), t_min: with(d.t_min), t_max: with(d.t_max) })
-            .collect(),
-    )
+            .zip(given)
+            .all(|(e, g)| e.path == g.path && same_bound(e.t_min, g.t_min) && same_bound(e.t_max, g.t_max))
 }
 
 /// The descents into cells the trace does not split further: a descent is a leaf unless the next

@@ -1,6 +1,6 @@
 //! Grading: each part's answer against its key, with partial credit and feedback.
 
-use super::carried::recompute;
+use super::carried::{planes_following, recompute};
 use super::error::CheckError;
 use super::formula::compare_formulas;
 use super::key::{Derivation, Expected, Follows, Part, Variant};
@@ -187,23 +187,33 @@ fn carry_forward(parts: &[&Part], givens: &[Option<Given>], follows: &[&Follows]
         if as_given(&expected).is_some_and(|g| compare(&part.expected, &g).0) {
             continue;
         }
-        let credit = match (&expected, given) {
+        let (credit, words) = match (&expected, given) {
             (Expected::Trace { leaves, planes, descents }, Given::Trace(g)) => {
-                grade_trace(leaves, planes, g, *descents).credit
+                let graded = grade_trace(leaves, planes, g, *descents);
+                (graded.credit, graded.words)
             }
-            _ => f64::from(u8::from(compare(&expected, given).0)),
-        } * Rule::CarriedForward.credit();
+            _ => (f64::from(u8::from(compare(&expected, given).0)), String::new()),
+        };
+        let credit = credit * Rule::CarriedForward.credit();
         let score = round2(part.points * credit);
         if score > results[later].score {
             let result = &mut results[later];
             result.score = score;
             result.status = status(score, part.points);
             result.mistake = Some(Rule::CarriedForward.id());
-            let share = if credit < 1.0 { format!(" ({:.0} % of it)", 100.0 * credit) } else { String::new() };
-            result.feedback = format!(
-                "follows from your `{}`{share}: right for the value you had (error carried forward); first wrong step: `{root}`",
-                f.from
-            );
+            result.feedback = if credit < 1.0 {
+                // Part of it follows: what is still wrong against the student's own values.
+                format!(
+                    "{:.0} % of it follows from your `{}` (error carried forward); against the values you had: {words}; first wrong step: `{root}`",
+                    100.0 * credit,
+                    f.from
+                )
+            } else {
+                format!(
+                    "follows from your `{}`: right for the value you had (error carried forward); first wrong step: `{root}`",
+                    f.from
+                )
+            };
         } else {
             // Wrong both against the key and against the student's own earlier answer: naming the
             // earlier part as the first wrong step would say that fixing it fixes this.
@@ -222,7 +232,7 @@ fn unfollowable(derivation: &Derivation) -> &'static str {
             "your planes differ from the traversal's in more than a plane parameter (a node, a first child, or a parallel plane), so the descents are graded against the key"
         }
         Derivation::LeavesFromDescents { .. } => {
-            "your descents leave the traversal's method (a wrong, missing or extra cell, or a bound kept at 0 or left unclipped), so the leaves are graded against the key"
+            "your descents do not follow the traversal from the plane parameters they show (a wrong, missing or extra cell, a wrong first child, or a bound kept at 0 or left unclipped), so the leaves are graded against the key"
         }
         _ => "there is nothing in it to follow from",
     }
@@ -268,7 +278,11 @@ fn compare(expected: &Expected, given: &Given) -> (bool, String) {
         (Expected::Number { value, rtol, atol }, Given::Number(x)) => {
             let allowed = rtol * value.abs() + atol;
             let error = (x - value).abs();
-            let range = format!("accepted: {} to {}", show_number(value - allowed), show_number(value + allowed));
+            let range = format!(
+                "accepted: {} to {}",
+                show_bound_of_range(value - allowed, true),
+                show_bound_of_range(value + allowed, false)
+            );
             (
                 error <= allowed,
                 format!("off by {error:.3e} (relative {:.1e}); {range}", error / value.abs().max(1e-300)),
@@ -294,8 +308,8 @@ fn compare(expected: &Expected, given: &Given) -> (bool, String) {
             let graded = grade_trace(leaves, planes, given, *descents);
             (graded.exact, graded.words)
         }
-        (Expected::Planes { steps, why_first }, Given::Planes(given)) => {
-            let (credit, words) = grade_planes(steps, why_first, given);
+        (Expected::Planes { steps, why_first, ray }, Given::Planes(given)) => {
+            let (credit, words, _) = grade_planes(steps, why_first, given, &planes_following(ray.0, ray.1, given));
             (credit == 1.0, words)
         }
         (Expected::Choice { value, options }, Given::Choice { answer, why }) => {
@@ -325,10 +339,44 @@ fn compare(expected: &Expected, given: &Given) -> (bool, String) {
     }
 }
 
-/// A number in the feedback: six decimals, or six significant digits for a non-zero number below
-/// 10⁻³ (six decimals would print a dense slab's gap fraction of 10⁻¹² as 0).
+/// A key's number in the feedback: at least six significant digits (six decimals from 0.1 up,
+/// more decimals below, and an exponent below 10⁻³), so that an accepted range is never rounded
+/// onto a wrong answer and a dense slab's gap fraction of 10⁻¹² is not printed as 0.
 fn show_number(x: f64) -> String {
-    if x != 0.0 && x.abs() < 1e-3 { format!("{x:.5e}") } else { format!("{x:.6}") }
+    if x == 0.0 || !x.is_finite() {
+        return format!("{x:.6}");
+    }
+    let magnitude = x.abs().log10().floor();
+    if magnitude < -3.0 {
+        format!("{x:.5e}")
+    } else {
+        // 0.0123 has magnitude -2: seven decimals give it six significant digits.
+        let decimals = (5.0 - magnitude).max(6.0) as usize;
+        format!("{x:.decimals$}")
+    }
+}
+
+/// An end of an accepted range as [`show_number`] prints it, rounded inwards (the low end up, the
+/// high end down), so that a number written with no more digits than the range shows is accepted
+/// exactly when it lies within the printed range.
+fn show_bound_of_range(x: f64, low: bool) -> String {
+    let text = show_number(x);
+    let shown: f64 = text.parse().unwrap_or(x);
+    if !x.is_finite() || (low && shown >= x) || (!low && shown <= x) {
+        return text;
+    }
+    // One unit in the last digit shown: the exponent's for `1.23456e-7`, the decimals' otherwise.
+    let unit = match text.split_once('e') {
+        Some((_, exponent)) => 10f64.powi(exponent.parse::<i32>().unwrap_or(0) - 5),
+        None => 10f64.powi(-(text.split_once('.').map_or(0, |(_, d)| d.len()) as i32)),
+    };
+    show_number(if low { shown + unit } else { shown - unit })
+}
+
+/// A student's number as given: its shortest exact form, with an exponent when very small or
+/// large (`5.29862e-12`, not `0.00000000000529862`).
+fn echo_number(x: f64) -> String {
+    if x != 0.0 && x.is_finite() && !(1e-4..1e15).contains(&x.abs()) { format!("{x:e}") } else { format!("{x}") }
 }
 
 fn show_expected(expected: &Expected) -> String {
@@ -368,7 +416,7 @@ fn grade(part: &Part, given: Option<&Given>) -> PartResult {
         };
     };
     let shown = match given {
-        Given::Number(x) => format!("{x}"),
+        Given::Number(x) => echo_number(*x),
         Given::Vector(v) => show_vector(*v),
         Given::Trace(leaves) => leaves.iter().map(show_leaf).collect::<Vec<_>>().join("; "),
         Given::Planes(steps) => steps.iter().map(show_plane).collect::<Vec<_>>().join("; "),
@@ -384,7 +432,10 @@ fn grade(part: &Part, given: Option<&Given>) -> PartResult {
             let graded = grade_trace(leaves, planes, g, *descents);
             Some((graded.credit, (graded.carried > 0).then_some(Rule::CarriedForward)))
         }
-        (Expected::Planes { steps, why_first }, Given::Planes(g)) => Some((grade_planes(steps, why_first, g).0, None)),
+        (Expected::Planes { steps, why_first, ray }, Given::Planes(g)) => {
+            let (credit, _, carried) = grade_planes(steps, why_first, g, &planes_following(ray.0, ray.1, g));
+            Some((credit, carried.then_some(Rule::CarriedForward)))
+        }
         _ => None,
     };
     let mal_rule = part.mal_rules.iter().find(|rule| compare(&rule.value, given).0);

@@ -106,6 +106,9 @@ pub enum Expected {
         /// Why each step's first child comes first, by the question's rule, one per step (the
         /// feedback on a wrong `first`).
         why_first: Vec<String>,
+        /// The ray's origin `e` and direction `d`, to follow a wrong plane parameter to the
+        /// nodes and first children it changes below it.
+        ray: ([f64; 2], [f64; 2]),
     },
     /// Any vector pointing within `angle_tol` radians of `value`, whatever its length (for
     /// recognising wrong answers whose length is also off).
@@ -375,21 +378,28 @@ pub enum Derivation {
         /// The ray's direction `d`.
         dir: [f64; 3],
     },
-    /// Q3: the descents are the key's with the student's own plane parameters, when the student's
-    /// planes are the key's nodes and first children and differ only in `t` (a slip of arithmetic,
-    /// charged once, in the planes); a wrong node, first child or parallel is a mistake of method,
-    /// and the descents are graded against the key.
+    /// Q3: the descents as the traversal makes them with the student's own plane parameters, when
+    /// the student's planes are that traversal's (a wrong `t` is a slip of arithmetic, charged
+    /// once, in the planes; whatever it changes below follows); a wrong node, first child or
+    /// parallel is a mistake of method, and the descents are graded against the key.
     DescentsFromPlanes {
-        /// The key's planes, to tell a slip of `t` from a mistake of method.
-        planes: Vec<ExpectedPlane>,
+        /// The ray's origin `e`.
+        origin: [f64; 2],
+        /// The ray's direction `d`.
+        dir: [f64; 2],
     },
     /// Q3: the leaves are the student's descents into cells that are not split further, when
-    /// those descents follow the traversal's method (the key's cells, each bound right, carried
-    /// from a wrong plane parameter, or that slip itself): a wrong cell or a bound kept at 0 or
-    /// left unclipped is a mistake of method, charged again in the leaves.
+    /// those descents follow the traversal's method (the key's cells with each bound right,
+    /// carried from a wrong plane parameter, or that slip itself; or the traversal's descents
+    /// for some plane parameters): a wrong cell or first child, or a bound kept at 0 or left
+    /// unclipped, is a mistake of method, charged again in the leaves.
     LeavesFromDescents {
         /// The key's descents, to tell a slip from a mistake of method.
         descents: Vec<ExpectedLeaf>,
+        /// The ray's origin `e`.
+        origin: [f64; 2],
+        /// The ray's direction `d`.
+        dir: [f64; 2],
     },
     /// Q4: the irradiance lost for a normal into the blind cone, `sin² γ`, from the student's
     /// half-angle `γ` in degrees.

@@ -268,12 +268,11 @@ pub(super) fn variant(seed: u64) -> Variant {
                 _ => "q3e.leaves",
             }
         };
-        let key_planes = key.planes.clone();
         parts.push(Part {
             key: name("planes"),
             prompt: "the planes met, in order: node, t (or \"parallel\"), the child first",
             points: 1.5,
-            expected: Expected::Planes { steps: key.planes, why_first: key.why_first },
+            expected: Expected::Planes { steps: key.planes, why_first: key.why_first, ray: (ray.origin, ray.dir) },
             mal_rules: vec![],
             explained_in: TRACE_NOTES,
             method: PLANES_METHOD,
@@ -301,12 +300,12 @@ pub(super) fn variant(seed: u64) -> Variant {
         follows.push(Follows {
             key: name("descents"),
             from: name("planes"),
-            derivation: Derivation::DescentsFromPlanes { planes: key_planes },
+            derivation: Derivation::DescentsFromPlanes { origin: ray.origin, dir: ray.dir },
         });
         follows.push(Follows {
             key: name("leaves"),
             from: name("descents"),
-            derivation: Derivation::LeavesFromDescents { descents: key_descents },
+            derivation: Derivation::LeavesFromDescents { descents: key_descents, origin: ray.origin, dir: ray.dir },
         });
     }
     Variant { question: "q3", seed, setting: Setting::Q3 { d, e }, statement, parts, follows }
@@ -347,12 +346,15 @@ mod tests {
     /// for the key's planes with `edit` applied.
     fn graded(seed: u64, part: &str, edit: impl Fn(&mut Vec<ExpectedPlane>)) -> (f64, String) {
         let v = variant(seed);
-        let Expected::Planes { steps, why_first } = &v.parts.iter().find(|p| p.key == part).unwrap().expected else {
+        let Expected::Planes { steps, why_first, .. } = &v.parts.iter().find(|p| p.key == part).unwrap().expected
+        else {
             unreachable!()
         };
         let mut given = steps.clone();
         edit(&mut given);
-        super::super::traces::grade_planes(steps, why_first, &given)
+        // Nothing followed: these tests are about the firsts, charged against the key.
+        let (credit, words, _) = super::super::traces::grade_planes(steps, why_first, &given, &[]);
+        (credit, words)
     }
 
     /// The other child of a node: `"y<3"` for `"y>=3"` and back.

@@ -278,7 +278,17 @@ fn right_in_order(
 /// of the nodes after it, and it is charged once, at its node. An extra node, a missing one or one
 /// out of order earns nothing. `why_first` holds the reason each key step's first child is first
 /// (the question's rule in that node's numbers), for the feedback on a wrong `first`.
-pub(super) fn grade_planes(expected: &[ExpectedPlane], why_first: &[String], given: &[ExpectedPlane]) -> (f64, String) {
+///
+/// A wrong `t` is charged at its node only: `followed` holds the planes as they follow from the
+/// answer's own plane parameters (each node with its right `t`), and when they earn more, the
+/// nodes and first children the slip changed below it are graded against them; the third value
+/// says so (error carried forward).
+pub(super) fn grade_planes(
+    expected: &[ExpectedPlane],
+    why_first: &[String],
+    given: &[ExpectedPlane],
+    followed: &[ExpectedPlane],
+) -> (f64, String, bool) {
     let same_t = |a: Option<f64>, b: Option<f64>| match (a, b) {
         (None, None) => true,
         (Some(a), Some(b)) => same_bound(a, b),
@@ -287,7 +297,7 @@ pub(super) fn grade_planes(expected: &[ExpectedPlane], why_first: &[String], giv
     let agree = |e: &ExpectedPlane, g: &ExpectedPlane| e.node == g.node && same_t(g.t, e.t) && e.first == g.first;
     let prefix = expected.iter().zip(given).take_while(|(e, g)| agree(e, g)).count();
     if prefix == expected.len() && prefix == given.len() {
-        return (1.0, format!("all {prefix} planes right"));
+        return (1.0, format!("all {prefix} planes right"), false);
     }
     let key_order: Vec<&ExpectedPlane> = expected.iter().collect();
     let right = [key_order, order_by_answer(expected, given)]
@@ -296,6 +306,11 @@ pub(super) fn grade_planes(expected: &[ExpectedPlane], why_first: &[String], giv
         .max()
         .unwrap_or(0);
     let credit = right as f64 / expected.len().max(given.len()).max(1) as f64;
+    let followed_order: Vec<&ExpectedPlane> = followed.iter().collect();
+    let right_followed = right_in_order(&followed_order, given, agree);
+    let credit_followed = right_followed as f64 / followed.len().max(given.len()).max(1) as f64;
+    let carried = credit_followed > credit;
+    let (right, credit) = if carried { (right_followed, credit_followed) } else { (right, credit) };
     let n = prefix + 1;
     let reason = match (expected.get(prefix), given.get(prefix)) {
         (Some(e), None) => format!("plane {n} missing: the traversal goes on to {}", show_plane(e)),
@@ -321,10 +336,12 @@ pub(super) fn grade_planes(expected: &[ExpectedPlane], why_first: &[String], giv
         },
         (None, None) => unreachable!("a divergence exists when the lengths or a step differ"),
     };
-    let more = match right.saturating_sub(prefix) {
-        0 => String::new(),
-        1 => "; 1 more plane right (each node met earns its own share)".to_string(),
-        k => format!("; {k} more planes right (each node met earns its own share)"),
+    let more = match (right.saturating_sub(prefix), carried) {
+        (0, _) => String::new(),
+        (1, false) => "; 1 more plane right (each node met earns its own share)".to_string(),
+        (k, false) => format!("; {k} more planes right (each node met earns its own share)"),
+        (1, true) => "; 1 more plane right as it follows from your t (error carried forward)".to_string(),
+        (k, true) => format!("; {k} more planes right as they follow from your t (error carried forward)"),
     };
-    (credit, format!("first {prefix} planes right; {reason}{more}"))
+    (credit, format!("first {prefix} planes right; {reason}{more}"), carried)
 }
