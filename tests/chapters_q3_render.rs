@@ -270,7 +270,7 @@ mod q3 {
                 "more planes right as they follow from your t (error carried forward)",
                 "against the values you had",
                 "the ray does not leave this cell by any plane",
-                "has no length, and a cell the ray only touches is not entered",
+                "has no length, and a piece of zero length is not entered",
                 "the ray does not enter",
                 "follow from that bound (error carried forward)",
                 "right for the value you had (error",

@@ -179,7 +179,7 @@ pub(super) fn grade_trace(
         ),
         (Some(e), None) => format!("{one} {} missing: the ray goes on into {}", prefix + 1, show_leaf(e)),
         (None, Some(g)) if g.t_min == g.t_max => format!(
-            "{one} {} is extra: {} has no length, and a cell the ray only touches is not entered",
+            "{one} {} is extra: {} has no length, and a piece of zero length is not entered",
             prefix + 1,
             show_leaf(g)
         ),
