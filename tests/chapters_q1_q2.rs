@@ -28,22 +28,9 @@ fn assert_says(name: &str, claims: &[String]) {
     assert!(missing.is_empty(), "{name} does not say: {missing:#?}");
 }
 
-/// The body rows of the markdown tables in `text` (not headers or rules), as trimmed cells.
+/// The body rows of the markdown tables in `text`, as owned cells.
 fn table_rows(text: &str) -> Vec<Vec<String>> {
-    let mut rows = Vec::new();
-    let mut header_next = true;
-    for line in text.lines() {
-        if !line.starts_with('|') {
-            header_next = true;
-            continue;
-        }
-        if header_next || line.starts_with("|---") {
-            header_next = false;
-            continue;
-        }
-        rows.push(line.trim_matches('|').split('|').map(|c| c.trim().to_string()).collect());
-    }
-    rows
+    hw3::plot::markdown_rows(text).into_iter().map(|row| row.into_iter().map(str::to_owned).collect()).collect()
 }
 
 fn committed(path: &str) -> String {

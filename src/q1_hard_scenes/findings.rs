@@ -5,6 +5,7 @@
 //! compares it with the committed file byte for byte.
 
 use super::fog::{FOG_SIGMAS, visual_range};
+use crate::plot::markdown_rows;
 
 /// The committed tables the findings are read from.
 const CLUTTER_TABLE: &str = include_str!("../../docs/figures/q1_clutter_table.md");
@@ -59,25 +60,6 @@ pub struct Findings {
     pub spp_needed: (u64, u64),
 }
 
-/// The cells of every table row of `table` below its header (rows of a markdown table that are
-/// neither its header nor its rule), each row split at `|` and trimmed.
-fn rows(table: &str) -> Vec<Vec<&str>> {
-    let mut out = Vec::new();
-    let mut header_next = true;
-    for line in table.lines() {
-        if !line.starts_with('|') {
-            header_next = true;
-            continue;
-        }
-        if header_next || line.starts_with("|---") {
-            header_next = false;
-            continue;
-        }
-        out.push(line.trim_matches('|').split('|').map(str::trim).collect());
-    }
-    out
-}
-
 fn number(cell: &str) -> f64 {
     cell.trim_start_matches("< ").parse().unwrap_or_else(|_| panic!("a committed table's number: {cell}"))
 }
@@ -102,15 +84,15 @@ fn after(text: &str, marker: &str) -> f64 {
 /// ```
 #[must_use]
 pub fn findings() -> Findings {
-    let clutter = rows(CLUTTER_TABLE);
+    let clutter = markdown_rows(CLUTTER_TABLE);
     let clutter_largest_z =
         clutter.iter().map(|r| ((number(r[2]) - number(r[4])) / number(r[3])).abs()).fold(0.0, f64::max);
-    let hardness = rows(CLUTTER_HARDNESS);
+    let hardness = markdown_rows(CLUTTER_HARDNESS);
     let ends = |column: usize| {
         let (first, last) = (hardness.first().expect("rows"), hardness.last().expect("rows"));
         (number(first[column]), number(last[column]))
     };
-    let fog = rows(FOG_TABLE);
+    let fog = markdown_rows(FOG_TABLE);
     let fog_path_excess_percent = fog
         .iter()
         .map(|r| (1.0 - number(r[2]) / (-number(r[0]) * number(r[1])).exp()).abs() * 100.0)
@@ -124,7 +106,7 @@ pub fn findings() -> Findings {
             (sigma, falls)
         })
         .collect();
-    let airlight = rows(AIRLIGHT_TABLE);
+    let airlight = markdown_rows(AIRLIGHT_TABLE);
     let worst = |column: usize| airlight.iter().map(|r| number(r[column])).fold(0.0, f64::max);
     // The motion table's last line: "slope moving …, resting …; c moving C, resting C; spp for
     // RMSE …: moving N, resting N".
@@ -132,7 +114,7 @@ pub fn findings() -> Findings {
     let noise_fit = &fit_line[fit_line.find("; c moving").expect("c")..];
     let constants = noise_fit["; c moving ".len()..].split(',').next().unwrap_or("");
     let spp = &fit_line[fit_line.find("spp for RMSE").expect("spp")..];
-    let ratios: Vec<f64> = rows(MIRROR_TABLE).iter().map(|r| number(r[3])).collect();
+    let ratios: Vec<f64> = markdown_rows(MIRROR_TABLE).iter().map(|r| number(r[3])).collect();
     let sensitivity_ratios =
         (ratios.iter().copied().fold(f64::INFINITY, f64::min), ratios.iter().copied().fold(0.0, f64::max));
     Findings {

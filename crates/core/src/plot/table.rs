@@ -1,4 +1,5 @@
-//! One markdown-table writer, for the tables the chapters include among their figures.
+//! One markdown-table writer, for the tables the chapters include among their figures, and its
+//! reader, for the code and tests that read numbers back from a committed table.
 //!
 //! No table crate is used: the ones on crates.io pad columns to equal widths, and the committed
 //! tables are unpadded (`| a | b |`), which keeps their diffs to the cells that changed.
@@ -34,4 +35,31 @@ where
         out.push('\n');
     }
     out
+}
+
+/// The body rows of the markdown tables in `text`, each split at `|` into trimmed cells: every
+/// line that starts with `|`, except each table's header row and its `|---|` rule. Lines that are
+/// not table rows end a table, so several tables in one text are all read.
+///
+/// # Examples
+/// ```
+/// let text = "| n | n² |\n|---|---|\n| 1 | 1 |\n| 2 | 4 |\n\ntext\n\n| a |\n|---|\n| x |\n";
+/// assert_eq!(hw3_core::plot::markdown_rows(text), [vec!["1", "1"], vec!["2", "4"], vec!["x"]]);
+/// ```
+#[must_use]
+pub fn markdown_rows(text: &str) -> Vec<Vec<&str>> {
+    let mut rows = Vec::new();
+    let mut header_next = true;
+    for line in text.lines() {
+        if !line.starts_with('|') {
+            header_next = true;
+            continue;
+        }
+        if header_next || line.starts_with("|---") {
+            header_next = false;
+            continue;
+        }
+        rows.push(line.trim_matches('|').split('|').map(str::trim).collect());
+    }
+    rows
 }
