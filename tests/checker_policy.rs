@@ -530,3 +530,71 @@ fn an_accepted_range_is_never_rounded_onto_a_wrong_answer() {
         }
     }
 }
+
+/// A t so large that the point's squared length overflows does not make any point "follow" from
+/// it (seed 1: with t = 10¹⁵⁵ the recomputed point's tolerance was infinite).
+#[test]
+fn a_huge_t_does_not_make_any_point_right() {
+    for t in ["1e155", "1e200", "1e300"] {
+        let report = check(&format!("[meta]\nseed = 1\n[q2a]\nt = {t}\npoint = [7, 7, 7]\n"), None).unwrap();
+        let point = part(&report, "q2a.point");
+        assert_eq!((point.score, point.status), (0.0, "wrong"), "t = {t}: {point:?}");
+    }
+}
+
+/// A decimal answer at either printed end of the accepted range is accepted: the key ± its
+/// tolerance computed in binary lands a rounding error away from the decimal (seed 116's q1d key
+/// is 2 with 1 %; seed 3's q2c key is −2 with 0.1 %).
+#[test]
+fn a_decimal_answer_at_the_end_of_the_range_is_accepted() {
+    for (seed, key, value, outside) in [
+        (116, "q1d.pixels_per_frame", "1.98", "1.9799"),
+        (116, "q1d.pixels_per_frame", "2.02", "2.0201"),
+        (3, "q2c.t_closest", "-1.998", "-1.9979"),
+        (3, "q2c.t_closest", "-2.002", "-2.0021"),
+    ] {
+        let question = &key[..2];
+        let result = graded(question, seed, key, value);
+        assert_eq!(result.status, "correct", "seed {seed} {key} = {value}: {}", result.feedback);
+        assert_eq!(graded(question, seed, key, outside).status, "wrong", "seed {seed} {key} = {outside}");
+    }
+}
+
+/// A plane parameter with its sign flipped is a wrong formula, not a slip: what follows from it is
+/// not carried (seed 3, case (e): t = +1 at the root instead of −1, then the near child first, as
+/// the sign of d would suggest; the ray never enters x ≥ 3).
+#[test]
+fn a_flipped_sign_is_not_followed() {
+    let text = r#"[meta]
+seed = 3
+[q3e]
+planes = [{ node = [], t = 1, first = "x>=3" }, { node = ["x>=3"], t = 1, first = "y>=3" }, { node = ["x<3"], t = 3, first = "y>=1" }]
+descents = [{ path = ["x>=3"], tmin = 0, tmax = 1 }, { path = ["x>=3", "y>=3"], tmin = 0, tmax = 1 }, { path = ["x<3"], tmin = 1, tmax = "inf" }, { path = ["x<3", "y>=1"], tmin = 1, tmax = 3 }, { path = ["x<3", "y<1"], tmin = 3, tmax = "inf" }]
+leaves = [{ path = ["x>=3", "y>=3"], tmin = 0, tmax = 1 }, { path = ["x<3", "y>=1"], tmin = 1, tmax = 3 }, { path = ["x<3", "y<1"], tmin = 3, tmax = "inf" }]
+"#;
+    let report = check(text, None).unwrap();
+    let planes = part(&report, "q3e.planes");
+    assert!(planes.feedback.contains("sign error"), "{}", planes.feedback);
+    for key in ["q3e.planes", "q3e.descents", "q3e.leaves"] {
+        let p = part(&report, key);
+        assert_ne!(p.mistake, Some("carried_forward"), "{p:?}");
+        assert!(p.score < 0.75 * p.max_score, "{p:?}");
+    }
+}
+
+/// The leaves follow from the student's planes when the descents are missing (seed 3, case (d),
+/// the root crossed at 1.5 instead of 0.5), and when the descents repeat a mistake of method the
+/// leaves do not (tmin kept at 0 in the descents only).
+#[test]
+fn leaves_follow_from_the_planes_when_the_descents_cannot_lead() {
+    let planes = r#"planes = [{ node = [], t = 1.5, first = "x>=3" }, { node = ["x>=3"], t = 3, first = "y<3" }, { node = ["x<3"], t = 1, first = "y>=1" }]"#;
+    let leaves = r#"leaves = [{ path = ["x>=3", "y<3"], tmin = 0, tmax = 1.5 }, { path = ["x<3", "y>=1"], tmin = 1.5, tmax = "inf" }]"#;
+    let report = check(&format!("[meta]\nseed = 3\n[q3d]\n{planes}\n{leaves}\n"), None).unwrap();
+    let p = part(&report, "q3d.leaves");
+    assert_eq!((p.score, p.mistake), (3.0, Some("carried_forward")), "{p:?}");
+    assert!(p.feedback.starts_with("follows from your `q3d.planes`"), "{}", p.feedback);
+    let descents = r#"descents = [{ path = ["x>=3"], tmin = 0, tmax = 1.5 }, { path = ["x>=3", "y<3"], tmin = 0, tmax = 1.5 }, { path = ["x<3"], tmin = 0, tmax = "inf" }, { path = ["x<3", "y>=1"], tmin = 0, tmax = "inf" }]"#;
+    let report = check(&format!("[meta]\nseed = 3\n[q3d]\n{planes}\n{descents}\n{leaves}\n"), None).unwrap();
+    let p = part(&report, "q3d.leaves");
+    assert_eq!((p.score, p.mistake), (3.0, Some("carried_forward")), "{p:?}");
+}

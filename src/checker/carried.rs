@@ -44,6 +44,15 @@ pub(super) fn recompute(derivation: &Derivation, earlier: &Given, later: &Expect
             descents: true,
         }),
         (
+            Derivation::LeavesFromPlanes { origin, dir },
+            Given::Planes(given),
+            Expected::Trace { planes: crossings, descents: false, .. },
+        ) => descents_following(*origin, *dir, given).map(|descents| Expected::Trace {
+            leaves: leaves_of(&descents),
+            planes: crossings.clone(),
+            descents: false,
+        }),
+        (
             Derivation::LeavesFromDescents { descents: key, origin, dir },
             Given::Trace(descents),
             Expected::Trace { planes, .. },
@@ -95,14 +104,38 @@ fn traversal_with(
 /// each node with its right `t` (or none for a parallel ray), so that grading against them charges
 /// a wrong `t` at its node and nowhere below it.
 pub(super) fn planes_following(origin: [f64; 2], dir: [f64; 2], given: &[ExpectedPlane]) -> Vec<ExpectedPlane> {
-    let (planes, _) = traversal_with(origin, dir, &|path| given_t(given, path));
+    let (planes, _) = traversal_with(origin, dir, &|path| given_t(origin, dir, given, path));
     planes.into_iter().map(|(plane, right_t)| ExpectedPlane { t: right_t, ..plane }).collect()
 }
 
-/// The student's finite `t` at the node `path`, if the student's planes name that node.
-fn given_t(given: &[ExpectedPlane], path: &[Branch]) -> Option<f64> {
+/// The student's finite `t` at the node `path`, if the student's planes name that node, unless it
+/// is the right `t` with its sign flipped: `(e_a − s)/d_a` is a wrong formula, a mistake of
+/// method, and what follows from it is not carried.
+fn given_t(origin: [f64; 2], dir: [f64; 2], given: &[ExpectedPlane], path: &[Branch]) -> Option<f64> {
     let node: Vec<String> = path.iter().map(ToString::to_string).collect();
-    given.iter().find(|p| p.node == node).and_then(|p| p.t).filter(|t| t.is_finite())
+    let t = given.iter().find(|p| p.node == node).and_then(|p| p.t).filter(|t| t.is_finite())?;
+    (!flipped_sign(origin, dir, path, t)).then_some(t)
+}
+
+/// Whether `t` is the negative of the right plane parameter at the node `path` (and not the right
+/// one itself, as 0 is).
+fn flipped_sign(origin: [f64; 2], dir: [f64; 2], path: &[Branch], t: f64) -> bool {
+    let Some(right) = right_t(origin, dir, path) else { return false };
+    same_bound(-t, right) && !same_bound(t, right)
+}
+
+/// The right plane parameter of the homework tree's node at `path`: `(s − e_a)/d_a`, or `None`
+/// for a parallel ray or a leaf.
+fn right_t(origin: [f64; 2], dir: [f64; 2], path: &[Branch]) -> Option<f64> {
+    let tree = Node2::homework();
+    let node = path.iter().fold(&tree, |node, branch| match (node, branch.side) {
+        (Node2::Split { lower, .. }, Side::Lower) => lower,
+        (Node2::Split { upper, .. }, Side::Upper) => upper,
+        (leaf, _) => leaf,
+    });
+    let Node2::Split { axis, split, .. } = node else { return None };
+    let line = QuotientAxis::new(origin[axis.index()], dir[axis.index()]);
+    (!line.is_parallel()).then(|| line.plane_t(*split))
 }
 
 /// The descents as they follow from the student's planes: the traversal taken with the student's
@@ -112,7 +145,7 @@ fn given_t(given: &[ExpectedPlane], path: &[Branch]) -> Option<f64> {
 /// planes are not that traversal's (a wrong node or first child, a missing or extra plane, a
 /// parallel plane given a `t` or a crossing called parallel): a mistake of method.
 fn descents_following(origin: [f64; 2], dir: [f64; 2], given: &[ExpectedPlane]) -> Option<Vec<ExpectedLeaf>> {
-    let (planes, descents) = traversal_with(origin, dir, &|path| given_t(given, path));
+    let (planes, descents) = traversal_with(origin, dir, &|path| given_t(origin, dir, given, path));
     let same = planes.len() == given.len()
         && planes.iter().map(|(p, _)| p).zip(given).all(|(p, g)| {
             p.node == g.node
@@ -131,23 +164,13 @@ fn descents_following(origin: [f64; 2], dir: [f64; 2], given: &[ExpectedPlane]) 
 /// `t`. The traversal taken with those values must give exactly `given`; a wrong first child, a
 /// missing or extra descent, or a bound kept at 0 or left unclipped gives a list it does not.
 fn is_a_traversal(origin: [f64; 2], dir: [f64; 2], given: &[ExpectedLeaf]) -> bool {
-    let tree = Node2::homework();
     let inferred = |path: &[Branch]| -> Option<f64> {
-        let node = path.iter().fold(&tree, |node, branch| match (node, branch.side) {
-            (Node2::Split { lower, .. }, Side::Lower) => lower,
-            (Node2::Split { upper, .. }, Side::Upper) => upper,
-            (leaf, _) => leaf,
-        });
-        let Node2::Split { axis, .. } = node else { return None };
-        let d = dir[axis.index()];
-        if d == 0.0 {
-            return None;
-        }
+        right_t(origin, dir, path)?;
         let parent: Vec<String> = path.iter().map(ToString::to_string).collect();
         let children: Vec<&ExpectedLeaf> =
             given.iter().filter(|g| g.path.len() == parent.len() + 1 && g.path[..parent.len()] == parent[..]).collect();
         match children.as_slice() {
-            [first, _] => Some(first.t_max),
+            [first, _] if !flipped_sign(origin, dir, path, first.t_max) => Some(first.t_max),
             _ => None,
         }
     };

@@ -8,6 +8,7 @@
 //! before any file is read.
 
 use super::grading::{Report, check};
+use super::policy::Rule;
 use super::reports::report_gradescope;
 use crate::cli::{ANSWERS_FILE_BYTES, ReadError, one_line, quote, read_text_bounded};
 use crate::fsio::io_reason;
@@ -245,7 +246,8 @@ pub fn check_class(files: &[(String, Result<String, ReadError>)], seed_override:
             let results: Vec<_> = reports.iter().filter_map(|r| r.parts.get(i)).filter(|p| p.key == part.key).collect();
             let count = |status: &str| results.iter().filter(|p| p.status == status).count();
             let mut mistakes: BTreeMap<&'static str, usize> = BTreeMap::new();
-            for mistake in results.iter().filter_map(|p| p.mistake) {
+            // Credit carried forward marks a right step, not a mistake.
+            for mistake in results.iter().filter_map(|p| p.mistake).filter(|m| *m != Rule::CarriedForward.id()) {
                 *mistakes.entry(mistake).or_default() += 1;
             }
             // The largest count; among equals, the first key (BTreeMap order), since max_by_key

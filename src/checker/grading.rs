@@ -229,7 +229,10 @@ fn carry_forward(parts: &[&Part], givens: &[Option<Given>], follows: &[&Follows]
 fn unfollowable(derivation: &Derivation) -> &'static str {
     match derivation {
         Derivation::DescentsFromPlanes { .. } => {
-            "your planes differ from the traversal's in more than a plane parameter (a node, a first child, or a parallel plane), so the descents are graded against the key"
+            "your planes differ from the traversal's in more than a plane parameter's value (a node, a first child, a parallel plane, or a t with its sign flipped), so the descents are graded against the key"
+        }
+        Derivation::LeavesFromPlanes { .. } => {
+            "your planes differ from the traversal's in more than a plane parameter's value (a node, a first child, a parallel plane, or a t with its sign flipped), so the leaves are graded against the key"
         }
         Derivation::LeavesFromDescents { .. } => {
             "your descents do not follow the traversal from the plane parameters they show (a wrong, missing or extra cell, a wrong first child, or a bound kept at 0 or left unclipped), so the leaves are graded against the key"
@@ -264,8 +267,22 @@ fn status(score: f64, points: f64) -> &'static str {
         "wrong"
     }
 }
+
+/// The Euclidean length, scaled by the largest component first so that it overflows only when
+/// the length itself does (a point at t = 10¹⁵⁵ has a finite length, though its square does not).
 fn norm(v: [f64; 3]) -> f64 {
-    v.iter().map(|x| x * x).sum::<f64>().sqrt()
+    let scale = v.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
+    if scale == 0.0 || !scale.is_finite() {
+        return scale;
+    }
+    scale * v.iter().map(|x| (x / scale) * (x / scale)).sum::<f64>().sqrt()
+}
+
+/// Whether an error is within the allowed one: the allowed error must be finite (an infinite one
+/// would accept anything), and a few units of rounding in computing the two are forgiven, so that a
+/// decimal answer at the printed end of the range (2 − 0.02 = 1.98) is accepted.
+fn within(error: f64, allowed: f64, scale: f64) -> bool {
+    allowed.is_finite() && error <= allowed + 4.0 * f64::EPSILON * scale
 }
 
 fn difference(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
@@ -284,14 +301,17 @@ fn compare(expected: &Expected, given: &Given) -> (bool, String) {
                 show_bound_of_range(value + allowed, false)
             );
             (
-                error <= allowed,
-                format!("off by {error:.3e} (relative {:.1e}); {range}", error / value.abs().max(1e-300)),
+                within(error, allowed, value.abs() + x.abs()),
+                format!("off by {error:.3e} (relative {:.3e}); {range}", error / value.abs().max(1e-300)),
             )
         }
         (Expected::Vector { value, rtol, atol }, Given::Vector(v)) => {
             let allowed = rtol * norm(*value) + atol;
             let error = norm(difference(*v, *value));
-            (error <= allowed, format!("off by {error:.3e}; accepted within {allowed:.1e} of the key"))
+            (
+                within(error, allowed, norm(*value) + norm(*v)),
+                format!("off by {error:.3e}; accepted within {allowed:.1e} of the key"),
+            )
         }
         (Expected::Direction { value, angle_tol } | Expected::Parallel { value, angle_tol }, Given::Vector(v)) => {
             let length = norm(*v);
@@ -396,8 +416,12 @@ fn show_expected(expected: &Expected) -> String {
     }
 }
 
+/// A vector in the feedback: each component as [`show_number`] prints it, and a component below
+/// 10⁻⁹ of the vector's length as 0 (the rounding of a rotation, not part of the answer).
 fn show_vector(v: [f64; 3]) -> String {
-    format!("[{:.6}, {:.6}, {:.6}]", v[0], v[1], v[2])
+    let length = norm(v);
+    let [x, y, z] = v.map(|c| show_number(if c.abs() < 1e-9 * length { 0.0 } else { c }));
+    format!("[{x}, {y}, {z}]")
 }
 
 fn grade(part: &Part, given: Option<&Given>) -> PartResult {

@@ -388,6 +388,15 @@ pub enum Derivation {
         /// The ray's direction `d`.
         dir: [f64; 2],
     },
+    /// Q3: the leaves as the traversal makes them with the student's own plane parameters, when
+    /// the student's planes are that traversal's (as for [`Derivation::DescentsFromPlanes`]): the
+    /// way to the leaves when the descents are missing or repeat a mistake the planes do not.
+    LeavesFromPlanes {
+        /// The ray's origin `e`.
+        origin: [f64; 2],
+        /// The ray's direction `d`.
+        dir: [f64; 2],
+    },
     /// Q3: the leaves are the student's descents into cells that are not split further, when
     /// those descents follow the traversal's method (the key's cells with each bound right,
     /// carried from a wrong plane parameter, or that slip itself; or the traversal's descents

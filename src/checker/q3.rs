@@ -307,6 +307,11 @@ pub(super) fn variant(seed: u64) -> Variant {
             from: name("descents"),
             derivation: Derivation::LeavesFromDescents { descents: key_descents, origin: ray.origin, dir: ray.dir },
         });
+        follows.push(Follows {
+            key: name("leaves"),
+            from: name("planes"),
+            derivation: Derivation::LeavesFromPlanes { origin: ray.origin, dir: ray.dir },
+        });
     }
     Variant { question: "q3", seed, setting: Setting::Q3 { d, e }, statement, parts, follows }
 }

@@ -12,7 +12,14 @@ pub(super) fn same_bound(a: f64, b: f64) -> bool {
 }
 
 pub(super) fn show_bound(t: f64) -> String {
-    if t.is_infinite() { "inf".into() } else { format!("{t}") }
+    let t = t + 0.0; // -0 is printed as 0, as the answers write it
+    if t.is_infinite() {
+        "inf".into()
+    } else if t != 0.0 && !(1e-4..1e15).contains(&t.abs()) {
+        format!("{t:e}")
+    } else {
+        format!("{t}")
+    }
 }
 
 pub(super) fn show_leaf(leaf: &ExpectedLeaf) -> String {
@@ -308,8 +315,13 @@ pub(super) fn grade_planes(
     let credit = right as f64 / expected.len().max(given.len()).max(1) as f64;
     let followed_order: Vec<&ExpectedPlane> = followed.iter().collect();
     let right_followed = right_in_order(&followed_order, given, agree);
-    let credit_followed = right_followed as f64 / followed.len().max(given.len()).max(1) as f64;
-    let carried = credit_followed > credit;
+    // A slip that cuts a branch off leaves fewer nodes to list: each wrong entry still costs one
+    // share of the longest of the three lists, as a node of the key would.
+    let wrong_followed = followed.len().max(given.len()) - right_followed;
+    let credit_followed =
+        1.0 - wrong_followed as f64 / expected.len().max(followed.len()).max(given.len()).max(1) as f64;
+    // Kept only when it earns more: 1 − 2/3 and 1/3 differ in the last bit.
+    let carried = credit_followed > credit + 1e-9;
     let (right, credit) = if carried { (right_followed, credit_followed) } else { (right, credit) };
     let n = prefix + 1;
     let reason = match (expected.get(prefix), given.get(prefix)) {
