@@ -530,6 +530,22 @@ mod tests {
         // The larger root is an instance of the policy's wrong-root rule, which the report names.
         assert_eq!(t.most_common_mistake, Some(crate::checker::Rule::WrongRoot.id()), "{t:?}");
         assert_eq!(t.most_common_mistake_count, 2);
+        // A point that follows from the larger root earns credit carried forward, which marks a
+        // right step, not a mistake.
+        let crate::checker::Setting::Q2 { ray, .. } = crate::checker::variant("q2", 0).unwrap().setting else {
+            unreachable!()
+        };
+        let followed = {
+            let t = 5.0 + 3f64.sqrt();
+            let mut file: toml::Table = toml::from_str(&larger).unwrap();
+            let point = ray.origin + ray.dir * t;
+            let point = toml::Value::Array(point.to_array().iter().map(|&x| toml::Value::Float(x)).collect());
+            file["q2a"].as_table_mut().unwrap().insert("point".into(), point);
+            toml::to_string(&file).unwrap()
+        };
+        let carried = class(&[&followed, &followed]);
+        let point = carried.parts.iter().find(|p| p.key == "q2a.point").unwrap();
+        assert_eq!((point.partial + point.correct, point.most_common_mistake), (2, None), "{point:?}");
         assert!(!report.all_correct());
         let first = &report.submissions[0];
         assert_eq!(
