@@ -183,11 +183,22 @@ pub(super) fn variant(seed: u64) -> Variant {
             // The exact (1 − p)^N, within 1 %. The Boolean-model limit e^(−Np) is larger by about
             // N p²/2, relatively: it passes only where that is below about 0.01 (the chapter says so).
             expected: Expected::number(gap, 1e-2),
-            mal_rules: vec![MalRule {
-                value: Expected::number(k.first_order, 1e-2),
-                message: "that is the first-order term 1 - N p; the misses multiply: (1 - p)^N",
-                rule: Rule::OtherQuantity,
-            }],
+            mal_rules: {
+                let mut rules = vec![MalRule {
+                    value: Expected::number(k.first_order, 1e-2),
+                    message: "that is the first-order term 1 - N p; the misses multiply: (1 - p)^N",
+                    rule: Rule::OtherQuantity,
+                }];
+                // Named only where it is wrong: for a sparse slab the limit is within 1 % and right.
+                if (k.boolean / gap - 1.0).abs() > 1e-2 {
+                    rules.push(MalRule {
+                        value: Expected::number(k.boolean, 1e-2),
+                        message: "that is the Boolean-model limit e^(-N p), larger than (1 - p)^N by about N p^2/2; for this slab that is more than 1 %: the product (1 - p)^N is the answer",
+                        rule: Rule::OtherQuantity,
+                    });
+                }
+                rules
+            },
             explained_in: CLUTTER_NOTES,
             method: "One sphere blocks a ray with probability p = pi a^2/(W + 2a)^2; the N spheres miss independently: (1 - p)^N.",
         },
