@@ -265,7 +265,7 @@ mod q3 {
                 "missing: the ray goes on into",
                 "out of order: the ray enters",
                 "is extra: the ray has left the tree's last cell",
-                "differ from the traversal's in more than a plane parameter",
+                "are not the traversal's with one slip of arithmetic",
                 "do not follow the traversal from the plane parameters they show",
                 "more planes right as they follow from your t (error carried forward)",
                 "against the values you had",

@@ -30,7 +30,10 @@ pub(super) fn recompute(derivation: &Derivation, earlier: &Given, later: &Expect
             let reflected = d - n * (2.0 * n.dot(d));
             Some(Expected::Direction { value: reflected.to_array(), angle_tol: *angle_tol })
         }
-        (Derivation::LostFromHalfAngle, Given::Number(degrees), Expected::Number { rtol, atol, .. }) => {
+        // A half-angle of 0 (no blind spot) or of 90° or more is not a cone to lose light in.
+        (Derivation::LostFromHalfAngle, Given::Number(degrees), Expected::Number { rtol, atol, .. })
+            if *degrees > 0.0 && *degrees < 90.0 =>
+        {
             let lost = degrees.to_radians().sin().powi(2);
             Some(Expected::Number { value: lost, rtol: *rtol, atol: *atol })
         }
@@ -100,42 +103,117 @@ fn traversal_with(
 }
 
 /// The planes as they follow from the student's own plane parameters: the nodes met and the
-/// first children of the traversal taken with every finite `t` the student gives (at its node),
-/// each node with its right `t` (or none for a parallel ray), so that grading against them charges
-/// a wrong `t` at its node and nowhere below it.
+/// first children of the traversal taken with the student's slip (see [`Slips`]), each node with
+/// its right `t` (or none for a parallel ray), so that grading against them charges a wrong `t`
+/// at its node and nowhere below it.
 pub(super) fn planes_following(origin: [f64; 2], dir: [f64; 2], given: &[ExpectedPlane]) -> Vec<ExpectedPlane> {
-    let (planes, _) = traversal_with(origin, dir, &|path| given_t(origin, dir, given, path));
+    let slips = Slips::of_planes(origin, dir, given);
+    let (planes, _) = traversal_with(origin, dir, &|path| slips.at(path));
     planes.into_iter().map(|(plane, right_t)| ExpectedPlane { t: right_t, ..plane }).collect()
 }
 
-/// The student's finite `t` at the node `path`, if the student's planes name that node, unless it
-/// is the right `t` with its sign flipped: `(e_a − s)/d_a` is a wrong formula, a mistake of
-/// method, and what follows from it is not carried.
-fn given_t(origin: [f64; 2], dir: [f64; 2], given: &[ExpectedPlane], path: &[Branch]) -> Option<f64> {
-    let node: Vec<String> = path.iter().map(ToString::to_string).collect();
-    let t = given.iter().find(|p| p.node == node).and_then(|p| p.t).filter(|t| t.is_finite())?;
-    (!flipped_sign(origin, dir, path, t)).then_some(t)
+/// The wrong plane parameters of an answer that are followed as a slip of arithmetic: one at
+/// most, and only a value a slip can give. A `t` of the other sign than the right one (the crossing
+/// put on the wrong side of the eye, as the flipped formula `(e_a − s)/d_a` does), or the `t` of
+/// another plane or axis of the tree (the wrong term), is a mistake of method; two or more wrong
+/// values are no longer a slip (a trace made up to fit invented values would otherwise follow).
+/// What is not followed is graded against the key.
+struct Slips {
+    origin: [f64; 2],
+    dir: [f64; 2],
+    /// The followed slip: the node (its branch names) and the student's `t` there.
+    slip: Option<(Vec<String>, f64)>,
 }
 
-/// Whether `t` is the negative of the right plane parameter at the node `path` (and not the right
-/// one itself, as 0 is).
-fn flipped_sign(origin: [f64; 2], dir: [f64; 2], path: &[Branch], t: f64) -> bool {
-    let Some(right) = right_t(origin, dir, path) else { return false };
-    same_bound(-t, right) && !same_bound(t, right)
+impl Slips {
+    /// The slip among an answer's planes, if exactly one of its plane parameters is wrong and it is
+    /// a slip.
+    fn of_planes(origin: [f64; 2], dir: [f64; 2], given: &[ExpectedPlane]) -> Self {
+        let wrong: Vec<(Vec<String>, f64)> = given
+            .iter()
+            .filter_map(|p| {
+                let right = right_t_named(origin, dir, &p.node)?;
+                let t = p.t?;
+                (!same_bound(t, right)).then(|| (p.node.clone(), t))
+            })
+            .collect();
+        Self::of(origin, dir, wrong)
+    }
+
+    fn of(origin: [f64; 2], dir: [f64; 2], wrong: Vec<(Vec<String>, f64)>) -> Self {
+        let slip = match wrong.as_slice() {
+            [(node, t)] if is_slip(origin, dir, node, *t) => Some((node.clone(), *t)),
+            _ => None,
+        };
+        Self { origin, dir, slip }
+    }
+
+    /// The `t` the followed traversal takes at the node `path`: the slip there, else the right one.
+    fn at(&self, path: &[Branch]) -> Option<f64> {
+        let node: Vec<String> = path.iter().map(ToString::to_string).collect();
+        match &self.slip {
+            Some((slipped, t)) if *slipped == node => Some(*t),
+            _ => right_t_named(self.origin, self.dir, &node),
+        }
+    }
 }
 
-/// The right plane parameter of the homework tree's node at `path`: `(s − e_a)/d_a`, or `None`
-/// for a parallel ray or a leaf.
-fn right_t(origin: [f64; 2], dir: [f64; 2], path: &[Branch]) -> Option<f64> {
+/// Whether the wrong value `t` at `node` can be a slip of arithmetic: finite, of the right value's
+/// sign, and neither another node's plane parameter nor this node's split taken on the other axis
+/// (the wrong term).
+fn is_slip(origin: [f64; 2], dir: [f64; 2], node: &[String], t: f64) -> bool {
+    let Some(right) = right_t_named(origin, dir, node) else { return false };
+    let Some((axis, split)) = split_named(node) else { return false };
+    let plane_t = |a: usize, s: f64| {
+        let line = QuotientAxis::new(origin[a], dir[a]);
+        (!line.is_parallel()).then(|| line.plane_t(s))
+    };
+    let mut wrong_terms: Vec<f64> = tree_planes().into_iter().filter_map(|(a, s)| plane_t(a, s)).collect();
+    wrong_terms.extend(plane_t(1 - axis, split));
+    let wrong_term = wrong_terms.iter().any(|&other| same_bound(t, other) && !same_bound(other, right));
+    t.is_finite() && (t > 0.0) == (right > 0.0) && !wrong_term
+}
+
+/// The planes of the homework's tree: each split's axis index and value.
+fn tree_planes() -> Vec<(usize, f64)> {
+    fn walk(node: &Node2, out: &mut Vec<(usize, f64)>) {
+        if let Node2::Split { axis, split, lower, upper } = node {
+            out.push((axis.index(), *split));
+            walk(lower, out);
+            walk(upper, out);
+        }
+    }
+    let mut out = Vec::new();
+    walk(&Node2::homework(), &mut out);
+    out
+}
+
+/// The axis index and split value of the homework tree's node named by its branches.
+fn split_named(node: &[String]) -> Option<(usize, f64)> {
     let tree = Node2::homework();
-    let node = path.iter().fold(&tree, |node, branch| match (node, branch.side) {
-        (Node2::Split { lower, .. }, Side::Lower) => lower,
-        (Node2::Split { upper, .. }, Side::Upper) => upper,
-        (leaf, _) => leaf,
-    });
-    let Node2::Split { axis, split, .. } = node else { return None };
-    let line = QuotientAxis::new(origin[axis.index()], dir[axis.index()]);
-    (!line.is_parallel()).then(|| line.plane_t(*split))
+    let mut at = &tree;
+    for name in node {
+        let Node2::Split { axis, split, lower, upper } = at else { return None };
+        at = if *name == (Branch { axis: *axis, side: Side::Lower, split: *split }).to_string() {
+            lower
+        } else if *name == (Branch { axis: *axis, side: Side::Upper, split: *split }).to_string() {
+            upper
+        } else {
+            return None;
+        };
+    }
+    match at {
+        Node2::Split { axis, split, .. } => Some((axis.index(), *split)),
+        Node2::Leaf => None,
+    }
+}
+
+/// The right plane parameter of the homework tree's node named by its branches (`["x<3"]`):
+/// `(s − e_a)/d_a`, or `None` for a parallel ray, a leaf or a name the tree does not have.
+fn right_t_named(origin: [f64; 2], dir: [f64; 2], node: &[String]) -> Option<f64> {
+    let (axis, split) = split_named(node)?;
+    let line = QuotientAxis::new(origin[axis], dir[axis]);
+    (!line.is_parallel()).then(|| line.plane_t(split))
 }
 
 /// The descents as they follow from the student's planes: the traversal taken with the student's
@@ -145,7 +223,8 @@ fn right_t(origin: [f64; 2], dir: [f64; 2], path: &[Branch]) -> Option<f64> {
 /// planes are not that traversal's (a wrong node or first child, a missing or extra plane, a
 /// parallel plane given a `t` or a crossing called parallel): a mistake of method.
 fn descents_following(origin: [f64; 2], dir: [f64; 2], given: &[ExpectedPlane]) -> Option<Vec<ExpectedLeaf>> {
-    let (planes, descents) = traversal_with(origin, dir, &|path| given_t(origin, dir, given, path));
+    let slips = Slips::of_planes(origin, dir, given);
+    let (planes, descents) = traversal_with(origin, dir, &|path| slips.at(path));
     let same = planes.len() == given.len()
         && planes.iter().map(|(p, _)| p).zip(given).all(|(p, g)| {
             p.node == g.node
@@ -164,17 +243,27 @@ fn descents_following(origin: [f64; 2], dir: [f64; 2], given: &[ExpectedPlane]) 
 /// `t`. The traversal taken with those values must give exactly `given`; a wrong first child, a
 /// missing or extra descent, or a bound kept at 0 or left unclipped gives a list it does not.
 fn is_a_traversal(origin: [f64; 2], dir: [f64; 2], given: &[ExpectedLeaf]) -> bool {
-    let inferred = |path: &[Branch]| -> Option<f64> {
-        right_t(origin, dir, path)?;
-        let parent: Vec<String> = path.iter().map(ToString::to_string).collect();
-        let children: Vec<&ExpectedLeaf> =
-            given.iter().filter(|g| g.path.len() == parent.len() + 1 && g.path[..parent.len()] == parent[..]).collect();
-        match children.as_slice() {
-            [first, _] if !flipped_sign(origin, dir, path, first.t_max) => Some(first.t_max),
-            _ => None,
-        }
-    };
-    let (_, descents) = traversal_with(origin, dir, &inferred);
+    // The plane parameters the descents show: the bound between a node's two children.
+    let shown: Vec<(Vec<String>, f64)> = given
+        .iter()
+        .filter_map(|g| {
+            let (_, parent) = g.path.split_last()?;
+            let second = given
+                .iter()
+                .find(|h| h.path.len() == g.path.len() && h.path.starts_with(parent) && h.path != g.path)?;
+            let first_here = given.iter().position(|h| h == g) < given.iter().position(|h| h == second);
+            first_here.then(|| (parent.to_vec(), g.t_max))
+        })
+        .collect();
+    let wrong: Vec<(Vec<String>, f64)> = shown
+        .into_iter()
+        .filter(|(node, t)| right_t_named(origin, dir, node).is_some_and(|right| !same_bound(*t, right)))
+        .collect();
+    if wrong.len() > 1 {
+        return false;
+    }
+    let slips = Slips::of(origin, dir, wrong);
+    let (_, descents) = traversal_with(origin, dir, &|path| slips.at(path));
     descents.len() == given.len()
         && descents
             .iter()

@@ -85,7 +85,7 @@ impl Report {
 }
 
 /// Grades an answers file (TOML text). The seed comes from `seed_override`, else `[meta] seed`,
-/// else 0.
+/// else 0, with a warning in the report.
 ///
 /// Each part earns the best of: the key's answer (full points), a step that follows from the
 /// student's own wrong answer to the part it depends on ([`Rule::CarriedForward`]), a trace's
@@ -121,6 +121,11 @@ pub fn check(text: &str, seed_override: Option<u64>) -> Result<Report, CheckErro
     }
     // A misspelt key is graded under its part only when its value has that part's shape.
     let mut warnings = Vec::new();
+    // A file without its seed is graded as variant 0, which is right only for that variant: said
+    // so, so that a class's grader sees it.
+    if seed_override.is_none() && table.get("meta").and_then(|m| m.get("seed")).is_none() {
+        warnings.push("no `[meta] seed` in the file and no --seed: graded as variant 0".to_string());
+    }
     let mut renamed = vec![None; parts.len()];
     for u in &mut unknown {
         let (Some(target), Some(key)) = (u.graded_as, u.key.as_deref()) else { continue };
@@ -229,10 +234,10 @@ fn carry_forward(parts: &[&Part], givens: &[Option<Given>], follows: &[&Follows]
 fn unfollowable(derivation: &Derivation) -> &'static str {
     match derivation {
         Derivation::DescentsFromPlanes { .. } => {
-            "your planes differ from the traversal's in more than a plane parameter's value (a node, a first child, a parallel plane, or a t with its sign flipped), so the descents are graded against the key"
+            "your planes are not the traversal's with one slip of arithmetic (two or more wrong t, a t of the wrong sign or another plane's t, a wrong node or first child, or a parallel plane), so the descents are graded against the key"
         }
         Derivation::LeavesFromPlanes { .. } => {
-            "your planes differ from the traversal's in more than a plane parameter's value (a node, a first child, a parallel plane, or a t with its sign flipped), so the leaves are graded against the key"
+            "your planes are not the traversal's with one slip of arithmetic (two or more wrong t, a t of the wrong sign or another plane's t, a wrong node or first child, or a parallel plane), so the leaves are graded against the key"
         }
         Derivation::LeavesFromDescents { .. } => {
             "your descents do not follow the traversal from the plane parameters they show (a wrong, missing or extra cell, a wrong first child, or a bound kept at 0 or left unclipped), so the leaves are graded against the key"
@@ -302,7 +307,11 @@ fn compare(expected: &Expected, given: &Given) -> (bool, String) {
             );
             (
                 within(error, allowed, value.abs() + x.abs()),
-                format!("off by {error:.3e} (relative {:.3e}); {range}", error / value.abs().max(1e-300)),
+                if *value == 0.0 {
+                    format!("off by {error:.3e}; {range}")
+                } else {
+                    format!("off by {error:.3e} (relative {:.3e}); {range}", error / value.abs())
+                },
             )
         }
         (Expected::Vector { value, rtol, atol }, Given::Vector(v)) => {
@@ -363,11 +372,12 @@ fn compare(expected: &Expected, given: &Given) -> (bool, String) {
 /// more decimals below, and an exponent below 10⁻³), so that an accepted range is never rounded
 /// onto a wrong answer and a dense slab's gap fraction of 10⁻¹² is not printed as 0.
 fn show_number(x: f64) -> String {
+    let x = x + 0.0; // -0 prints as 0
     if x == 0.0 || !x.is_finite() {
         return format!("{x:.6}");
     }
     let magnitude = x.abs().log10().floor();
-    if magnitude < -3.0 {
+    if !(-3.0..15.0).contains(&magnitude) {
         format!("{x:.5e}")
     } else {
         // 0.0123 has magnitude -2: seven decimals give it six significant digits.
@@ -396,6 +406,7 @@ fn show_bound_of_range(x: f64, low: bool) -> String {
 /// A student's number as given: its shortest exact form, with an exponent when very small or
 /// large (`5.29862e-12`, not `0.00000000000529862`).
 fn echo_number(x: f64) -> String {
+    let x = x + 0.0; // -0 prints as 0
     if x != 0.0 && x.is_finite() && !(1e-4..1e15).contains(&x.abs()) { format!("{x:e}") } else { format!("{x}") }
 }
 
@@ -417,10 +428,9 @@ fn show_expected(expected: &Expected) -> String {
 }
 
 /// A vector in the feedback: each component as [`show_number`] prints it, and a component below
-/// 10⁻⁹ of the vector's length as 0 (the rounding of a rotation, not part of the answer).
+/// 10⁻¹² as 0 (the rounding of a rotation in a key, not part of the answer).
 fn show_vector(v: [f64; 3]) -> String {
-    let length = norm(v);
-    let [x, y, z] = v.map(|c| show_number(if c.abs() < 1e-9 * length { 0.0 } else { c }));
+    let [x, y, z] = v.map(|c| show_number(if c.abs() < 1e-12 { 0.0 } else { c }));
     format!("[{x}, {y}, {z}]")
 }
 

@@ -132,13 +132,17 @@ const AT_HIT: [(&str, Kind); 3] = [("p", Kind::Vector), ("o", Kind::Vector), ("r
 const REFLECTION: [(&str, Kind); 3] = [("d", Kind::Vector), ("dhat", Kind::Vector), ("n", Kind::Vector)];
 const RAY_CENTRE: [(&str, Kind); 3] = [("e", Kind::Vector), ("d", Kind::Vector), ("o", Kind::Vector)];
 
-/// Where formulas are compared: 40 rays from outside that hit a sphere, real numbers (not the
-/// variant's integers, so a formula cannot agree by coincidence), every symbol consistent with
-/// the others (`A = d·d`, `t` the smaller root, `p = e + d t`, `n = (p − o)/r`, `dhat = d/|d|`).
-pub(super) fn formula_points() -> Vec<Point> {
+/// Where formulas are compared: 40 rays that hit a sphere, real numbers (not the variant's
+/// integers, so a formula cannot agree by coincidence), every symbol consistent with the others
+/// (`A = d·d`, `t` the first hit, `p = e + d t`, `n = (p − o)/r`, `dhat = d/|d|`). With `inside`,
+/// every second eye is inside the sphere (`C < 0`, the larger root, `n · d > 0`), so that a formula
+/// right only from outside (`abs(C)`, a reflection with `abs(n · d)`) is not accepted; without,
+/// every eye is outside (the root formula asked is the first hit from outside).
+pub(super) fn formula_points(inside: bool) -> Vec<Point> {
     let mut g = rng::seeded(0, STREAM + 100);
     let mut points = Vec::new();
     while points.len() < 40 {
+        let want_inside = inside && points.len() % 2 == 1;
         let mut v = || {
             DVec3::new(
                 rng::uniform_in(&mut g, -4.0, 4.0),
@@ -150,10 +154,11 @@ pub(super) fn formula_points() -> Vec<Point> {
         let r = 0.5 + 2.0 * rng::uniform(&mut g);
         let (a, b, c) = (d.dot(d), 2.0 * (e - o).dot(d), (e - o).length_squared() - r * r);
         let disc = b * b - 4.0 * a * c;
-        if c <= 0.1 || disc <= 0.1 * a || a < 0.1 {
+        let separated = if want_inside { c < -0.1 } else { c > 0.1 };
+        if !separated || disc <= 0.1 * a || a < 0.1 {
             continue;
         }
-        let t = (-b - disc.sqrt()) / (2.0 * a);
+        let t = if want_inside { (-b + disc.sqrt()) / (2.0 * a) } else { (-b - disc.sqrt()) / (2.0 * a) };
         let p = e + d * t;
         let n = (p - o) / r;
         let values = [
@@ -174,7 +179,7 @@ pub(super) fn formula_points() -> Vec<Point> {
     points
 }
 
-fn formula_parts(points: &[Point]) -> [Part; 7] {
+fn formula_parts(points: &[Point], outside: &[Point]) -> [Part; 7] {
     let part = |key, prompt, source, symbols, slips, notes, method| {
         formula_part(key, prompt, 1.0, source, symbols, points, slips, notes, method)
     };
@@ -214,11 +219,13 @@ fn formula_parts(points: &[Point]) -> [Part; 7] {
             DERIVATION,
             "The terms without t: C = |e - o|^2 - r^2 (its sign says whether the eye is outside).",
         ),
-        part(
+        formula_part(
             "q2a.t_formula",
             "the first hit from outside, in A, B, C",
+            1.0,
             "(-B - sqrt(B^2 - 4*A*C))/(2*A)",
             &QUADRATIC,
+            outside,
             &[
                 (
                     "(-B + sqrt(B^2 - 4*A*C))/(2*A)",
@@ -343,8 +350,8 @@ pub(super) fn variant(seed: u64) -> Variant {
             method: "The ray hits when the quadratic has a root t > 0 (t = 0 is the eye itself).",
         },
     ];
-    let points = formula_points();
-    let [a, b, c, t_formula, normal_formula, reflected_formula, t_closest_formula] = formula_parts(&points);
+    let (points, outside) = (formula_points(true), formula_points(false));
+    let [a, b, c, t_formula, normal_formula, reflected_formula, t_closest_formula] = formula_parts(&points, &outside);
     if let (Some(t), Some(roots)) = (first, roots) {
         let hit = surface_hit(&ray, &sphere, t);
         let d_hat = ray.dir.normalize();

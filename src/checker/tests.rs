@@ -53,7 +53,7 @@ fn cached_and_uncached_reports_are_equal() {
 // Keys that are misspelt or unknown.
 #[test]
 fn misspelt_key_gets_a_suggestion() {
-    let report = check("[q2a]\npiont = [1, 2, 3]\n[q2c]\nt_closet = 5.0\nwhatever = 1", None).unwrap();
+    let report = check("[q2a]\npiont = [1, 2, 3]\n[q2c]\nt_closet = 5.0\nwhatever = 1", Some(0)).unwrap();
     // Both misspellings are close to one unanswered part each: graded there, with a warning.
     assert_eq!(report.warnings, ["graded `q2a.point` for `q2a.piont`", "graded `q2c.t_closest` for `q2c.t_closet`"]);
     assert_eq!(report.unknown_keys, vec!["`q2c.whatever`".to_string()]);
@@ -69,7 +69,7 @@ fn ambiguous_far_or_answered_keys_stay_unknown() {
     // answered; `q1a.share_of_gaps` is far from every part; two spellings of one part are both
     // a guess.
     let text = "[q2a]\nD = \"1\"\npoint = [1, 2, 3]\npointt = [1, 2, 3]\n[q1a]\nshare_of_gaps = 0.5\n[q2c]\nt_closet = 5.0\nt_closeste = 5.0";
-    let report = check(text, None).unwrap();
+    let report = check(text, Some(0)).unwrap();
     assert!(report.warnings.is_empty(), "{:?}", report.warnings);
     assert_eq!(
         report.unknown_keys,
@@ -85,9 +85,18 @@ fn ambiguous_far_or_answered_keys_stay_unknown() {
 }
 
 #[test]
+fn a_file_without_its_seed_is_graded_as_variant_0_with_a_warning() {
+    let report = check("[q2c]\nt_closest = 5.0", None).unwrap();
+    assert_eq!((report.seed, report.warnings.len()), (0, 1), "{:?}", report.warnings);
+    assert!(report.warnings[0].contains("no `[meta] seed`"));
+    assert!(check("[meta]\nseed = 0\n[q2c]\nt_closest = 5.0", None).unwrap().warnings.is_empty());
+    assert!(check("[q2c]\nt_closest = 5.0", Some(0)).unwrap().warnings.is_empty());
+}
+
+#[test]
 fn a_misspelt_key_of_the_wrong_shape_stays_unknown() {
     // `t_closet` is close to `t_closest`, but a string is no number: not graded, not an error.
-    let report = check("[q2c]\nt_closet = \"five\"", None).unwrap();
+    let report = check("[q2c]\nt_closet = \"five\"", Some(0)).unwrap();
     assert!(report.warnings.is_empty());
     assert_eq!(report.unknown_keys, ["`q2c.t_closet` (did you mean `q2c.t_closest`?)"]);
 }
