@@ -644,3 +644,30 @@ fn a_formula_right_only_from_outside_is_wrong() {
         assert_eq!(graded("q2", 0, key, &format!("\"{formula}\"")).status, "correct", "{key} = {formula}");
     }
 }
+
+/// Descents with bounds made up to fit (two wrong crossings, no planes) do not carry into the
+/// leaves: one wrong value is a slip, two are not (seed 3, case (d), crossings 0.5 and 1 written
+/// as 1 and 2).
+#[test]
+fn made_up_bounds_do_not_carry_into_the_leaves() {
+    let text = r#"[meta]
+seed = 3
+[q3d]
+descents = [{ path = ["x>=3"], tmin = 0, tmax = 1 }, { path = ["x>=3", "y<3"], tmin = 0, tmax = 1 }, { path = ["x<3"], tmin = 1, tmax = "inf" }, { path = ["x<3", "y<1"], tmin = 1, tmax = 2 }, { path = ["x<3", "y>=1"], tmin = 2, tmax = "inf" }]
+leaves = [{ path = ["x>=3", "y<3"], tmin = 0, tmax = 1 }, { path = ["x<3", "y<1"], tmin = 1, tmax = 2 }, { path = ["x<3", "y>=1"], tmin = 2, tmax = "inf" }]
+"#;
+    let report = check(text, None).unwrap();
+    let leaves = part(&report, "q3d.leaves");
+    assert!(leaves.score < 3.0, "{leaves:?}");
+    assert!(leaves.feedback.contains("your descents do not follow the traversal"), "{}", leaves.feedback);
+    // One wrong crossing (0.5 written as 0.75) is a slip, and the leaves follow.
+    let one = r#"[meta]
+seed = 3
+[q3d]
+descents = [{ path = ["x>=3"], tmin = 0, tmax = 0.75 }, { path = ["x>=3", "y<3"], tmin = 0, tmax = 0.75 }, { path = ["x<3"], tmin = 0.75, tmax = "inf" }, { path = ["x<3", "y<1"], tmin = 0.75, tmax = 1 }, { path = ["x<3", "y>=1"], tmin = 1, tmax = "inf" }]
+leaves = [{ path = ["x>=3", "y<3"], tmin = 0, tmax = 0.75 }, { path = ["x<3", "y<1"], tmin = 0.75, tmax = 1 }, { path = ["x<3", "y>=1"], tmin = 1, tmax = "inf" }]
+"#;
+    let report = check(one, None).unwrap();
+    let leaves = part(&report, "q3d.leaves");
+    assert_eq!((leaves.score, leaves.mistake), (3.0, Some("carried_forward")), "{leaves:?}");
+}

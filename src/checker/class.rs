@@ -300,7 +300,13 @@ pub fn class_text(class: &ClassReport) -> String {
         match (&s.report, &s.error) {
             (Some(r), _) => {
                 let wrong = r.parts.iter().filter(|p| p.status != "correct").count();
-                let verdict = if wrong == 0 { "all correct".to_string() } else { format!("{wrong} parts not correct") };
+                let mut verdict =
+                    if wrong == 0 { "all correct".to_string() } else { format!("{wrong} parts not correct") };
+                // A warning (a file without its seed, a key graded under a guessed name) is the
+                // grader's to see in the class's list, not only in the student's own report.
+                for warning in &r.warnings {
+                    let _ = write!(verdict, "; {warning}");
+                }
                 let _ = writeln!(
                     out,
                     "{:<width$}  {:>6.2} / {:.2}  seed {}  {verdict}",

@@ -91,6 +91,10 @@ fn a_file_without_its_seed_is_graded_as_variant_0_with_a_warning() {
     assert!(report.warnings[0].contains("no `[meta] seed`"));
     assert!(check("[meta]\nseed = 0\n[q2c]\nt_closest = 5.0", None).unwrap().warnings.is_empty());
     assert!(check("[q2c]\nt_closest = 5.0", Some(0)).unwrap().warnings.is_empty());
+    // The class's list shows it too, on the file's row.
+    let class = super::class::check_class(&[("a.toml".into(), Ok("[q2c]\nt_closest = 5.0".into()))], None);
+    let row = super::class::class_text(&class).lines().find(|l| l.starts_with("a.toml")).unwrap().to_owned();
+    assert!(row.contains("no `[meta] seed`"), "{row}");
 }
 
 #[test]

@@ -108,9 +108,10 @@ fn first_divergence<'a>(
 }
 
 /// Whether `given` follows the traversal's method: the key's cells in the key's order, and every
-/// bound the key's, or carried from one wrong plane parameter, or that slip itself (a finite,
-/// non-zero value where the key's bound is a plane crossing). A wrong, missing or extra cell, or a
-/// bound kept at 0 or left at infinity where the ray crosses a plane, is a mistake of method.
+/// bound the key's, or carried from one wrong plane parameter, or that slip itself (a finite value
+/// of the same sign where the key's bound is a plane crossing). A wrong, missing or extra cell, a
+/// bound kept at 0 or left at infinity where the ray crosses a plane, or two or more wrong
+/// crossings (bounds made up to fit) is a mistake of method.
 pub(super) fn method_followed(expected: &[ExpectedLeaf], planes: &[(String, f64)], given: &[ExpectedLeaf]) -> bool {
     if expected.len() != given.len() || expected.iter().zip(given).any(|(e, g)| e.path != g.path) {
         return false;
@@ -123,7 +124,11 @@ pub(super) fn method_followed(expected: &[ExpectedLeaf], planes: &[(String, f64)
             if same_bound(student, carried) {
                 continue;
             }
-            let slip = student.is_finite() && student != 0.0 && is_crossing(key) && carried == key;
+            let slip = student.is_finite()
+                && (student > 0.0) == (key > 0.0)
+                && is_crossing(key)
+                && carried == key
+                && substituted.is_empty();
             if !slip {
                 return false;
             }
