@@ -106,7 +106,7 @@ mod tests {
     }
 
     /// The numbers [`answers`] prints are the findings the chapter prints (the tables they are
-    /// read from are compared with today's measurements by `tests/docs.rs`).
+    /// read from are compared with the code's own measurements by `tests/docs.rs`).
     #[test]
     fn answers_print_the_shared_findings() {
         let text = answers().text;

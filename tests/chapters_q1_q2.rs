@@ -565,7 +565,7 @@ fn q2_the_half_chord_is_divided_by_the_length_of_d() {
 }
 
 /// Error 4: Ray Tracing in One Weekend uses t_min = 0.001 (§9.3 "Fixing Shadow Acne"), and so
-/// does the crate's fixed-epsilon policy; the rates the chapter quotes are today's.
+/// does the crate's fixed-epsilon policy; the rates the chapter quotes are the ones it measures.
 #[test]
 fn q2_fixed_t_min_is_the_books_and_its_rates_are_measured() {
     use hw3::q2_ray_sphere::reflection::{FIXED_T_MIN, Scenario, SpawnPolicy, self_hit_rate};

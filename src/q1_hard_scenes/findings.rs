@@ -1,7 +1,7 @@
 //! The numbers Q1's answer states, read from the committed measurement tables (`docs/figures/`),
 //! so that `hw3 answers --question q1` and the chapter print the same values from one source.
 //! The engineering notes include the tables in full; the chapter states their lessons.
-//! The tables are what the measurements give today: `tests/docs.rs` regenerates every one and
+//! The tables are what the code measures: `tests/docs.rs` regenerates every one and
 //! compares it with the committed file byte for byte.
 
 use super::fog::{FOG_SIGMAS, visual_range};
@@ -193,7 +193,7 @@ impl Findings {
 mod tests {
     use super::*;
 
-    /// The findings are read from tables whose rows are those of today's measurements: the
+    /// The findings are read from tables whose rows are those the code measures: the
     /// clutter table's exact law, the fog probe's path factor, and the motion table's counts.
     #[test]
     fn findings_are_the_tables_numbers() {
