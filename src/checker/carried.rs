@@ -73,24 +73,23 @@ pub(super) fn recompute(derivation: &Derivation, earlier: &Given, later: &Expect
 }
 
 /// The traversal of the ray `origin + t dir` through the homework's tree as a student makes it
-/// who takes `plane_t` at a node instead of computing it: its planes (each with the `t` used, and
+/// who takes `given_t` at a node instead of computing it: its planes (each with the `t` used, and
 /// the node's right `t`) and its descents.
 fn traversal_with(
     origin: [f64; 2],
     dir: [f64; 2],
-    plane_t: &dyn Fn(&[Branch]) -> Option<f64>,
+    given_t: &dyn Fn(&[Branch]) -> Option<f64>,
 ) -> (Vec<(ExpectedPlane, Option<f64>)>, Vec<ExpectedLeaf>) {
     let names = |path: &[Branch]| path.iter().map(ToString::to_string).collect::<Vec<_>>();
     let ray = Ray2 { origin, dir };
-    let trace = traverse_with(&Node2::homework(), &ray, plane_t);
+    let trace = traverse_with(&Node2::homework(), &ray, given_t);
     let (mut planes, mut descents) = (Vec::new(), Vec::new());
     for (i, step) in trace.steps.iter().enumerate() {
         match step {
             Step::Plane { path, axis, split, t } => {
                 let Some(Step::Descend { path: child, .. }) = trace.steps.get(i + 1) else { continue };
                 let first = child.last().map(ToString::to_string).unwrap_or_default();
-                let a = axis.index();
-                let right_t = t.map(|_| QuotientAxis::new(origin[a], dir[a]).plane_t(*split));
+                let right_t = plane_t(origin, dir, axis.index(), *split);
                 planes.push((ExpectedPlane { node: names(path), t: *t, first }, right_t));
             }
             Step::Descend { path, interval } => {
@@ -119,8 +118,6 @@ pub(super) fn planes_following(origin: [f64; 2], dir: [f64; 2], given: &[Expecte
 /// values are no longer a slip (a trace made up to fit invented values would otherwise follow).
 /// What is not followed is graded against the key.
 struct Slips {
-    origin: [f64; 2],
-    dir: [f64; 2],
     /// The followed slip: the node (its branch names) and the student's `t` there.
     slip: Option<(Vec<String>, f64)>,
 }
@@ -145,31 +142,32 @@ impl Slips {
             [(node, t)] if is_slip(origin, dir, node, *t) => Some((node.clone(), *t)),
             _ => None,
         };
-        Self { origin, dir, slip }
+        Self { slip }
     }
 
-    /// The `t` the followed traversal takes at the node `path`: the slip there, else the right one.
+    /// The `t` the followed traversal takes at the node `path`: the slip there; `None` elsewhere,
+    /// where the traversal computes the right one.
     fn at(&self, path: &[Branch]) -> Option<f64> {
-        let node: Vec<String> = path.iter().map(ToString::to_string).collect();
-        match &self.slip {
-            Some((slipped, t)) if *slipped == node => Some(*t),
-            _ => right_t_named(self.origin, self.dir, &node),
-        }
+        let (slipped, t) = self.slip.as_ref()?;
+        (slipped.len() == path.len() && slipped.iter().zip(path).all(|(name, b)| *name == b.to_string())).then_some(*t)
     }
+}
+
+/// Where the ray `origin + t dir` meets the plane `p_axis = split`, by the homework's arithmetic
+/// (`(s − e_a)/d_a`); `None` for a ray parallel to it.
+fn plane_t(origin: [f64; 2], dir: [f64; 2], axis: usize, split: f64) -> Option<f64> {
+    let line = QuotientAxis::new(origin[axis], dir[axis]);
+    (!line.is_parallel()).then(|| line.plane_t(split))
 }
 
 /// Whether the wrong value `t` at `node` can be a slip of arithmetic: finite, of the right value's
 /// sign, and neither another node's plane parameter nor this node's split taken on the other axis
 /// (the wrong term).
 fn is_slip(origin: [f64; 2], dir: [f64; 2], node: &[String], t: f64) -> bool {
-    let Some(right) = right_t_named(origin, dir, node) else { return false };
     let Some((axis, split)) = split_named(node) else { return false };
-    let plane_t = |a: usize, s: f64| {
-        let line = QuotientAxis::new(origin[a], dir[a]);
-        (!line.is_parallel()).then(|| line.plane_t(s))
-    };
-    let mut wrong_terms: Vec<f64> = tree_planes().into_iter().filter_map(|(a, s)| plane_t(a, s)).collect();
-    wrong_terms.extend(plane_t(1 - axis, split));
+    let Some(right) = plane_t(origin, dir, axis, split) else { return false };
+    let mut wrong_terms: Vec<f64> = tree_planes().into_iter().filter_map(|(a, s)| plane_t(origin, dir, a, s)).collect();
+    wrong_terms.extend(plane_t(origin, dir, 1 - axis, split));
     let wrong_term = wrong_terms.iter().any(|&other| same_bound(t, other) && !same_bound(other, right));
     t.is_finite() && (t > 0.0) == (right > 0.0) && !wrong_term
 }
@@ -212,16 +210,15 @@ fn split_named(node: &[String]) -> Option<(usize, f64)> {
 /// `(s − e_a)/d_a`, or `None` for a parallel ray, a leaf or a name the tree does not have.
 fn right_t_named(origin: [f64; 2], dir: [f64; 2], node: &[String]) -> Option<f64> {
     let (axis, split) = split_named(node)?;
-    let line = QuotientAxis::new(origin[axis], dir[axis]);
-    (!line.is_parallel()).then(|| line.plane_t(split))
+    plane_t(origin, dir, axis, split)
 }
 
 /// The descents as they follow from the student's planes: the traversal taken with the student's
-/// plane parameters (every finite one, at its node), when the student's planes are that
-/// traversal's, node for node and first child for first child. A wrong `t` may change which
-/// children are visited and which comes first below it; all of that follows. `None` when the
-/// planes are not that traversal's (a wrong node or first child, a missing or extra plane, a
-/// parallel plane given a `t` or a crossing called parallel): a mistake of method.
+/// slip (see [`Slips`]), when the student's planes are that traversal's, node for node and first
+/// child for first child. A slip may change which children are visited and which comes first below
+/// it; all of that follows. `None` when the planes are not that traversal's (a wrong value that is
+/// not a slip, a wrong node or first child, a missing or extra plane, a parallel plane given a `t`
+/// or a crossing called parallel): a mistake of method.
 fn descents_following(origin: [f64; 2], dir: [f64; 2], given: &[ExpectedPlane]) -> Option<Vec<ExpectedLeaf>> {
     let slips = Slips::of_planes(origin, dir, given);
     let (planes, descents) = traversal_with(origin, dir, &|path| slips.at(path));

@@ -459,18 +459,25 @@ fn grade(part: &Part, given: Option<&Given>) -> PartResult {
         Given::Formula { source, .. } | Given::Paths(source) | Given::Something(source) => source.clone(),
         Given::None => "none".into(),
     };
-    let (ok, words) = compare(&part.expected, given);
-    // A trace's share of right entries, and whether some of them carried an earlier bound forward.
-    let trace = match (&part.expected, given) {
+    // A list (a trace or its planes) is graded once: whether it is right, the words, its share of
+    // right entries, and whether some of them carried an earlier value forward.
+    let list = match (&part.expected, given) {
         (Expected::Trace { leaves, planes, descents }, Given::Trace(g)) => {
             let graded = grade_trace(leaves, planes, g, *descents);
-            Some((graded.credit, (graded.carried > 0).then_some(Rule::CarriedForward)))
+            Some((graded.exact, graded.words, graded.credit, graded.carried > 0))
         }
         (Expected::Planes { steps, why_first, ray }, Given::Planes(g)) => {
-            let (credit, _, carried) = grade_planes(steps, why_first, g, &planes_following(ray.0, ray.1, g));
-            Some((credit, carried.then_some(Rule::CarriedForward)))
+            let (credit, words, carried) = grade_planes(steps, why_first, g, &planes_following(ray.0, ray.1, g));
+            Some((credit == 1.0, words, credit, carried))
         }
         _ => None,
+    };
+    let (ok, words, trace) = match list {
+        Some((ok, words, credit, carried)) => (ok, words, Some((credit, carried.then_some(Rule::CarriedForward)))),
+        None => {
+            let (ok, words) = compare(&part.expected, given);
+            (ok, words, None)
+        }
     };
     let mal_rule = part.mal_rules.iter().find(|rule| compare(&rule.value, given).0);
     let (credit, feedback, mistake) = if ok {
