@@ -674,6 +674,21 @@ mod render {
         let at = |photons: f64, k: f64, column: &str| {
             rows.iter().find(|r| r["photons"] == photons && r["k"] == k).unwrap()[column]
         };
+        // Where the bias is above the reference's 5 % resolution, it grows with k at each photon
+        // count and falls with the photon count at each k; below it, it is noise.
+        has(&t, "Where the bias is large enough to resolve (above the reference's 5 %), it grows with k and falls");
+        let resolved: Vec<_> = rows.iter().filter(|r| r["bias"] > 0.05).collect();
+        assert!(resolved.len() >= 5, "the claim rests on several rows");
+        for a in &resolved {
+            for b in &resolved {
+                if a["photons"] == b["photons"] && a["k"] < b["k"] {
+                    assert!(a["bias"] < b["bias"], "bias grows with k: {a:?} {b:?}");
+                }
+                if a["k"] == b["k"] && a["photons"] < b["photons"] {
+                    assert!(a["bias"] > b["bias"], "bias falls with the photons: {a:?} {b:?}");
+                }
+            }
+        }
         has(
             &t,
             &format!(
