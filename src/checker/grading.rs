@@ -8,7 +8,7 @@ use super::paths::compare_paths;
 use super::policy::Rule;
 use super::reading::{Given, lookup, read_seed, read_value, require_tables};
 use super::suggest::unknown_keys;
-use super::traces::{grade_planes, grade_trace, show_leaf, show_plane};
+use super::traces::{echo_number, grade_planes, grade_trace, show_leaf, show_plane};
 use super::variants::{QUESTIONS, variant};
 use serde::Serialize;
 
@@ -401,13 +401,6 @@ fn show_bound_of_range(x: f64, low: bool) -> String {
         None => 10f64.powi(-(text.split_once('.').map_or(0, |(_, d)| d.len()) as i32)),
     };
     show_number(if low { shown + unit } else { shown - unit })
-}
-
-/// A student's number as given: its shortest exact form, with an exponent when very small or
-/// large (`5.29862e-12`, not `0.00000000000529862`).
-fn echo_number(x: f64) -> String {
-    let x = x + 0.0; // -0 prints as 0
-    if x != 0.0 && x.is_finite() && !(1e-4..1e15).contains(&x.abs()) { format!("{x:e}") } else { format!("{x}") }
 }
 
 fn show_expected(expected: &Expected) -> String {

@@ -31,11 +31,6 @@ struct Key {
     crossings: Vec<(String, f64)>,
 }
 
-/// A number as the feedback prints it (`-0` as `0`, `+∞` as `inf`).
-fn num(x: f64) -> String {
-    show_bound(x + 0.0)
-}
-
 /// Why `first` is the first child visited at the plane `axis = split` of a node that holds the ray
 /// over `interval`, by the question's rule and in this node's numbers: the child the ray is in just
 /// after tmin; for a parallel ray its origin's side (the >= side when it lies in the plane); for a
@@ -45,28 +40,28 @@ fn why_first(ray: &Ray2, axis: Axis2, split: f64, t: Option<f64>, interval: Inte
     let (e, d) = (ray.origin[a], ray.dir[a]);
     let other = Branch { side: first.side.opposite(), ..first };
     let plane = format!("the plane {axis} = {split}");
-    let (t_min, t_max) = (num(interval.t_min), num(interval.t_max));
+    let (t_min, t_max) = (show_bound(interval.t_min), show_bound(interval.t_max));
     let Some(t) = t else {
         return if e == split {
             format!(
                 "{first} comes first: the ray lies in {plane} (d_{axis} = 0, e_{axis} = {}), and a point on the \
                  plane belongs to the >= side; {first} is the only child visited",
-                num(e)
+                show_bound(e)
             )
         } else {
             format!(
                 "{first} comes first: the ray is parallel to {plane} (d_{axis} = 0) and stays on its origin's side \
                  (e_{axis} = {}) for every t; {first} is the only child visited",
-                num(e)
+                show_bound(e)
             )
         };
     };
-    let t_text = num(t);
+    let t_text = show_bound(t);
     if t == interval.t_min {
         format!(
             "{first} comes first: at tmin = {t_min} the ray is on {plane} and moves into {first} (d_{axis} = {}), \
              the side it moves into; {other} would get a piece of zero length, so {first} is the only child visited",
-            num(d)
+            show_bound(d)
         )
     } else if t < interval.t_min {
         format!(

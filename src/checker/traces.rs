@@ -11,15 +11,16 @@ pub(super) fn same_bound(a: f64, b: f64) -> bool {
     a == b || (a.is_finite() && b.is_finite() && (a - b).abs() <= 1e-6 * (1.0 + b.abs()))
 }
 
+/// A trace's bound as the answers file writes it: `inf`, or the number as [`echo_number`] prints it.
 pub(super) fn show_bound(t: f64) -> String {
-    let t = t + 0.0; // -0 is printed as 0, as the answers write it
-    if t.is_infinite() {
-        "inf".into()
-    } else if t != 0.0 && !(1e-4..1e15).contains(&t.abs()) {
-        format!("{t:e}")
-    } else {
-        format!("{t}")
-    }
+    if t.is_infinite() { "inf".into() } else { echo_number(t) }
+}
+
+/// A number as written: its shortest exact form, with an exponent when very small or large
+/// (`5.29862e-12`, not `0.00000000000529862`), and `-0` as `0`, as the answers write it.
+pub(super) fn echo_number(x: f64) -> String {
+    let x = x + 0.0;
+    if x != 0.0 && x.is_finite() && !(1e-4..1e15).contains(&x.abs()) { format!("{x:e}") } else { format!("{x}") }
 }
 
 pub(super) fn show_leaf(leaf: &ExpectedLeaf) -> String {
