@@ -318,17 +318,21 @@ pub(super) fn grade_planes(
         .map(|order| right_in_order(order, given, agree))
         .max()
         .unwrap_or(0);
-    let credit = right as f64 / expected.len().max(given.len()).max(1) as f64;
+    let shares = expected.len().max(given.len()).max(1);
     let followed_order: Vec<&ExpectedPlane> = followed.iter().collect();
     let right_followed = right_in_order(&followed_order, given, agree);
     // A slip that cuts a branch off leaves fewer nodes to list: each wrong entry still costs one
     // share of the longest of the three lists, as a node of the key would.
     let wrong_followed = followed.len().max(given.len()) - right_followed;
-    let credit_followed =
-        1.0 - wrong_followed as f64 / expected.len().max(followed.len()).max(given.len()).max(1) as f64;
-    // Kept only when it earns more: 1 − 2/3 and 1/3 differ in the last bit.
-    let carried = credit_followed > credit + 1e-9;
-    let (right, credit) = if carried { (right_followed, credit_followed) } else { (right, credit) };
+    let shares_followed = shares.max(followed.len());
+    // Kept only when it earns more, compared as fractions: right/shares against
+    // (shares_followed − wrong_followed)/shares_followed.
+    let carried = (shares_followed - wrong_followed) * shares > right * shares_followed;
+    let (right, credit) = if carried {
+        (right_followed, (shares_followed - wrong_followed) as f64 / shares_followed as f64)
+    } else {
+        (right, right as f64 / shares as f64)
+    };
     let n = prefix + 1;
     let reason = match (expected.get(prefix), given.get(prefix)) {
         (Some(e), None) => format!("plane {n} missing: the traversal goes on to {}", show_plane(e)),
