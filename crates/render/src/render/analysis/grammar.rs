@@ -1,17 +1,28 @@
-//! Heckbert's light-path notation as regular languages, decided by Brzozowski derivatives.
+//! Heckbert's light-path notation as regular languages, decided by position automata.
 //!
 //! A light path is a word over the letters `L D G S V E` (light, diffuse, glossy, specular,
 //! volume scattering, eye), written light first. A [`Lang`] is a regular expression over them;
-//! [`shortest_word`] walks the derivatives of several languages at once, breadth first, and returns
-//! the shortest word whose acceptance pattern satisfies a predicate — inclusion ("a path of A that
-//! B misses"), intersection ("a path both contain") and emptiness are all this one search. The
-//! renderer's pass plan ([`super::analyze`]) and the Q5 effect tables use this engine.
+//! [`shortest_word`] runs the automata of several languages side by side, breadth first, and
+//! returns the shortest word whose acceptance pattern satisfies a predicate — inclusion ("a path
+//! of A that B misses"), intersection ("a path both contain") and emptiness are all this one
+//! search. The renderer's pass plan ([`super::analyze`]) and the Q5 effect tables use this engine,
+//! and so does the checker on a student's answer, which is why its cost is bounded:
 //!
-//! Derivatives stay finitely many because unions are kept flattened, sorted and deduplicated and
-//! concatenation is right-associated (Brzozowski, JACM 1964); the search still stops with
-//! [`GrammarError::TooManyStates`] past [`MAX_STATES`] as a guard.
+//! - an expression is at most [`MAX_LENGTH`] characters with at most [`MAX_DEPTH`] nested
+//!   parentheses, and is read in one pass (each sequence is built from its right end, so no step
+//!   re-walks what came before);
+//! - each language becomes Glushkov's position automaton ([`automaton`]): one state per letter
+//!   occurrence, built in time bounded by the expression's length times its number of letters;
+//! - the search determinises the automata on the fly (a state is a set of positions per language,
+//!   a bit set) and stops with [`GrammarError::TooManyStates`] past [`MAX_STATES`] sets. A
+//!   determinised automaton can need exponentially many sets (`L(D|G)*D(D|G)(D|G)…E` needs
+//!   2ᵏ for k groups, McNaughton & Yamada 1960); the guard turns that into a refusal with its
+//!   reason, in bounded time and memory.
 
-use std::collections::{BTreeMap, BTreeSet, VecDeque};
+mod automaton;
+
+use automaton::Automaton;
+use std::collections::{BTreeSet, HashMap};
 use std::fmt;
 
 /// One vertex type of a light path.
@@ -89,13 +100,36 @@ pub enum GrammarError {
         /// Character index.
         position: usize,
     },
-    /// The derivative search met more than [`MAX_STATES`] states (never for the crate's languages).
-    #[error("derivative search exceeded {0} states")]
+    /// The expression is longer than [`MAX_LENGTH`] characters (spaces not counted).
+    #[error("path expression of {length} characters: at most {MAX_LENGTH} are read")]
+    TooLong {
+        /// Its length in characters, without spaces.
+        length: usize,
+    },
+    /// The expression nests parentheses deeper than [`MAX_DEPTH`].
+    #[error("path expression nests parentheses more than {MAX_DEPTH} deep (at position {position})")]
+    TooDeep {
+        /// Character index of the first parenthesis past the limit.
+        position: usize,
+    },
+    /// Telling the languages apart needs more than [`MAX_STATES`] sets of positions (never for
+    /// the crate's languages; an expression that repeats a choice after a star can).
+    #[error("comparing these classes needs more than {0} automaton states; write the class more simply")]
     TooManyStates(usize),
 }
 
-/// Guard on the number of derivative tuples a search visits.
-pub const MAX_STATES: usize = 100_000;
+/// The longest expression read, in characters without spaces: the crate's classes are under 20,
+/// and a student's answer that needs more is refused with [`GrammarError::TooLong`].
+pub const MAX_LENGTH: usize = 256;
+
+/// The deepest nesting of parentheses read.
+pub const MAX_DEPTH: usize = 32;
+
+/// Guard on the number of determinised states (one set of positions per language) a search
+/// visits. It bounds a search's memory by `MAX_STATES` tuples of sets and its time by that times
+/// six letters times one step per position; the README's table of bounds gives the measured cost
+/// of the worst answer the checker reads.
+pub const MAX_STATES: usize = 200_000;
 
 impl Lang {
     /// One letter.
@@ -163,49 +197,19 @@ impl Lang {
         letters.iter().fold(Lang::Empty, |acc, &l| Lang::union(acc, Lang::Letter(l)))
     }
 
-    /// Whether the empty word is in the language.
-    #[must_use]
-    pub fn nullable(&self) -> bool {
-        match self {
-            Lang::Empty | Lang::Letter(_) => false,
-            Lang::Epsilon | Lang::Star(_) => true,
-            Lang::Concat(a, b) => a.nullable() && b.nullable(),
-            Lang::Union(parts) => parts.iter().any(Lang::nullable),
-        }
-    }
-
-    /// The Brzozowski derivative: the words `w` with `letter·w` in the language.
-    #[must_use]
-    pub fn derivative(&self, letter: Letter) -> Self {
-        match self {
-            Lang::Empty | Lang::Epsilon => Lang::Empty,
-            Lang::Letter(l) => {
-                if *l == letter {
-                    Lang::Epsilon
-                } else {
-                    Lang::Empty
-                }
-            }
-            Lang::Concat(a, b) => {
-                let first = Lang::concat(a.derivative(letter), (**b).clone());
-                if a.nullable() { Lang::union(first, b.derivative(letter)) } else { first }
-            }
-            Lang::Union(parts) => parts.iter().fold(Lang::Empty, |acc, p| Lang::union(acc, p.derivative(letter))),
-            Lang::Star(a) => Lang::concat(a.derivative(letter), self.clone()),
-        }
-    }
-
     /// Whether `word` is in the language.
     #[must_use]
     pub fn accepts(&self, word: &[Letter]) -> bool {
-        word.iter().fold(self.clone(), |lang, &l| lang.derivative(l)).nullable()
+        Automaton::new(self).accepts_word(word)
     }
 
     /// Parses Heckbert's notation: letters `LDGSVE`, `|`, postfix `*`, `+`, `?`, parentheses,
     /// classes `[DGS]`, and `…` (or `...`) for any sequence of letters. Spaces are ignored.
     ///
     /// # Errors
-    /// [`GrammarError::Syntax`] at the first unexpected character.
+    /// [`GrammarError::Syntax`] at the first unexpected character; [`GrammarError::TooLong`]
+    /// past [`MAX_LENGTH`] characters and [`GrammarError::TooDeep`] past [`MAX_DEPTH`] nested
+    /// parentheses, checked before or while reading so that no input costs more than those allow.
     ///
     /// # Examples
     /// ```
@@ -217,7 +221,10 @@ impl Lang {
     /// ```
     pub fn parse(expression: &str) -> Result<Self, GrammarError> {
         let chars: Vec<char> = expression.replace("...", "…").chars().filter(|c| !c.is_whitespace()).collect();
-        let mut parser = Parser { expression, chars: &chars, at: 0 };
+        if chars.len() > MAX_LENGTH {
+            return Err(GrammarError::TooLong { length: chars.len() });
+        }
+        let mut parser = Parser { expression, chars: &chars, at: 0, depth: 0 };
         let lang = parser.alternation()?;
         match parser.peek() {
             None => Ok(lang),
@@ -250,6 +257,8 @@ struct Parser<'a> {
     expression: &'a str,
     chars: &'a [char],
     at: usize,
+    /// Open parentheses around `at`.
+    depth: usize,
 }
 
 impl Parser<'_> {
@@ -275,8 +284,7 @@ impl Parser<'_> {
     }
 
     fn sequence(&mut self) -> Result<Lang, GrammarError> {
-        let mut lang = Lang::Epsilon;
-        let mut any = false;
+        let mut atoms = Vec::new();
         while let Some(c) = self.peek() {
             if c == '|' || c == ')' {
                 break;
@@ -291,10 +299,13 @@ impl Parser<'_> {
                 };
                 self.at += 1;
             }
-            lang = Lang::concat(lang, atom);
-            any = true;
+            atoms.push(atom);
         }
-        if any { Ok(lang) } else { Err(self.error()) }
+        if atoms.is_empty() {
+            return Err(self.error());
+        }
+        // From the right end, so that each step prepends one atom to a right-associated chain.
+        Ok(atoms.into_iter().rev().fold(Lang::Epsilon, |rest, atom| Lang::concat(atom, rest)))
     }
 
     fn atom(&mut self) -> Result<Lang, GrammarError> {
@@ -309,8 +320,13 @@ impl Parser<'_> {
                 Ok(Lang::star(Lang::any_of(&Letter::ALL)))
             }
             '(' => {
+                if self.depth == MAX_DEPTH {
+                    return Err(GrammarError::TooDeep { position: self.at });
+                }
                 self.at += 1;
+                self.depth += 1;
                 let inner = self.alternation()?;
+                self.depth -= 1;
                 if self.peek() != Some(')') {
                     return Err(self.error());
                 }
@@ -338,8 +354,15 @@ impl Parser<'_> {
 /// The shortest word `w` (ties broken by alphabet order) for which `wanted` holds of the vector
 /// "language k accepts w", or `None` when no word does.
 ///
+/// # Numerics
+/// A breadth-first search over tuples of position sets, one per language (the subset
+/// construction, run only as far as the search goes): letters are tried in alphabet order and
+/// each tuple is kept with the first word that reached it, so the first tuple that satisfies
+/// `wanted` gives the shortest word and, among those, the first in alphabet order. Each step costs
+/// the languages' lengths times their positions over 64; the number of tuples is capped.
+///
 /// # Errors
-/// [`GrammarError::TooManyStates`] past [`MAX_STATES`] derivative tuples.
+/// [`GrammarError::TooManyStates`] past [`MAX_STATES`] tuples.
 ///
 /// # Examples
 /// ```
@@ -354,35 +377,56 @@ pub fn shortest_word(
     languages: &[Lang],
     wanted: impl Fn(&[bool]) -> bool,
 ) -> Result<Option<Vec<Letter>>, GrammarError> {
-    let start: Vec<Lang> = languages.to_vec();
-    let mut parent: BTreeMap<Vec<Lang>, Option<(Vec<Lang>, Letter)>> = BTreeMap::new();
-    parent.insert(start.clone(), None);
-    let mut queue = VecDeque::from([start]);
-    while let Some(state) = queue.pop_front() {
-        let accepts: Vec<bool> = state.iter().map(Lang::nullable).collect();
+    let automata: Vec<Automaton> = languages.iter().map(Automaton::new).collect();
+    // A tuple of sets is stored as one bit vector, the languages' sets end to end.
+    let offsets: Vec<usize> = automata
+        .iter()
+        .scan(0, |at, a| {
+            let start = *at;
+            *at += a.width();
+            Some(start)
+        })
+        .collect();
+    let width: usize = automata.iter().map(Automaton::width).sum();
+    let start: Vec<u64> = automata.iter().flat_map(Automaton::start).collect();
+    // Every tuple met, with the tuple and letter it was first reached from.
+    let mut tuples: Vec<(Box<[u64]>, Option<(usize, Letter)>)> = vec![(start.clone().into(), None)];
+    let mut index: HashMap<Box<[u64]>, usize> = HashMap::from([(start.into(), 0)]);
+    let mut next = vec![0; width];
+    let mut at = 0;
+    while at < tuples.len() {
+        let state = tuples[at].0.clone();
+        let accepts: Vec<bool> =
+            automata.iter().zip(&offsets).map(|(a, &o)| a.accepts(&state[o..o + a.width()])).collect();
         if wanted(&accepts) {
             let mut word = Vec::new();
-            let mut at = &state;
-            while let Some(Some((previous, letter))) = parent.get(at) {
-                word.push(*letter);
-                at = previous;
+            let mut back = at;
+            while let Some((previous, letter)) = tuples[back].1 {
+                word.push(letter);
+                back = previous;
             }
             word.reverse();
             return Ok(Some(word));
         }
-        if state.iter().all(|l| *l == Lang::Empty) {
+        if state.iter().all(|w| *w == 0) {
+            at += 1;
             continue;
         }
         for letter in Letter::ALL {
-            let next: Vec<Lang> = state.iter().map(|l| l.derivative(letter)).collect();
-            if !parent.contains_key(&next) {
-                if parent.len() >= MAX_STATES {
+            for (a, &o) in automata.iter().zip(&offsets) {
+                let w = a.width();
+                a.step(&state[o..o + w], letter, &mut next[o..o + w]);
+            }
+            if !index.contains_key(next.as_slice()) {
+                if tuples.len() >= MAX_STATES {
                     return Err(GrammarError::TooManyStates(MAX_STATES));
                 }
-                parent.insert(next.clone(), Some((state.clone(), letter)));
-                queue.push_back(next);
+                let key: Box<[u64]> = next.clone().into();
+                index.insert(key.clone(), tuples.len());
+                tuples.push((key, Some((at, letter))));
             }
         }
+        at += 1;
     }
     Ok(None)
 }
@@ -434,6 +478,28 @@ mod tests {
         assert_eq!(missed("LS+DE").as_deref(), Some("LSDE"));
         assert_eq!(missed("LDD+E"), None);
         assert_eq!(common_word(&parse("LS+E"), &radiosity).unwrap(), None);
+    }
+
+    #[test]
+    fn long_or_deep_expressions_are_refused_before_any_work() {
+        let long = format!("L{}E", "D".repeat(MAX_LENGTH));
+        assert_eq!(Lang::parse(&long), Err(GrammarError::TooLong { length: MAX_LENGTH + 2 }));
+        let spaced = format!("L {} E", "D ".repeat(MAX_LENGTH - 2));
+        assert!(Lang::parse(&spaced).is_ok(), "spaces are not counted");
+        let deep = format!("{}L{}", "(".repeat(MAX_DEPTH + 1), ")".repeat(MAX_DEPTH + 1));
+        assert_eq!(Lang::parse(&deep), Err(GrammarError::TooDeep { position: MAX_DEPTH }));
+        let deepest = format!("{}L{}", "(".repeat(MAX_DEPTH), ")".repeat(MAX_DEPTH));
+        assert_eq!(Lang::parse(&deepest), Ok(Lang::letter(L)));
+    }
+
+    #[test]
+    fn a_choice_repeated_after_a_star_is_refused_at_the_state_limit() {
+        // L(D|G)*D(D|G)^k E tells L D^(k+1) E from LGE only after 2^(k+1) position sets.
+        let blow_up = |k: usize| parse(&format!("LGE|L(D|G)*D{}E", "(D|G)".repeat(k)));
+        let small = shortest_word(&[parse("LGE"), blow_up(4)], |x| x[0] != x[1]).unwrap();
+        assert_eq!(small.map(|w| word_text(&w)).as_deref(), Some("LDDDDDE"));
+        let big = shortest_word(&[parse("LGE"), blow_up(40)], |x| x[0] != x[1]);
+        assert_eq!(big, Err(GrammarError::TooManyStates(MAX_STATES)));
     }
 
     /// Every word up to `length` letters over the alphabet.
