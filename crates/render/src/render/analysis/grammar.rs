@@ -351,6 +351,9 @@ impl Parser<'_> {
     }
 }
 
+/// A tuple of position sets, and the tuple (by index) and letter it was first reached from.
+type Reached = (Box<[u64]>, Option<(usize, Letter)>);
+
 /// The shortest word `w` (ties broken by alphabet order) for which `wanted` holds of the vector
 /// "language k accepts w", or `None` when no word does.
 ///
@@ -390,7 +393,7 @@ pub fn shortest_word(
     let width: usize = automata.iter().map(Automaton::width).sum();
     let start: Vec<u64> = automata.iter().flat_map(Automaton::start).collect();
     // Every tuple met, with the tuple and letter it was first reached from.
-    let mut tuples: Vec<(Box<[u64]>, Option<(usize, Letter)>)> = vec![(start.clone().into(), None)];
+    let mut tuples: Vec<Reached> = vec![(start.clone().into(), None)];
     let mut index: HashMap<Box<[u64]>, usize> = HashMap::from([(start.into(), 0)]);
     let mut next = vec![0; width];
     let mut at = 0;
