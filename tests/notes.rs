@@ -261,7 +261,7 @@ fn a_planted_formula_or_value_is_found() {
 
 /// The chapters' technical terms, each with the glossary entry (its anchor) that defines it and
 /// the spellings it goes by. The first use of a spelling on a student page is a link to the entry.
-const TERMS: [(&str, &[&str]); 62] = [
+const TERMS: [(&str, &[&str]); 61] = [
     ("airlight", &["airlight"]),
     ("albedo", &["albedo"]),
     ("antialiasing", &["antialiasing", "antialiased"]),
@@ -271,7 +271,6 @@ const TERMS: [(&str, &[&str]); 62] = [
     ("boolean-model", &["Boolean model"]),
     ("brdf", &["BRDF"]),
     ("bsdf", &["BSDF"]),
-    ("brzozowski-derivative", &["Brzozowski"]),
     ("bvh", &["BVH", "BVHs"]),
     ("cache", &["cache", "caches", "cache line"]),
     ("cancellation", &["cancellation", "cancels"]),

@@ -56,12 +56,12 @@ pub enum ExperimentError {
 /// ```
 /// use hw3::q5_effect_tables::error::TablesError;
 /// use hw3::render::analysis::grammar::GrammarError;
-/// let error: TablesError = GrammarError::TooManyStates(100_000).into();
-/// assert_eq!(error.to_string(), "derivative search exceeded 100000 states");
+/// let error: TablesError = GrammarError::TooManyStates(50_000).into();
+/// assert_eq!(error.to_string(), "comparing these classes needs more than 50000 automaton states; write the class more simply");
 /// ```
 #[derive(Debug, thiserror::Error)]
 pub enum TablesError {
-    /// The grammar's table could not be built (a derivative search overflowed; never for the
+    /// The grammar's table could not be built (a search past its state limit; never for the
     /// built-in tables).
     #[error(transparent)]
     Grammar(#[from] GrammarError),

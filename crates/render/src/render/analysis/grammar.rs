@@ -129,7 +129,7 @@ pub const MAX_DEPTH: usize = 32;
 /// visits. It bounds a search's memory by `MAX_STATES` tuples of sets and its time by that times
 /// six letters times one step per position; the README's table of bounds gives the measured cost
 /// of the worst answer the checker reads.
-pub const MAX_STATES: usize = 200_000;
+pub const MAX_STATES: usize = 50_000;
 
 impl Lang {
     /// One letter.
