@@ -227,33 +227,69 @@ pub fn parse_size(text: &str, max_side: u32) -> Result<(u32, u32), ArgError> {
 /// ```
 #[must_use]
 pub fn quote(text: &str) -> String {
+    quote_within(text, QUOTE_CHARS)
+}
+
+/// [`quote`] with a limit of `max` characters.
+fn quote_within(text: &str, max: usize) -> String {
     // Cut before escaping, so that the limit counts the user's characters.
-    let kept = cut(text, QUOTE_CHARS);
-    let (head, tail) = kept.split_at(kept.char_indices().nth(QUOTE_CHARS).map_or(kept.len(), |(i, _)| i));
-    escape_controls(head) + tail
+    let kept = cut(text, max);
+    let (head, tail) = kept.split_at(kept.char_indices().nth(max).map_or(kept.len(), |(i, _)| i));
+    escape(head) + tail
 }
 
 /// A message made safe for one line of a terminal: line breaks become spaces, other control
-/// characters (terminal escapes among them) are shown as `\u{…}`, every backtick-quoted span is cut
-/// to [`QUOTE_CHARS`] characters and the whole line to [`MESSAGE_CHARS`].
+/// characters (terminal escapes and bidirectional overrides among them) are shown as `\u{…}`, every
+/// backtick-quoted span is cut to [`QUOTE_CHARS`] characters, and a line still longer than
+/// [`MESSAGE_CHARS`] loses characters from its middle, so that its start (what failed) and its
+/// end (why) are both kept.
 ///
 /// # Examples
 /// ```
 /// let message = format!("bad value `{}`\nsecond line", "9".repeat(5000));
 /// let line = hw3::cli::one_line(&message);
 /// assert!(!line.contains('\n'));
-/// assert!(line.chars().count() <= hw3::cli::MESSAGE_CHARS + 30);
+/// assert!(line.chars().count() <= hw3::cli::MESSAGE_CHARS);
+/// let long = format!("{}: No such file or directory", "d/".repeat(400));
+/// assert!(hw3::cli::one_line(&long).ends_with(": No such file or directory"));
 /// ```
 #[must_use]
 pub fn one_line(message: &str) -> String {
     let flat: String = message.chars().map(|c| if matches!(c, '\n' | '\r' | '\t') { ' ' } else { c }).collect();
-    // Odd pieces between backticks are quoted input.
-    let clipped: Vec<String> = flat
-        .split('`')
-        .enumerate()
-        .map(|(i, piece)| if i % 2 == 1 { quote(piece) } else { escape_controls(piece) })
-        .collect();
-    cut(&clipped.join("`"), MESSAGE_CHARS)
+    // Odd pieces between backticks are quoted input: quoted shorter while the line is too long.
+    let clipped = |quote_chars: usize| -> String {
+        let pieces: Vec<String> = flat
+            .split('`')
+            .enumerate()
+            .map(|(i, piece)| if i % 2 == 1 { quote_within(piece, quote_chars) } else { escape(piece) })
+            .collect();
+        pieces.join("`")
+    };
+    let line = [QUOTE_CHARS, 60, 30, 12]
+        .into_iter()
+        .map(clipped)
+        .find(|line| line.chars().count() <= MESSAGE_CHARS)
+        .unwrap_or_else(|| clipped(12));
+    cut_middle(&line, MESSAGE_CHARS)
+}
+
+/// Characters kept from the end of a message cut by [`cut_middle`]: room for its reason.
+const MESSAGE_TAIL_CHARS: usize = 120;
+
+/// `text` in at most `max` characters: unchanged if it fits, else its start and its last
+/// [`MESSAGE_TAIL_CHARS`] characters around a mark saying how many were cut.
+fn cut_middle(text: &str, max: usize) -> String {
+    let chars: Vec<char> = text.chars().collect();
+    if chars.len() <= max {
+        return text.to_owned();
+    }
+    let mark = |n: usize| format!(" …({n} characters cut)… ");
+    // The mark's length depends on the count it shows; the widest count is the whole length.
+    let head = max - MESSAGE_TAIL_CHARS - mark(chars.len()).chars().count();
+    let tail_start = chars.len() - MESSAGE_TAIL_CHARS;
+    let head_text: String = chars[..head].iter().collect();
+    let tail_text: String = chars[tail_start..].iter().collect();
+    format!("{head_text}{}{tail_text}", mark(tail_start - head))
 }
 
 /// `text` cut to `max` characters, saying how many were cut.
@@ -280,15 +316,26 @@ pub const REPORT_LINE_CHARS: usize = 2000;
 /// ```
 #[must_use]
 pub fn terminal_text(text: &str) -> String {
-    let lines: Vec<String> = text.split('\n').map(|line| cut(&escape_controls(line), REPORT_LINE_CHARS)).collect();
+    let lines: Vec<String> = text.split('\n').map(|line| cut(&escape(line), REPORT_LINE_CHARS)).collect();
     lines.join("\n")
 }
 
-/// Replaces C0, DEL and C1 control characters by a visible `\u{…}`.
-fn escape_controls(text: &str) -> String {
+/// Replaces C0, DEL and C1 control characters, and the invisible characters that reorder text
+/// (bidirectional embeddings, overrides, isolates and marks, Unicode TR9 §2), by a visible
+/// `\u{…}`: nothing a user typed can move the cursor, recolour the terminal or make text read
+/// backwards.
+///
+/// # Examples
+/// ```
+/// assert_eq!(hw3::cli::escape("a\u{202e}b\n"), "a\\u{202e}b\\u{a}");
+/// ```
+#[must_use]
+pub fn escape(text: &str) -> String {
     let mut out = String::with_capacity(text.len());
     for c in text.chars() {
-        if c.is_control() {
+        let reorders =
+            matches!(c, '\u{200e}' | '\u{200f}' | '\u{061c}' | '\u{202a}'..='\u{202e}' | '\u{2066}'..='\u{2069}');
+        if c.is_control() || reorders {
             out.push_str(&format!("\\u{{{:x}}}", u32::from(c)));
         } else {
             out.push(c);
@@ -308,8 +355,8 @@ fn shown(path: &Path) -> String {
 /// ```
 /// use hw3::cli::{ReadError, read_text_bounded};
 /// let error = read_text_bounded(std::path::Path::new("/dev/zero"), 1024).unwrap_err();
-/// assert!(matches!(error, ReadError::TooLong { limit: 1024, .. }));
-/// assert_eq!(error.to_string(), "/dev/zero is longer than the limit of 1024 bytes");
+/// assert!(matches!(error, ReadError::NotAFile { kind: "a device", .. }));
+/// assert_eq!(error.to_string(), "cannot read /dev/zero: it is a device, not a regular file");
 /// ```
 #[derive(Debug, thiserror::Error)]
 pub enum ReadError {
@@ -321,11 +368,14 @@ pub enum ReadError {
         /// The operating system's error.
         source: std::io::Error,
     },
-    /// The path is a directory.
-    #[error("cannot read {}: it is a directory", shown(.path))]
-    Directory {
+    /// The path is a folder, a named pipe, a device or a socket (refused before reading, so that
+    /// a pipe with no writer cannot make the command wait forever).
+    #[error("cannot read {}: it is {kind}, not a regular file", shown(.path))]
+    NotAFile {
         /// The path.
         path: PathBuf,
+        /// What it is ([`crate::fsio::kind_of`]).
+        kind: &'static str,
     },
     /// The file holds more than `limit` bytes.
     #[error("{} is longer than the limit of {limit} bytes", shown(.path))]
@@ -350,20 +400,24 @@ pub enum ReadError {
 ///
 /// # Errors
 /// A [`ReadError`] naming the file: [`ReadError::Io`] when it cannot be read,
-/// [`ReadError::Directory`] for a directory, [`ReadError::TooLong`] over the limit,
+/// [`ReadError::NotAFile`] for a folder, a pipe or a device, [`ReadError::TooLong`] over the limit,
 /// [`ReadError::NotUtf8`] when it is not UTF-8.
 ///
 /// # Examples
 /// ```
-/// assert!(hw3::cli::read_text_bounded(std::path::Path::new("/dev/zero"), 1024).unwrap_err().to_string().contains("1024"));
+/// let path = std::env::temp_dir().join(format!("hw3-bounded-doc-{}.toml", std::process::id()));
+/// std::fs::write(&path, "x".repeat(2000)).unwrap();
+/// assert!(hw3::cli::read_text_bounded(&path, 1024).unwrap_err().to_string().contains("limit of 1024 bytes"));
+/// assert_eq!(hw3::cli::read_text_bounded(&path, 2000).unwrap().len(), 2000);
+/// std::fs::remove_file(&path).unwrap();
 /// ```
 pub fn read_text_bounded(path: &Path, limit: u64) -> Result<String, ReadError> {
     use std::io::Read as _;
     let io = |source| ReadError::Io { path: path.to_path_buf(), source };
-    let file = std::fs::File::open(path).map_err(io)?;
-    if file.metadata().is_ok_and(|m| m.is_dir()) {
-        return Err(ReadError::Directory { path: path.to_path_buf() });
-    }
+    let (file, _) = crate::fsio::open_regular(path).map_err(|e| match e {
+        crate::fsio::OpenError::Io(source) => io(source),
+        crate::fsio::OpenError::NotAFile(kind) => ReadError::NotAFile { path: path.to_path_buf(), kind },
+    })?;
     let mut bytes = Vec::new();
     file.take(limit + 1).read_to_end(&mut bytes).map_err(io)?;
     if bytes.len() as u64 > limit {
@@ -384,11 +438,13 @@ pub enum HdrFileError {
         /// The operating system's error.
         source: std::io::Error,
     },
-    /// The path is not a regular file (a folder, a device).
-    #[error("--env: {} is not a regular file", shown(.path))]
+    /// The path is not a regular file (a folder, a named pipe, a device), refused before reading.
+    #[error("--env: {} is {kind}, not a regular file", shown(.path))]
     NotAFile {
         /// The path.
         path: PathBuf,
+        /// What it is ([`crate::fsio::kind_of`]).
+        kind: &'static str,
     },
     /// The file is larger than [`MAP_FILE_BYTES`].
     #[error("--env: {} has {bytes} bytes, over the limit of {limit}", shown(.path))]
@@ -468,11 +524,10 @@ pub enum HdrFileError {
 pub fn check_hdr_file(path: &Path, allow_large: bool) -> Result<(), HdrFileError> {
     use std::io::Read as _;
     let unreadable = |source| HdrFileError::Unreadable { path: path.to_path_buf(), source };
-    let file = std::fs::File::open(path).map_err(unreadable)?;
-    let meta = file.metadata().map_err(unreadable)?;
-    if !meta.is_file() {
-        return Err(HdrFileError::NotAFile { path: path.to_path_buf() });
-    }
+    let (file, meta) = crate::fsio::open_regular(path).map_err(|e| match e {
+        crate::fsio::OpenError::Io(source) => unreadable(source),
+        crate::fsio::OpenError::NotAFile(kind) => HdrFileError::NotAFile { path: path.to_path_buf(), kind },
+    })?;
     if meta.len() > MAP_FILE_BYTES {
         return Err(HdrFileError::TooLarge { path: path.to_path_buf(), bytes: meta.len(), limit: MAP_FILE_BYTES });
     }

@@ -277,7 +277,7 @@ fn restore_default_sigpipe() {
 /// One line on stderr, cleaned ([`one_line`]); a stderr that cannot be written is ignored, since
 /// there is nowhere left to report it.
 fn report(message: &str) {
-    let _ = writeln!(std::io::stderr(), "hw3: {}", one_line(message));
+    let _ = writeln!(std::io::stderr(), "{}", one_line(&format!("hw3: {message}")));
 }
 
 /// Writes `text` to stdout, turning a write failure (a full disk, a closed descriptor) into exit
@@ -295,12 +295,98 @@ fn emit_line(text: &str) -> anyhow::Result<()> {
     emit(&format!("{text}\n"))
 }
 
+/// Deletes the temporaries of unfinished writes when the process is interrupted (`SIGINT`,
+/// `SIGTERM`, `SIGHUP`), then dies of the same signal, so that the shell sees an interrupt as
+/// one. The signals are blocked in every thread and taken by one thread that waits for them: the
+/// cleanup then runs as ordinary code, not inside a signal handler.
+fn remove_temporaries_on_interrupt() {
+    #[cfg(unix)]
+    // SAFETY: called in main before any other thread exists, so that every thread inherits the
+    // mask; the set is initialised by sigemptyset before use, and the waiting thread only calls
+    // sigwait, the file removal, and the async-signal-safe signal, pthread_sigmask and raise.
+    unsafe {
+        let mut set: libc::sigset_t = std::mem::zeroed();
+        libc::sigemptyset(&raw mut set);
+        for signal in [libc::SIGINT, libc::SIGTERM, libc::SIGHUP] {
+            libc::sigaddset(&raw mut set, signal);
+        }
+        libc::pthread_sigmask(libc::SIG_BLOCK, &raw const set, std::ptr::null_mut());
+        std::thread::spawn(move || {
+            let mut signal = 0;
+            if libc::sigwait(&raw const set, &raw mut signal) != 0 {
+                return;
+            }
+            hw3::fsio::remove_temporaries();
+            libc::signal(signal, libc::SIG_DFL);
+            libc::pthread_sigmask(libc::SIG_UNBLOCK, &raw const set, std::ptr::null_mut());
+            libc::raise(signal);
+        });
+    }
+}
+
+/// Whether standard output is open. Rust's runtime, before `main`, puts `/dev/null` (opened for
+/// reading and writing) on a standard descriptor it finds closed, so that `hw3 … >&-` would
+/// otherwise end with status 0 and its output lost. That is what is recognised here: descriptor 1
+/// missing, or being `/dev/null` open for reading and writing (a shell's `> /dev/null` opens it
+/// for writing only, and stays allowed).
+fn stdout_is_open() -> bool {
+    #[cfg(unix)]
+    // SAFETY: fcntl(F_GETFL) and fstat read the state of descriptor 1 and change nothing; `stat`
+    // is a plain struct that fstat fills.
+    unsafe {
+        let flags = libc::fcntl(1, libc::F_GETFL);
+        if flags == -1 {
+            return false;
+        }
+        let mut own: libc::stat = std::mem::zeroed();
+        if libc::fstat(1, &raw mut own) != 0 {
+            return false;
+        }
+        let null = std::fs::metadata("/dev/null");
+        #[allow(clippy::useless_conversion, reason = "dev_t is u64 on Linux, narrower on other Unixes")]
+        let device = u64::from(own.st_rdev);
+        let is_null = null.is_ok_and(|n| {
+            use std::os::unix::fs::MetadataExt as _;
+            (own.st_mode & libc::S_IFMT) == libc::S_IFCHR && device == n.rdev()
+        });
+        !(is_null && flags & libc::O_ACCMODE == libc::O_RDWR)
+    }
+    #[cfg(not(unix))]
+    true
+}
+
+/// Whether a command prints its result on stdout (the others write files, and say so on stderr).
+fn writes_stdout(command: Option<&Command>) -> bool {
+    match command {
+        Some(Command::Render { .. } | Command::Figures { .. }) => false,
+        Some(Command::Check { out, .. }) => out.is_none(),
+        _ => true,
+    }
+}
+
+/// clap's error on one line, with the value it quotes in backticks, so that [`one_line`] cuts a long
+/// value and keeps the reason after it.
+fn clap_message(first_line: &str) -> String {
+    let message = first_line.strip_prefix("error: ").unwrap_or(first_line);
+    if let Some(rest) = message.strip_prefix("invalid value '")
+        && let Some((value, reason)) = rest.rsplit_once("' for '")
+    {
+        return format!("invalid value `{value}` for '{reason}");
+    }
+    message.to_owned()
+}
+
 fn main() -> ExitCode {
     restore_default_sigpipe();
+    remove_temporaries_on_interrupt();
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
         Err(e) if !e.use_stderr() => {
             // --help and --version: their text is the output.
+            if !stdout_is_open() {
+                report("stdout is closed: nothing done, since the result would be lost");
+                return ExitCode::from(3);
+            }
             let text = e.render().to_string();
             return match emit(&text) {
                 Ok(()) => ExitCode::SUCCESS,
@@ -313,13 +399,18 @@ fn main() -> ExitCode {
         Err(e) => {
             // clap's first line is the error; its usage block and tips are dropped, to keep the
             // promise of one line.
+            // Its first paragraph: the error, and the arguments it lists on the lines after a colon.
             let rendered = e.render().to_string();
-            let first = rendered.lines().next().unwrap_or("invalid arguments");
-            let message = first.strip_prefix("error: ").unwrap_or(first);
-            report(&format!("{message} (see --help)"));
+            let first: Vec<&str> = rendered.lines().take_while(|l| !l.trim().is_empty()).map(str::trim).collect();
+            let first = if first.is_empty() { "invalid arguments".to_owned() } else { first.join(" ") };
+            report(&format!("{} (see --help)", clap_message(&first)));
             return ExitCode::from(2);
         }
     };
+    if writes_stdout(cli.command.as_ref()) && !stdout_is_open() {
+        report("stdout is closed: nothing done, since the result would be lost");
+        return ExitCode::from(3);
+    }
     match run(cli) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) if e.downcast_ref::<SomeWrong>().is_some() => ExitCode::from(1),
@@ -423,7 +514,7 @@ fn check(files: &[PathBuf], seed: Option<u64>, format: FormatArg, out: Option<&P
     let class = files.len() > 1 || files.iter().any(|f| f.is_dir());
     let per_student = class && matches!(format, FormatArg::Gradescope);
     if let Some(out) = out {
-        check_report_out(out, per_student)?;
+        check_report_out(out, per_student, files)?;
     }
     if !class {
         let file = &files[0];
@@ -457,12 +548,20 @@ fn check(files: &[PathBuf], seed: Option<u64>, format: FormatArg, out: Option<&P
     match (format, out) {
         (FormatArg::Gradescope, Some(folder)) => {
             let results = hw3::checker::gradescope_files(&graded).map_err(|e| UsageError(e.to_string()))?;
+            // Created only now that there are files to put in it.
+            std::fs::create_dir_all(folder).map_err(|e| {
+                OutputError(format!(
+                    "--out: cannot create `{}`: {}",
+                    limits::quote(&folder.display().to_string()),
+                    io_reason(&e)
+                ))
+            })?;
             for (name, json) in &results {
                 let path = folder.join(name);
                 hw3::fsio::write_atomic(&path, format!("{}\n", serde_json::to_string_pretty(json)?).as_bytes())
                     .map_err(|e| OutputError(format!("writing {}: {}", path.display(), io_reason(&e))))?;
             }
-            let _ = writeln!(std::io::stderr(), "{} results files in {}", results.len(), folder.display());
+            notice(&format!("{} results files in `{}`", results.len(), folder.display()));
         }
         _ => {
             let body = match format {
@@ -477,17 +576,42 @@ fn check(files: &[PathBuf], seed: Option<u64>, format: FormatArg, out: Option<&P
     if graded.all_correct() { Ok(()) } else { Err(SomeWrong.into()) }
 }
 
-/// Checks `check --out` before any grading: a file in a folder that accepts files, or, for one
-/// results file per student, a folder (created if missing).
-fn check_report_out(out: &Path, folder: bool) -> Result<(), UsageError> {
+/// Checks `check --out` before any grading: a file that can be written ([`check_out_file`]) and
+/// is none of the answers files, or, for one results file per student, a folder that exists and
+/// accepts files or can be made in one that does (made only once there is something to write).
+fn check_report_out(out: &Path, folder: bool, inputs: &[PathBuf]) -> Result<(), UsageError> {
     let shown = || limits::quote(&out.display().to_string());
     if folder {
-        return prepare_out_dir(out);
+        if out.is_dir() {
+            return hw3::fsio::check_writable_dir(out).map_err(|e| UsageError(format!("--out: {e}")));
+        }
+        if out.exists() {
+            return Err(UsageError(format!("--out: `{}` is a file, not a folder", shown())));
+        }
+        return hw3::fsio::check_writable_dir(hw3::fsio::parent_dir(out))
+            .map_err(|e| UsageError(format!("--out: `{}` cannot be made: {e}", shown())));
     }
-    if out.is_dir() {
-        return Err(UsageError(format!("--out: `{}` is a folder", shown())));
+    check_out_file(out)?;
+    if let Some(input) = inputs.iter().find(|input| hw3::fsio::same_file(input, out)) {
+        return Err(UsageError(format!(
+            "--out: `{}` is the answers file `{}`: the report would replace it",
+            shown(),
+            limits::quote(&input.display().to_string())
+        )));
     }
-    hw3::fsio::check_writable_dir(hw3::fsio::parent_dir(out)).map_err(|e| UsageError(format!("--out: {e}")))
+    Ok(())
+}
+
+/// Checks an `--out` file before any work ([`hw3::fsio::check_output_file`]): a name the file
+/// system accepts, in a folder that accepts files, and nothing there that is not a regular file.
+fn check_out_file(out: &Path) -> Result<(), UsageError> {
+    hw3::fsio::check_output_file(out)
+        .map_err(|e| UsageError(format!("--out: `{}`: {e}", limits::quote(&out.display().to_string()))))
+}
+
+/// A success summary on stderr, on one line with its input escaped ([`one_line`]).
+fn notice(message: &str) {
+    let _ = writeln!(std::io::stderr(), "{}", one_line(message));
 }
 
 /// The report to `out` (replaced atomically), or to stdout.
@@ -532,10 +656,7 @@ fn check_render_out(out: &Path) -> Result<(), UsageError> {
     if !is_png {
         return Err(UsageError(format!("--out: `{}` must end in .png (the renderer writes PNG only)", shown())));
     }
-    if out.is_dir() {
-        return Err(UsageError(format!("--out: `{}` is a folder", shown())));
-    }
-    hw3::fsio::check_writable_dir(hw3::fsio::parent_dir(out)).map_err(|e| UsageError(format!("--out: {e}")))
+    check_out_file(out)
 }
 
 fn render_to_file(
@@ -557,7 +678,7 @@ fn render_to_file(
     let output = render_scene(scene, spp, size, mode).map_err(|e| UsageError(e.to_string()))?;
     hw3::fsio::write_atomic(out, &output.png)
         .map_err(|e| OutputError(format!("writing {}: {}", out.display(), io_reason(&e))))?;
-    let _ = writeln!(std::io::stderr(), "{} → {}", output.summary, out.display());
+    notice(&format!("{} → `{}`", output.summary, out.display()));
     Ok(())
 }
 
@@ -598,6 +719,6 @@ fn write_figures(out: &Path) -> anyhow::Result<()> {
             written.map_err(|e| OutputError(format!("writing {}: {}", path.display(), io_reason(&e))))?;
         }
     }
-    let _ = writeln!(std::io::stderr(), "{} figures in {}", figures.len(), out.display());
+    notice(&format!("{} figures in `{}`", figures.len(), out.display()));
     Ok(())
 }

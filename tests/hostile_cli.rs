@@ -26,6 +26,8 @@ fn refused(output: &Output) -> String {
     assert!(stderr.starts_with("hw3: "), "{stderr}");
     assert!(!stderr.trim_end().chars().any(char::is_control), "control character in {stderr:?}");
     assert!(!stderr.contains("panicked"), "{stderr}");
+    let length = stderr.trim_end().chars().count();
+    assert!(length <= hw3::cli::MESSAGE_CHARS, "{length} characters: {stderr}");
     stderr
 }
 
@@ -63,7 +65,7 @@ fn every_count_has_a_bound_named_in_its_message() {
 #[test]
 fn files_are_read_within_a_bound() {
     let line = refused(&hw3(&["check", "/dev/zero"]));
-    assert!(line.contains("limit"), "{line}");
+    assert!(line.contains("it is a device, not a regular file"), "{line}");
     let dir = scratch("bounded");
     let big = dir.join("big.toml");
     let mut text = String::from("[meta]\nseed = 0\n");
@@ -266,6 +268,226 @@ fn sections_of_the_wrong_shape_are_refused_not_graded() {
             let line = refused(&hw3(&args));
             assert!(line.contains(says), "{name}: {line}");
         }
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// `mkfifo`, for the tests that need a named pipe.
+#[cfg(unix)]
+fn named_pipe(path: &std::path::Path) {
+    let c = std::ffi::CString::new(path.as_os_str().as_encoded_bytes()).unwrap();
+    // SAFETY: a valid NUL-terminated path; mkfifo only creates a file.
+    assert_eq!(unsafe { libc::mkfifo(c.as_ptr(), 0o600) }, 0, "mkfifo {path:?}");
+}
+
+/// Runs `hw3 args`, killed after `limit`: a command that waits on a pipe fails the test instead of
+/// hanging it.
+fn hw3_within(args: &[&str], limit: Duration) -> Output {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_hw3"))
+        .args(args)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("the hw3 binary runs");
+    let start = Instant::now();
+    while child.try_wait().unwrap().is_none() {
+        if start.elapsed() > limit {
+            child.kill().unwrap();
+            panic!("{args:?} still running after {limit:?}");
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    child.wait_with_output().unwrap()
+}
+
+/// A named pipe as an answers file, inside a class folder, or as a map: refused at once (a pipe
+/// with no writer would block the read forever), and the rest of a class is still graded.
+#[cfg(unix)]
+#[test]
+fn a_named_pipe_is_refused_without_waiting() {
+    let dir = scratch("pipes");
+    let (pipe, map) = (dir.join("pipe.toml"), dir.join("pipe.hdr"));
+    named_pipe(&pipe);
+    named_pipe(&map);
+    let limit = Duration::from_secs(20);
+    let line = refused(&hw3_within(&["check", pipe.to_str().unwrap()], limit));
+    assert!(line.contains("it is a named pipe, not a regular file"), "{line}");
+    let line = refused(&hw3_within(
+        &["irradiance", "--env", map.to_str().unwrap(), "--normal", "0,0,1", "--method", "sh9"],
+        limit,
+    ));
+    assert!(line.contains("named pipe"), "{line}");
+    std::fs::write(dir.join("good.toml"), hw3(&["template", "--seed", "1"]).stdout).unwrap();
+    let class = hw3_within(&["check", dir.to_str().unwrap(), "--format", "csv"], limit);
+    assert_eq!(class.status.code(), Some(1), "{}", String::from_utf8_lossy(&class.stderr));
+    let csv = String::from_utf8(class.stdout).unwrap();
+    assert!(csv.contains("good.toml") && csv.contains("named pipe"), "{csv}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// An `--out` that would destroy something, or whose file cannot exist, is refused before any
+/// work, and nothing is created: the answers file itself (however spelled), a symbolic link (such
+/// as `/dev/stdout`), a device, a pipe, a folder, a name longer than a file system allows.
+#[cfg(unix)]
+#[test]
+fn an_output_that_would_damage_a_file_is_refused_before_any_work() {
+    let dir = scratch("outputs");
+    let answers = dir.join("s.toml");
+    let template = hw3(&["template", "--seed", "3"]).stdout;
+    std::fs::write(&answers, &template).unwrap();
+    let spelled = dir.join(".").join("s.toml");
+    let link = dir.join("link.txt");
+    std::os::unix::fs::symlink("/proc/self/fd/1", &link).unwrap();
+    let pipe = dir.join("pipe.txt");
+    named_pipe(&pipe);
+    let long = dir.join("a".repeat(256));
+    let file = answers.to_str().unwrap();
+    for (out, says) in [
+        (spelled.to_str().unwrap(), "is the answers file"),
+        (link.to_str().unwrap(), "symbolic link"),
+        ("/dev/null", "it is a device"),
+        (pipe.to_str().unwrap(), "it is a named pipe"),
+        (dir.to_str().unwrap(), "it is a folder"),
+        (long.to_str().unwrap(), "256 bytes"),
+    ] {
+        let line = refused(&hw3_within(&["check", file, "--out", out], Duration::from_secs(20)));
+        assert!(line.contains("--out") && line.contains(says), "{out}: {line}");
+    }
+    assert_eq!(std::fs::read(&answers).unwrap(), template, "the answers file is untouched");
+    assert!(std::fs::symlink_metadata(&link).unwrap().file_type().is_symlink());
+    // A render refuses a 256-byte name before rendering, and writes a 255-byte one.
+    let png = |n: usize| dir.join(format!("{}.png", "b".repeat(n - 4)));
+    let line = refused(&hw3(&["render", "still", "--spp", "1", "--size", "8x8", "--out", png(256).to_str().unwrap()]));
+    assert!(line.contains("256 bytes"), "{line}");
+    let made = hw3(&["render", "still", "--spp", "1", "--size", "8x8", "--out", png(255).to_str().unwrap()]);
+    assert!(made.status.success() && png(255).is_file(), "{}", String::from_utf8_lossy(&made.stderr));
+    // One results file per student: the folder is made only when there is something to write.
+    let (twins, results) = (dir.join("twins"), dir.join("results"));
+    for sub in ["a", "b"] {
+        std::fs::create_dir_all(twins.join(sub)).unwrap();
+        std::fs::write(twins.join(sub).join("x.toml"), &template).unwrap();
+    }
+    let (a, b) = (twins.join("a/x.toml"), twins.join("b/x.toml"));
+    let args = ["check", a.to_str().unwrap(), b.to_str().unwrap(), "--format", "gradescope", "--out"];
+    let line = refused(&hw3(&[&args[..], &[results.to_str().unwrap()]].concat()));
+    assert!(line.contains("both write x.json"), "{line}");
+    assert!(!results.exists(), "no folder made for nothing");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// A closed stdout (`hw3 … >&-`) is exit status 3 in every command that prints, before any work;
+/// `> /dev/null` is still a place to print to.
+#[cfg(unix)]
+#[test]
+fn a_closed_stdout_is_exit_status_3_in_every_command() {
+    use std::os::unix::process::CommandExt as _;
+    let dir = scratch("closed");
+    let answers = dir.join("t.toml");
+    std::fs::write(&answers, hw3(&["template", "--seed", "2"]).stdout).unwrap();
+    for args in [
+        &["scenes"][..],
+        &["answers", "--question", "q1"],
+        &["template"],
+        &["variant", "--question", "q3", "--seed", "4"],
+        &["solution", "--seed", "4", "--question", "q2"],
+        &["check", answers.to_str().unwrap()],
+        &["sphere", "--origin", "-5,1,0", "--dir", "1,0,0", "--center", "0,0,0", "--radius", "2"],
+        &["kd-trace", "--origin", "5,0", "--dir", "-1,1"],
+        &["paths", "cornell"],
+        &["effect-tables"],
+        &["irradiance", "--env", "sky", "--normal", "0,0,1", "--method", "sh9"],
+        &["--help"],
+    ] {
+        let mut command = Command::new(env!("CARGO_BIN_EXE_hw3"));
+        command.args(args).stdout(Stdio::inherit()).stderr(Stdio::piped());
+        // SAFETY: close(2) is async-signal-safe, as pre_exec requires.
+        unsafe {
+            command.pre_exec(|| {
+                libc::close(1);
+                Ok(())
+            });
+        }
+        let start = Instant::now();
+        let output = command.output().unwrap();
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert_eq!(output.status.code(), Some(3), "{args:?}: {stderr}");
+        assert_eq!(stderr.lines().count(), 1, "{args:?}: {stderr}");
+        assert!(stderr.contains("stdout is closed"), "{stderr}");
+        assert!(start.elapsed() < Duration::from_secs(5), "{args:?} worked before refusing");
+        let null = Command::new(env!("CARGO_BIN_EXE_hw3")).args(args).stdout(Stdio::null()).output().unwrap();
+        assert_ne!(null.status.code(), Some(3), "{args:?} > /dev/null");
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// A message longer than a line keeps what failed and why: long input is quoted shorter, then the
+/// middle goes, never the reason at the end.
+#[test]
+fn long_messages_keep_their_reason() {
+    let seed = "9".repeat(400);
+    let line = refused(&hw3(&["template", "--seed", &seed]));
+    assert!(line.contains("--seed") && line.contains("largest seed"), "{line}");
+    let path = format!("{}x.toml", "d/".repeat(400));
+    let line = refused(&hw3(&["check", &path]));
+    assert!(line.trim_end().ends_with("No such file or directory"), "{line}");
+    let dir = scratch("long-messages");
+    let file = dir.join("long.toml");
+    std::fs::write(&file, format!("[meta]\nseed = 0\n[q2a]\nt = \"{}\n", "x".repeat(5000))).unwrap();
+    let line = refused(&hw3(&["check", file.to_str().unwrap()]));
+    assert!(line.contains("line 4, column 5006") && line.contains("invalid basic string"), "{line}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// What a success summary shows of a user's input is escaped: no terminal escape, no
+/// right-to-left override.
+#[test]
+fn success_summaries_show_input_escaped() {
+    let dir = scratch("summaries");
+    let out = dir.join("e\u{1b}[31mred\u{202e}gnp.png");
+    let output = hw3(&["render", "still", "--spp", "1", "--size", "8x8", "--out", out.to_str().unwrap()]);
+    let stderr = String::from_utf8(output.stderr).unwrap();
+    assert!(output.status.success() && out.is_file(), "{stderr}");
+    assert!(!stderr.contains('\u{1b}') && !stderr.contains('\u{202e}'), "{stderr:?}");
+    assert!(stderr.contains("\\u{1b}[31mred\\u{202e}gnp.png"), "{stderr}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// An interrupted command dies of the signal it got, at once, and leaves no temporary beside its
+/// target. (Which temporaries are deleted is tested on the list itself in `hw3_core::fsio`: the
+/// moment a write is under way is too short to hit from outside.)
+#[cfg(unix)]
+#[test]
+fn an_interrupted_command_leaves_no_temporary() {
+    use std::os::unix::process::ExitStatusExt as _;
+    let dir = scratch("interrupted");
+    let out = dir.join("slow.png");
+    for signal in [libc::SIGTERM, libc::SIGINT, libc::SIGHUP] {
+        let mut child = Command::new(env!("CARGO_BIN_EXE_hw3"))
+            .args([
+                "render",
+                "still",
+                "--spp",
+                "4096",
+                "--size",
+                "256x256",
+                "--allow-large",
+                "--out",
+                out.to_str().unwrap(),
+            ])
+            .stderr(Stdio::null())
+            .spawn()
+            .unwrap();
+        std::thread::sleep(Duration::from_millis(300));
+        // SAFETY: kill(2) sends a signal to the child, whose pid is valid until it is waited for.
+        unsafe {
+            libc::kill(i32::try_from(child.id()).unwrap(), signal);
+        }
+        let start = Instant::now();
+        let status = child.wait().unwrap();
+        assert_eq!(status.signal(), Some(signal), "{status:?}");
+        assert!(start.elapsed() < Duration::from_secs(5), "the signal ended the render");
+        let left: Vec<_> = std::fs::read_dir(&dir).unwrap().filter_map(|e| e.ok()).map(|e| e.file_name()).collect();
+        assert!(left.is_empty(), "{left:?}");
     }
     std::fs::remove_dir_all(&dir).unwrap();
 }

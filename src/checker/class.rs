@@ -10,7 +10,7 @@
 use super::grading::{Report, check};
 use super::policy::Rule;
 use super::reports::report_gradescope;
-use crate::cli::{ANSWERS_FILE_BYTES, ReadError, one_line, quote, read_text_bounded};
+use crate::cli::{ANSWERS_FILE_BYTES, ReadError, escape, one_line, quote, read_text_bounded};
 use crate::fsio::io_reason;
 use serde::Serialize;
 use std::collections::BTreeMap;
@@ -205,7 +205,9 @@ pub fn class_files(paths: &[PathBuf]) -> Result<Vec<PathBuf>, ClassError> {
 /// it cannot be read.
 #[must_use]
 pub fn read_class(files: &[PathBuf]) -> Vec<(String, Result<String, ReadError>)> {
-    files.iter().map(|f| (f.display().to_string(), read_text_bounded(f, ANSWERS_FILE_BYTES))).collect()
+    // A file's name is shown escaped wherever the report goes: a name may hold a line break or a
+    // terminal escape.
+    files.iter().map(|f| (escape(&f.display().to_string()), read_text_bounded(f, ANSWERS_FILE_BYTES))).collect()
 }
 
 /// Grades every file of a class: `files` pairs each name with its text, or with why it could not

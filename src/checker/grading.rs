@@ -104,7 +104,7 @@ impl Report {
 /// assert!(hw3::checker::check("q2a = [", None).is_err());
 /// ```
 pub fn check(text: &str, seed_override: Option<u64>) -> Result<Report, CheckError> {
-    let table: toml::Table = toml::from_str(text).map_err(|e| CheckError::Syntax(e.to_string()))?;
+    let table: toml::Table = toml::from_str(text).map_err(|e| CheckError::Syntax(toml_reason(text, &e)))?;
     require_tables(&table)?;
     let seed = match seed_override {
         Some(seed) => seed,
@@ -498,6 +498,21 @@ fn grade(part: &Part, given: Option<&Given>) -> PartResult {
 
 fn round2(x: f64) -> f64 {
     (x * 100.0).round() / 100.0
+}
+
+/// A TOML error as "line L, column C: reason", without the parser's excerpt of the line (which
+/// can be as long as the file, and would push the reason out of a one-line message).
+fn toml_reason(text: &str, error: &toml::de::Error) -> String {
+    let reason = error.message().trim_end_matches('\n');
+    match error.span() {
+        Some(span) => {
+            let before = &text[..span.start.min(text.len())];
+            let line = before.matches('\n').count() + 1;
+            let column = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
+            format!("line {line}, column {column}: {reason}")
+        }
+        None => reason.to_owned(),
+    }
 }
 
 #[cfg(test)]
