@@ -15,6 +15,7 @@ pub use normals::fibonacci_normals;
 
 use crate::answers::Answers;
 use crate::envmap::{Probe, ProbeError, ProbeFormat, horizontal_camera};
+use crate::plot::significant;
 use glam::{DVec2, DVec3};
 use maps::AnalyticMap;
 use std::fmt::Write as _;
@@ -78,6 +79,7 @@ pub fn probe_from_spec(spec: &str, size: usize) -> Result<Probe, ProbeError> {
         if l < 0.0 {
             return Err(ProbeError::Spec(format!("radiance must be ≥ 0 in `{spec}`")));
         }
+        texel_range(spec, l)?;
         AnalyticMap::constant(l)
     } else if let Some(rest) = spec.strip_prefix("linear:") {
         let v = numbers(rest, 2)?;
@@ -86,11 +88,25 @@ pub fn probe_from_spec(spec: &str, size: usize) -> Result<Probe, ProbeError> {
                 "linear:A,B needs A ≥ |B| so that radiance is never negative, got `{spec}`"
             )));
         }
+        texel_range(spec, v[0] + v[1].abs())?;
         AnalyticMap::linear_z(v[0], v[1])
     } else {
         return Probe::read_lat_long(spec);
     };
     map.rasterise(ProbeFormat::MirrorBall, size, horizontal_camera())
+}
+
+/// Refuses a radiance above what a probe's texels (`f32`) hold: the map would be rasterised into
+/// infinities. Irradiance itself is summed in `f64`, so `πL` is representable for any `L` that
+/// passes.
+fn texel_range(spec: &str, largest: f64) -> Result<(), ProbeError> {
+    if largest > f64::from(f32::MAX) {
+        return Err(ProbeError::Spec(format!(
+            "radiance up to {largest:e} in `{spec}` is above {:e}, the largest a probe's texel (f32) holds",
+            f32::MAX
+        )));
+    }
+    Ok(())
 }
 
 /// Runs `hw3 irradiance`: the text (or JSON) it prints.
@@ -118,10 +134,10 @@ pub fn irradiance_command(request: &IrradianceRequest) -> Result<String, ProbeEr
         Ok(serde_json::json!({ "irradiance": [e.x, e.y, e.z] }).to_string())
     } else {
         Ok(format!(
-            "E(n) = {:.6} {:.6} {:.6} (RGB; env {}, method {}, normal {})",
-            e.x,
-            e.y,
-            e.z,
+            "E(n) = {} {} {} (RGB; env {}, method {}, normal {})",
+            significant(e.x),
+            significant(e.y),
+            significant(e.z),
             request.env,
             method.name(),
             request.normal

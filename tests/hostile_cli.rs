@@ -491,3 +491,32 @@ fn an_interrupted_command_leaves_no_temporary() {
     }
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// Radiance at the edges of `f32`, the probe's texel type: a subnormal map's irradiance is
+/// printed with its digits, not as 0; a constant too large for a texel is refused with that
+/// reason; the largest that fits is answered (`E = πL`, summed in `f64`).
+#[test]
+fn irradiance_at_the_edges_of_f32_is_answered_or_refused_truly() {
+    let dir = scratch("f32-edges");
+    let map = dir.join("subnormal.hdr");
+    let mut bytes = b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 8 +X 16\n".to_vec();
+    // Mantissa 3, exponent byte 1: about 7e-41 per channel, below f32's smallest normal 1.2e-38.
+    bytes.extend(std::iter::repeat_n([3u8, 3, 3, 1], 16 * 8).flatten());
+    std::fs::write(&map, bytes).unwrap();
+    let irradiance = |env: &str, method: &str| -> f64 {
+        let output = hw3(&["irradiance", "--env", env, "--normal", "0,0,1", "--method", method, "--json"]);
+        assert!(output.status.success(), "{env} {method}: {}", String::from_utf8_lossy(&output.stderr));
+        let json: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();
+        json["irradiance"][0].as_f64().unwrap()
+    };
+    let (sh9, weighted) = (irradiance(map.to_str().unwrap(), "sh9"), irradiance(map.to_str().unwrap(), "weighted"));
+    assert!(sh9 > 1e-41 && sh9 < 1e-39 && ((sh9 - weighted) / weighted).abs() < 0.05, "{sh9} {weighted}");
+    let text = hw3(&["irradiance", "--env", map.to_str().unwrap(), "--normal", "0,0,1", "--method", "sh9"]);
+    let text = String::from_utf8(text.stdout).unwrap();
+    assert!(text.starts_with("E(n) = 2.") && text.contains("e-40"), "{text}");
+    let line = refused(&hw3(&["irradiance", "--env", "constant:5e307", "--normal", "0,0,1", "--method", "sh9"]));
+    assert!(line.contains("above 3.4028235e38") && line.contains("f32"), "{line}");
+    let e = irradiance("constant:3e38", "sh9");
+    assert!((e / (std::f64::consts::PI * 3e38) - 1.0).abs() < 1e-3, "{e}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -18,7 +18,7 @@ pub use chart::{
 };
 pub use job::{FigureJob, run_jobs};
 pub use raster::{PngError, Rgb, RgbImage, decode_png, encode_png};
-pub use table::{markdown_rows, markdown_table};
+pub use table::{markdown_rows, markdown_table, significant};
 
 use plotters::prelude::*;
 use plotters::style::FontStyle;

@@ -1,5 +1,6 @@
 //! One markdown-table writer, for the tables the chapters include among their figures, and its
-//! reader, for the code and tests that read numbers back from a committed table.
+//! reader, for the code and tests that read numbers back from a committed table; and the one way a
+//! number is shown to a reader with its significant digits kept ([`significant`]).
 //!
 //! No table crate is used: the ones on crates.io pad columns to equal widths, and the committed
 //! tables are unpadded (`| a | b |`), which keeps their diffs to the cells that changed.
@@ -62,4 +63,33 @@ pub fn markdown_rows(text: &str) -> Vec<Vec<&str>> {
         rows.push(line.trim_matches('|').split('|').map(str::trim).collect());
     }
     rows
+}
+/// `x` with at least six significant digits: six decimals from 0.1 up to 10¹⁵, more decimals
+/// below 0.1, and an exponent below 10⁻³ or from 10¹⁵ up, so that a small or subnormal value is
+/// never printed as 0 and a huge one is not a run of digits. −0 is shown as 0; ±∞ and NaN as
+/// `inf`, `-inf`, `NaN`.
+///
+/// # Examples
+/// ```
+/// use hw3_core::plot::significant;
+/// assert_eq!(significant(4.188790204786391), "4.188790");
+/// assert_eq!(significant(0.0123), "0.0123000");
+/// assert_eq!(significant(2.5e-40), "2.50000e-40");
+/// assert_eq!(significant(1.5e308), "1.50000e308");
+/// assert_eq!(significant(-0.0), "0.000000");
+/// ```
+#[must_use]
+pub fn significant(x: f64) -> String {
+    let x = x + 0.0; // -0 prints as 0
+    if x == 0.0 || !x.is_finite() {
+        return format!("{x:.6}");
+    }
+    let magnitude = x.abs().log10().floor();
+    if (-3.0..15.0).contains(&magnitude) {
+        // 0.0123 has magnitude -2: seven decimals give it six significant digits.
+        let decimals = (5.0 - magnitude).max(6.0) as usize;
+        format!("{x:.decimals$}")
+    } else {
+        format!("{x:.5e}")
+    }
 }
