@@ -433,13 +433,13 @@ fn run(cli: Cli) -> anyhow::Result<()> {
     match cli.command {
         None => {
             let out = PathBuf::from("docs/figures");
-            prepare_out_dir(&out)?;
+            check_out_folder(&out)?;
             print_answers(None)?;
             write_figures(&out)
         }
         Some(Command::Answers { question }) => print_answers(question.as_deref()),
         Some(Command::Figures { out }) => {
-            prepare_out_dir(&out)?;
+            check_out_folder(&out)?;
             write_figures(&out)
         }
         Some(Command::Template { seed }) => emit(&hw3::checker::template(seed).map_err(|e| UsageError(e.to_string()))?),
@@ -582,14 +582,7 @@ fn check(files: &[PathBuf], seed: Option<u64>, format: FormatArg, out: Option<&P
 fn check_report_out(out: &Path, folder: bool, inputs: &[PathBuf]) -> Result<(), UsageError> {
     let shown = || limits::quote(&out.display().to_string());
     if folder {
-        if out.is_dir() {
-            return hw3::fsio::check_writable_dir(out).map_err(|e| UsageError(format!("--out: {e}")));
-        }
-        if out.exists() {
-            return Err(UsageError(format!("--out: `{}` is a file, not a folder", shown())));
-        }
-        return hw3::fsio::check_writable_dir(hw3::fsio::parent_dir(out))
-            .map_err(|e| UsageError(format!("--out: `{}` cannot be made: {e}", shown())));
+        return check_out_folder(out);
     }
     check_out_file(out)?;
     if let Some(input) = inputs.iter().find(|input| hw3::fsio::same_file(input, out)) {
@@ -696,20 +689,34 @@ fn print_answers(question: Option<&str>) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// Checks (and creates) an output folder before any work (the figures, a class's results files): a
-/// path that is a file, or a folder that cannot be created or written, is bad input.
-fn prepare_out_dir(out: &Path) -> Result<(), UsageError> {
+/// Checks an output folder before any work (the figures, a class's results files): a folder
+/// that accepts files, or a path whose nearest existing folder does, so that the missing ones can
+/// be made. They are made only when there is something to write ([`make_out_folder`]).
+fn check_out_folder(out: &Path) -> Result<(), UsageError> {
     let shown = || limits::quote(&out.display().to_string());
-    if out.exists() && !out.is_dir() {
+    if out.is_dir() {
+        return hw3::fsio::check_writable_dir(out).map_err(|e| UsageError(format!("--out: {e}")));
+    }
+    if out.exists() {
         return Err(UsageError(format!("--out: `{}` is a file, not a folder", shown())));
     }
-    std::fs::create_dir_all(out)
-        .map_err(|e| UsageError(format!("--out: cannot create `{}`: {}", shown(), io_reason(&e))))?;
-    hw3::fsio::check_writable_dir(out).map_err(|e| UsageError(format!("--out: {e}")))
+    let mut existing = hw3::fsio::parent_dir(out);
+    while !existing.exists() {
+        existing = hw3::fsio::parent_dir(existing);
+    }
+    hw3::fsio::check_writable_dir(existing).map_err(|e| UsageError(format!("--out: `{}` cannot be made: {e}", shown())))
+}
+
+/// Makes the output folder checked by [`check_out_folder`], once there is something to put in it.
+fn make_out_folder(out: &Path) -> Result<(), OutputError> {
+    std::fs::create_dir_all(out).map_err(|e| {
+        OutputError(format!("--out: cannot create `{}`: {}", limits::quote(&out.display().to_string()), io_reason(&e)))
+    })
 }
 
 fn write_figures(out: &Path) -> anyhow::Result<()> {
     let figures = hw3::all_figures().map_err(|e| anyhow::anyhow!("drawing figures: {e:#}"))?;
+    make_out_folder(out)?;
     for figure in &figures {
         let path = out.join(&figure.file_name);
         let unchanged = std::fs::read(&path).is_ok_and(|old| old == figure.bytes);
