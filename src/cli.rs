@@ -320,6 +320,43 @@ pub fn terminal_text(text: &str) -> String {
     lines.join("\n")
 }
 
+/// A report as pretty JSON that is also safe on a terminal: every character [`escape`] would
+/// show escaped is written as a JSON `\uXXXX` escape (serde escapes C0 controls already, but not
+/// DEL, C1 controls or the bidirectional ones). The value is unchanged for any JSON reader: such
+/// characters occur only inside strings.
+///
+/// # Errors
+/// Serialisation's, which a report's types never produce.
+///
+/// # Examples
+/// ```
+/// let text = hw3::cli::json_text(&serde_json::json!({ "given": "n\u{202e}o" })).unwrap();
+/// assert!(text.contains(r"n\u202eo"));
+/// let back: serde_json::Value = serde_json::from_str(&text).unwrap();
+/// assert_eq!(back["given"], "n\u{202e}o");
+/// ```
+pub fn json_text<T: serde::Serialize + ?Sized>(value: &T) -> serde_json::Result<String> {
+    let text = serde_json::to_string_pretty(value)?;
+    let mut out = String::with_capacity(text.len());
+    for c in text.chars() {
+        if c != '\n' && reaches_terminal_escaped(c) {
+            let mut units = [0u16; 2];
+            for unit in c.encode_utf16(&mut units) {
+                out.push_str(&format!("\\u{unit:04x}"));
+            }
+        } else {
+            out.push(c);
+        }
+    }
+    Ok(out)
+}
+
+/// Whether [`escape`] shows `c` escaped.
+fn reaches_terminal_escaped(c: char) -> bool {
+    c.is_control()
+        || matches!(c, '\u{200e}' | '\u{200f}' | '\u{061c}' | '\u{202a}'..='\u{202e}' | '\u{2066}'..='\u{2069}')
+}
+
 /// Replaces C0, DEL and C1 control characters, and the invisible characters that reorder text
 /// (bidirectional embeddings, overrides, isolates and marks, Unicode TR9 §2), by a visible
 /// `\u{…}`: nothing a user typed can move the cursor, recolour the terminal or make text read

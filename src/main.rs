@@ -526,9 +526,9 @@ fn check(files: &[PathBuf], seed: Option<u64>, format: FormatArg, out: Option<&P
         let body = match format {
             // A student's file may hold terminal escapes: the text report shows them escaped.
             FormatArg::Text => limits::terminal_text(&report_text(&report)),
-            FormatArg::Json => serde_json::to_string_pretty(&report)?,
+            FormatArg::Json => limits::json_text(&report)?,
             FormatArg::Csv => class_csv(&check_class(&[(name, Ok(text))], seed)),
-            FormatArg::Gradescope => serde_json::to_string_pretty(&report_gradescope(&report))?,
+            FormatArg::Gradescope => limits::json_text(&report_gradescope(&report))?,
         };
         deliver(out, &body)?;
         return if report.all_correct() { Ok(()) } else { Err(SomeWrong.into()) };
@@ -558,7 +558,7 @@ fn check(files: &[PathBuf], seed: Option<u64>, format: FormatArg, out: Option<&P
             })?;
             for (name, json) in &results {
                 let path = folder.join(name);
-                hw3::fsio::write_atomic(&path, format!("{}\n", serde_json::to_string_pretty(json)?).as_bytes())
+                hw3::fsio::write_atomic(&path, format!("{}\n", limits::json_text(json)?).as_bytes())
                     .map_err(|e| OutputError(format!("writing {}: {}", path.display(), io_reason(&e))))?;
             }
             notice(&format!("{} results files in `{}`", results.len(), folder.display()));
@@ -566,9 +566,9 @@ fn check(files: &[PathBuf], seed: Option<u64>, format: FormatArg, out: Option<&P
         _ => {
             let body = match format {
                 FormatArg::Text => limits::terminal_text(&class_text(&graded)),
-                FormatArg::Json => serde_json::to_string_pretty(&graded)?,
+                FormatArg::Json => limits::json_text(&graded)?,
                 FormatArg::Csv => class_csv(&graded),
-                FormatArg::Gradescope => serde_json::to_string_pretty(&class_gradescope(&graded))?,
+                FormatArg::Gradescope => limits::json_text(&class_gradescope(&graded))?,
             };
             deliver(out, &body)?;
         }

@@ -520,3 +520,31 @@ fn irradiance_at_the_edges_of_f32_is_answered_or_refused_truly() {
     assert!((e / (std::f64::consts::PI * 3e38) - 1.0).abs() < 1e-3, "{e}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// A student's answers and file names reach the terminal escaped in every report format: no
+/// control character other than a line break, no bidirectional override (JSON keeps them as
+/// `\uXXXX` escapes, which read back as the same strings).
+#[test]
+fn every_report_format_shows_a_students_text_escaped() {
+    let dir = scratch("report-escapes");
+    let text =
+        "[meta]\nseed = 0\n[q2a]\ncase = \"out\\u202eside\\u001b[31m\\u0085\"\nt = 3.0\n[q5a]\na = \"n\\u2066o\"\n";
+    let (one, other) = (dir.join("a.toml"), dir.join("b\u{202e}lmot.toml"));
+    std::fs::write(&one, text).unwrap();
+    std::fs::write(&other, text).unwrap();
+    let raw = |c: char| (c.is_control() && c != '\n') || matches!(c, '\u{202a}'..='\u{202e}' | '\u{2066}'..='\u{2069}');
+    for format in ["text", "json", "csv", "gradescope"] {
+        for files in [&[one.to_str().unwrap()][..], &[one.to_str().unwrap(), other.to_str().unwrap()]] {
+            let output = hw3(&[&["check", "--format", format][..], files].concat());
+            assert_eq!(output.status.code(), Some(1), "{format}: {}", String::from_utf8_lossy(&output.stderr));
+            let shown = String::from_utf8(output.stdout).unwrap();
+            assert!(!shown.chars().any(raw), "{format} {}: {shown:?}", files.len());
+            if format == "json" && files.len() == 1 {
+                let json: serde_json::Value = serde_json::from_str(&shown).unwrap();
+                let given = json["parts"].as_array().unwrap().iter().find(|p| p["key"] == "q2a.case").unwrap();
+                assert!(given["given"].as_str().unwrap().contains('\u{202e}'), "{given}");
+            }
+        }
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
