@@ -49,7 +49,7 @@ mod tree_f32;
 
 pub use build::{BuildError, SahCosts};
 pub(crate) use tree::moved;
-pub use tree::{HitStats, KdTree, brute_force_closest_hit};
+pub use tree::{HitStats, KdTree, Walk, brute_force_closest_hit};
 pub use tree_f32::KdTreeF32;
 
 /// Which child of a split a piece of the ray lies in: `Lower` holds `p_a < s`, `Upper` holds

@@ -52,6 +52,19 @@ impl Counter for HitStats {
     }
 }
 
+/// How [`KdTree::closest_hit_at`] walks a tree ([`KdTree::walk`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Walk {
+    /// Static spheres on the coarse grid: each leaf's spheres are first rejected in `f32` from
+    /// 8-byte copies, and only those kept are tested exactly.
+    Filtered,
+    /// Static spheres, one of which does not fit the coarse grid: every listed sphere is tested
+    /// exactly.
+    Exact,
+    /// Moving spheres: each listed sphere is moved to the ray's time and tested exactly.
+    Moving,
+}
+
 /// A kd-tree over spheres, built by the surface area heuristic (see [`SahCosts`]), answering
 /// closest-hit queries front to back with the crate's one interval rule,
 /// [`split_interval`](super::split_interval).
@@ -174,7 +187,8 @@ impl KdTree {
     /// bounded by its *swept* box, the union of its boxes at `open` and at `close` (linear motion
     /// stays inside it), so the tree holds the sphere at every time of the interval. Query it
     /// with [`KdTree::closest_hit_at`]. The faster a sphere moves, the larger its box and the
-    /// more leaves list it: traversal cost grows with speed.
+    /// more leaves list it: traversal cost grows with speed. When no sphere moves, the tree is
+    /// the static one of [`KdTree::build`], with its coarse filter ([`KdTree::walk`]).
     ///
     /// # Errors
     /// [`BuildError::InvalidSphere`] for an invalid sphere or a swept box that is not finite
@@ -200,6 +214,9 @@ impl KdTree {
         if velocities.len() != spheres.len() {
             return Err(BuildError::VelocityCount { spheres: spheres.len(), velocities: velocities.len() });
         }
+        if velocities.iter().all(|v| *v == DVec3::ZERO) {
+            return Self::build(spheres);
+        }
         let at = |time: f64| -> Vec<Sphere<f64>> {
             spheres.iter().zip(velocities).map(|(&sphere, &velocity)| moved(sphere, velocity, time)).collect()
         };
@@ -212,6 +229,27 @@ impl KdTree {
         let mut tree = Self::from_prims(spheres, swept, SahCosts::default());
         tree.motion = Some(Motion { spheres: spheres.to_vec(), velocities: velocities.to_vec(), interval });
         Ok(tree)
+    }
+
+    /// Which walk queries take: the coarse filter needs static spheres that fit its grid.
+    ///
+    /// # Examples
+    /// ```
+    /// use glam::DVec3;
+    /// use hw3_core::geometry::Sphere;
+    /// use hw3_render::kdtree::{KdTree, Walk};
+    /// let ball = [Sphere::new(DVec3::ZERO, 1.0).unwrap()];
+    /// assert_eq!(KdTree::build(&ball).unwrap().walk(), Walk::Filtered);
+    /// assert_eq!(KdTree::build_moving(&ball, &[DVec3::ZERO], (0.0, 1.0)).unwrap().walk(), Walk::Filtered);
+    /// assert_eq!(KdTree::build_moving(&ball, &[DVec3::X], (0.0, 1.0)).unwrap().walk(), Walk::Moving);
+    /// ```
+    #[must_use]
+    pub fn walk(&self) -> Walk {
+        match (&self.motion, self.fits) {
+            (Some(_), _) => Walk::Moving,
+            (None, true) => Walk::Filtered,
+            (None, false) => Walk::Exact,
+        }
     }
 
     /// The tree over `spheres` bounded by `prims` (validated boxes, one per sphere, in input order).

@@ -6,7 +6,7 @@
 
 use super::camera::Camera;
 use super::environment::Environment;
-use crate::kdtree::{BuildError, KdTree};
+use crate::kdtree::{BuildError, KdTree, Walk};
 use glam::DVec3;
 use hw3_core::geometry::sphere::{first_hit_stable, surface_hit};
 use hw3_core::geometry::{InputError, Ray, Sphere, require_finite};
@@ -180,6 +180,15 @@ impl PartialEq for Scene {
         (self.camera, &self.objects, &self.point_lights, self.fog, self.background, &self.environment)
             == (other.camera, &other.objects, &other.point_lights, other.fog, other.background, &other.environment)
     }
+}
+
+/// How a scene's closest-hit and shadow queries find its spheres ([`Scene::sphere_queries`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SphereQueries {
+    /// Each sphere tested in turn (at most three: cheaper than a walk).
+    OneByOne,
+    /// Through the kd-tree, by the walk it takes.
+    Tree(Walk),
 }
 
 /// The ray-query structures of a scene: its spheres in a kd-tree ([`crate::kdtree`]), moving
@@ -366,6 +375,23 @@ impl Scene {
     #[must_use]
     pub fn kd_tree_spheres(&self) -> usize {
         self.acceleration.as_ref().and_then(|a| a.spheres.as_ref()).map_or(0, |s| s.tree_objects.len())
+    }
+
+    /// How closest-hit and shadow queries find the scene's spheres: `None` without spheres (or
+    /// after [`Scene::without_kd_tree`]); one by one up to three spheres; else the kd-tree's
+    /// [`Walk`] (the coarse-filtered one whenever no sphere moves).
+    ///
+    /// # Examples
+    /// ```
+    /// use hw3_render::kdtree::Walk;
+    /// use hw3_render::render::{catalogue::by_name, scene::SphereQueries};
+    /// assert_eq!(by_name("clutter").unwrap().sphere_queries(), Some(SphereQueries::Tree(Walk::Filtered)));
+    /// assert_eq!(by_name("motion").unwrap().sphere_queries(), Some(SphereQueries::OneByOne));
+    /// ```
+    #[must_use]
+    pub fn sphere_queries(&self) -> Option<SphereQueries> {
+        let spheres = self.acceleration.as_ref()?.spheres.as_ref()?;
+        Some(if spheres.direct.is_some() { SphereQueries::OneByOne } else { SphereQueries::Tree(spheres.tree.walk()) })
     }
 
     /// The camera.

@@ -113,3 +113,22 @@ fn invalid_scenes_are_typed_errors_naming_the_value() {
     let fog = Fog { sigma_a: 0.0, sigma_s: f64::NAN };
     assert_eq!(name(scene(camera, vec![], Some(fog))), "fog sigma_s");
 }
+
+/// Every built-in scene's spheres are found by the cheapest walk that is right for it: the
+/// coarse-filtered tree whenever no sphere moves (the moving tree only for the motion scene's
+/// moving ball, which, alone, is tested directly).
+#[test]
+fn every_built_in_scene_takes_the_walk_its_spheres_allow() {
+    use crate::kdtree::Walk;
+    use crate::render::catalogue::{CATALOGUE, by_name};
+    use crate::render::scene::SphereQueries;
+    let walks: Vec<(&str, Option<SphereQueries>)> =
+        CATALOGUE.iter().map(|(name, _)| (*name, by_name(name).unwrap().sphere_queries())).collect();
+    crate::testing::insta_settings().bind(|| insta::assert_debug_snapshot!("builtin_scene_walks", walks));
+    for (name, walk) in walks {
+        assert_ne!(walk, Some(SphereQueries::Tree(Walk::Moving)), "{name}: no built-in scene needs the moving tree");
+        assert_ne!(walk, Some(SphereQueries::Tree(Walk::Exact)), "{name}: every built-in sphere fits the coarse grid");
+    }
+    let moving = crate::render::catalogue::moving_ball(2.0).unwrap();
+    assert_eq!(moving.sphere_queries(), Some(SphereQueries::OneByOne));
+}
