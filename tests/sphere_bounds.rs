@@ -347,7 +347,19 @@ fn the_catalogue_is_within_its_bounds_and_refused_only_where_rounding_decides() 
         summary(&mut p_all)
     );
     eprintln!("refused: f32 {refused32:?}, f64 {refused64:?}");
-    assert!(summary(&mut t_all)[2] <= LOOSENESS && summary(&mut p_all)[2] <= LOOSENESS);
+    let ([_, t_median, t_max], [_, p_median, p_max]) = (summary(&mut t_all), summary(&mut p_all));
+    assert!(t_max <= LOOSENESS && p_max <= LOOSENESS);
+    // The engineering notes quote these measurements.
+    let notes = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/engineering_q2.md")).unwrap();
+    let notes = notes.split_whitespace().collect::<Vec<_>>().join(" ");
+    let moves = refused32.iter().chain(&refused64).map(|(_, k)| *k).fold(0.0, f64::max);
+    for claim in [
+        format!("the bound is at most {t_max:.0} times the actual error of $t$ and {p_max:.0} times that of the point"),
+        format!("with a median of {t_median:.1} and {p_median:.1};"),
+        format!("a move of the eye by at most {moves} rounding units"),
+    ] {
+        assert!(notes.contains(&claim), "docs/engineering_q2.md does not say: {claim}");
+    }
     // The defect: a unit sphere 10⁵ away is answered in f32, in each of its forms, and so is f64
     // to 10¹⁵ away; the oblique one, hit half a radius off, to about 4 u s (the solver's doc).
     let far = aimed("", 1e5, 0.5, 1.0);
