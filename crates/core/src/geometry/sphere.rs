@@ -714,6 +714,9 @@ fn direction_bound<T: Real>(radial: tracked::Vec3<T>, r_low: f64) -> f64 {
     let c = T::components(value(radial)).map(Real::to_f64);
     let squares = c.map(|x| x * x);
     let length_squared: f64 = squares.iter().sum();
+    if !length_squared.is_finite() {
+        return f64::INFINITY;
+    }
     let r_low = r_low.max(0.0);
     let dunkl_williams = up(2.0 * norm(error)) / down(down(length_squared.sqrt()) + r_low);
     let along: f64 = (0..3).map(|i| c[i].abs() * error[i]).sum();
@@ -752,7 +755,11 @@ fn surface<T: Real>(
         // (3/8) ξ^(−5/2) δ² ≤ 3 δ² for |δ| ≤ 1/2 (Taylor's remainder).
         let newton = constant(1.5).sub(constant(0.5).mul(ratio));
         let delta_bound = delta.v.to_f64().abs() + delta.e;
-        let truncation = if newton_truncation { 3.0 * delta_bound * delta_bound } else { 0.0 };
+        let truncation = match (newton_truncation, delta_bound <= 0.5) {
+            (false, _) => 0.0,
+            (true, true) => 3.0 * delta_bound * delta_bound,
+            (true, false) => f64::INFINITY,
+        };
         Tracked { e: up(newton.e + truncation), ..newton }
     } else {
         r.div(length_squared.sqrt())
