@@ -474,7 +474,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             };
             let answer =
                 hw3::q2_ray_sphere::solve(&ray, &sphere, method, precision).map_err(|e| UsageError(e.to_string()))?;
-            if json { emit_line(&serde_json::to_string(&answer)?) } else { emit_line(&format!("{answer:#?}")) }
+            if json { emit_line(&serde_json::to_string(&answer)?) } else { emit_line(&answer.text()) }
         }
         Some(Command::Scenes) => emit(&hw3::render::command::scenes_text()),
         Some(Command::Paths { scene, json }) => {

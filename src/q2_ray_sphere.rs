@@ -7,7 +7,7 @@ pub mod reflection;
 pub mod student_solver;
 
 use crate::answers::Answers;
-use crate::geometry::sphere::{closest_approach_t, first_hit_stable, surface_hit};
+use crate::geometry::sphere::{bounded_first_hit_from_f64, closest_approach_t, first_hit_stable, surface_hit};
 use crate::geometry::{InputError, ParseVec3Error, Ray, Sphere};
 use crate::real::Real;
 use catalogue::{Precision, Solver};
@@ -58,7 +58,15 @@ pub fn notes_example() -> (Ray<f64>, Sphere<f64>) {
 }
 
 /// Everything Q2 asks for one ray and sphere: the first hit, point, normal, reflection, and the
-/// closest-approach parameter. This is what `hw3 sphere --json` prints.
+/// closest-approach parameter, each number of the hit with a bound on its error. This is what
+/// `hw3 sphere --json` prints.
+///
+/// For the stable method the bounds are the solver's own
+/// ([`crate::geometry::sphere::bounded_first_hit_from_f64`]): each is a bound on the distance from
+/// the exact answer for the `f64` inputs, the rounding to `f32` included. The naive method (the
+/// homework's formula) has no bound of its own: it is checked against the stable method's, its
+/// bounds are its distance from the stable answer plus the stable bound, and `warning` says where
+/// it is wrong beyond the stable bound (or gets hit or miss wrong).
 ///
 /// # Examples
 /// ```
@@ -68,6 +76,7 @@ pub fn notes_example() -> (Ray<f64>, Sphere<f64>) {
 /// let answer = solve(&ray, &sphere, Solver::Stable, Precision::F64).unwrap();
 /// assert!(answer.hit);
 /// assert_eq!(answer.closest_approach_t, 5.0);
+/// assert!(answer.t_error.unwrap() < 1e-15);
 /// ```
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct SphereAnswer {
@@ -75,21 +84,74 @@ pub struct SphereAnswer {
     pub hit: bool,
     /// The first intersection parameter `t_i`.
     pub t: Option<f64>,
+    /// `|t − t_exact| ≤ t_error`.
+    pub t_error: Option<f64>,
     /// The hit point (reprojected onto the sphere for the stable method, `e + d t_i` for naive).
     pub point: Option<[f64; 3]>,
+    /// Per component, the bound on the point's distance from the exact hit point.
+    pub point_error: Option<[f64; 3]>,
     /// Outward unit normal at the hit.
     pub normal: Option<[f64; 3]>,
+    /// Per component, the bound on the normal's distance from the exact normal.
+    pub normal_error: Option<[f64; 3]>,
     /// Unit reflected direction `d̂ − 2(n̂·d̂)n̂`.
     pub reflected_dir: Option<[f64; 3]>,
+    /// Per component, the bound on its distance from the exact reflected direction.
+    pub reflected_dir_error: Option<[f64; 3]>,
     /// The closest-approach parameter `−(e − o)·d/|d|²` (defined whether or not the ray hits).
     pub closest_approach_t: f64,
+    /// For the naive method, where its answer is wrong beyond the stable method's bound: what the
+    /// stable method finds instead. `None` otherwise.
+    pub warning: Option<String>,
+}
+
+impl SphereAnswer {
+    /// The answer as `hw3 sphere` prints it without `--json`: one line per quantity, each with its
+    /// bound (`±`, per component for vectors).
+    ///
+    /// # Examples
+    /// ```
+    /// use hw3::q2_ray_sphere::{catalogue::{Precision, Solver}, notes_example, solve};
+    /// let (ray, sphere) = notes_example();
+    /// let text = solve(&ray, &sphere, Solver::Stable, Precision::F64).unwrap().text();
+    /// assert!(text.starts_with("hit: true\nt = 1 ± 0.0e0\npoint = (-3, 5, -1) ± ("), "{text}");
+    /// ```
+    #[must_use]
+    pub fn text(&self) -> String {
+        let vector = |v: [f64; 3]| format!("({}, {}, {})", v[0], v[1], v[2]);
+        let bound = |v: [f64; 3]| format!("({:.1e}, {:.1e}, {:.1e})", v[0], v[1], v[2]);
+        let mut out = format!("hit: {}\n", self.hit);
+        if let (Some(t), Some(point), Some(normal), Some(reflected)) =
+            (self.t, self.point, self.normal, self.reflected_dir)
+        {
+            let with = |value: String, error: Option<String>| match error {
+                Some(error) => format!("{value} ± {error}"),
+                None => value,
+            };
+            let _ = writeln!(out, "t = {}", with(t.to_string(), self.t_error.map(|e| format!("{e:.1e}"))));
+            let _ = writeln!(out, "point = {}", with(vector(point), self.point_error.map(bound)));
+            let _ = writeln!(out, "normal = {}", with(vector(normal), self.normal_error.map(bound)));
+            let _ =
+                writeln!(out, "reflected direction = {}", with(vector(reflected), self.reflected_dir_error.map(bound)));
+        }
+        let _ = write!(out, "closest approach t = {}", self.closest_approach_t);
+        if let Some(warning) = &self.warning {
+            let _ = write!(out, "\nwarning: {warning}");
+        }
+        out
+    }
 }
 
 /// Solves Q2 a–c for one ray and sphere with the chosen method and precision.
 ///
 /// # Errors
 /// [`InputError`] for a non-finite origin, centre or radius, a negative radius, or a direction
-/// whose squared length is zero, subnormal or infinite *in the chosen precision*.
+/// whose squared length is zero, subnormal or infinite *in the chosen precision*;
+/// [`InputError::Unresolvable`] where the case is out of the precision's reach: a square overflows
+/// or underflows, or no answer within the stable method's error bound exists (hit and miss, or the
+/// two sides of the eye, or of the sphere, cannot be told apart; see
+/// [`crate::geometry::sphere::Unresolved`]). The naive method is refused where the stable one is,
+/// since its answer could not be checked, and where its own numbers overflow.
 ///
 /// # Examples
 /// ```
@@ -112,24 +174,117 @@ pub fn solve(
 }
 
 fn solve_in<T: Real>(ray: &Ray<f64>, sphere: &Sphere<f64>, method: Solver) -> Result<SphereAnswer, InputError> {
+    let stable = bounded_first_hit_from_f64::<T>(ray, sphere)?.into_result()?;
     let ray = Ray::<T>::new(T::vec_from_f64(ray.origin), T::vec_from_f64(ray.dir))?;
     let sphere = Sphere::<T>::new(T::vec_from_f64(sphere.center), T::from_f64(sphere.radius))?;
-    crate::geometry::sphere::check_solvable(&ray, &sphere)?;
-    let array = |v: T::Vec3| T::vec_to_f64(v).to_array();
-    let (t, policy) = match method {
-        Solver::Naive => (student_trace(&ray, &sphere).chosen, SpawnPolicy::AtComputedPoint),
-        Solver::Stable => (first_hit_stable(&ray, &sphere), SpawnPolicy::ReprojectAndOffset),
-    };
     let closest_approach_t = closest_approach_t(&ray, sphere.center).to_f64();
-    let bounce = t.map(|t| reflect_at_hit(&ray, &sphere, t, policy));
-    Ok(SphereAnswer {
-        hit: t.is_some(),
-        t: t.map(Real::to_f64),
-        point: t.map(|t| array(bounce.map_or(ray.at(t), |b| b.point))),
-        normal: bounce.map(|b| array(b.normal)),
-        reflected_dir: bounce.map(|b| array(b.ray.dir)),
+    let array = |v: T::Vec3| T::vec_to_f64(v).to_array();
+    let stable = stable.map(|hit| SphereAnswer {
+        hit: true,
+        t: Some(hit.t.to_f64()),
+        t_error: Some(hit.t_error),
+        point: Some(array(hit.point)),
+        point_error: Some(hit.point_error),
+        normal: Some(array(hit.normal)),
+        normal_error: Some(hit.normal_error),
+        reflected_dir: Some(array(hit.reflected)),
+        reflected_dir_error: Some(hit.reflected_error),
         closest_approach_t,
-    })
+        warning: None,
+    });
+    let miss = SphereAnswer {
+        hit: false,
+        t: None,
+        t_error: None,
+        point: None,
+        point_error: None,
+        normal: None,
+        normal_error: None,
+        reflected_dir: None,
+        reflected_dir_error: None,
+        closest_approach_t,
+        warning: None,
+    };
+    match method {
+        Solver::Stable => Ok(stable.unwrap_or(miss)),
+        Solver::Naive => {
+            let answer = naive_checked(&ray, &sphere, stable, miss);
+            let numbers = [answer.t.map(|t| [t; 3]), answer.point, answer.normal, answer.reflected_dir];
+            if numbers.iter().flatten().flatten().all(|x| x.is_finite()) {
+                Ok(answer)
+            } else {
+                Err(InputError::Unresolvable {
+                    precision: T::NAME,
+                    reason: "the homework's formula overflows: its hit point, normal or reflection is not finite"
+                        .into(),
+                })
+            }
+        }
+    }
+}
+
+/// The homework's answer, checked against the stable method's bounded one (`stable`, `None` for a
+/// certain miss): each bound is the distance from the stable value plus the stable bound, and the
+/// warning says where the naive answer is wrong beyond it.
+fn naive_checked<T: Real>(
+    ray: &Ray<T>,
+    sphere: &Sphere<T>,
+    stable: Option<SphereAnswer>,
+    miss: SphereAnswer,
+) -> SphereAnswer {
+    let array = |v: T::Vec3| T::vec_to_f64(v).to_array();
+    let Some(t) = student_trace(ray, sphere).chosen else {
+        let warning = stable.as_ref().map(|s| {
+            format!(
+                "the homework's formula misses, but the ray hits the sphere at t = {} ± {:.1e} (stable method)",
+                s.t.unwrap_or(f64::NAN),
+                s.t_error.unwrap_or(f64::NAN)
+            )
+        });
+        return SphereAnswer { warning, ..miss };
+    };
+    let bounce = reflect_at_hit(ray, sphere, t, SpawnPolicy::AtComputedPoint);
+    let (t, point, normal, reflected) = (t.to_f64(), array(bounce.point), array(bounce.normal), array(bounce.ray.dir));
+    let Some(stable) = stable else {
+        return SphereAnswer {
+            hit: true,
+            t: Some(t),
+            point: Some(point),
+            normal: Some(normal),
+            reflected_dir: Some(reflected),
+            warning: Some(format!(
+                "the homework's formula hits at t = {t}, but the ray misses the sphere (stable method)"
+            )),
+            ..miss
+        };
+    };
+    // |x − exact| ≤ |x − stable| + |stable − exact|, rounded up.
+    let widen = |x: f64, s: f64, e: f64| ((x - s).abs() + e) * (1.0 + 4.0 * f64::EPSILON);
+    let widen3 = |x: [f64; 3], s: Option<[f64; 3]>, e: Option<[f64; 3]>| {
+        let (s, e) = (s.unwrap_or([f64::NAN; 3]), e.unwrap_or([f64::NAN; 3]));
+        std::array::from_fn(|i| widen(x[i], s[i], e[i]))
+    };
+    let (t_stable, t_bound) = (stable.t.unwrap_or(f64::NAN), stable.t_error.unwrap_or(f64::NAN));
+    let off = (t - t_stable).abs();
+    let warning = (off > t_bound).then(|| {
+        format!(
+            "the homework's formula is off by at least {:.1e} in t: the stable method finds t = {t_stable} ± {t_bound:.1e}",
+            (off - t_bound) * (1.0 - 4.0 * f64::EPSILON)
+        )
+    });
+    SphereAnswer {
+        hit: true,
+        t: Some(t),
+        t_error: Some(widen(t, t_stable, t_bound)),
+        point: Some(point),
+        point_error: Some(widen3(point, stable.point, stable.point_error)),
+        normal: Some(normal),
+        normal_error: Some(widen3(normal, stable.normal, stable.normal_error)),
+        reflected_dir: Some(reflected),
+        reflected_dir_error: Some(widen3(reflected, stable.reflected_dir, stable.reflected_dir_error)),
+        closest_approach_t: stable.closest_approach_t,
+        warning,
+    }
 }
 
 /// A worked trace of one ray through every step of Q2 (the homework's algorithm, the stable

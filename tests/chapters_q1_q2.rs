@@ -538,6 +538,32 @@ fn q2_worked_examples_are_the_solvers_answers() {
     assert!(text.contains("The other five cases on the same sphere"));
 }
 
+/// The chapter's bounded answer is `hw3 sphere`'s: the far sphere's line as printed, its two sides
+/// 256 f32 spacings apart, and the refusal of the eye 0.01 above the r = 10⁶ sphere in f32.
+#[test]
+fn q2_the_bounded_answer_is_what_hw3_sphere_prints() {
+    use hw3::geometry::{InputError, Ray, Sphere};
+    use hw3::q2_ray_sphere::catalogue::{Precision, Solver, hard_cases};
+    use hw3::q2_ray_sphere::solve;
+    let ray = Ray::new(glam::DVec3::new(-1e5, 0.5, 0.0), glam::DVec3::X).unwrap();
+    let sphere = Sphere::new(glam::DVec3::ZERO, 1.0).unwrap();
+    let answer = solve(&ray, &sphere, Solver::Stable, Precision::F32).unwrap();
+    let line = answer.text().lines().nth(1).unwrap().to_owned();
+    assert_says("q2_ray_sphere.md", &[format!("`{line}`")]);
+    let spacing = f64::from(f32::EPSILON) * 2f64.powi(16); // f32 numbers in [2^16, 2^17)
+    assert_eq!(2.0 * sphere.radius / spacing, 256.0);
+    assert!(prose("q2_ray_sphere.md").contains("two sides are 256 `f32` spacings apart there"));
+    let case = hard_cases().into_iter().find(|c| c.name == "huge: r = 1e6, eye 0.01 above, oblique").unwrap();
+    let ray = Ray::new(case.origin.as_dvec3(), case.dir.as_dvec3()).unwrap();
+    let sphere = Sphere::new(case.center.as_dvec3(), f64::from(case.radius)).unwrap();
+    let refused = solve(&ray, &sphere, Solver::Stable, Precision::F32);
+    assert!(
+        matches!(&refused, Err(InputError::Unresolvable { reason, .. }) if reason.starts_with("the eye is within rounding")),
+        "{refused:?}"
+    );
+    assert!(solve(&ray, &sphere, Solver::Stable, Precision::F64).unwrap().hit);
+}
+
 /// Flaw: the half-chord gives the roots only for |d| = 1. The chapter says
 /// t = t_ca ± sqrt(r² − |l|²)/|d|, and that is what the roots are.
 #[test]

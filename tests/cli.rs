@@ -27,11 +27,58 @@ fn sphere_json_has_the_contract_fields() {
     let t = value["t"].as_f64().unwrap();
     assert!((t - (5.0 - 3f64.sqrt())).abs() < 1e-12);
     assert_eq!(value["closest_approach_t"], 5.0);
-    for key in ["point", "normal", "reflected_dir"] {
+    for key in ["point", "normal", "reflected_dir", "point_error", "normal_error", "reflected_dir_error"] {
         assert_eq!(value[key].as_array().map(Vec::len), Some(3), "{key}");
     }
     let r = value["reflected_dir"].as_array().unwrap();
     assert!((r[0].as_f64().unwrap() + 0.5).abs() < 1e-12);
+    let t_error = value["t_error"].as_f64().unwrap();
+    assert!(t_error >= (t - (5.0 - 3f64.sqrt())).abs() && t_error < 1e-15, "{t_error:e}");
+    assert!(value["warning"].is_null());
+}
+
+/// A unit sphere 10⁵, 10⁶ and 10⁷ away in f32 (the far small sphere of the Q2 chapter): answered,
+/// each with a bound that holds, in text and in JSON; the homework's formula gets it wrong and
+/// says so.
+#[test]
+fn sphere_f32_answers_a_far_small_sphere_with_its_bound() {
+    for distance in ["1e5", "1e6", "1e7"] {
+        let origin = format!("-{distance},0.5,0");
+        let args = |method: &'static str, json: bool| {
+            let mut args = vec!["sphere", "--precision", "f32", "--method", method, "--origin", origin.as_str()];
+            args.extend(["--dir", "1,0,0", "--center", "0,0,0", "--radius", "1"]);
+            if json {
+                args.push("--json");
+            }
+            hw3(&args)
+        };
+        let stable = json(&args("stable", true));
+        let exact = distance.parse::<f64>().unwrap() - 0.75f64.sqrt();
+        let (t, t_error) = (stable["t"].as_f64().unwrap(), stable["t_error"].as_f64().unwrap());
+        assert!((t - exact).abs() <= t_error && t_error < 0.5, "{distance}: {stable}");
+        let point: Vec<f64> = stable["point"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();
+        let bound: Vec<f64> = stable["point_error"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();
+        for (i, exact) in [-(0.75f64.sqrt()), 0.5, 0.0].into_iter().enumerate() {
+            assert!((point[i] - exact).abs() <= bound[i], "{distance}: {stable}");
+        }
+        let text = args("stable", false);
+        assert!(text.status.success());
+        let text = String::from_utf8(text.stdout).unwrap();
+        assert!(text.contains(&format!("t = {t} ± ")) && text.contains("point = ("), "{text}");
+        let naive = json(&args("naive", true));
+        let warning = naive["warning"].as_str().unwrap();
+        assert!(warning.starts_with("the homework's formula is off by at least"), "{warning}");
+    }
+}
+
+/// A refusal says what rounding leaves undecided, with the numbers: the eye typed as (0.6, 0.8, 0)
+/// is 2e-17 off the unit sphere after parsing, and f·f − r² rounds to 0.
+#[test]
+fn sphere_refuses_only_what_rounding_leaves_undecided() {
+    let out = hw3(&["sphere", "--origin", "0.6,0.8,0", "--dir", "-1,0,0", "--center", "0,0,0", "--radius", "1"]);
+    assert_usage_error(&out);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(stderr.contains("the eye is within rounding of the sphere: the root t = 0e0 ± "), "{stderr}");
 }
 
 #[test]
@@ -71,8 +118,9 @@ fn sphere_naive_f32_misses_a_far_sphere_the_stable_one_hits() {
     assert!((stable["t"].as_f64().unwrap() - (1e4 - 0.19f64.sqrt())).abs() < 1e-2);
     let naive = json(&args("naive"));
     let naive_t = naive["t"].as_f64();
-    // Either a miss or a hit point off by a large fraction of the radius.
+    // Either a miss or a hit point off by a large fraction of the radius, and never silently.
     assert!(naive_t.is_none_or(|t| (t - (1e4 - 0.19f64.sqrt())).abs() > 0.05), "{naive}");
+    assert!(naive["warning"].as_str().is_some_and(|w| w.starts_with("the homework's formula")), "{naive}");
 }
 
 #[test]

@@ -37,5 +37,7 @@ mod q4_cli;
 mod readme;
 #[path = "solution_cli.rs"]
 mod solution_cli;
+#[path = "sphere_bounds.rs"]
+mod sphere_bounds;
 #[path = "threads.rs"]
 mod threads;

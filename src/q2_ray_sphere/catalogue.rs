@@ -133,9 +133,24 @@ pub fn reference_first_hit(e: DVec3, d: DVec3, o: DVec3, r: f64) -> Option<f64> 
     }
     let root = disc.sqrt();
     let q = if b_half >= TwoFloat::from(0.0) { b_half + root } else { b_half - root };
-    let (t0, t1) = if q == TwoFloat::from(0.0) { (TwoFloat::from(0.0), TwoFloat::from(0.0)) } else { (c / q, q / a) };
+    let (t0, t1) = if q == TwoFloat::from(0.0) {
+        (TwoFloat::from(0.0), TwoFloat::from(0.0))
+    } else {
+        (quotient(c, q), quotient(q, a))
+    };
     let (near, far) = if t0 <= t1 { (t0, t1) } else { (t1, t0) };
     [near, far].into_iter().find(|t| *t > TwoFloat::from(0.0)).map(|t| t.hi() + t.lo())
+}
+
+/// `x / y` to about 106 bits, by long division (three `f64` quotients, each of the remainder left
+/// by the ones before). twofloat's own `TwoFloat / TwoFloat` forms `1 − y·(1/y)` in plain `f64`
+/// and is only about as accurate as an `f64` quotient (`9/3` comes out `3 − 1.7e-16`).
+fn quotient(x: TwoFloat, y: TwoFloat) -> TwoFloat {
+    let q1 = x.hi() / y.hi();
+    let r1 = x - y * q1;
+    let q2 = r1.hi() / y.hi();
+    let r2 = r1 - y * q2;
+    TwoFloat::new_add(q1, q2) + r2.hi() / y.hi()
 }
 
 /// One hard input: a ray and a sphere given as exact `f32` values.
@@ -593,6 +608,17 @@ mod tests {
         assert_eq!(reference_first_hit(DVec3::ZERO, DVec3::Z, DVec3::new(0.0, 0.0, -5.0), 1.0), None);
         // Tangent at the eye: the double root 0 is not a hit (t > 0 policy).
         assert_eq!(reference_first_hit(DVec3::Y, DVec3::X, DVec3::ZERO, 1.0), None);
+        // Roots that are not f64 numbers come out to double-double accuracy: 1/3 and 2/3 from
+        // 9t² − 9t + 2 (|d| = 3), whose f64 roundings differ from the exact roots by about 1e-17.
+        let third = reference_quotient_check();
+        assert!(third < 1e-30, "{third:e}");
+    }
+
+    /// The reference's quotient against exact thirds: `|q·3 − 1|` for `q = 1/3` in double-double.
+    fn reference_quotient_check() -> f64 {
+        let third = quotient(TwoFloat::from(1.0), TwoFloat::from(3.0));
+        assert_eq!(quotient(TwoFloat::from(9.0), TwoFloat::from(3.0)), TwoFloat::from(3.0));
+        f64::from(third * 3.0 - TwoFloat::from(1.0)).abs()
     }
 
     #[test]

@@ -40,8 +40,8 @@ pub enum InputError {
         expected: &'static str,
     },
     /// Valid input whose answer this precision cannot compute: a square that overflows or
-    /// underflows, or a sphere smaller than the rounding of the coordinates around it
-    /// ([`sphere::check_solvable`]).
+    /// underflows ([`sphere::check_solvable`]), or an answer rounding leaves undecided, such as hit
+    /// or miss for a ray within rounding of a sphere's outline ([`sphere::Unresolved`]).
     #[error("{precision} cannot solve this case: {reason}")]
     Unresolvable {
         /// `"f32"` or `"f64"`.

@@ -33,10 +33,16 @@
 //! - Comparisons are written so that NaN fails them: NaN anywhere is a miss, never a NaN `t`.
 //!   Validated constructors ([`Ray::new`], [`Sphere::new`]) reject such input earlier.
 //! - Valid input can still be out of a precision's reach: a square that overflows (for `|d| ≈ 1`,
-//!   `r ≥ 2⁵⁰⁹` in `f64`, `r ≥ 2⁶¹` in `f32`), or a sphere smaller than the rounding of the coordinates around it
-//!   (an eye 10¹⁶ away from a unit sphere in `f64`: `e + d t` cannot tell the sphere's two sides
-//!   apart). [`check_solvable`] refuses such cases with the reason; inside its domain every hit has
-//!   a finite `t`, a point on the sphere and a unit normal.
+//!   `r ≥ 2⁵⁰⁹` in `f64`, `r ≥ 2⁶¹` in `f32`). [`check_solvable`] refuses such cases with the
+//!   reason; inside its domain every hit of [`first_hit_stable`] has a finite `t`, a point on the
+//!   sphere to within the rounding of its coordinates, and a unit normal.
+//! - How far that answer can be from the exact one is what [`bounded_first_hit`] states: the same
+//!   `t`, point, normal and reflection, each with a bound on its error computed from the actual
+//!   inputs (see [its derivation](bounded_first_hit#numerics)). It refuses only where no answer
+//!   within the bound exists: hit and miss, or the two sides of the eye, or the two sides of the
+//!   sphere, cannot be told apart.
+
+mod tracked;
 
 use super::{InputError, Ray, Sphere};
 use crate::real::Real;
@@ -83,20 +89,15 @@ pub fn closest_approach_t<T: Real>(ray: &Ray<T>, center: T::Vec3) -> T {
     -T::dot(f, ray.dir) / T::dot(ray.dir, ray.dir)
 }
 
-/// Largest ratio of the coordinates' size to the radius accepted by [`check_solvable`], in
-/// multiples of `1/ε`: the rounding of a hit point's coordinates stays below `r/256`, so its
-/// normal is right to 2⁻⁸ or better.
-const RESOLUTION: f64 = 1.0 / 256.0;
-
-/// Checks that the ray/sphere problem is within reach of precision `T`, so that the solvers here
-/// and the Q2 ones give a finite `t`, a point on the sphere and a unit normal for every hit.
+/// Checks that the ray/sphere problem is within reach of precision `T`: every square and product
+/// the solvers here and the Q2 ones form stays a finite normal number, so that they give a finite
+/// `t`, and a finite point and unit normal for every hit.
 ///
-/// With `s = max(‖e‖∞, ‖o‖∞, ‖e − o‖∞)`, it requires:
-/// - every square and product the solvers form (`r²|d|²`, `|f × d|²`, `f·f`, the homework's
-///   `4AC`, `t = |f|/|d|`) to be a finite normal number, with a factor 64 to spare;
-/// - `ε s ≤ r/256`: the rounding of coordinates of size `s` is below `r/256`, so a computed hit
-///   point lands on the right side of the sphere and its normal is right to 2⁻⁸ (in practice to
-///   `ε s/r`).
+/// With `s = ‖e − o‖∞`, it requires every square and product the solvers form (`r²|d|²`,
+/// `|f × d|²`, `f·f`, the homework's `4AC`, `t = |f|/|d|`) to be a finite normal number, with a
+/// factor 64 to spare. It does not judge how accurate the answer is: that depends on the ray, not
+/// only on sizes, and [`bounded_first_hit`] states it (a unit sphere `10⁵` away is answered in
+/// `f32` to a few hundredths, its two sides being 256 `f32` spacings apart).
 ///
 /// # Errors
 /// [`InputError::Unresolvable`] naming the quantity out of reach.
@@ -108,8 +109,6 @@ const RESOLUTION: f64 = 1.0 / 256.0;
 /// let sphere = Sphere::<f64>::new(DVec3::ZERO, 1.0).unwrap();
 /// let near = Ray::<f64>::new(DVec3::new(-5.0, 0.0, 0.0), DVec3::X).unwrap();
 /// assert!(check_solvable(&near, &sphere).is_ok());
-/// let far = Ray::<f64>::new(DVec3::new(-1e16, 0.0, 0.0), DVec3::X).unwrap();
-/// assert!(check_solvable(&far, &sphere).is_err()); // ε·10¹⁶ ≈ 2.2 > r/256
 /// let huge = Sphere::<f64>::new(DVec3::ZERO, 1e200).unwrap();
 /// assert!(check_solvable(&near, &huge).is_err()); // r² overflows
 /// ```
@@ -139,16 +138,6 @@ pub fn check_solvable<T: Real>(ray: &Ray<T>, sphere: &Sphere<T>) -> Result<(), I
     }
     if 2.0 * lr.min(lr + ld) - spare <= min_exp {
         return refuse(format!("r² |d|² underflows for r = {rs}, |d| = {ds}"));
-    }
-    let s = f.max(size(ray.origin)).max(size(sphere.center));
-    let rounding = T::EPSILON.to_f64() * s;
-    if rounding > RESOLUTION * r {
-        return refuse(format!(
-            "coordinates of size {} are rounded by up to {}, more than r/256 for r = {rs}: the hit point \
-             cannot be told apart from the other side of the sphere",
-            short(s),
-            short(rounding)
-        ));
     }
     Ok(())
 }
@@ -371,6 +360,413 @@ pub fn offset_along<T: Real>(point: T::Vec3, normal: T::Vec3, with_normal: bool)
     point + normal * if with_normal { push } else { -push }
 }
 
+/// A first hit with error bounds: what [`first_hit_stable`], [`surface_hit`] and
+/// [`reflect_with_cosine`] compute, each number with a bound on its distance from the exact
+/// answer of the problem (pbrt's way of carrying a computed intersection with its error: Pharr,
+/// Jakob & Humphreys, *Physically Based Rendering*, 4th ed., §6.8).
+///
+/// The values are bit for bit those of the plain solver; the bounds are in `f64` and hold for the
+/// exact inputs the solver was given ([`bounded_first_hit`]) or, from `f64` inputs rounded to a
+/// narrower `T`, for those `f64` inputs ([`bounded_first_hit_from_f64`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BoundedHit<T: Real> {
+    /// The ray parameter of the first hit, as [`first_hit_stable`] computes it.
+    pub t: T,
+    /// `|t − t_exact| ≤ t_error`.
+    pub t_error: f64,
+    /// The hit point, reprojected onto the sphere as [`surface_hit`] computes it.
+    pub point: T::Vec3,
+    /// Per component, `|point − p_exact| ≤ point_error`, with `p_exact = e + d t_exact`.
+    pub point_error: [f64; 3],
+    /// The outward unit normal, as [`surface_hit`] computes it.
+    pub normal: T::Vec3,
+    /// Per component, `|normal − (p_exact − o)/r| ≤ normal_error`.
+    pub normal_error: [f64; 3],
+    /// The unit reflected direction `d̂ − 2(n̂·d̂)n̂`, as [`reflect_with_cosine`] computes it.
+    pub reflected: T::Vec3,
+    /// Per component, the bound on its distance from the exact reflection.
+    pub reflected_error: [f64; 3],
+}
+
+/// What rounding leaves undecided, with the numbers that decide it ([`bounded_first_hit`]).
+///
+/// # Examples
+/// ```
+/// use hw3_core::geometry::sphere::Unresolved;
+/// let edge = Unresolved::HitOrMiss { discriminant: 1e-9, error: 3e-9 };
+/// assert!(edge.to_string().contains("1e-9 ± 3e-9"));
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Unresolved {
+    /// The ray passes within rounding of the sphere's outline: the scaled discriminant
+    /// `r²|d|² − |(e − o) × d|²` is `discriminant ± error` with `error ≥ |discriminant|`, so it may
+    /// be negative (a miss) or not (a hit).
+    HitOrMiss {
+        /// The computed `r²|d|² − |(e − o) × d|²`.
+        discriminant: f64,
+        /// Its error bound.
+        error: f64,
+    },
+    /// The eye is within rounding of the sphere: the root that decides the first hit is
+    /// `root ± error` with `error ≥ |root|`, on either side of the eye (`t = 0`).
+    EyeOnSurface {
+        /// The computed root.
+        root: f64,
+        /// Its error bound.
+        error: f64,
+    },
+    /// The hit point is known only to within `point_error` (the length of its error bound), at
+    /// least the sphere's diameter: every point of the sphere fits the bound, the other side
+    /// included.
+    OtherSide {
+        /// The length of the hit point's error bound.
+        point_error: f64,
+        /// The sphere's diameter `2r`.
+        diameter: f64,
+    },
+    /// An error bound overflows (a quotient whose divisor may be 0, or a coordinate near the
+    /// largest float).
+    Unbounded,
+}
+
+impl std::fmt::Display for Unresolved {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match *self {
+            Unresolved::HitOrMiss { discriminant, error } => write!(
+                f,
+                "the ray passes within rounding of the sphere's edge: r²|d|² − |(e − o) × d|² = {} ± {}, so hit \
+                 and miss cannot be told apart",
+                short(discriminant),
+                short(error)
+            ),
+            Unresolved::EyeOnSurface { root, error } => write!(
+                f,
+                "the eye is within rounding of the sphere: the root t = {} ± {} may be on either side of the eye \
+                 (t = 0), so the first hit cannot be told",
+                short(root),
+                short(error)
+            ),
+            Unresolved::OtherSide { point_error, diameter } => write!(
+                f,
+                "the hit point is known only to within {}, at least the sphere's diameter {}: every point of the \
+                 sphere fits that bound, the other side included",
+                short(point_error),
+                short(diameter)
+            ),
+            Unresolved::Unbounded => write!(f, "an error bound overflows"),
+        }
+    }
+}
+
+/// The answer of [`bounded_first_hit`]: a hit with its bounds, a miss, or what rounding leaves
+/// undecided.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum BoundedOutcome<T: Real> {
+    /// The first hit `t > 0`, with error bounds.
+    Hit(BoundedHit<T>),
+    /// Certainly no hit `t > 0`: the line misses the sphere, or both roots are `≤ 0`.
+    Miss,
+    /// No answer within the error bound exists.
+    Unresolved(Unresolved),
+}
+
+impl<T: Real> BoundedOutcome<T> {
+    /// The hit, if any; [`Unresolved`] becomes [`InputError::Unresolvable`] with its reason.
+    ///
+    /// # Errors
+    /// [`InputError::Unresolvable`] for [`BoundedOutcome::Unresolved`].
+    pub fn into_result(self) -> Result<Option<BoundedHit<T>>, InputError> {
+        match self {
+            BoundedOutcome::Hit(hit) => Ok(Some(hit)),
+            BoundedOutcome::Miss => Ok(None),
+            BoundedOutcome::Unresolved(why) => {
+                Err(InputError::Unresolvable { precision: T::NAME, reason: why.to_string() })
+            }
+        }
+    }
+}
+
+/// The first hit by the stable method, with error bounds on `t`, the hit point, the normal and
+/// the reflected direction, computed from the actual inputs; or a miss; or, where no answer
+/// within the bound exists, what is undecided.
+///
+/// The inputs (`ray`, `sphere`) are taken as exact: the bounds are on the distance from the exact
+/// answer for them. [`bounded_first_hit_from_f64`] also covers the rounding of `f64` inputs to `T`.
+///
+/// # Numerics
+/// Every quantity of [`roots_stable`], [`surface_hit`] and [`reflect_with_cosine`] is evaluated in
+/// the same order in precision `T`, carried with a bound on its distance from its exact value
+/// (running error analysis, Higham, *Accuracy and Stability of Numerical Algorithms*, 2nd ed.,
+/// §3.3; the same information as pbrt-v4's `Interval`, §6.8, whose `Sphere::BasicIntersect` runs
+/// this quadratic in intervals). One operation `z = x ∘ y` adds the operands' bounds carried
+/// through the exact operation, and its own rounding: the exact amount where an error-free
+/// transformation gives it (TwoSum, TwoProduct), so that an exact operation adds nothing, and
+/// otherwise pbrt's `γ₁|z̃|`, with `γₙ = n u/(1 − n u)` and `u = ε/2` (pbrt-v4 §6.8.1).
+///
+/// To first order, with `u` the unit roundoff, `f = e − o`, `|d|` the direction's length and
+/// `ℓ = h|d|` the half-chord's length, the error comes from:
+/// - `f = e − o`, off by at most `u|fᵢ|` per component, and `f × d`, off by a few `u|f||d|`;
+/// - the scaled discriminant `Q = r²|d|² − |f × d|²` (which is `|d|² ℓ²`), off by about
+///   `2|f × d|·|Δ(f × d)|` plus a few `u r²|d|²`: a few `u r|d|²(|f| + r)`, as `|f × d| ≤ r|d|`
+///   on a hit;
+/// - the half-chord `h = √Q/|d|²`, off by `|ΔQ|/(2|d|³ℓ)`, a few `u r(|f| + r)/(|d|ℓ)`: the
+///   grazing amplification `r/ℓ`, without bound at the sphere's outline;
+/// - the closest approach `t_ca = −(f·d)/|d|²`, off by a few `u|f|/|d|`;
+/// - so a root `t_ca ∓ h` is off by a few `u|f|(1 + r/ℓ)/|d|`, plus `u|t|` for its own rounding.
+///   For a sphere far away (`|f| = s ≫ r`) that is of order `10 u s/|d|` when hit half a radius
+///   off its centre: the error grows with the distance, not with the distance over the radius,
+///   which is why a unit sphere `10⁵` away is within reach of `f32` (`u s ≈ 6·10⁻³`). The bound
+///   computed at run time is usually below this estimate, as it takes each operation's actual
+///   rounding: `2.6·10⁻²` for `t` there, about `4 u s`, the rounding of the inputs to `f32`
+///   included. Where Press's product `C/(A t_far)` replaces a root (an eye near the sphere), its
+///   relative error is that of `C = f·f − r²`, a few `u|f|²/|C|`: with the eye within a few units
+///   of an `r = 10⁶` sphere in `f32`, `C` is rounding noise.
+///
+/// The hit point `e + d t` is off by `|d||Δt|` plus the rounding of coordinates the size of `e`
+/// and `d t`. Reprojecting it onto the sphere, `p = o + r R̃/|R̃|` with `R̃ = e + d t − o`, moves
+/// it from the exact hit `o + r R/|R|` by at most `r` times the distance between the directions of
+/// `R̃` and `R`, which is bounded by the smaller of Dunkl & Williams' `2|R̃ − R|/(|R̃| + |R|)`
+/// ("A simple norm inequality", *Amer. Math. Monthly* 71, 1964) and the chord `2 sin(θ/2)` of the
+/// angle between them, whose sine is the part of `R̃ − R` across `R̃` over `|R|`: an error along
+/// `R̃` (a ray aimed at the centre, its `t` off) does not move the reprojected point. Per
+/// component the point keeps the smaller of that and the bound carried through the formulas. This
+/// is the distance from the *exact hit*, not only from the surface: pbrt's `γ₅|p|` (§6.8.5)
+/// bounds the latter, which is what a spawned ray needs; an answer needs the former.
+///
+/// # Refusals
+/// The bound decides, as pbrt-v4's sphere does with its intervals (§6.8.7): the line hits the
+/// sphere when the discriminant's lower bound is `≥ 0` and misses when its upper bound is `< 0`; a
+/// root is a hit when its lower bound is `> 0` and is not when its upper bound is `≤ 0` (a root at
+/// exactly 0 is the eye, as in [`first_hit_stable`]). Where pbrt then takes the safe side (a miss,
+/// or the other root), this solver reports [`Unresolved`], because either answer may be wrong by
+/// more than its bound:
+/// - [`Unresolved::HitOrMiss`]: the discriminant's bound straddles 0;
+/// - [`Unresolved::EyeOnSurface`]: the deciding root's bound straddles 0;
+/// - [`Unresolved::OtherSide`]: the hit point's bound is at least the sphere's diameter;
+/// - [`Unresolved::Unbounded`]: a bound overflows.
+///
+/// # Errors
+/// [`InputError::Unresolvable`] where [`check_solvable`] refuses the case (a square overflows or
+/// underflows).
+///
+/// # Examples
+/// A unit sphere `10⁵` away in `f32`: the two sides are 256 spacings of `f32` apart there, and
+/// the answer comes with its bound.
+/// ```
+/// use glam::Vec3;
+/// use hw3_core::geometry::{Ray, Sphere, sphere::{BoundedOutcome, bounded_first_hit}};
+/// let ray = Ray::<f32>::new(Vec3::new(-1e5, 0.5, 0.0), Vec3::X).unwrap();
+/// let sphere = Sphere::<f32>::new(Vec3::ZERO, 1.0).unwrap();
+/// let BoundedOutcome::Hit(hit) = bounded_first_hit(&ray, &sphere).unwrap() else { panic!() };
+/// let exact = 1e5 - 0.75f64.sqrt();
+/// assert!((f64::from(hit.t) - exact).abs() <= hit.t_error);
+/// assert!(hit.t_error < 0.01);
+/// ```
+pub fn bounded_first_hit<T: Real>(ray: &Ray<T>, sphere: &Sphere<T>) -> Result<BoundedOutcome<T>, InputError> {
+    check_solvable(ray, sphere)?;
+    let exact = |v: T::Vec3| T::components(v).map(tracked::Tracked::exact);
+    Ok(bounded(exact(ray.origin), exact(ray.dir), exact(sphere.center), tracked::Tracked::exact(sphere.radius)))
+}
+
+/// [`bounded_first_hit`] for a problem given in `f64` and solved in `T`: the inputs are rounded to
+/// `T`, and the bounds are on the distance from the exact answer of the `f64` problem, the rounding
+/// of the inputs included.
+///
+/// # Errors
+/// [`InputError`] if the rounded ray or sphere is not valid in `T` (a direction whose squared
+/// length underflows), or where [`check_solvable`] refuses the rounded case.
+///
+/// # Examples
+/// ```
+/// use glam::DVec3;
+/// use hw3_core::geometry::{Ray, Sphere, sphere::{BoundedOutcome, bounded_first_hit_from_f64}};
+/// // 0.1 is not an f32 number: the bound covers its rounding too.
+/// let ray = Ray::<f64>::new(DVec3::new(-5.0, 0.1, 0.0), DVec3::X).unwrap();
+/// let sphere = Sphere::<f64>::new(DVec3::ZERO, 1.0).unwrap();
+/// let BoundedOutcome::Hit(hit) = bounded_first_hit_from_f64::<f32>(&ray, &sphere).unwrap() else { panic!() };
+/// let exact = 5.0 - (1.0f64 - 0.01).sqrt();
+/// assert!((f64::from(hit.t) - exact).abs() <= hit.t_error);
+/// ```
+pub fn bounded_first_hit_from_f64<T: Real>(
+    ray: &Ray<f64>,
+    sphere: &Sphere<f64>,
+) -> Result<BoundedOutcome<T>, InputError> {
+    let narrow = Ray::<T>::new(T::vec_from_f64(ray.origin), T::vec_from_f64(ray.dir))?;
+    let narrow_sphere = Sphere::<T>::new(T::vec_from_f64(sphere.center), T::from_f64(sphere.radius))?;
+    check_solvable(&narrow, &narrow_sphere)?;
+    let rounded = |v: glam::DVec3| v.to_array().map(tracked::Tracked::rounded);
+    Ok(bounded(rounded(ray.origin), rounded(ray.dir), rounded(sphere.center), tracked::Tracked::rounded(sphere.radius)))
+}
+
+/// The bounded solver on tracked inputs: [`roots_stable`], [`surface_hit`] and
+/// [`reflect_with_cosine`] step by step, in their order of operations.
+fn bounded<T: Real>(
+    e: tracked::Vec3<T>,
+    d: tracked::Vec3<T>,
+    o: tracked::Vec3<T>,
+    r: tracked::Tracked<T>,
+) -> BoundedOutcome<T> {
+    use tracked::{Tracked, add, cross, dot, errors, norm, scale, sub, up, value};
+    let constant = |x: f64| Tracked::exact(T::from_f64(x));
+    let o_input_error = errors(o);
+    let input_error = norm(o_input_error);
+    // roots_stable
+    let f = sub(e, o);
+    let a = dot(d, d);
+    let r2 = r.mul(r);
+    let perpendicular = cross(f, d);
+    let disc_times_a = r2.mul(a).sub(dot(perpendicular, perpendicular));
+    if disc_times_a.v.to_f64() < -disc_times_a.e {
+        return BoundedOutcome::Miss;
+    }
+    if !disc_times_a.is_finite() {
+        return BoundedOutcome::Unresolved(Unresolved::Unbounded);
+    }
+    if !(disc_times_a.v.to_f64() >= disc_times_a.e) {
+        return BoundedOutcome::Unresolved(Unresolved::HitOrMiss {
+            discriminant: disc_times_a.v.to_f64(),
+            error: disc_times_a.e,
+        });
+    }
+    let inv_a = constant(1.0).div(a);
+    let t_ca = dot(f, d).neg().mul(inv_a);
+    let h = disc_times_a.sqrt().mul(inv_a);
+    let (mut near, mut far) = (t_ca.sub(h), t_ca.add(h));
+    if h.v != T::ZERO && h.v > t_ca.v.abs() * T::from_f64(0.5) {
+        let c_over_a = dot(f, f).sub(r2).mul(inv_a);
+        if t_ca.v >= T::ZERO {
+            near = c_over_a.div(far);
+        } else {
+            far = c_over_a.div(near);
+        }
+    }
+    // The exact roots satisfy near ≤ far, whatever the computed values.
+    let t = if far.certainly_not_positive() {
+        return BoundedOutcome::Miss;
+    } else if near.certainly_positive() {
+        near
+    } else if near.certainly_not_positive() && far.certainly_positive() {
+        far
+    } else {
+        let open = if near.certainly_not_positive() { far } else { near };
+        if !open.is_finite() {
+            return BoundedOutcome::Unresolved(Unresolved::Unbounded);
+        }
+        return BoundedOutcome::Unresolved(Unresolved::EyeOnSurface { root: open.v.to_f64(), error: open.e });
+    };
+    // surface_hit, bounded two ways, each valid, and the smaller bound kept per component:
+    // - carried through: `radial` is tracked against the exact R = e + d t − o of the exact hit,
+    //   and at the exact values the formulas are exact (|R| = r, so the Newton step's ratio is 1
+    //   and 1.5 − 0.5 = 1 = r/|R|);
+    // - reprojected: the rounding of o + r R̃/|R̃| from the computed R̃ (R̃, o, r taken as exact,
+    //   the Newton step's truncation added), plus the distance from that exact reprojection of R̃
+    //   to the exact hit point, |r̃ R̂̃ − r R̂| ≤ |r̃ − r| + r |R̂̃ − R̂|, with the distance between
+    //   the directions bounded by [`direction_bound`].
+    let radial = sub(add(e, scale(d, t)), o);
+    let (carried_point, carried_normal) = surface::<T>(radial, o, r, false);
+    let (r_value, r_error) = (r.v.to_f64(), r.e);
+    let direction_error = direction_bound::<T>(radial, r_value - r_error);
+    let projection_error = up(r_error + up(up(r_value + r_error) * direction_error));
+    let exact = |v: tracked::Vec3<T>| v.map(|c| Tracked::exact(c.v));
+    let (point, normal) = surface::<T>(exact(radial), exact(o), Tracked::exact(r.v), true);
+    let diameter = 2.0 * r_value;
+    let reprojected = up(projection_error + norm(errors(point)) + input_error);
+    let point_error = reprojected.min(norm(errors(carried_point)));
+    if !(point_error < diameter) {
+        return BoundedOutcome::Unresolved(Unresolved::OtherSide { point_error, diameter });
+    }
+    let point_errors =
+        std::array::from_fn(|i| up(point[i].e + o_input_error[i] + projection_error).min(carried_point[i].e));
+    let normal: tracked::Vec3<T> =
+        std::array::from_fn(|i| Tracked { e: up(normal[i].e + direction_error).min(carried_normal[i].e), ..normal[i] });
+    // reflect_with_cosine, on the normal with its whole bound and the direction with its own.
+    let d_hat = scale(d, constant(1.0).div(dot(d, d).sqrt()));
+    let cos = dot(normal, d_hat);
+    let reflected = sub(d_hat, scale(normal, constant(2.0).mul(cos)));
+    let hit = BoundedHit {
+        t: t.v,
+        t_error: t.e,
+        point: value(point),
+        point_error: point_errors,
+        normal: value(normal),
+        normal_error: errors(normal),
+        reflected: value(reflected),
+        reflected_error: errors(reflected),
+    };
+    let all = [hit.t_error].into_iter().chain(hit.point_error).chain(hit.normal_error).chain(hit.reflected_error);
+    if !all.into_iter().all(f64::is_finite) || !t.v.is_finite() {
+        return BoundedOutcome::Unresolved(Unresolved::Unbounded);
+    }
+    BoundedOutcome::Hit(hit)
+}
+
+/// A bound on `|R̂̃ − R̂|`, the distance between the directions of the computed `radial` vector
+/// `R̃` and of the exact `R` it stands for, of length at least `r_low`: the smaller of
+/// - Dunkl & Williams' `2|R̃ − R|/(|R̃| + |R|)` ("A simple norm inequality", *Amer. Math.
+///   Monthly* 71, 1964), which holds for any two vectors;
+/// - the chord `2 sin(θ/2)` of the angle `θ` between them, where it is below 90° (certain when
+///   `Σ|R̃ᵢ| eᵢ < |R̃|²`): `sin θ` is the part of `R − R̃` across `R̃` over `|R|`, at most
+///   `Σ eᵢ √(1 − R̂̃ᵢ²)/r_low`. An error along `R̃` (the ray aimed at the centre, its `t` off)
+///   does not move the direction at all.
+fn direction_bound<T: Real>(radial: tracked::Vec3<T>, r_low: f64) -> f64 {
+    use tracked::{down, errors, norm, up, value};
+    let error = errors(radial);
+    let c = T::components(value(radial)).map(Real::to_f64);
+    let squares = c.map(|x| x * x);
+    let length_squared: f64 = squares.iter().sum();
+    if !length_squared.is_finite() {
+        return f64::INFINITY;
+    }
+    let r_low = r_low.max(0.0);
+    let dunkl_williams = up(2.0 * norm(error)) / down(down(length_squared.sqrt()) + r_low);
+    let along: f64 = (0..3).map(|i| c[i].abs() * error[i]).sum();
+    if !(up(along) < down(length_squared)) || !(r_low > 0.0) {
+        return dunkl_williams;
+    }
+    let across: f64 = (0..3)
+        .map(|i| {
+            let others = up(squares[(i + 1) % 3] + squares[(i + 2) % 3]);
+            error[i] * up(up(others / down(length_squared)).sqrt())
+        })
+        .sum();
+    let sine = (up(across) / down(r_low)).min(1.0);
+    let cosine = down(down((1.0 - up(sine * sine)).max(0.0)).sqrt());
+    let chord = up(sine * up(up(2.0 / down(1.0 + cosine)).sqrt()));
+    dunkl_williams.min(chord)
+}
+
+/// [`surface_hit`]'s point and normal from `radial = e + d t − o`, on tracked values, in its order
+/// of operations. With `newton_truncation`, the Newton step's truncation error is added: needed
+/// where `radial` is taken as exact, so that `|radial| ≠ r`.
+fn surface<T: Real>(
+    radial: tracked::Vec3<T>,
+    o: tracked::Vec3<T>,
+    r: tracked::Tracked<T>,
+    newton_truncation: bool,
+) -> (tracked::Vec3<T>, tracked::Vec3<T>) {
+    use tracked::{Tracked, add, dot, scale, up};
+    let constant = |x: f64| Tracked::exact(T::from_f64(x));
+    let inv_r = constant(1.0).div(r);
+    let length_squared = dot(radial, radial);
+    let ratio = length_squared.mul(inv_r).mul(inv_r);
+    let delta = ratio.sub(constant(1.0));
+    let r_over_length = if delta.v.abs() < T::EPSILON.sqrt() {
+        // One Newton step for 1/√(1 + δ) from 1: its truncation error is at most
+        // (3/8) ξ^(−5/2) δ² ≤ 3 δ² for |δ| ≤ 1/2 (Taylor's remainder).
+        let newton = constant(1.5).sub(constant(0.5).mul(ratio));
+        let delta_bound = delta.v.to_f64().abs() + delta.e;
+        let truncation = match (newton_truncation, delta_bound <= 0.5) {
+            (false, _) => 0.0,
+            (true, true) => 3.0 * delta_bound * delta_bound,
+            (true, false) => f64::INFINITY,
+        };
+        Tracked { e: up(newton.e + truncation), ..newton }
+    } else {
+        r.div(length_squared.sqrt())
+    };
+    (add(o, scale(radial, r_over_length)), scale(radial, inv_r.mul(r_over_length)))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -503,5 +899,132 @@ mod tests {
         let n = Vec3::new(0.6, 0.0, 0.8);
         let out = spawn_origin::<f32>(p, n, n);
         assert!((out - p).dot(n) > 0.0);
+    }
+
+    fn hit<T: Real>(outcome: BoundedOutcome<T>) -> BoundedHit<T> {
+        match outcome {
+            BoundedOutcome::Hit(hit) => hit,
+            other => panic!("expected a hit, got {other:?}"),
+        }
+    }
+
+    /// The bounded solver reports the plain solvers' own numbers, bit for bit: the bound belongs
+    /// to the value every other caller computes.
+    fn values_are_the_plain_solvers<T: Real>(widen: impl Fn(DVec3) -> T::Vec3) {
+        let mut generator = crate::rng::seeded(3, 1);
+        let mut uniform = |low, high| crate::rng::uniform_in(&mut generator, low, high);
+        let (mut hits, mut misses) = (0, 0);
+        for _ in 0..20_000 {
+            let scale = 10f64.powf(uniform(-3.0, 6.0));
+            let e = DVec3::new(uniform(-1.0, 1.0), uniform(-1.0, 1.0), uniform(-1.0, 1.0)) * scale;
+            let o = DVec3::new(uniform(-1.0, 1.0), uniform(-1.0, 1.0), uniform(-1.0, 1.0)) * scale;
+            let r = uniform(0.05, 1.0) * scale * 10f64.powf(uniform(-4.0, 0.0));
+            let aim = o + DVec3::new(uniform(-1.5, 1.5), uniform(-1.5, 1.5), uniform(-1.5, 1.5)) * r - e;
+            let (Ok(ray), Ok(sphere)) =
+                (Ray::<T>::new(widen(e), widen(aim)), Sphere::<T>::new(widen(o), T::from_f64(r)))
+            else {
+                continue;
+            };
+            match bounded_first_hit(&ray, &sphere).unwrap() {
+                BoundedOutcome::Hit(bounded) => {
+                    hits += 1;
+                    assert_eq!(Some(bounded.t), first_hit_stable(&ray, &sphere), "{ray:?} {sphere:?}");
+                    let frame = surface_hit(&ray, &sphere, bounded.t);
+                    assert_eq!((bounded.point, bounded.normal), (frame.point, frame.normal));
+                    assert_eq!(bounded.reflected, reflect_with_cosine::<T>(ray.dir, frame.normal).0);
+                }
+                BoundedOutcome::Miss => {
+                    misses += 1;
+                    assert_eq!(first_hit_stable(&ray, &sphere), None, "{ray:?} {sphere:?}");
+                }
+                BoundedOutcome::Unresolved(_) => {}
+            }
+        }
+        assert!(hits > 5_000 && misses > 2_000, "{hits} hits, {misses} misses");
+    }
+
+    #[test]
+    fn bounded_values_are_the_plain_solvers_bit_for_bit() {
+        values_are_the_plain_solvers::<f64>(|v| v);
+        values_are_the_plain_solvers::<f32>(|v| v.as_vec3());
+    }
+
+    /// Where every operation is exact, the bound is 0: an exact tangent is a hit, an eye exactly on
+    /// the surface is not one (t = 0), and the answers of the worked policy cases are exact.
+    #[test]
+    fn exact_cases_have_zero_bounds_and_keep_the_policies() {
+        let unit = Sphere::<f64>::new(DVec3::ZERO, 1.0).unwrap();
+        let tangent = hit(bounded_first_hit(&ray64([-3.0, 1.0, 0.0], [1.0, 0.0, 0.0]), &unit).unwrap());
+        assert_eq!((tangent.t, tangent.t_error), (3.0, 0.0));
+        assert_eq!((tangent.point, tangent.point_error), (DVec3::Y, [0.0; 3]));
+        let inside = hit(bounded_first_hit(&ray64([0.0; 3], [0.0, 0.0, 2.0]), &unit).unwrap());
+        assert_eq!((inside.t, inside.t_error), (0.5, 0.0));
+        let behind = bounded_first_hit(&ray64([0.0, 0.0, 5.0], [0.0, 0.0, 1.0]), &unit).unwrap();
+        assert_eq!(behind, BoundedOutcome::Miss);
+        let outside = bounded_first_hit(&ray64([0.0, 2.0, -5.0], [0.0, 0.0, 1.0]), &unit).unwrap();
+        assert_eq!(outside, BoundedOutcome::Miss);
+        // The eye on a sphere of radius 5 (e − o = (3, 4, 0)): C = 0 exactly, and the root t = 0
+        // is the eye.
+        let sphere = Sphere::<f64>::new(DVec3::new(1.0, 2.0, 3.0), 5.0).unwrap();
+        let inward = hit(bounded_first_hit(&ray64([4.0, 6.0, 3.0], [-1.0, 0.0, 0.0]), &sphere).unwrap());
+        assert_eq!((inward.t, inward.t_error), (6.0, 0.0));
+        let outward = bounded_first_hit(&ray64([4.0, 6.0, 3.0], [1.0, 0.0, 0.0]), &sphere).unwrap();
+        assert_eq!(outward, BoundedOutcome::Miss);
+    }
+
+    /// The defect this solver answers: a unit sphere 10⁵ away in f32 was refused ("cannot be told
+    /// apart from the other side"); its sides are 256 f32 spacings apart, and the answer holds to
+    /// its bound, as at 10⁶ and 10⁷.
+    #[test]
+    fn a_far_small_sphere_in_f32_is_answered_within_its_bound() {
+        let sphere = Sphere::<f32>::new(Vec3::ZERO, 1.0).unwrap();
+        for distance in [1e5f32, 1e6, 1e7] {
+            let ray = Ray::<f32>::new(Vec3::new(-distance, 0.5, 0.0), Vec3::X).unwrap();
+            let answer = hit(bounded_first_hit(&ray, &sphere).unwrap());
+            let exact_t = f64::from(distance) - 0.75f64.sqrt();
+            let error = (f64::from(answer.t) - exact_t).abs();
+            assert!(error <= answer.t_error && answer.t_error < 2.0 * error.max(1e-9), "{distance}: {answer:?}");
+            let exact_point = DVec3::new(-(0.75f64.sqrt()), 0.5, 0.0);
+            for i in 0..3 {
+                let off = (f64::from(answer.point[i]) - exact_point[i]).abs();
+                assert!(off <= answer.point_error[i], "{distance}: {answer:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn refusals_name_what_rounding_leaves_undecided() {
+        // The eye as parsed is 2e-17 outside the unit sphere, but f·f − r² rounds to 0.
+        let on_surface =
+            bounded_first_hit(&ray64([0.6, 0.8, 0.0], [-1.0, 0.0, 0.0]), &Sphere::new(DVec3::ZERO, 1.0).unwrap());
+        assert!(
+            matches!(on_surface, Ok(BoundedOutcome::Unresolved(Unresolved::EyeOnSurface { .. }))),
+            "{on_surface:?}"
+        );
+        // 10¹⁷ away along an oblique ray, where f64's spacing is 16: e − o, and with it the
+        // ray's distance from the centre, is rounded by more than the radius.
+        let eye = DVec3::new(-7.1e16, 3.3e16, 2.9e16);
+        let far = Ray::<f64>::new(eye, DVec3::new(0.3, 0.1, 0.7) - eye).unwrap();
+        let refused = bounded_first_hit(&far, &Sphere::new(DVec3::new(0.3, 0.1, 0.7), 1.0).unwrap()).unwrap();
+        assert!(
+            matches!(refused, BoundedOutcome::Unresolved(Unresolved::HitOrMiss { discriminant, error }) if discriminant.abs() <= error),
+            "{refused:?}"
+        );
+        // Rays through 2000 consecutive f32 directions around the outline (distance r from the
+        // centre at y = (3.6 + √(3.6² + 4·8.51·4.05))/17.02): a few leave hit or miss undecided.
+        let sphere = Sphere::<f32>::new(Vec3::new(0.1, 0.2, 3.0), 0.7).unwrap();
+        let outline = (3.6 + (3.6f64 * 3.6 + 4.0 * 8.51 * 4.05).sqrt()) / 17.02;
+        let mut undecided = 0;
+        for k in 0..2000u32 {
+            let y = f32::from_bits((outline as f32).to_bits() + k - 1000);
+            let ray = Ray::<f32>::new(Vec3::new(0.1, 0.0, 0.0), Vec3::new(0.0, y, 3.0)).unwrap();
+            if let BoundedOutcome::Unresolved(why) = bounded_first_hit(&ray, &sphere).unwrap() {
+                assert!(matches!(why, Unresolved::HitOrMiss { discriminant, error } if discriminant.abs() <= error));
+                undecided += 1;
+            }
+        }
+        assert!((1..100).contains(&undecided), "{undecided} of 2000 undecided");
+        let why = Unresolved::OtherSide { point_error: 3.0, diameter: 2.0 };
+        assert!(why.to_string().contains("known only to within 3e0, at least the sphere's diameter 2e0"));
     }
 }
