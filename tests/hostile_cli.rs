@@ -548,3 +548,19 @@ fn every_report_format_shows_a_students_text_escaped() {
     }
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// A sphere input beyond `f32`'s range is refused as such, not as "must be finite, got -inf"
+/// after the cast; a refusal never shows a NaN.
+#[test]
+fn sphere_inputs_beyond_a_precision_are_refused_truly() {
+    let sphere = |origin: &str, radius: &str, precision: &str| {
+        let args = ["sphere", "--origin", origin, "--dir", "1,0,0", "--center", "0,0,0", "--radius", radius];
+        refused(&hw3(&[&args[..], &["--precision", precision]].concat()))
+    };
+    let line = sphere("-1e39,0,0", "1", "f32");
+    assert!(line.contains("the origin has -1e39, beyond the largest f32 number, 3.4028235e38"), "{line}");
+    let line = sphere("-1,0,0", "1e39", "f32");
+    assert!(line.contains("the radius has 1e39"), "{line}");
+    let line = sphere("-1e39,0,0", "1", "f64");
+    assert!(!line.contains("NaN") && line.contains("f64 cannot solve this case"), "{line}");
+}

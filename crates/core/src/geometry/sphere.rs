@@ -424,8 +424,8 @@ pub enum Unresolved {
         /// The sphere's diameter `2r`.
         diameter: f64,
     },
-    /// An error bound overflows (a quotient whose divisor may be 0, or a coordinate near the
-    /// largest float).
+    /// An error bound is not finite: a quotient whose divisor may be 0 (the computed vector from
+    /// the centre to the hit rounds to 0), or a coordinate near the largest float.
     Unbounded,
 }
 
@@ -453,7 +453,11 @@ impl std::fmt::Display for Unresolved {
                 short(point_error),
                 short(diameter)
             ),
-            Unresolved::Unbounded => write!(f, "an error bound overflows"),
+            Unresolved::Unbounded => write!(
+                f,
+                "an error bound is not finite (the vector from the centre to the hit is lost to rounding, or a \
+                 number nears the largest float)"
+            ),
         }
     }
 }
@@ -573,7 +577,8 @@ pub fn bounded_first_hit<T: Real>(ray: &Ray<T>, sphere: &Sphere<T>) -> Result<Bo
 /// of the inputs included.
 ///
 /// # Errors
-/// [`InputError`] if the rounded ray or sphere is not valid in `T` (a direction whose squared
+/// [`InputError::Unresolvable`] for an input beyond `T`'s largest finite value (it would round to
+/// ∞); [`InputError`] if the rounded ray or sphere is not valid in `T` (a direction whose squared
 /// length underflows), or where [`check_solvable`] refuses the rounded case.
 ///
 /// # Examples
@@ -591,6 +596,17 @@ pub fn bounded_first_hit_from_f64<T: Real>(
     ray: &Ray<f64>,
     sphere: &Sphere<f64>,
 ) -> Result<BoundedOutcome<T>, InputError> {
+    let inputs = [("origin", ray.origin), ("direction", ray.dir), ("centre", sphere.center)]
+        .into_iter()
+        .flat_map(|(name, v)| v.to_array().map(|x| (name, x)))
+        .chain([("radius", sphere.radius)]);
+    for (name, x) in inputs {
+        if x.abs() > T::MAX.to_f64() {
+            let reason =
+                format!("the {name} has {x:e}, beyond the largest {} number, {:.7e}", T::NAME, T::MAX.to_f64());
+            return Err(InputError::Unresolvable { precision: T::NAME, reason });
+        }
+    }
     let narrow = Ray::<T>::new(T::vec_from_f64(ray.origin), T::vec_from_f64(ray.dir))?;
     let narrow_sphere = Sphere::<T>::new(T::vec_from_f64(sphere.center), T::from_f64(sphere.radius))?;
     check_solvable(&narrow, &narrow_sphere)?;
@@ -672,6 +688,10 @@ fn bounded<T: Real>(
     let diameter = 2.0 * r_value;
     let reprojected = up(projection_error + norm(errors(point)) + input_error);
     let point_error = reprojected.min(norm(errors(carried_point)));
+    if point_error.is_nan() {
+        // Both bounds failed: the computed vector from the centre to the hit is 0 or not finite.
+        return BoundedOutcome::Unresolved(Unresolved::Unbounded);
+    }
     if !(point_error < diameter) {
         return BoundedOutcome::Unresolved(Unresolved::OtherSide { point_error, diameter });
     }
