@@ -368,22 +368,11 @@ fn compare(expected: &Expected, given: &Given) -> (bool, String) {
     }
 }
 
-/// A key's number in the feedback: at least six significant digits (six decimals from 0.1 up,
-/// more decimals below, and an exponent below 10⁻³), so that an accepted range is never rounded
-/// onto a wrong answer and a dense slab's gap fraction of 10⁻¹² is not printed as 0.
+/// A key's number in the feedback: at least six significant digits
+/// ([`crate::plot::significant`]), so that an accepted range is never rounded onto a wrong
+/// answer and a dense slab's gap fraction of 10⁻¹² is not printed as 0.
 fn show_number(x: f64) -> String {
-    let x = x + 0.0; // -0 prints as 0
-    if x == 0.0 || !x.is_finite() {
-        return format!("{x:.6}");
-    }
-    let magnitude = x.abs().log10().floor();
-    if !(-3.0..15.0).contains(&magnitude) {
-        format!("{x:.5e}")
-    } else {
-        // 0.0123 has magnitude -2: seven decimals give it six significant digits.
-        let decimals = (5.0 - magnitude).max(6.0) as usize;
-        format!("{x:.decimals$}")
-    }
+    crate::plot::significant(x)
 }
 
 /// An end of an accepted range as [`show_number`] prints it, rounded inwards (the low end up, the
