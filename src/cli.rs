@@ -341,8 +341,9 @@ pub fn json_text<T: serde::Serialize + ?Sized>(value: &T) -> serde_json::Result<
     for c in text.chars() {
         if c != '\n' && reaches_terminal_escaped(c) {
             let mut units = [0u16; 2];
+            use std::fmt::Write as _;
             for unit in c.encode_utf16(&mut units) {
-                out.push_str(&format!("\\u{unit:04x}"));
+                let _ = write!(out, "\\u{unit:04x}");
             }
         } else {
             out.push(c);

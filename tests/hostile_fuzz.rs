@@ -9,6 +9,7 @@
 
 use glam::DVec3;
 use hw3::geometry::{Ray, Sphere};
+use hw3::q2_ray_sphere::catalogue::quotient;
 use proptest::prelude::*;
 use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
 use twofloat::TwoFloat;
@@ -266,11 +267,12 @@ fn reference_roots(e: DVec3, d: DVec3, o: DVec3, r: f64) -> Option<[(f64, DVec3)
     if disc_a < two(0.0) {
         return None;
     }
-    let t_ca = -dot(f, d) / a;
-    let h = disc_a.sqrt() / a;
+    let t_ca = quotient(-dot(f, d), a);
+    let h = quotient(disc_a.sqrt(), a);
     let at = |t: TwoFloat| {
         let radial = [f[0] + t * d[0], f[1] + t * d[1], f[2] + t * d[2]];
-        (f64::from(t), DVec3::new(f64::from(radial[0] / r), f64::from(radial[1] / r), f64::from(radial[2] / r)))
+        let unit = |x: TwoFloat| f64::from(quotient(x, two(r)));
+        (f64::from(t), DVec3::new(unit(radial[0]), unit(radial[1]), unit(radial[2])))
     };
     Some([at(t_ca - h), at(t_ca + h)])
 }

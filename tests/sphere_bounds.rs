@@ -7,6 +7,7 @@
 use glam::DVec3;
 use hw3::geometry::sphere::{BoundedHit, BoundedOutcome, Unresolved, bounded_first_hit_from_f64};
 use hw3::geometry::{Ray, Sphere};
+use hw3::q2_ray_sphere::catalogue::quotient;
 use hw3::real::Real;
 use proptest::prelude::*;
 use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
@@ -21,17 +22,6 @@ fn dd3(v: DVec3) -> Dd3 {
 
 fn dot(a: Dd3, b: Dd3) -> Dd {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-/// `x / y` to about 106 bits, by long division: twofloat 0.8.4's quotient of two `TwoFloat`s
-/// forms `1 − y·(1/y)` in plain `f64` and is only about as accurate as an `f64` quotient
-/// (`9/3` comes out `3 − 1.7e-16`).
-fn div(x: Dd, y: Dd) -> Dd {
-    let q1 = x.hi() / y.hi();
-    let r1 = x - y * q1;
-    let q2 = r1.hi() / y.hi();
-    let r2 = r1 - y * q2;
-    Dd::new_add(q1, q2) + r2.hi() / y.hi()
 }
 
 fn cross(a: Dd3, b: Dd3) -> Dd3 {
@@ -76,7 +66,7 @@ impl Reference {
             if q == Dd::from(0.0) {
                 return (Dd::from(0.0), Dd::from(0.0));
             }
-            let (x, y) = (div(c, q), div(q, a));
+            let (x, y) = (quotient(c, q), quotient(q, a));
             if x <= y { (x, y) } else { (y, x) }
         });
         let root_scale = (f64::from(b).abs() + f64::from(disc).max(0.0).sqrt()) / f64::from(a);
@@ -99,9 +89,9 @@ impl Reference {
     /// Point, outward normal and reflected direction at `t`.
     fn frame(&self, t: Dd) -> (Dd3, Dd3, Dd3) {
         let point: Dd3 = std::array::from_fn(|i| self.e[i] + self.d[i] * t);
-        let normal: Dd3 = std::array::from_fn(|i| div(point[i] - self.o[i], self.r));
+        let normal: Dd3 = std::array::from_fn(|i| quotient(point[i] - self.o[i], self.r));
         let length = dot(self.d, self.d).sqrt();
-        let d_hat: Dd3 = std::array::from_fn(|i| div(self.d[i], length));
+        let d_hat: Dd3 = std::array::from_fn(|i| quotient(self.d[i], length));
         let cos = dot(normal, d_hat);
         let reflected = std::array::from_fn(|i| d_hat[i] - Dd::from(2.0) * cos * normal[i]);
         (point, normal, reflected)

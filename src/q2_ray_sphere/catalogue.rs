@@ -143,9 +143,18 @@ pub fn reference_first_hit(e: DVec3, d: DVec3, o: DVec3, r: f64) -> Option<f64> 
 }
 
 /// `x / y` to about 106 bits, by long division (three `f64` quotients, each of the remainder left
-/// by the ones before). twofloat's own `TwoFloat / TwoFloat` forms `1 − y·(1/y)` in plain `f64`
-/// and is only about as accurate as an `f64` quotient (`9/3` comes out `3 − 1.7e-16`).
-fn quotient(x: TwoFloat, y: TwoFloat) -> TwoFloat {
+/// by the ones before): the one double-double division of the crate's references. twofloat's own
+/// `TwoFloat / TwoFloat` forms `1 − y·(1/y)` in plain `f64` and is only about as accurate as an
+/// `f64` quotient (`9/3` comes out `3 − 1.7e-16`).
+///
+/// # Examples
+/// ```
+/// use twofloat::TwoFloat;
+/// let third = hw3::q2_ray_sphere::catalogue::quotient(TwoFloat::from(9.0), TwoFloat::from(3.0));
+/// assert_eq!((third.hi(), third.lo()), (3.0, 0.0));
+/// ```
+#[must_use]
+pub fn quotient(x: TwoFloat, y: TwoFloat) -> TwoFloat {
     let q1 = x.hi() / y.hi();
     let r1 = x - y * q1;
     let q2 = r1.hi() / y.hi();
