@@ -11,7 +11,7 @@
 //! - an expression is at most [`MAX_LENGTH`] characters with at most [`MAX_DEPTH`] nested
 //!   parentheses, and is read in one pass (each sequence is built from its right end, so no step
 //!   re-walks what came before);
-//! - each language becomes Glushkov's position automaton ([`automaton`]): one state per letter
+//! - each language becomes Glushkov's position automaton (Berry & Sethi 1986, §2): one state per letter
 //!   occurrence, built in time bounded by the expression's length times its number of letters;
 //! - the search determinises the automata on the fly (a state is a set of positions per language,
 //!   a bit set) and stops with [`GrammarError::TooManyStates`] past [`MAX_STATES`] sets. A
